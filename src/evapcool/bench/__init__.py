@@ -1,0 +1,55 @@
+"""`evapcool bench`: the performance figures the issues ask for.
+
+Each section lives in its own module with a `run(args) -> None` that prints
+its figures; `--only NAME` picks sections. Timings are medians over repeats:
+the machine is shared and noisy.
+"""
+
+from __future__ import annotations
+
+import argparse
+import importlib
+import sys
+
+#: section name -> module (each has run(args)).
+SECTIONS = {
+    "physics": "evapcool.bench.physics",
+    "fast": "evapcool.bench.fast",
+    "applet": "evapcool.bench.applet",
+}
+
+
+class _Parser(argparse.ArgumentParser):
+    def error(self, message: str) -> None:  # one line, exit 2
+        print(f"evapcool bench: {message}", file=sys.stderr)
+        raise SystemExit(2)
+
+
+def main(argv: list[str] | None = None) -> int:
+    """Run the benchmark sections and print their figures."""
+    p = _Parser(prog="evapcool bench", description=__doc__.splitlines()[0])
+    p.add_argument(
+        "--engine",
+        choices=("reference", "fast", "auto"),
+        default="auto",
+        help="engine for the physics figures (default: auto)",
+    )
+    p.add_argument(
+        "--only",
+        action="append",
+        choices=sorted(SECTIONS),
+        help="run only this section (repeatable)",
+    )
+    p.add_argument("--quick", action="store_true", help="fewer repeats, smaller systems")
+    args = p.parse_args(argv)
+    names = args.only or list(SECTIONS)
+    if args.engine == "fast" and not args.only:
+        names = ["physics", "fast"]
+    for name in names:
+        try:
+            mod = importlib.import_module(SECTIONS[name])
+        except ModuleNotFoundError:
+            print(f"[{name}] not available in this build")
+            continue
+        mod.run(args)
+    return 0

@@ -1,0 +1,343 @@
+"""`Simulation`: the public face of the physics (SPEC section 3).
+
+Pure model: NumPy (and Numba through the fast engine), never pygame.
+"""
+
+from __future__ import annotations
+
+import math
+import numbers
+from collections.abc import Sequence
+
+import numpy as np
+
+from evapcool.physics.loading import load_cup
+from evapcool.physics.world import (
+    ESCAPE_RULES,
+    ESCAPED,
+    EVENT_NAMES,
+    TRAPPED,
+    World,
+)
+
+#: The original applet's constants (SPEC section 1).
+FPS = 30
+GRAVITY = 10.0 / 30.0  # px / frame^2
+CURVATURE = 0.01  # per px
+ATOM_RADIUS = 12.0
+N_ATOMS = 49
+TRAP_HEIGHT = 400.0
+WINDOW = (640, 672)
+BORDER_LEFT, BORDER_RIGHT, BORDER_TOP, BORDER_BOTTOM = 48, 96, 48, 96
+CUP_DROP = 32  # px between the drawn cup bottom and the play-area bottom
+TC_EXPONENT_SEED = 2.0 / 3.0  # seed Eq. (46), the 3D-box law
+TC_EXPONENT_CUP = 2.0 / 5.0  # ideal Bose gas with g(E) ~ E^(3/2) (SPEC 4)
+ENGINES = ("auto", "reference", "fast")
+#: engine="auto" uses the fast engine from this many atoms on (docs/benchmarks.md).
+AUTO_FAST_MIN_ATOMS = 150
+
+
+def cup_vertex(window: tuple[int, int]) -> tuple[float, float]:
+    """Screen position of the drawn cup's lowest point: (296, 544) in 640 x 672."""
+    w, h = window
+    play_w = w - BORDER_LEFT - BORDER_RIGHT
+    return BORDER_LEFT + play_w / 2.0, float(h - BORDER_BOTTOM - CUP_DROP)
+
+
+def _bad(name: str, allowed: str, value: object) -> ValueError:
+    return ValueError(f"{name} must be {allowed} (got {value!r})")
+
+
+def _positive(name: str, value: object, *, allow_inf: bool = False) -> float:
+    if isinstance(value, bool) or not isinstance(value, numbers.Real):
+        raise _bad(name, "a positive number", value)
+    v = float(value)
+    if math.isnan(v) or v <= 0.0 or (math.isinf(v) and not allow_inf):
+        kind = "a positive number" + (" (inf allowed)" if allow_inf else ", finite")
+        raise _bad(name, kind, value)
+    return v
+
+
+def _per_atom(name: str, value: object, n: int) -> np.ndarray:
+    if isinstance(value, numbers.Real) and not isinstance(value, bool):
+        return np.full(n, _positive(name, value))
+    arr = np.asarray(value, dtype=float)
+    if arr.shape != (n,) or not np.all(np.isfinite(arr)) or np.any(arr <= 0.0):
+        raise _bad(name, f"a positive finite number or {n} of them", value)
+    return arr.copy()
+
+
+class Simulation:
+    """Hard disks in a parabolic cup under gravity, advanced event by event, exactly.
+
+    Trap coordinates: x right, y up, origin at the lowest point an atom centre
+    can reach; lengths in px, time in frames (1/30 s), mass in atom masses.
+    """
+
+    def __init__(
+        self,
+        n_atoms: int = N_ATOMS,
+        radius: float | Sequence[float] = ATOM_RADIUS,
+        mass: float | Sequence[float] = 1.0,
+        *,
+        curvature: float = CURVATURE,
+        gravity: float = GRAVITY,
+        trap_height: float = TRAP_HEIGHT,
+        window: tuple[int, int] = WINDOW,
+        seed: int | None = None,
+        engine: str = "auto",
+        tc_exponent: float = TC_EXPONENT_SEED,
+        escape: str = "rim",
+        record_events: bool = False,
+        positions: np.ndarray | None = None,
+        velocities: np.ndarray | None = None,
+    ) -> None:
+        if isinstance(n_atoms, bool) or not isinstance(n_atoms, numbers.Integral) or n_atoms < 1:
+            raise _bad("n_atoms", "a whole number >= 1", n_atoms)
+        n = int(n_atoms)
+        radii = _per_atom("radius", radius, n)
+        masses = _per_atom("mass", mass, n)
+        a = _positive("curvature", curvature)
+        g = _positive("gravity", gravity)
+        height = _positive("trap_height", trap_height, allow_inf=True)
+        tc_p = _positive("tc_exponent", tc_exponent)
+        if (
+            not isinstance(window, (tuple, list))
+            or len(window) != 2
+            or not all(isinstance(s, numbers.Integral) and not isinstance(s, bool) for s in window)
+            or window[0] < BORDER_LEFT + BORDER_RIGHT + 16
+            or window[1] < BORDER_TOP + BORDER_BOTTOM + 16
+        ):
+            raise _bad("window", "two whole numbers (width, height) of at least 160 x 160 px", window)
+        if seed is not None and (
+            isinstance(seed, bool) or not isinstance(seed, numbers.Integral) or seed < 0
+        ):
+            raise _bad("seed", "a whole number >= 0 or None", seed)
+        if engine not in ENGINES:
+            raise _bad("engine", "one of " + ", ".join(ENGINES), engine)
+        if escape not in ESCAPE_RULES:
+            raise _bad("escape", "one of " + ", ".join(ESCAPE_RULES), escape)
+
+        r_ref = float(radii[0])
+        vx_screen, vy_screen = cup_vertex((int(window[0]), int(window[1])))
+        origin_sy = vy_screen - r_ref  # screen y of the trap origin
+        self.window = (int(window[0]), int(window[1]))
+        self.screen_origin = (vx_screen, origin_sy)
+        self.seed = seed
+        self.rng = np.random.default_rng(seed)
+
+        if positions is None and velocities is None:
+            if not np.all(radii == r_ref):
+                raise _bad("radius", "one number unless positions are given", radius)
+            pos, vel = load_cup(n, r_ref, a, origin_sy, self.rng)
+        else:
+            pos = np.array(positions, dtype=float)
+            vel = np.array(velocities, dtype=float)
+            for name, arr in (("positions", pos), ("velocities", vel)):
+                if arr.shape != (n, 2) or not np.all(np.isfinite(arr)):
+                    raise _bad(name, f"a finite array of shape ({n}, 2)", arr.shape)
+
+        self._world = World(
+            pos=pos,
+            vel=vel,
+            radius=radii,
+            mass=masses,
+            curvature=a,
+            gravity=g,
+            trap_height=height,
+            x_left=-vx_screen,
+            x_right=self.window[0] - vx_screen,
+            y_bottom=origin_sy - self.window[1],
+            tc_exponent=tc_p,
+            escape_rule=escape,
+            record_events=bool(record_events),
+        )
+        self._engine = self._make_engine(engine, n)
+        self._engine.set_trap_height(height)
+
+    @classmethod
+    def classic(cls, seed: int | None = None, **overrides: object) -> Simulation:
+        """The original applet's start: 49 atoms of radius 12 in the cup, H = 400."""
+        return cls(n_atoms=N_ATOMS, radius=ATOM_RADIUS, seed=seed, **overrides)
+
+    def _make_engine(self, engine: str, n: int):
+        if engine == "auto":
+            engine = "fast" if n >= AUTO_FAST_MIN_ATOMS and _fast_available() else "reference"
+        if engine == "fast":
+            from evapcool.physics.fast import FastEngine
+
+            return FastEngine(self._world)
+        from evapcool.physics.reference import ReferenceEngine
+
+        return ReferenceEngine(self._world)
+
+    # -- time -----------------------------------------------------------------
+    def advance(self, dt: float) -> None:
+        """Advance the simulation by dt frames, processing every event exactly."""
+        if isinstance(dt, bool) or not isinstance(dt, numbers.Real):
+            raise _bad("dt", "a number of frames >= 0", dt)
+        dt = float(dt)
+        if not math.isfinite(dt) or dt < 0.0:
+            raise _bad("dt", "a finite number of frames >= 0", dt)
+        self._engine.advance_to(self._world.time + dt)
+
+    @property
+    def time(self) -> float:
+        """Simulation time in frames."""
+        return self._world.time
+
+    @property
+    def engine(self) -> str:
+        """Name of the engine in use: 'reference' or 'fast'."""
+        return self._engine.name
+
+    # -- the trap ---------------------------------------------------------------
+    @property
+    def trap_height(self) -> float:
+        """Rim height H in px above the lowest centre position."""
+        return self._world.trap_height
+
+    @trap_height.setter
+    def trap_height(self, value: float) -> None:
+        self._engine.set_trap_height(_positive("trap_height", value, allow_inf=True))
+
+    @property
+    def rim_half_width(self) -> float:
+        """x_rim = sqrt(H / a): the wall ends at |x| = x_rim."""
+        return self._world.rim_half_width
+
+    @property
+    def curvature(self) -> float:
+        return self._world.curvature
+
+    @property
+    def gravity(self) -> float:
+        return self._world.gravity
+
+    @property
+    def escape_rule(self) -> str:
+        """'rim' (fly over the rim) or 'knife' (energy above m g H removed at once)."""
+        return self._world.escape_rule
+
+    # -- atoms ------------------------------------------------------------------
+    @property
+    def n_atoms(self) -> int:
+        """Atoms at the start."""
+        return self._world.n_initial
+
+    @property
+    def n_trapped(self) -> int:
+        return self._world.n_trapped
+
+    @property
+    def n_escaped(self) -> int:
+        """Atoms that left the trap and are still falling inside the window."""
+        return int(np.count_nonzero(self._world.status == ESCAPED))
+
+    @property
+    def trapped_indices(self) -> np.ndarray:
+        return np.flatnonzero(self._world.status == TRAPPED)
+
+    @property
+    def escaped_indices(self) -> np.ndarray:
+        return np.flatnonzero(self._world.status == ESCAPED)
+
+    @property
+    def positions(self) -> np.ndarray:
+        """(n_trapped, 2) centres now, trap coordinates (y up), px."""
+        return self._world.state_at(self.trapped_indices, self.time)[0]
+
+    @property
+    def velocities(self) -> np.ndarray:
+        """(n_trapped, 2) velocities now, px / frame."""
+        return self._world.state_at(self.trapped_indices, self.time)[1]
+
+    @property
+    def escaped_positions(self) -> np.ndarray:
+        """(n_escaped, 2) centres of atoms falling out of the window."""
+        return self._world.state_at(self.escaped_indices, self.time)[0]
+
+    @property
+    def radii(self) -> np.ndarray:
+        """Radii of the trapped atoms."""
+        return self._world.radius[self.trapped_indices].copy()
+
+    @property
+    def masses(self) -> np.ndarray:
+        """Masses of the trapped atoms."""
+        return self._world.mass[self.trapped_indices].copy()
+
+    @property
+    def escaped_radii(self) -> np.ndarray:
+        return self._world.radius[self.escaped_indices].copy()
+
+    def energies(self) -> np.ndarray:
+        """Energy 1/2 m v^2 + m g y of each trapped atom."""
+        return self._world.energies()[self.trapped_indices]
+
+    def total_energy(self) -> float:
+        """Sum of 1/2 m v^2 + m g y over trapped atoms."""
+        return float(np.sum(self.energies()))
+
+    # -- thermodynamics (seed Eqs. 1 and 46) ---------------------------------------
+    @property
+    def temperature(self) -> float:
+        """Mean energy per trapped atom, seed Eq. (1); 0 for an empty cup."""
+        n = self.n_trapped
+        return self.total_energy() / n if n else 0.0
+
+    @property
+    def initial_temperature(self) -> float:
+        return self._world.initial_temperature
+
+    @property
+    def critical_temperature(self) -> float:
+        """Tc(N) = Tc0 (N / N0)^p with Tc0 = 0.75 T(0), seed Eq. (46)."""
+        return self._world.critical_temperature_of(self.n_trapped)
+
+    @property
+    def tc_exponent(self) -> float:
+        return self._world.tc_exponent
+
+    @property
+    def won(self) -> bool:
+        """True once T < Tc(N) (latched): the gas has condensed."""
+        return self._world.won
+
+    # -- counters ---------------------------------------------------------------
+    @property
+    def pair_collision_count(self) -> int:
+        return self._world.pair_count
+
+    @property
+    def wall_collision_count(self) -> int:
+        return self._world.wall_count
+
+    @property
+    def collision_count(self) -> int:
+        return self._world.pair_count + self._world.wall_count
+
+    @property
+    def event_log(self) -> list[tuple[str, int, int, float]]:
+        """(kind, i, j, time) of every event if record_events=True, else []."""
+        return [(EVENT_NAMES[e[0]], int(e[1]), int(e[2]), float(e[3])) for e in self._world.log]
+
+    # -- for views --------------------------------------------------------------
+    def to_screen(self, xy: np.ndarray) -> np.ndarray:
+        """Trap coordinates to window pixels (y down)."""
+        ox, oy = self.screen_origin
+        xy = np.asarray(xy, dtype=float)
+        out = np.empty_like(xy)
+        out[..., 0] = ox + xy[..., 0]
+        out[..., 1] = oy - xy[..., 1]
+        return out
+
+    def force_win(self) -> None:
+        """Declare the gas condensed now (demonstrations and tests)."""
+        self._world.won = True
+
+
+def _fast_available() -> bool:
+    import importlib.util
+
+    return importlib.util.find_spec("numba") is not None

@@ -1,0 +1,129 @@
+"""The complete mutable state of a simulation, shared by both engines.
+
+Arrays hold each atom's state at its own last-event time (lazy update);
+scalars hold the clock, the trap, the running sums and the counters. The
+engines (reference.py, fast.py) move this state forward; nothing else does.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from evapcool.physics.kernels import flight_vy, flight_x, flight_y
+
+# Atom lifecycle, SPEC 2.3: trapped -> escaped -> gone.
+TRAPPED = 0
+ESCAPED = 1
+GONE = 2
+
+# Event kinds in the event log.
+EV_PAIR = 0
+EV_WALL = 1
+EV_ESCAPE = 2
+EV_GONE = 3
+EV_KNIFE = 4
+EVENT_NAMES = ("pair", "wall", "escape", "gone", "knife")
+
+ESCAPE_RULES = ("rim", "knife")
+
+#: After the win, wall bounces keep 1 - 0.2 of the speed (seed Eq. 34)...
+WIN_DAMPING = 0.2
+#: ...but only while the speed is at least this (px/frame).
+WIN_DAMPING_MIN_SPEED = 1.0
+
+
+@dataclass
+class World:
+    """Arrays of atoms plus the global clock, trap and bookkeeping."""
+
+    pos: np.ndarray  # (N, 2) stored position at t_atom
+    vel: np.ndarray  # (N, 2) stored velocity at t_atom
+    radius: np.ndarray  # (N,)
+    mass: np.ndarray  # (N,)
+    curvature: float  # a, per px
+    gravity: float  # g, px / frame^2
+    trap_height: float  # H, px above the lowest centre position
+    x_left: float  # window left edge, trap x
+    x_right: float  # window right edge, trap x
+    y_bottom: float  # window bottom edge, trap y
+    tc_exponent: float = 2.0 / 3.0
+    escape_rule: str = "rim"
+    record_events: bool = False
+    t_atom: np.ndarray = field(init=False)
+    status: np.ndarray = field(init=False)
+    counter: np.ndarray = field(init=False)  # events per atom (lazy invalidation)
+    time: float = 0.0
+    won: bool = False
+    pair_count: int = 0
+    wall_count: int = 0
+    n_initial: int = field(init=False)
+    n_trapped: int = field(init=False)
+    energy_sum: float = field(init=False)  # running sum over trapped atoms
+    initial_temperature: float = field(init=False)
+    tc0: float = field(init=False)
+    log: list = field(default_factory=list)
+
+    def __post_init__(self) -> None:
+        n = len(self.radius)
+        self.t_atom = np.zeros(n)
+        self.status = np.full(n, TRAPPED, dtype=np.int8)
+        self.counter = np.zeros(n, dtype=np.int64)
+        self.n_initial = n
+        self.n_trapped = n
+        self.energy_sum = self.sequential_energy_sum()
+        self.initial_temperature = self.energy_sum / n
+        # seed Eq. (46): Tc0 is 3/4 of the starting temperature.
+        self.tc0 = 0.75 * self.initial_temperature
+
+    # -- derived quantities -------------------------------------------------
+    @property
+    def half_gravity(self) -> float:
+        return 0.5 * self.gravity
+
+    @property
+    def rim_half_width(self) -> float:
+        """x_rim = sqrt(H / a); the wall ends there."""
+        return math.sqrt(self.trap_height / self.curvature)
+
+    @property
+    def knife(self) -> bool:
+        return self.escape_rule == "knife"
+
+    def energies(self) -> np.ndarray:
+        """1/2 m v^2 + m g y of every atom from its stored state (conserved in flight)."""
+        v = self.vel
+        return 0.5 * self.mass * (v[:, 0] * v[:, 0] + v[:, 1] * v[:, 1]) + (
+            self.mass * self.gravity * self.pos[:, 1]
+        )
+
+    def sequential_energy_sum(self) -> float:
+        """Sum of trapped energies, added in index order (engines continue it)."""
+        e = self.energies()
+        total = 0.0
+        for i in np.flatnonzero(self.status == TRAPPED):
+            total += float(e[i])
+        return total
+
+    def critical_temperature_of(self, n: int) -> float:
+        """Tc(N) = Tc0 (N / N0)^p, seed Eq. (46) with exponent p."""
+        return self.tc0 * (n / self.n_initial) ** self.tc_exponent
+
+    def state_at(self, idx: np.ndarray, t: float) -> tuple[np.ndarray, np.ndarray]:
+        """Positions and velocities of atoms idx carried to time t (no mutation)."""
+        dt = t - self.t_atom[idx]
+        p = self.pos[idx]
+        v = self.vel[idx]
+        out_p = np.empty_like(p)
+        out_v = v.copy()
+        out_p[:, 0] = flight_x(p[:, 0], v[:, 0], dt)
+        out_p[:, 1] = flight_y(p[:, 1], v[:, 1], self.half_gravity, dt)
+        out_v[:, 1] = flight_vy(v[:, 1], self.gravity, dt)
+        return out_p, out_v
+
+    def exit_bounds(self, i: int) -> tuple[float, float, float]:
+        """Window edges for atom i's centre, pushed out by its radius."""
+        r = float(self.radius[i])
+        return self.x_left - r, self.x_right + r, self.y_bottom - r
