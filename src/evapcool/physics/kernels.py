@@ -128,10 +128,7 @@ def exit_time(
         dt = (x_right - x) / vx
     h = y - y_bottom
     s = math.sqrt(vy * vy + 2.0 * g * h)
-    if vy > 0.0:
-        dy = (vy + s) / g
-    else:
-        dy = 2.0 * h / (s - vy)
+    dy = (vy + s) / g if vy > 0.0 else 2.0 * h / (s - vy)
     if dy < dt:
         dt = dy
     return t0 + dt
@@ -160,9 +157,7 @@ def collide_pair(
     return vx1 - k1 * nx, vy1 - k1 * ny, vx2 + k2 * nx, vy2 + k2 * ny
 
 
-def reflect_wall(
-    x: float, vx: float, vy: float, a: float, keep: float
-) -> tuple[float, float]:
+def reflect_wall(x: float, vx: float, vy: float, a: float, keep: float) -> tuple[float, float]:
     """Reflect v about the tangent of y = a x^2 at x, scaled by keep = 1 - damping.
 
     v' = keep (v - 2 (v.n) n), n = (-2 a x, 1) / |(-2 a x, 1)| (SPEC 2.1,

@@ -108,7 +108,9 @@ class Simulation:
             or window[0] < BORDER_LEFT + BORDER_RIGHT + 16
             or window[1] < BORDER_TOP + BORDER_BOTTOM + 16
         ):
-            raise _bad("window", "two whole numbers (width, height) of at least 160 x 160 px", window)
+            raise _bad(
+                "window", "two whole numbers (width, height) of at least 160 x 160 px", window
+            )
         if seed is not None and (
             isinstance(seed, bool) or not isinstance(seed, numbers.Integral) or seed < 0
         ):
