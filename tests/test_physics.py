@@ -316,6 +316,13 @@ def test_bad_input_names_the_parameter(kwargs: dict, name: str) -> None:
         Simulation(**kwargs)
 
 
+def test_positions_must_start_inside_the_cup() -> None:
+    with pytest.raises(ValueError, match="positions"):
+        Simulation(1, positions=[(0.0, 0.0)], velocities=[(0.0, 0.0)])
+    with pytest.raises(ValueError, match="positions"):
+        Simulation(1, positions=[(100.0, 50.0)], velocities=[(0.0, 0.0)])
+
+
 def test_bad_advance_and_height() -> None:
     sim = Simulation.classic(seed=1)
     with pytest.raises(ValueError, match="dt"):

@@ -138,6 +138,13 @@ class Simulation:
             for name, arr in (("positions", pos), ("velocities", vel)):
                 if arr.shape != (n, 2) or not np.all(np.isfinite(arr)):
                     raise _bad(name, f"a finite array of shape ({n}, 2)", arr.shape)
+            # A centre on or outside the wall is not in the cup (and one at rest on it
+            # would bounce forever at one instant).
+            outside = np.flatnonzero(pos[:, 1] <= a * pos[:, 0] * pos[:, 0])
+            if outside.size:
+                raise _bad(
+                    "positions", "centres strictly inside the cup, y > a x^2", pos[outside[0]]
+                )
 
         self._world = World(
             pos=pos,
