@@ -1,0 +1,228 @@
+"""`evapcool` (the default command): play the applet, or run it headless for a screenshot."""
+
+from __future__ import annotations
+
+import argparse
+import math
+import os
+import sys
+from collections.abc import Callable
+from pathlib import Path
+
+from evapcool.app.storage import settings_path
+from evapcool.game.rules import SPEED_MAX, SPEED_MIN, Game, GameConfig, check_speed
+from evapcool.game.settings import (
+    RADIUS_MAX,
+    RADIUS_MIN,
+    TC_LAWS,
+    load_settings,
+    max_atoms,
+    with_overrides,
+)
+from evapcool.physics.world import ESCAPE_RULES
+
+PROG = "evapcool"
+#: Parameter names -> our options, so ValueErrors name what the user typed.
+_OPTION_OF = {
+    "n_atoms": "--atoms",
+    "radius": "--radius",
+    "seed": "--seed",
+    "speed": "--speed",
+    "tc_law": "--tc-law",
+    "escape": "--escape",
+}
+
+
+class _Parser(argparse.ArgumentParser):
+    def error(self, message: str) -> None:  # one line and exit 2, never a usage dump
+        print(f"{PROG}: {message}", file=sys.stderr)
+        raise SystemExit(2)
+
+
+def _whole(minimum: int) -> Callable[[str], int]:
+    def parse(text: str) -> int:
+        try:
+            value = int(text)
+        except ValueError:
+            value = None
+        if value is None or value < minimum:
+            raise argparse.ArgumentTypeError(f"must be a whole number >= {minimum} (got {text!r})")
+        return value
+
+    return parse
+
+
+def _positive_float(text: str) -> float:
+    try:
+        value = float(text)
+    except ValueError:
+        value = math.nan
+    if not math.isfinite(value) or value <= 0.0:
+        raise argparse.ArgumentTypeError(f"must be a positive finite number (got {text!r})")
+    return value
+
+
+def _speed(text: str) -> float:
+    try:
+        return check_speed(float(text))
+    except ValueError:
+        raise argparse.ArgumentTypeError(
+            f"must be a number from {SPEED_MIN:g} to {SPEED_MAX:g} (got {text!r})"
+        ) from None
+
+
+def _png_path(text: str) -> Path:
+    path = Path(text)
+    if path.suffix.lower() != ".png":
+        raise argparse.ArgumentTypeError(f"must be a file name ending in .png (got {text!r})")
+    if not path.parent.is_dir():
+        raise argparse.ArgumentTypeError(f"folder {str(path.parent)!r} does not exist")
+    return path
+
+
+def build_parser() -> argparse.ArgumentParser:
+    p = _Parser(
+        prog=PROG,
+        description="Evaporative cooling of atoms in a cup: play the applet. "
+        "Other commands: 'evapcool lab ...', 'evapcool bench'.",
+    )
+    # Atoms, radius, Tc law and escape rule default to the saved settings (key O in
+    # the applet); given here they apply to this run only and are not saved.
+    p.add_argument(
+        "--atoms", type=_whole(1), default=None, metavar="N", help="atoms (saved setting; 49)"
+    )
+    p.add_argument(
+        "--radius",
+        type=_positive_float,
+        default=None,
+        metavar="R",
+        help=f"atom radius, {RADIUS_MIN:g} to {RADIUS_MAX:g} px (saved setting; 12)",
+    )
+    p.add_argument(
+        "--tc-law",
+        choices=tuple(TC_LAWS),
+        default=None,
+        help="Tc ~ N^p: seed p = 2/3 (original), cup p = 2/5 (saved setting; seed)",
+    )
+    p.add_argument(
+        "--escape",
+        choices=ESCAPE_RULES,
+        default=None,
+        help="atoms leave over the rim, or by the energy knife (saved setting; rim)",
+    )
+    p.add_argument(
+        "--seed", type=_whole(0), default=None, metavar="S", help="random seed (default: random)"
+    )
+    p.add_argument(
+        "--speed",
+        type=_speed,
+        default=1.0,
+        metavar="X",
+        help=f"simulation speed, {SPEED_MIN:g} to {SPEED_MAX:g} (default 1)",
+    )
+    p.add_argument("--fullscreen", action="store_true", help="start in full screen")
+    p.add_argument(
+        "--frames",
+        type=_whole(0),
+        default=None,
+        metavar="N",
+        help="play N frames without waiting for the clock (1 physics frame x speed each), exit",
+    )
+    p.add_argument(
+        "--screenshot", type=_png_path, default=None, metavar="PATH", help="with --frames: save PNG"
+    )
+    p.add_argument(
+        "--data-dir",
+        type=Path,
+        default=None,
+        metavar="DIR",
+        help="folder for the high scores (default $EVAPCOOL_DATA_DIR, else the user data folder)",
+    )
+    p.add_argument(
+        "--config-dir",
+        type=Path,
+        default=None,
+        metavar="DIR",
+        help="folder for the settings (default $EVAPCOOL_CONFIG_DIR, else the user config folder)",
+    )
+    return p
+
+
+def _user_message(exc: ValueError) -> str:
+    text = str(exc)
+    if text.startswith("n_atoms:") and "do not fit" in text:
+        return "--atoms and --radius" + text[len("n_atoms") :]  # a joint limit
+    for name, option in _OPTION_OF.items():
+        if text.startswith((name + " ", name + ":")):
+            return option + text[len(name) :]
+    return text
+
+
+def main(argv: list[str] | None = None) -> int:
+    """Play the applet (or, with --frames, run it headless); returns the exit status."""
+    args = build_parser().parse_args(argv)
+    if args.screenshot is not None and args.frames is None:
+        print(f"{PROG}: --screenshot needs --frames N (frames to run first)", file=sys.stderr)
+        return 2
+    saved, notices = load_settings(settings_path(args.config_dir))
+    overrides = {
+        "n_atoms": args.atoms,
+        "radius": args.radius,
+        "tc_law": args.tc_law,
+        "escape": args.escape,
+    }
+    if args.atoms is None and args.radius is not None and RADIUS_MIN <= args.radius <= RADIUS_MAX:
+        # Bigger atoms than saved: the saved count may not fit; take what does.
+        overrides["n_atoms"] = min(saved.n_atoms, max_atoms(args.radius))
+    try:
+        run = with_overrides(saved, **overrides)
+        config = GameConfig(
+            n_atoms=run.n_atoms,
+            radius=run.radius,
+            seed=args.seed,
+            speed=args.speed,
+            tc_exponent=run.tc_exponent,
+            escape=run.escape,
+        )
+        game = Game(config)
+    except ValueError as exc:
+        print(f"{PROG}: {_user_message(exc)}", file=sys.stderr)
+        return 2
+
+    os.environ.setdefault("PYGAME_HIDE_SUPPORT_PROMPT", "1")
+    import pygame  # only now: bad arguments should not pay for SDL start-up
+
+    from evapcool.app.applet import App
+
+    try:
+        app = App(
+            game,
+            fullscreen=args.fullscreen,
+            data_dir=args.data_dir,
+            config_dir=args.config_dir,
+            settings=saved,
+            overrides={k: v for k, v in overrides.items() if v is not None},
+            notices=notices,
+        )
+    except pygame.error as exc:
+        print(
+            f"{PROG}: cannot open a window ({exc}); for headless runs set SDL_VIDEODRIVER=dummy",
+            file=sys.stderr,
+        )
+        return 1
+    try:
+        if args.frames is None:
+            app.run()
+        else:
+            app.run_frames(args.frames)
+            if args.screenshot is not None:
+                try:
+                    app.screenshot(args.screenshot)
+                except OSError as exc:
+                    print(f"{PROG}: cannot write {str(args.screenshot)!r}: {exc}", file=sys.stderr)
+                    return 1
+    except KeyboardInterrupt:
+        return 130
+    finally:
+        app.close()
+    return 0

@@ -1,0 +1,183 @@
+"""The game around a `Simulation`: pause, speed, restart, win, score, play time.
+
+Pure state, no pygame: the view and the app read and drive it, tests drive it
+directly. Time is physics frames (1/30 s) unless a name says seconds.
+"""
+
+from __future__ import annotations
+
+import math
+import numbers
+from collections.abc import Callable
+from dataclasses import dataclass
+
+from evapcool.physics.simulation import (
+    ATOM_RADIUS,
+    FPS,
+    N_ATOMS,
+    TC_EXPONENT_SEED,
+    TRAP_HEIGHT,
+    Simulation,
+)
+
+#: Trap-height range of the original slider, px, and its start.
+HEIGHT_MIN = 25.0
+HEIGHT_MAX = 450.0
+HEIGHT_START = TRAP_HEIGHT
+#: Simulation speed multipliers: +/- double or halve within these.
+SPEED_MIN = 0.25
+SPEED_MAX = 4.0
+#: One wall-clock step never advances more than this many seconds of play, so a
+#: stall (window dragged, laptop asleep) does not jump the game minutes ahead.
+MAX_WALL_STEP = 0.1
+
+
+@dataclass(frozen=True)
+class GameConfig:
+    """What a (re)start builds: the original's 49 atoms of radius 12 by default."""
+
+    n_atoms: int = N_ATOMS
+    radius: float = ATOM_RADIUS
+    seed: int | None = None
+    speed: float = 1.0
+    engine: str = "auto"
+    #: p in Tc(N) = Tc0 (N / N0)^p: the seed's 2/3 or the cup's 2/5.
+    tc_exponent: float = TC_EXPONENT_SEED
+    #: "rim" (atoms fly over the rim) or "knife" (energy above m g H is cut at once).
+    escape: str = "rim"
+
+
+def check_speed(speed: object) -> float:
+    """The speed as a float, or ValueError naming the allowed range."""
+    if isinstance(speed, numbers.Real) and not isinstance(speed, bool):
+        s = float(speed)
+        if math.isfinite(s) and SPEED_MIN <= s <= SPEED_MAX:
+            return s
+    raise ValueError(f"speed must be a number from {SPEED_MIN:g} to {SPEED_MAX:g} (got {speed!r})")
+
+
+def make_simulation(config: GameConfig) -> Simulation:
+    """A fresh simulation for config; the reference engine if the fast one can't load."""
+    kwargs = {
+        "n_atoms": config.n_atoms,
+        "radius": config.radius,
+        "seed": config.seed,
+        "tc_exponent": config.tc_exponent,
+        "escape": config.escape,
+    }
+    try:
+        return Simulation(**kwargs, engine=config.engine)
+    except ImportError:
+        # numba (or the fast engine) missing, e.g. in the lean executable.
+        if config.engine == "fast":
+            raise
+        return Simulation(**kwargs, engine="reference")
+
+
+class Game:
+    """One game: a simulation plus the player's controls and the rules of winning."""
+
+    def __init__(self, config: GameConfig | None = None) -> None:
+        self.config = config or GameConfig()
+        self.speed = check_speed(self.config.speed)
+        #: Called once with the game when the gas condenses (highscores, sounds...).
+        self.on_win: list[Callable[[Game], None]] = []
+        #: Bumped by every restart so views can drop per-game caches.
+        self.generation = 0
+        self.restart()
+
+    # -- lifecycle ---------------------------------------------------------------
+    def restart(self, config: GameConfig | None = None) -> None:
+        """New atoms, trap at its start height, paused (the original's restart).
+
+        config, if given, replaces the current one first (settings applied on restart);
+        a config the simulation rejects raises ValueError and leaves the game as it was.
+        """
+        sim = make_simulation(config or self.config)
+        if config is not None:
+            self.config = config
+        self.sim = sim
+        self.sim.trap_height = HEIGHT_START
+        self.paused = True
+        #: Play time (s) at which the win was first seen, None before.
+        self.won_at: float | None = None
+        self.generation += 1
+
+    # -- pause and speed -----------------------------------------------------------
+    def toggle_pause(self) -> None:
+        self.paused = not self.paused
+
+    def set_speed(self, speed: float) -> None:
+        self.speed = check_speed(speed)
+
+    def faster(self) -> None:
+        self.speed = min(SPEED_MAX, self.speed * 2.0)
+
+    def slower(self) -> None:
+        self.speed = max(SPEED_MIN, self.speed / 2.0)
+
+    # -- the trap ----------------------------------------------------------------------
+    @property
+    def trap_height(self) -> float:
+        return self.sim.trap_height
+
+    def set_trap_height(self, height: float) -> bool:
+        """Move the rim (clamped to the slider range); frozen once the gas has condensed.
+
+        Returns True if the height changed.
+        """
+        if self.won:
+            return False  # the score is the atoms left: no evaporating after the win
+        h = min(HEIGHT_MAX, max(HEIGHT_MIN, float(height)))
+        if h == self.sim.trap_height:
+            return False
+        self.sim.trap_height = h
+        return True
+
+    def nudge_height(self, delta: float) -> bool:
+        return self.set_trap_height(self.sim.trap_height + delta)
+
+    # -- time ----------------------------------------------------------------------------
+    def update(self, wall_seconds: float) -> float:
+        """Advance by elapsed wall time x 30 x speed (capped); returns the frames advanced."""
+        if self.paused or wall_seconds <= 0.0:
+            return 0.0
+        return self._advance(min(wall_seconds, MAX_WALL_STEP) * FPS * self.speed)
+
+    def run_frames(self, n: int = 1) -> float:
+        """Advance exactly n display frames of 1 physics frame x speed (headless runs)."""
+        if self.paused:
+            return 0.0
+        return self._advance(n * self.speed)
+
+    def step(self) -> float:
+        """One physics frame forward, only while paused (frame-by-frame study)."""
+        return self._advance(1.0) if self.paused else 0.0
+
+    def _advance(self, frames: float) -> float:
+        self.sim.advance(frames)
+        if self.sim.won and self.won_at is None:
+            self.won_at = self.play_time
+            for callback in list(self.on_win):
+                callback(self)
+        return frames
+
+    # -- what the player sees ------------------------------------------------------------
+    @property
+    def play_time(self) -> float:
+        """Simulated seconds since the (re)start; independent of the speed setting."""
+        return self.sim.time / FPS
+
+    @property
+    def won(self) -> bool:
+        return self.sim.won
+
+    @property
+    def score(self) -> int | None:
+        """Atoms left in the cup once the gas has condensed; None before."""
+        return self.sim.n_trapped if self.sim.won else None
+
+    @property
+    def all_escaped(self) -> bool:
+        """Every atom has left the cup: nothing more can happen but a restart."""
+        return self.sim.n_trapped == 0 and not self.sim.won

@@ -1,0 +1,1 @@
+"""Drawing with pygame: reusable widgets, icons, atom sprites and the applet's scene."""

@@ -1,0 +1,502 @@
+"""The applet driven through real pygame events (headless), checked by state and pixels."""
+
+from __future__ import annotations
+
+import numpy as np
+import pygame
+import pytest
+
+from evapcool import Simulation
+from evapcool.app.applet import App
+from evapcool.game import highscores, settings
+from evapcool.game.rules import HEIGHT_MAX, HEIGHT_MIN, Game, GameConfig
+from evapcool.view.scene import (
+    BORDER,
+    PAUSE_RECT,
+    PLAY_RECT,
+    RESTART_RECT,
+    SCALE_FULL,
+    SCALE_ZERO,
+    SLIDER_RECT,
+    THERMO_X,
+)
+
+SCORE_BOX = pygame.Rect(PLAY_RECT.left, PLAY_RECT.top + 100, PLAY_RECT.width, 140)
+
+
+@pytest.fixture
+def app():
+    a = App(Game(GameConfig(seed=1)))
+    yield a
+    a.close()
+
+
+
+@pytest.fixture(autouse=True)
+def _own_folders(tmp_path, monkeypatch):
+    """Scores and settings live in this test's folder, never in the user's."""
+    monkeypatch.setenv("EVAPCOOL_DATA_DIR", str(tmp_path / "data"))
+    monkeypatch.setenv("EVAPCOOL_CONFIG_DIR", str(tmp_path / "config"))
+    for module in (highscores, settings):
+        monkeypatch.setattr(module, "default_path", _no_user_folders)
+
+
+def _no_user_folders():
+    raise AssertionError("a test reached for the real user folders")
+
+def post(kind: int, **attrs) -> None:
+    pygame.event.post(pygame.event.Event(kind, **attrs))
+
+
+def frames(app: App, n: int = 1) -> None:
+    for _ in range(n):
+        app.frame(None)
+
+
+def click(app: App, xy: tuple[int, int]) -> None:
+    post(pygame.MOUSEMOTION, pos=xy, rel=(0, 0), buttons=(0, 0, 0))
+    post(pygame.MOUSEBUTTONDOWN, pos=xy, button=1)
+    frames(app)
+    post(pygame.MOUSEBUTTONUP, pos=xy, button=1)
+    frames(app)
+
+
+def key(app: App, k: int, unicode: str = "") -> None:
+    post(pygame.KEYDOWN, key=k, mod=0, unicode=unicode, scancode=0)
+    post(pygame.KEYUP, key=k, mod=0, unicode=unicode, scancode=0)
+    frames(app)
+
+
+def pixels(app: App) -> np.ndarray:
+    """The window as an (x, y, rgb) array."""
+    return pygame.surfarray.array3d(pygame.display.get_surface())
+
+
+def white_pixels(app: App, box: pygame.Rect) -> int:
+    px = pixels(app)[box.left : box.right, box.top : box.bottom]
+    return int(np.count_nonzero(np.all(px >= 250, axis=-1)))
+
+
+# -- the window ------------------------------------------------------------------------------
+
+
+def test_window_is_the_original_layout(app):
+    frames(app)
+    assert pygame.display.get_caption()[0] == "Evaporation cooling"
+    assert pygame.display.get_surface().get_size() == (640, 672)
+    px = pixels(app)
+    assert tuple(px[20, 300]) == BORDER  # left border
+    assert tuple(px[600, 40]) != (159, 159, 159)
+    assert tuple(px[PLAY_RECT.left + 3, PLAY_RECT.bottom - 3]) == (159, 159, 159)
+    # Yellow buttons with black outline, at the original positions.
+    for rect in (PAUSE_RECT, RESTART_RECT):
+        r, g, b = px[rect.left + 10, rect.top + 10]
+        assert r > 200 and g > 170 and b < 100
+        assert tuple(px[rect.left + 2, rect.centery]) == (0, 0, 0)
+
+
+def test_starts_paused_and_stays_still(app):
+    assert app.game.paused
+    frames(app, 5)
+    assert app.game.sim.time == 0.0
+
+
+# -- the mouse -------------------------------------------------------------------------------
+
+
+def test_clicking_the_pause_button_toggles_pause(app):
+    click(app, PAUSE_RECT.center)
+    assert not app.game.paused
+    t = app.game.sim.time
+    frames(app, 3)
+    assert app.game.sim.time == pytest.approx(t + 3.0)
+    click(app, PAUSE_RECT.center)
+    assert app.game.paused
+    t = app.game.sim.time
+    frames(app, 3)
+    assert app.game.sim.time == t
+    click(app, (PAUSE_RECT.right + 4, PAUSE_RECT.centery))  # just beside it: nothing
+    assert app.game.paused
+
+
+def test_dragging_the_slider_knob_sets_the_trap_height(app):
+    y = SLIDER_RECT.centery
+    knob_x = round(SLIDER_RECT.left + SLIDER_RECT.width * (400 - 25) / 425)
+    post(pygame.MOUSEBUTTONDOWN, pos=(knob_x, y), button=1)
+    frames(app)
+    assert app.game.sim.trap_height == pytest.approx(400.0, abs=1.0)
+    post(pygame.MOUSEMOTION, pos=(SLIDER_RECT.left + 68, y), rel=(0, 0), buttons=(1, 0, 0))
+    frames(app)
+    assert app.game.sim.trap_height == pytest.approx(25 + 0.25 * 425)
+    # The drag goes on off the bar while the button is held.
+    post(pygame.MOUSEMOTION, pos=(SLIDER_RECT.left + 136, 300), rel=(0, 0), buttons=(1, 0, 0))
+    frames(app)
+    assert app.game.sim.trap_height == pytest.approx(25 + 0.5 * 425)
+    post(pygame.MOUSEBUTTONUP, pos=(SLIDER_RECT.left + 136, 300), button=1)
+    post(pygame.MOUSEMOTION, pos=(SLIDER_RECT.left, y), rel=(0, 0), buttons=(0, 0, 0))
+    frames(app, 2)
+    assert app.game.sim.trap_height == pytest.approx(25 + 0.5 * 425)
+    # The rim the atoms see moved: x_rim = sqrt(H / a).
+    assert app.game.sim.rim_half_width == pytest.approx(np.sqrt(237.5 / 0.01))
+
+
+def test_clicking_restart_restores_49_atoms_height_400_paused(app):
+    click(app, PAUSE_RECT.center)
+    post(pygame.MOUSEBUTTONDOWN, pos=(SLIDER_RECT.left, SLIDER_RECT.centery), button=1)
+    post(pygame.MOUSEBUTTONUP, pos=(SLIDER_RECT.left, SLIDER_RECT.centery), button=1)
+    frames(app, 120)
+    sim = app.game.sim
+    assert sim.trap_height == HEIGHT_MIN and sim.n_trapped < 49 and sim.time > 0
+    click(app, RESTART_RECT.center)
+    new = app.game.sim
+    assert new is not sim
+    assert (new.n_trapped, new.trap_height, new.time) == (49, 400.0, 0.0)
+    assert app.game.paused
+    assert app.slider.value == pytest.approx(400.0)
+    frames(app, 3)
+    assert new.time == 0.0  # really paused
+
+
+# -- the keyboard: every key does what the help overlay says ------------------------------------
+
+
+def _toggle_pause(app, k):
+    before = app.game.paused
+    key(app, k)
+    assert app.game.paused is (not before)
+    key(app, k)
+    assert app.game.paused is before
+
+
+def _restart(app, k):
+    app.game.paused = False
+    app.game.set_trap_height(100)
+    frames(app, 30)
+    old = app.game.sim
+    key(app, k)
+    assert app.game.sim is not old
+    assert (app.game.sim.n_trapped, app.game.trap_height, app.game.paused) == (49, 400.0, True)
+
+
+def _height(delta):
+    def check(app, k):
+        h = app.game.trap_height
+        key(app, k)
+        assert app.game.trap_height == pytest.approx(h + delta)
+        assert app.slider.value == pytest.approx(h + delta)
+        app.game.set_trap_height(HEIGHT_MAX if delta > 0 else HEIGHT_MIN)
+        key(app, k)  # clamped at the end of the range
+        assert app.game.trap_height == (HEIGHT_MAX if delta > 0 else HEIGHT_MIN)
+
+    return check
+
+
+def _step(app, k):
+    assert app.game.paused
+    key(app, k)
+    assert app.game.sim.time == pytest.approx(1.0)
+    app.game.paused = False
+    t = app.game.sim.time
+    key(app, k)  # while playing S adds nothing beyond the frame itself
+    assert app.game.sim.time == pytest.approx(t + 1.0)
+
+
+def _speed(factor):
+    def check(app, k):
+        key(app, k)
+        assert app.game.speed == pytest.approx(factor)
+        for _ in range(5):
+            key(app, k)
+        assert app.game.speed == (4.0 if factor > 1 else 0.25)
+        app.game.paused = False
+        t = app.game.sim.time
+        frames(app)
+        assert app.game.sim.time == pytest.approx(t + app.game.speed)
+
+    return check
+
+
+def _fullscreen(app, k):
+    key(app, k)
+    assert app.fullscreen
+    assert pygame.display.get_surface().get_flags() & pygame.FULLSCREEN
+    key(app, k)
+    assert not app.fullscreen
+    assert pygame.display.get_surface().get_size() == (640, 672)
+
+
+def _help(app, k):
+    box = PLAY_RECT.inflate(-40, -200)
+    key(app, k)
+    assert app.help_visible
+    px = pixels(app)[box.left : box.right, box.top : box.bottom]
+    dark = np.count_nonzero(np.all(px < 60, axis=-1))
+    assert dark > 0.5 * px.shape[0] * px.shape[1]  # the panel covers the play area
+    key(app, k)
+    assert not app.help_visible
+
+
+def _escape(app, k):
+    app.help_visible = True
+    key(app, k)
+    assert not app.help_visible and app.running
+    app.toggle_fullscreen()
+    key(app, k)
+    assert not app.fullscreen and app.running  # leaves full screen first
+    key(app, k)
+    assert not app.running
+
+
+def _chart(attr):
+    def check(app, k):
+        key(app, k)
+        assert getattr(app.charts, attr)
+        assert pygame.display.get_surface().get_size() == (640 + app.charts.width, 672)
+        key(app, k)
+        assert not getattr(app.charts, attr)
+        assert pygame.display.get_surface().get_size() == (640, 672)
+
+    return check
+
+
+def _table(app, k):
+    key(app, k)
+    assert app.overlay == "table"
+    key(app, k)
+    assert app.overlay is None
+
+
+def _ask_reset(app, k):
+    key(app, k)
+    assert app.overlay == "table" and app.confirm_reset
+    key(app, pygame.K_n)
+    assert not app.confirm_reset and app.overlay == "table"
+
+
+def _next_player(app, k):
+    old = app.game.sim
+    key(app, k)  # nothing to do before a score was stored
+    assert app.game.sim is old
+    app.ready_for_next = True
+    key(app, k)
+    assert app.game.sim is not old and not app.ready_for_next
+
+
+def _settings(app, k):
+    key(app, k)
+    assert app.overlay == "settings"
+    key(app, k)  # O closes it again; nothing changed, so nothing is written
+    assert app.overlay is None and not app.settings_path.exists()
+
+
+KEY_CHECKS = {
+    pygame.K_SPACE: _toggle_pause,
+    pygame.K_r: _restart,
+    pygame.K_LEFT: _height(-5.0),
+    pygame.K_DOWN: _height(-5.0),
+    pygame.K_RIGHT: _height(5.0),
+    pygame.K_UP: _height(5.0),
+    pygame.K_s: _step,
+    pygame.K_PLUS: _speed(2.0),
+    pygame.K_EQUALS: _speed(2.0),
+    pygame.K_KP_PLUS: _speed(2.0),
+    pygame.K_MINUS: _speed(0.5),
+    pygame.K_KP_MINUS: _speed(0.5),
+    pygame.K_F11: _fullscreen,
+    pygame.K_h: _help,
+    pygame.K_F1: _help,
+    pygame.K_ESCAPE: _escape,
+    pygame.K_e: _chart("show_energy"),
+    pygame.K_g: _chart("show_path"),
+    pygame.K_t: _table,
+    pygame.K_DELETE: _ask_reset,
+    pygame.K_x: _ask_reset,
+    pygame.K_RETURN: _next_player,
+    pygame.K_KP_ENTER: _next_player,
+    pygame.K_o: _settings,
+}
+
+
+@pytest.mark.parametrize("k", list(KEY_CHECKS), ids=pygame.key.name)
+def test_key_does_what_the_help_says(app, k):
+    KEY_CHECKS[k](app, k)
+
+
+def test_every_bound_key_is_checked_and_listed_in_the_help(app):
+    bound = {k for b in app.bindings for k in b.keys}
+    assert bound == set(KEY_CHECKS)
+    rows = app.help_rows()
+    for b in app.bindings:
+        assert (b.label, b.help) in rows
+    labels = " ".join(label for label, _ in rows)
+    names = ("Space", "R", "Left", "Right", "Up", "Down", "S", "+", "-", "F11", "H", "F1")
+    for name in (*names, "E", "G", "T", "O", "Delete", "X", "Enter"):
+        assert name in labels
+    assert "Esc" in labels and "Mouse" in labels
+    # The reset confirmation and the settings keys are spelled out too.
+    text = " ".join(what for _, what in rows)
+    assert "Y clears" in text and "N or Esc" in text
+    assert "Left/Right change" in text
+
+
+def test_shifted_plus_on_any_layout_speeds_up(app):
+    post(pygame.KEYDOWN, key=pygame.K_8, mod=pygame.KMOD_SHIFT, unicode="+", scancode=0)
+    frames(app)
+    assert app.game.speed == 2.0
+
+
+# -- what the screen shows ----------------------------------------------------------------------
+
+
+def test_screenshot_shows_cup_atoms_and_mercury_at_t_over_1_2_t0(app, tmp_path):
+    app.run_frames(40)
+    path = tmp_path / "shot.png"
+    app.screenshot(path)
+    img = pygame.image.load(str(path))
+    assert img.get_size() == (640, 672)
+    px = pygame.surfarray.array3d(img).astype(int)
+    sim = app.game.sim
+
+    # The cup: a black band below the lowest point, and at the rim.
+    assert all(tuple(px[296, y]) == (0, 0, 0) for y in range(545, 549))
+    assert tuple(px[296, 538]) != (0, 0, 0)
+    x_rim = sim.rim_half_width
+    rim_sx, rim_sy = sim.to_screen(np.array([x_rim, sim.trap_height]))
+    n = np.array([-2 * 0.01 * x_rim, 1.0]) / np.hypot(2 * 0.01 * x_rim, 1.0)
+    band = (rim_sx - 15 * n[0] * 1.0, rim_sy + 15 * n[1])  # R + 3 px outside the wall
+    assert tuple(px[round(band[0] - 1), round(band[1])]) == (0, 0, 0)
+
+    # Every trapped atom: cyan at its centre.
+    centres = sim.to_screen(sim.positions)
+    inside = [c for c in centres if PLAY_RECT.collidepoint(c)]
+    assert len(inside) >= 40
+    for cx, cy in inside:
+        r, g, b = px[int(cx), int(cy)]
+        assert b > 150 and g > 150 and r < 160, (cx, cy, (r, g, b))
+
+    # The mercury top at the row T / (1.2 T0) predicts.
+    f = sim.temperature / (1.2 * sim.initial_temperature)
+    assert 0.3 < f < 1.0
+    expected = round(SCALE_ZERO - f * (SCALE_ZERO - SCALE_FULL))
+    column = px[THERMO_X]
+    red = [y for y in range(672) if column[y][0] > 180 and column[y][1] < 80]
+    assert min(red) == expected
+    # ...and the Tc line at its own row, labelled.
+    tc_row = round(
+        SCALE_ZERO - sim.critical_temperature / (1.2 * sim.initial_temperature) * (SCALE_ZERO - 88)
+    )
+    assert tuple(px[THERMO_X - 14, tc_row]) == (0, 0, 0)
+
+
+def test_forced_win_stops_collisions_and_shows_the_score(app):
+    app.run_frames(20)
+    assert white_pixels(app, SCORE_BOX) == 0
+    before = app.game.sim.pair_collision_count
+    frames(app, 10)
+    assert app.game.sim.pair_collision_count > before  # collisions happen while playing
+    app.game.sim.force_win()
+    frames(app)
+    pairs = app.game.sim.pair_collision_count
+    energy = app.game.sim.total_energy()
+    app.game.set_speed(4.0)
+    frames(app, 150)
+    sim = app.game.sim
+    assert sim.pair_collision_count == pairs
+    assert sim.total_energy() < 0.5 * energy  # damped bounces: the atoms settle
+    assert app.game.score == sim.n_trapped > 0
+    assert white_pixels(app, SCORE_BOX) > 300  # "Score: N" in large text
+    # The trap is frozen once the gas has condensed.
+    post(pygame.MOUSEBUTTONDOWN, pos=(SLIDER_RECT.left, SLIDER_RECT.centery), button=1)
+    post(pygame.MOUSEBUTTONUP, pos=(SLIDER_RECT.left, SLIDER_RECT.centery), button=1)
+    frames(app)
+    assert sim.trap_height == 400.0
+
+
+def _one_escaping_atom() -> Simulation:
+    # Thrown up and out: it meets the wall line at x ~ 88 px, beyond a rim at 50 px.
+    return Simulation(n_atoms=1, radius=12.0, positions=[[0.0, 10.0]], velocities=[[8.0, 8.0]])
+
+
+def test_empty_cup_says_so_and_offers_a_restart(app):
+    app.game.sim = _one_escaping_atom()
+    app.game.set_trap_height(25.0)
+    app.game.paused = False
+    frames(app, 5)
+    assert white_pixels(app, SCORE_BOX) == 0
+    for _ in range(200):
+        frames(app)
+        if app.game.sim.n_trapped == 0:
+            break
+    frames(app)
+    assert app.game.all_escaped
+    assert white_pixels(app, SCORE_BOX) > 300
+    key(app, pygame.K_r)
+    assert app.game.sim.n_trapped == 49 and not app.game.all_escaped
+
+
+# -- the window scales --------------------------------------------------------------------------
+
+
+def test_resized_window_scales_the_scene_and_the_mouse(app):
+    frames(app)
+    small = pixels(app).copy()
+    pygame.display.set_mode((1280, 1344), pygame.RESIZABLE)  # what a user's resize does
+    frames(app)
+    big = pixels(app)
+    assert big.shape[:2] == (1280, 1344)
+    for x, y in ((20, 300), (600, 300), (PAUSE_RECT.left + 10, PAUSE_RECT.top + 10)):
+        assert np.abs(big[2 * x, 2 * y].astype(int) - small[x, y]).max() < 40
+    post(pygame.MOUSEBUTTONDOWN, pos=(2 * PAUSE_RECT.centerx, 2 * PAUSE_RECT.centery), button=1)
+    post(pygame.MOUSEBUTTONUP, pos=(2 * PAUSE_RECT.centerx, 2 * PAUSE_RECT.centery), button=1)
+    frames(app)
+    assert not app.game.paused
+
+
+def test_wide_window_keeps_the_aspect_with_bars(app):
+    pygame.display.set_mode((1000, 672), pygame.RESIZABLE)
+    frames(app)
+    px = pixels(app)
+    assert tuple(px[50, 300]) == (0, 0, 0)  # bar at the side
+    assert tuple(px[180 + 20, 300]) == BORDER  # scene starts at (1000 - 640) / 2
+
+
+class _Panel:
+    width = 200
+
+    def __init__(self):
+        self.events = []
+
+    def draw(self, surface, app):
+        surface.fill((10, 120, 10))
+
+    def handle_event(self, event, pos):
+        self.events.append((event.type, pos))
+        return event.type == pygame.MOUSEBUTTONDOWN
+
+
+def test_side_panel_widens_the_canvas_and_gets_its_clicks(app):
+    panel = _Panel()
+    app.add_panel(panel)
+    frames(app)
+    assert pygame.display.get_surface().get_size() == (840, 672)
+    px = pixels(app)
+    assert tuple(px[700, 300]) == (10, 120, 10)
+    assert tuple(px[20, 300]) == BORDER
+    post(pygame.MOUSEBUTTONDOWN, pos=(700, 100), button=1)
+    frames(app)
+    assert (pygame.MOUSEBUTTONDOWN, (60.0, 100.0)) in panel.events
+    click(app, PAUSE_RECT.center)
+    assert not app.game.paused
+
+
+def test_closing_the_window_quits(app):
+    post(pygame.QUIT)
+    frames(app)
+    assert not app.running
+
+
+def test_interactive_loop_runs_on_the_wall_clock_and_quits_on_escape(app):
+    app.game.paused = False
+    post(pygame.KEYDOWN, key=pygame.K_ESCAPE, mod=0, unicode="", scancode=0)
+    app.run()  # returns once Esc is handled
+    assert not app.running

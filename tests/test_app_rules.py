@@ -1,0 +1,114 @@
+"""Game rules without pygame: pause, speed, wall-clock time, restart, win, empty cup."""
+
+from __future__ import annotations
+
+import sys
+
+import pytest
+
+from evapcool import Simulation
+from evapcool.game import rules
+from evapcool.game.rules import Game, GameConfig, check_speed
+
+
+def test_rules_do_not_need_pygame():
+    assert "pygame" not in rules.__dict__
+    with open(rules.__file__, encoding="utf-8") as fh:
+        assert "import pygame" not in fh.read()
+
+
+def test_new_game_is_the_classic_start_paused():
+    g = Game(GameConfig(seed=4))
+    assert (g.sim.n_trapped, g.trap_height, g.paused, g.speed) == (49, 400.0, True, 1.0)
+    assert g.score is None and not g.won and not g.all_escaped and g.play_time == 0.0
+
+
+def test_paused_game_does_not_move():
+    g = Game(GameConfig(seed=4))
+    assert g.update(0.5) == 0.0 and g.run_frames(3) == 0.0
+    assert g.sim.time == 0.0
+
+
+def test_wall_time_times_30_times_speed_with_a_cap():
+    g = Game(GameConfig(seed=4))
+    g.paused = False
+    g.update(1 / 60)
+    assert g.sim.time == pytest.approx(0.5)
+    g.set_speed(2.0)
+    g.update(1 / 60)
+    assert g.sim.time == pytest.approx(1.5)
+    g.update(120.0)  # a two-minute stall advances only the capped step
+    assert g.sim.time == pytest.approx(1.5 + rules.MAX_WALL_STEP * 30 * 2)
+    assert g.play_time == pytest.approx(g.sim.time / 30)
+
+
+def test_speed_doubles_and_halves_within_quarter_to_four():
+    g = Game()
+    for expected in (2.0, 4.0, 4.0):
+        g.faster()
+        assert g.speed == expected
+    for expected in (2.0, 1.0, 0.5, 0.25, 0.25):
+        g.slower()
+        assert g.speed == expected
+    for bad in (0.2, 4.5, float("nan"), True, "2"):
+        with pytest.raises(ValueError, match="speed"):
+            check_speed(bad)
+
+
+def test_step_only_while_paused():
+    g = Game(GameConfig(seed=4))
+    assert g.step() == 1.0 and g.sim.time == 1.0
+    g.paused = False
+    assert g.step() == 0.0 and g.sim.time == 1.0
+
+
+def test_trap_height_clamped_to_the_slider_range():
+    g = Game(GameConfig(seed=4))
+    g.set_trap_height(10.0)
+    assert g.trap_height == 25.0
+    g.nudge_height(1000.0)
+    assert g.trap_height == 450.0
+
+
+def test_restart_uses_the_config_and_bumps_the_generation():
+    g = Game(GameConfig(n_atoms=20, radius=6.0, seed=7))
+    first = g.sim.positions.copy()
+    g.paused = False
+    g.set_trap_height(50.0)
+    g.run_frames(5)
+    gen = g.generation
+    g.restart()
+    assert (g.sim.n_trapped, g.trap_height, g.paused, g.generation) == (20, 400.0, True, gen + 1)
+    assert (g.sim.positions == first).all()  # same seed, same start
+
+
+def test_win_latches_once_and_freezes_the_trap():
+    g = Game(GameConfig(seed=4))
+    calls = []
+    g.on_win.append(calls.append)
+    g.paused = False
+    g.run_frames(2)
+    g.sim.force_win()
+    g.run_frames(2)
+    g.run_frames(2)
+    assert calls == [g] and g.won_at == pytest.approx(4 / 30)
+    assert g.score == g.sim.n_trapped
+    assert not g.set_trap_height(100.0) and g.trap_height == 400.0
+
+
+def test_all_escaped():
+    g = Game()
+    g.sim = Simulation(n_atoms=1, radius=12.0, positions=[[0.0, 10.0]], velocities=[[8.0, 8.0]])
+    g.set_trap_height(25.0)
+    g.paused = False
+    for _ in range(100):
+        g.run_frames(1)
+    assert g.all_escaped and g.score is None
+
+
+def test_missing_fast_engine_falls_back_to_reference(monkeypatch):
+    # As in the lean executable, where numba is left out.
+    monkeypatch.setitem(sys.modules, "numba", None)
+    monkeypatch.setitem(sys.modules, "evapcool.physics.fast", None)
+    g = Game(GameConfig(n_atoms=400, radius=3.0, seed=1))
+    assert g.sim.engine == "reference"

@@ -1,0 +1,216 @@
+"""Settings: round trip, validation, fallback with notices, corrupt files, overrides."""
+
+from __future__ import annotations
+
+import json
+import tempfile
+from pathlib import Path
+
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from evapcool import Simulation
+from evapcool.game.settings import (
+    ATOMS_MAX,
+    DEFAULTS,
+    RADIUS_MAX,
+    RADIUS_MIN,
+    TC_LAWS,
+    Settings,
+    cup_capacity,
+    describe,
+    from_mapping,
+    load_settings,
+    max_atoms,
+    save_settings,
+    step,
+    validate,
+    with_overrides,
+)
+from evapcool.physics.simulation import TC_EXPONENT_CUP, TC_EXPONENT_SEED
+
+
+def test_defaults_are_the_original_applet() -> None:
+    assert Settings(n_atoms=49, radius=12.0, tc_law="seed", escape="rim") == DEFAULTS
+    assert DEFAULTS.tc_exponent == TC_EXPONENT_SEED
+    assert TC_LAWS["cup"] == TC_EXPONENT_CUP
+
+
+def test_missing_file_gives_defaults_without_notice(tmp_path: Path) -> None:
+    assert load_settings(tmp_path / "nope" / "settings.json") == (DEFAULTS, [])
+
+
+def test_round_trip(tmp_path: Path) -> None:
+    path = tmp_path / "cfg" / "settings.json"
+    s = Settings(n_atoms=200, radius=5.0, tc_law="cup", escape="knife")
+    assert save_settings(s, path) == []
+    assert load_settings(path) == (s, [])
+    assert json.loads(path.read_text(encoding="utf-8"))["escape"] == "knife"
+
+
+def test_bad_values_fall_back_with_a_notice_each(tmp_path: Path) -> None:
+    path = tmp_path / "settings.json"
+    data = {"n_atoms": "many", "radius": 7, "tc_law": "cubic", "escape": "knife"}
+    path.write_text(json.dumps(data), encoding="utf-8")
+    s, notices = load_settings(path)
+    assert s == Settings(n_atoms=DEFAULTS.n_atoms, radius=7.0, tc_law="seed", escape="knife")
+    assert len(notices) == 2
+    assert any("n_atoms" in n and "'many'" in n for n in notices)
+    assert any("tc_law" in n and "cubic" in n for n in notices)
+
+
+def test_too_many_atoms_for_the_radius_falls_back(tmp_path: Path) -> None:
+    path = tmp_path / "settings.json"
+    path.write_text(json.dumps({"n_atoms": 500, "radius": 12}), encoding="utf-8")
+    s, notices = load_settings(path)
+    assert s.n_atoms == DEFAULTS.n_atoms and s.radius == 12.0
+    assert len(notices) == 1 and "n_atoms" in notices[0]
+
+
+def test_bad_radius_falls_back_and_atoms_are_checked_against_the_default(tmp_path: Path) -> None:
+    path = tmp_path / "settings.json"
+    path.write_text(json.dumps({"n_atoms": 60, "radius": float("nan")}), encoding="utf-8")
+    s, notices = load_settings(path)
+    assert s == Settings(n_atoms=60, radius=DEFAULTS.radius)
+    assert len(notices) == 1 and "radius" in notices[0]
+
+
+def test_unknown_keys_are_reported_and_ignored() -> None:
+    s, notices = from_mapping({"n_atoms": 30, "colour": "red"})
+    assert s == Settings(n_atoms=30)
+    assert len(notices) == 1 and "colour" in notices[0]
+
+
+@pytest.mark.parametrize("content", ["{oops", "[49, 12]", '"seed"'])
+def test_corrupt_file_is_set_aside(tmp_path: Path, content: str) -> None:
+    path = tmp_path / "settings.json"
+    path.write_text(content, encoding="utf-8")
+    s, notices = load_settings(path)
+    assert s == DEFAULTS
+    assert len(notices) == 1 and "damaged" in notices[0]
+    assert not path.exists()
+    assert len(list(tmp_path.glob("settings.json.corrupt-*"))) == 1
+
+
+def test_unwritable_config_folder_gives_a_notice(tmp_path: Path) -> None:
+    blocker = tmp_path / "evapcool"
+    blocker.write_text("", encoding="utf-8")  # a file where the folder should be
+    notices = save_settings(DEFAULTS, blocker / "settings.json")
+    assert len(notices) == 1 and "could not be saved" in notices[0]
+    assert load_settings(blocker / "settings.json") == (DEFAULTS, [])
+
+
+def test_overrides_apply_for_one_run_without_saving(tmp_path: Path) -> None:
+    path = tmp_path / "settings.json"
+    save_settings(DEFAULTS, path)
+    before = path.read_bytes()
+    s = with_overrides(DEFAULTS, n_atoms=20, radius=None, escape="knife")
+    assert s == Settings(n_atoms=20, escape="knife")
+    assert path.read_bytes() == before
+    assert load_settings(path)[0] == DEFAULTS
+
+
+@pytest.mark.parametrize(
+    ("overrides", "word"),
+    [
+        ({"n_atoms": 0}, "n_atoms"),
+        ({"n_atoms": 100_000}, "n_atoms"),
+        ({"n_atoms": 94}, "n_atoms"),  # 93 atoms of radius 12 fit, not 94
+        ({"radius": 0.5}, "radius"),
+        ({"radius": float("inf")}, "radius"),
+        ({"tc_law": "3d"}, "tc_law"),
+        ({"escape": "door"}, "escape"),
+        ({"speed": 3}, "speed"),
+    ],
+)
+def test_bad_overrides_raise_value_error_naming_the_parameter(
+    overrides: dict[str, object], word: str
+) -> None:
+    with pytest.raises(ValueError, match=word):
+        with_overrides(DEFAULTS, **overrides)
+
+
+@pytest.mark.parametrize("radius", [12.0, 16.0, 20.0])
+def test_capacity_matches_what_the_simulation_accepts(radius: float) -> None:
+    cap = cup_capacity(radius)
+    assert cap >= 1
+    Simulation(n_atoms=cap, radius=radius, seed=0, engine="reference")
+    with pytest.raises(ValueError):
+        Simulation(n_atoms=cap + 1, radius=radius, seed=0, engine="reference")
+
+
+def test_every_allowed_radius_fits_at_least_the_default_count_or_says_so() -> None:
+    # The top of the range still holds a playable gas.
+    assert max_atoms(RADIUS_MAX) >= 20
+    assert max_atoms(RADIUS_MIN) == min(ATOMS_MAX, cup_capacity(RADIUS_MIN))
+
+
+def test_simulation_kwargs_build_a_simulation() -> None:
+    s = Settings(n_atoms=30, radius=10.0, tc_law="cup", escape="knife")
+    sim = Simulation(**s.simulation_kwargs(), seed=1, engine="reference")  # type: ignore[arg-type]
+    assert sim.n_atoms == 30
+    assert sim.tc_exponent == pytest.approx(0.4)
+    assert sim.escape_rule == "knife"
+
+
+def test_step_clamps_and_cycles() -> None:
+    s = DEFAULTS
+    assert step(s, "n_atoms", +1).n_atoms == 54
+    assert step(Settings(n_atoms=20), "n_atoms", -1).n_atoms == 19
+    assert step(Settings(n_atoms=1), "n_atoms", -1).n_atoms == 1
+    top = Settings(n_atoms=max_atoms(12.0))
+    assert step(top, "n_atoms", +1).n_atoms == max_atoms(12.0)
+    big = step(Settings(n_atoms=90, radius=12.0), "radius", +1)
+    assert big.radius == 13.0 and big.n_atoms == min(90, max_atoms(13.0))
+    assert step(Settings(radius=RADIUS_MAX, n_atoms=10), "radius", +1).radius == RADIUS_MAX
+    assert step(s, "tc_law", +1).tc_law == "cup"
+    assert step(step(s, "escape", +1), "escape", +1).escape == "rim"
+    with pytest.raises(ValueError):
+        step(s, "colour", +1)
+    assert len(describe(s)) == 4
+
+
+_any_value = st.one_of(
+    st.none(),
+    st.booleans(),
+    st.integers(min_value=-10, max_value=5000),
+    st.floats(allow_nan=True, allow_infinity=True),
+    st.text(max_size=6),
+    st.sampled_from(["seed", "cup", "rim", "knife"]),
+    st.lists(st.integers(), max_size=2),
+)
+
+
+@settings(max_examples=150, deadline=None)
+@given(
+    st.dictionaries(st.sampled_from(["n_atoms", "radius", "tc_law", "escape", "other"]), _any_value)
+)
+def test_any_file_content_gives_valid_settings(data: dict[str, object]) -> None:
+    s, notices = from_mapping(data)
+    assert validate(s) == s  # always playable
+    # Every key kept as given is exactly the value from the file; anything else was noticed.
+    changed = [k for k in ("n_atoms", "radius", "tc_law", "escape") if k in data]
+    for k in changed:
+        if getattr(s, k) != data[k] or type(data[k]) is bool:
+            assert any(k in n for n in notices)
+
+
+_valid = st.floats(min_value=RADIUS_MIN, max_value=RADIUS_MAX).flatmap(
+    lambda r: st.builds(
+        Settings,
+        n_atoms=st.integers(min_value=1, max_value=max_atoms(r)),
+        radius=st.just(r),
+        tc_law=st.sampled_from(sorted(TC_LAWS)),
+        escape=st.sampled_from(["rim", "knife"]),
+    )
+)
+
+
+@settings(max_examples=40, deadline=None)
+@given(_valid)
+def test_valid_settings_round_trip_exactly(s: Settings) -> None:
+    with tempfile.TemporaryDirectory() as d:
+        path = Path(d) / "settings.json"
+        assert save_settings(s, path) == []
+        assert load_settings(path) == (s, [])
