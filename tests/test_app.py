@@ -31,7 +31,6 @@ def app():
     a.close()
 
 
-
 @pytest.fixture(autouse=True)
 def _own_folders(tmp_path, monkeypatch):
     """Scores and settings live in this test's folder, never in the user's."""
@@ -43,6 +42,7 @@ def _own_folders(tmp_path, monkeypatch):
 
 def _no_user_folders():
     raise AssertionError("a test reached for the real user folders")
+
 
 def post(kind: int, **attrs) -> None:
     pygame.event.post(pygame.event.Event(kind, **attrs))

@@ -25,6 +25,7 @@ def _own_folders(tmp_path, monkeypatch):
 def _no_user_folders():
     raise AssertionError("a test reached for the real user folders")
 
+
 def run(args: list[str], capsys) -> tuple[int, str, str]:
     try:
         rc = main(args)

@@ -1,0 +1,253 @@
+"""The win, the name entry and the high-score table in the applet (headless, posted events)."""
+
+from __future__ import annotations
+
+import json
+from datetime import datetime
+
+import numpy as np
+import pygame
+import pytest
+
+from evapcool import Simulation
+from evapcool.app.applet import NOTICE_SECONDS, App
+from evapcool.game.highscores import HighScoreTable
+from evapcool.game.rules import Game, GameConfig
+from evapcool.physics.simulation import FPS
+from evapcool.view.scene import PLAY_RECT
+
+SCORE_BOX = pygame.Rect(PLAY_RECT.left, PLAY_RECT.top + 100, PLAY_RECT.width, 140)
+CUP_BOTTOM = pygame.Rect(PLAY_RECT.left, PLAY_RECT.bottom - 140, PLAY_RECT.width, 140)
+NOTICE_STRIP = pygame.Rect(PLAY_RECT.left, PLAY_RECT.bottom - 90, PLAY_RECT.width, 90)
+
+
+@pytest.fixture
+def data(tmp_path):
+    return tmp_path / "data"
+
+
+@pytest.fixture
+def make_app(tmp_path, data):
+    apps = []
+
+    def make(data_dir=None) -> App:
+        a = App(
+            Game(GameConfig(seed=1)),
+            data_dir=data if data_dir is None else data_dir,
+            config_dir=tmp_path / "config",
+        )
+        apps.append(a)
+        return a
+
+    yield make
+    for a in apps:
+        a.close()
+
+
+@pytest.fixture
+def app(make_app):
+    return make_app()
+
+
+def post(kind: int, **attrs) -> None:
+    pygame.event.post(pygame.event.Event(kind, **attrs))
+
+
+def frames(app: App, n: int = 1) -> None:
+    for _ in range(n):
+        app.frame(None)
+
+
+def key(app: App, k: int, text: str = "") -> None:
+    """A key press as SDL sends it while text input is on: KEYDOWN, then TEXTINPUT."""
+    post(pygame.KEYDOWN, key=k, mod=0, unicode=text, scancode=0)
+    if text:
+        post(pygame.TEXTINPUT, text=text)
+    post(pygame.KEYUP, key=k, mod=0, unicode=text, scancode=0)
+    frames(app)
+
+
+def type_text(app: App, text: str) -> None:
+    for ch in text:
+        post(pygame.TEXTINPUT, text=ch)
+    frames(app)
+
+
+def pixels() -> np.ndarray:
+    return pygame.surfarray.array3d(pygame.display.get_surface()).astype(int)
+
+
+def count(box: pygame.Rect, test) -> int:
+    px = pixels()[box.left : box.right, box.top : box.bottom]
+    return int(np.count_nonzero(test(px[..., 0], px[..., 1], px[..., 2])))
+
+
+def cyan(r, g, b):
+    return (b - r > 60) & (g - r > 60)
+
+
+def glow(r, g, b):
+    return (r > 230) & (g > 90) & (b < 200) & (r - b > 60)
+
+
+def notice_red(r, g, b):
+    return (r > 90) & (g < 60) & (b < 60)
+
+
+def stored(data) -> list[dict]:
+    return json.loads((data / "highscores.json").read_text(encoding="utf-8"))["entries"]
+
+
+def win_with(app: App, n_atoms: int, seed: int = 0) -> None:
+    """Play a game of n atoms to a forced win (score n): a quick stand-in for skill."""
+    app.game.sim = Simulation(n_atoms=n_atoms, seed=seed)
+    app.game.paused = False
+    frames(app, 2)
+    app.game.sim.force_win()
+    frames(app)
+
+
+# -- the win -------------------------------------------------------------------------------------
+
+
+def test_forced_win_shows_the_condensate_and_the_score_and_asks_a_name(app, monkeypatch):
+    started = []
+    monkeypatch.setattr(pygame.key, "start_text_input", lambda: started.append(True))
+    app.game.paused = False
+    frames(app, 5)
+    assert count(CUP_BOTTOM, cyan) > 500 and count(CUP_BOTTOM, glow) == 0
+    assert app.name_box is None and count(SCORE_BOX, lambda r, g, b: (r > 250) & (g > 250)) == 0
+    app.game.sim.force_win()
+    app.game.set_speed(4.0)
+    frames(app, 150)  # the atoms settle and merge into the packet
+    assert app.scene.fade == 1.0
+    assert count(CUP_BOTTOM, cyan) == 0  # atoms fully faded under the condensate
+    assert count(CUP_BOTTOM, glow) > 300  # the glowing packet at the bottom of the cup
+    assert count(SCORE_BOX, lambda r, g, b: (r > 250) & (g > 250) & (b > 250)) > 300
+    assert app.game.score == 49
+    assert app.name_box is not None and started == [True]
+
+
+def test_a_typed_name_is_stored_and_enter_then_restarts(app, data):
+    win_with(app, 12)
+    assert app.name_box is not None
+    sim = app.game.sim
+    paused = app.game.paused
+    type_text(app, "Ada")
+    # Keys typed into the box are letters, not controls: no pause, restart or chart.
+    key(app, pygame.K_SPACE, " ")
+    key(app, pygame.K_r, "R")
+    key(app, pygame.K_e, "e")
+    assert app.game.sim is sim and app.game.paused == paused and not app.charts.show_energy
+    key(app, pygame.K_BACKSPACE)
+    key(app, pygame.K_RETURN)
+    rows = stored(data)
+    assert [(r["name"], r["score"]) for r in rows] == [("Ada R", 12)]
+    assert rows[0]["seconds"] == pytest.approx(app.game.won_at, abs=0.01)
+    assert rows[0]["seconds"] == pytest.approx(3 / FPS, abs=0.01)
+    assert datetime.strptime(rows[0]["date"], "%Y-%m-%d %H:%M:%S").date() == datetime.now().date()
+    assert app.name_box is None and app.overlay == "table" and app.stored_rank == 1
+    assert app.game.sim is sim  # the table shows; the next player presses Enter
+    key(app, pygame.K_RETURN)
+    new = app.game.sim
+    assert new is not sim and (new.n_trapped, new.time, app.game.paused) == (49, 0.0, True)
+    assert app.overlay is None and not app.ready_for_next
+
+
+def test_table_order_and_top_10_through_the_ui(app, data):
+    scores = [5, 9, 3, 12, 7, 2, 10, 4, 8, 11, 6]
+    for k, score in enumerate(scores):
+        win_with(app, score, seed=k)
+        assert app.name_box is not None, score
+        type_text(app, f"P{k}")
+        key(app, pygame.K_RETURN)
+        key(app, pygame.K_RETURN)
+    rows = stored(data)
+    assert [r["score"] for r in rows] == sorted(scores, reverse=True)[:10]
+    assert [r["name"] for r in rows][:3] == ["P3", "P9", "P6"]
+    # A score below the whole table is not asked for; Enter still starts the next game.
+    win_with(app, 1, seed=99)
+    assert app.name_box is None and app.ready_for_next
+    assert any("not in the top 10" in n for n in app.visible_notices)
+    old = app.game.sim
+    key(app, pygame.K_RETURN)
+    assert app.game.sim is not old
+    assert len(stored(data)) == 10
+
+
+def test_escape_skips_the_name(app, data):
+    win_with(app, 7)
+    type_text(app, "Bo")
+    key(app, pygame.K_ESCAPE)
+    assert app.name_box is None and app.running  # Esc left the box, not the applet
+    assert not (data / "highscores.json").exists()
+    key(app, pygame.K_RETURN)
+    assert app.game.sim.n_atoms == 49
+
+
+# -- the table overlay and its reset --------------------------------------------------------
+
+
+def test_t_shows_the_table_and_a_reset_needs_confirmation(make_app, data):
+    table = HighScoreTable(data / "highscores.json")
+    table.add("Ada", 30, 40.0)
+    table.add("Bo", 20, 50.0)
+    app = make_app()
+    frames(app)
+    dark = lambda r, g, b: (r < 60) & (g < 60) & (b < 80)  # noqa: E731
+    box = PLAY_RECT.inflate(-60, -300)
+    before = count(box, dark)
+    key(app, pygame.K_t)
+    assert app.overlay == "table" and count(box, dark) > before + 0.5 * box.w * box.h
+    key(app, pygame.K_x)
+    assert app.confirm_reset
+    key(app, pygame.K_SPACE)  # only Y or N/Esc answer the question
+    assert app.confirm_reset and app.game.paused
+    key(app, pygame.K_n)
+    assert not app.confirm_reset and len(stored(data)) == 2
+    key(app, pygame.K_DELETE)
+    key(app, pygame.K_ESCAPE)
+    assert not app.confirm_reset and app.overlay == "table" and len(stored(data)) == 2
+    key(app, pygame.K_DELETE)
+    key(app, pygame.K_y)
+    assert stored(data) == [] and app.scores.entries == []
+    assert any("cleared" in n for n in app.visible_notices)
+    key(app, pygame.K_t)
+    assert app.overlay is None
+
+
+# -- damaged files and unusable folders ------------------------------------------------------
+
+
+def test_a_corrupt_score_file_is_set_aside_and_the_app_starts_with_a_notice(make_app, data):
+    data.mkdir()
+    (data / "highscores.json").write_text("{not json", encoding="utf-8")
+    app = make_app()
+    frames(app)
+    aside = list(data.glob("highscores.json.corrupt-*"))
+    assert len(aside) == 1 and aside[0].read_text(encoding="utf-8") == "{not json"
+    assert any("damaged" in n for n in app.visible_notices)
+    assert count(NOTICE_STRIP, notice_red) > 2000  # the notice is on screen
+    frames(app, round(NOTICE_SECONDS * FPS) + 5)  # ...for a few seconds
+    assert app.visible_notices == [] and count(NOTICE_STRIP, notice_red) == 0
+    win_with(app, 5)  # a new table is started
+    type_text(app, "Cy")
+    key(app, pygame.K_RETURN)
+    assert [r["name"] for r in stored(data)] == ["Cy"]
+
+
+def test_an_unusable_data_folder_gives_a_notice_not_a_crash(make_app, tmp_path):
+    blocker = tmp_path / "not-a-folder"  # as root nothing is read-only: a file in the way
+    blocker.write_text("", encoding="utf-8")
+    app = make_app(data_dir=blocker)
+    frames(app)
+    assert any("cannot be saved" in n for n in app.visible_notices)
+    assert count(NOTICE_STRIP, notice_red) > 2000
+    win_with(app, 8)
+    type_text(app, "Di")
+    key(app, pygame.K_RETURN)
+    assert any("could not be saved" in n for n in app.visible_notices)
+    assert [e.name for e in app.scores.entries] == ["Di"]  # kept for this session
+    assert app.overlay == "table" and app.running
+    key(app, pygame.K_RETURN)
+    assert app.game.sim.time == 0.0

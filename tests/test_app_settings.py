@@ -1,0 +1,177 @@
+"""Settings in the applet: the overlay, saving, restart, bad files and command-line overrides."""
+
+from __future__ import annotations
+
+import json
+
+import numpy as np
+import pygame
+import pytest
+
+from evapcool.app import applet
+from evapcool.app.applet import App
+from evapcool.app.cli import main
+from evapcool.game.rules import Game, GameConfig
+from evapcool.game.settings import TC_EXPONENT_CUP, TC_EXPONENT_SEED
+from evapcool.view.scene import PLAY_RECT
+
+NOTICE_STRIP = pygame.Rect(PLAY_RECT.left, PLAY_RECT.bottom - 90, PLAY_RECT.width, 90)
+
+
+@pytest.fixture
+def dirs(tmp_path, monkeypatch):
+    data, config = tmp_path / "data", tmp_path / "config"
+    # The command line reads these; the App below gets them as arguments.
+    monkeypatch.setenv("EVAPCOOL_DATA_DIR", str(data))
+    monkeypatch.setenv("EVAPCOOL_CONFIG_DIR", str(config))
+    return data, config
+
+
+@pytest.fixture
+def make_app(dirs):
+    apps = []
+
+    def make() -> App:
+        a = App(Game(GameConfig(seed=1)), data_dir=dirs[0], config_dir=dirs[1])
+        apps.append(a)
+        return a
+
+    yield make
+    for a in apps:
+        a.close()
+
+
+def post(kind: int, **attrs) -> None:
+    pygame.event.post(pygame.event.Event(kind, **attrs))
+
+
+def key(app: App, k: int, times: int = 1) -> None:
+    for _ in range(times):
+        post(pygame.KEYDOWN, key=k, mod=0, unicode="", scancode=0)
+        post(pygame.KEYUP, key=k, mod=0, unicode="", scancode=0)
+        app.frame(None)
+
+
+def saved(config) -> dict:
+    return json.loads((config / "settings.json").read_text(encoding="utf-8"))
+
+
+def notice_pixels() -> int:
+    px = pygame.surfarray.array3d(pygame.display.get_surface()).astype(int)
+    box = px[NOTICE_STRIP.left : NOTICE_STRIP.right, NOTICE_STRIP.top : NOTICE_STRIP.bottom]
+    return int(np.count_nonzero((box[..., 0] > 90) & (box[..., 1] < 60) & (box[..., 2] < 60)))
+
+
+def test_settings_round_trip_through_the_overlay_and_restart(make_app, dirs):
+    app = make_app()
+    config = dirs[1]
+    key(app, pygame.K_o)
+    assert app.overlay == "settings"
+    key(app, pygame.K_LEFT, 6)  # atoms 49 -> 44 -> 39 -> 34 -> 29 -> 24 -> 19
+    key(app, pygame.K_RIGHT, 3)  # -> 20 -> 25 -> 30
+    key(app, pygame.K_DOWN)
+    key(app, pygame.K_LEFT, 2)  # radius 12 -> 10
+    key(app, pygame.K_DOWN)
+    key(app, pygame.K_RIGHT)  # Tc law: seed -> cup
+    key(app, pygame.K_DOWN)
+    key(app, pygame.K_RIGHT)  # escape: rim -> knife
+    key(app, pygame.K_SPACE)  # the overlay has the keys: no pause toggle, no trap change
+    assert app.game.paused and app.game.trap_height == 400.0
+    assert not (config / "settings.json").exists()  # nothing saved before closing
+    key(app, pygame.K_RETURN)
+    assert app.overlay is None
+    file = saved(config)
+    assert (file["n_atoms"], file["radius"], file["tc_law"], file["escape"]) == (
+        30,
+        10.0,
+        "cup",
+        "knife",
+    )
+    assert app.game.sim.n_atoms == 49  # Restart applies them
+    key(app, pygame.K_r)
+    sim = app.game.sim
+    assert (sim.n_atoms, float(sim.radii[0]), sim.escape_rule) == (30, 10.0, "knife")
+    assert sim.tc_exponent == pytest.approx(TC_EXPONENT_CUP)
+
+    # A new session starts from the saved settings.
+    again = make_app()
+    key(again, pygame.K_r)
+    assert (again.game.sim.n_atoms, again.game.sim.escape_rule) == (30, "knife")
+
+    # Esc leaves the overlay without saving.
+    key(again, pygame.K_o)
+    key(again, pygame.K_RIGHT, 3)
+    key(again, pygame.K_ESCAPE)
+    assert again.overlay is None and again.running and saved(config)["n_atoms"] == 30
+
+
+def test_a_bad_value_in_the_file_falls_back_with_a_visible_notice(make_app, dirs):
+    config = dirs[1]
+    config.mkdir()
+    (config / "settings.json").write_text(
+        json.dumps({"n_atoms": "lots", "radius": 12, "tc_law": "cup", "escape": "knife"}),
+        encoding="utf-8",
+    )
+    app = make_app()
+    app.frame(None)
+    assert app.settings.n_atoms == 49 and app.settings.tc_law == "cup"
+    assert any("n_atoms" in n and "default" in n for n in app.visible_notices)
+    assert notice_pixels() > 2000
+    key(app, pygame.K_r)
+    assert app.game.sim.n_atoms == 49 and app.game.sim.escape_rule == "knife"
+
+
+def _spy(monkeypatch) -> dict:
+    seen: dict = {}
+    real = applet.App.run_frames
+
+    def spy(self, n):
+        real(self, n)
+        self.restart()  # overrides hold for the whole run, restarts included
+        sim = self.game.sim
+        seen.update(
+            atoms=sim.n_atoms,
+            radius=float(sim.radii[0]),
+            p=sim.tc_exponent,
+            escape=sim.escape_rule,
+        )
+
+    monkeypatch.setattr(applet.App, "run_frames", spy)
+    return seen
+
+
+def test_command_line_flags_override_for_one_run_without_saving(dirs, monkeypatch, capsys):
+    config = dirs[1]
+    config.mkdir()
+    text = json.dumps({"n_atoms": 30, "radius": 10.0, "tc_law": "seed", "escape": "rim"})
+    (config / "settings.json").write_text(text, encoding="utf-8")
+    seen = _spy(monkeypatch)
+    args = ["--atoms", "20", "--tc-law", "cup", "--escape", "knife", "--frames", "2"]
+    assert main(args) == 0
+    assert seen == {"atoms": 20, "radius": 10.0, "p": TC_EXPONENT_CUP, "escape": "knife"}
+    assert (config / "settings.json").read_text(encoding="utf-8") == text
+    assert main(["--frames", "1"]) == 0  # without flags: the saved settings
+    assert seen == {"atoms": 30, "radius": 10.0, "p": TC_EXPONENT_SEED, "escape": "rim"}
+    assert capsys.readouterr().err == ""
+
+
+@pytest.mark.parametrize(
+    ("args", "option"),
+    [
+        (["--tc-law", "box"], "--tc-law"),
+        (["--escape", "wall"], "--escape"),
+        (["--radius", "25"], "--radius"),
+        (["--atoms", "5000"], "--atoms"),
+        (["--atoms", "200", "--radius", "20"], "--atoms"),
+    ],
+)
+def test_bad_command_line_values_exit_2_with_one_line(dirs, args, option, capsys):
+    try:
+        rc = main([*args, "--frames", "1"])
+    except SystemExit as exc:
+        rc = exc.code
+    out, err = capsys.readouterr()
+    assert rc == 2 and out == ""
+    lines = err.strip().splitlines()
+    assert len(lines) == 1 and lines[0].startswith("evapcool: ") and option in lines[0], err
+    assert not (dirs[1] / "settings.json").exists()
