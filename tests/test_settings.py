@@ -115,9 +115,9 @@ def test_overrides_apply_for_one_run_without_saving(tmp_path: Path) -> None:
     ("overrides", "word"),
     [
         ({"n_atoms": 0}, "n_atoms"),
-        ({"n_atoms": 100_000}, "n_atoms"),
-        ({"n_atoms": 94}, "n_atoms"),  # 93 atoms of radius 12 fit, not 94
-        ({"radius": 0.5}, "radius"),
+        ({"n_atoms": 2.5}, "n_atoms"),
+        ({"radius": 0.0}, "radius"),
+        ({"radius": -1.0}, "radius"),
         ({"radius": float("inf")}, "radius"),
         ({"tc_law": "3d"}, "tc_law"),
         ({"escape": "door"}, "escape"),
@@ -129,6 +129,16 @@ def test_bad_overrides_raise_value_error_naming_the_parameter(
 ) -> None:
     with pytest.raises(ValueError, match=word):
         with_overrides(DEFAULTS, **overrides)
+
+
+def test_command_line_overrides_are_not_bound_by_the_overlay_ranges() -> None:
+    # Issue 4: `evapcool --atoms 10000 --radius 1` must play; whether atoms fit is the
+    # physics' call (Simulation raises ValueError naming n_atoms).
+    run = with_overrides(DEFAULTS, n_atoms=10_000, radius=1.0)
+    assert (run.n_atoms, run.radius) == (10_000, 1.0)
+    too_many = with_overrides(DEFAULTS, n_atoms=94)  # 93 atoms of radius 12 fit, not 94
+    with pytest.raises(ValueError, match="n_atoms"):
+        Simulation(**too_many.simulation_kwargs())
 
 
 @pytest.mark.parametrize("radius", [12.0, 16.0, 20.0])

@@ -100,27 +100,33 @@ def max_atoms(radius: float) -> int:
 
 
 # -- validation -------------------------------------------------------------------
-def _check_radius(value: object) -> float:
+def _check_radius(value: object, *, ranged: bool = True) -> float:
+    allowed = (
+        f"a number from {RADIUS_MIN:g} to {RADIUS_MAX:g} px" if ranged else "a positive number"
+    )
     if isinstance(value, bool) or not isinstance(value, numbers.Real):
-        raise ValueError(f"radius must be a number from {RADIUS_MIN:g} to {RADIUS_MAX:g} px")
+        raise ValueError(f"radius must be {allowed} (got {value!r})")
     v = float(value)
-    if not (math.isfinite(v) and RADIUS_MIN <= v <= RADIUS_MAX):
-        raise ValueError(
-            f"radius must be a number from {RADIUS_MIN:g} to {RADIUS_MAX:g} px (got {value!r})"
-        )
+    ok = RADIUS_MIN <= v <= RADIUS_MAX if ranged else v > 0.0
+    if not (math.isfinite(v) and ok):
+        raise ValueError(f"radius must be {allowed} (got {value!r})")
     return v
 
 
-def _check_n_atoms(value: object, radius: float) -> int:
-    top = max_atoms(radius)
-    msg = f"n_atoms must be a whole number from 1 to {top} for radius {radius:g}"
+def _check_n_atoms(value: object, radius: float, *, ranged: bool = True) -> int:
+    top = max_atoms(radius) if ranged else None
+    msg = (
+        f"n_atoms must be a whole number from 1 to {top} for radius {radius:g}"
+        if ranged
+        else "n_atoms must be a whole number >= 1"
+    )
     if isinstance(value, bool) or not isinstance(value, numbers.Integral):
         # 49.0 from a hand-edited file is fine; 49.5 is not.
         if isinstance(value, float) and value.is_integer():
             value = int(value)
         else:
             raise ValueError(f"{msg} (got {value!r})")
-    if not 1 <= int(value) <= top:
+    if int(value) < 1 or (top is not None and int(value) > top):
         raise ValueError(f"{msg} (got {value!r})")
     return int(value)
 
@@ -131,11 +137,15 @@ def _check_choice(name: str, value: object, allowed: tuple[str, ...]) -> str:
     return value
 
 
-def validate(settings: Settings) -> Settings:
-    """The same settings with canonical types; ValueError naming the first bad field."""
-    radius = _check_radius(settings.radius)
+def validate(settings: Settings, *, ranged: bool = True) -> Settings:
+    """The same settings with canonical types; ValueError naming the first bad field.
+
+    ranged=False (command-line values) asks only what the physics needs; whether the
+    atoms fit is then left to `Simulation`, which says so in one line.
+    """
+    radius = _check_radius(settings.radius, ranged=ranged)
     return Settings(
-        n_atoms=_check_n_atoms(settings.n_atoms, radius),
+        n_atoms=_check_n_atoms(settings.n_atoms, radius, ranged=ranged),
         radius=radius,
         tc_law=_check_choice("tc_law", settings.tc_law, tuple(TC_LAWS)),
         escape=_check_choice("escape", settings.escape, ESCAPE_RULES),
@@ -176,7 +186,8 @@ def with_overrides(settings: Settings, **overrides: object) -> Settings:
     bad = [k for k in given if k not in FIELD_NAMES]
     if bad:
         raise ValueError(f"unknown setting {bad[0]!r}; known: {', '.join(FIELD_NAMES)}")
-    return validate(replace(settings, **given))
+    # The overlay's ranges are for the overlay; a physicist may ask for 10 000 tiny atoms.
+    return validate(replace(settings, **given), ranged=False)
 
 
 def step(settings: Settings, name: str, direction: int) -> Settings:
