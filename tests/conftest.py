@@ -1,4 +1,9 @@
-"""Shared fixtures: headless SDL for every pygame test, and both physics engines."""
+"""Shared fixtures: headless SDL for every pygame test, both physics engines, and the applet.
+
+The applet fixtures (`make_app`, `app`, `own_folders`) are never autouse: app test modules ask
+for them by name or with `pytestmark = pytest.mark.usefixtures("own_folders")`. The event
+helpers that go with them are in apphelp.py.
+"""
 
 from __future__ import annotations
 
@@ -25,3 +30,47 @@ def engine(request: pytest.FixtureRequest) -> str:
     if request.param == "fast" and not _fast_engine_present():
         pytest.skip("fast engine not built yet")
     return request.param
+
+
+def _no_user_folders():
+    raise AssertionError("a test reached for the real user folders")
+
+
+@pytest.fixture
+def own_folders(tmp_path, monkeypatch):
+    """Scores and settings live in this test's folder, never in the user's."""
+    from evapcool.game import highscores, settings
+
+    monkeypatch.setenv("EVAPCOOL_DATA_DIR", str(tmp_path / "data"))
+    monkeypatch.setenv("EVAPCOOL_CONFIG_DIR", str(tmp_path / "config"))
+    for module in (highscores, settings):
+        monkeypatch.setattr(module, "default_path", _no_user_folders)
+
+
+@pytest.fixture
+def make_app(tmp_path):
+    """make(data_dir=None, **config): an App on Game(GameConfig(seed=1, **config)), with its
+    scores in data_dir (default tmp_path / "data") and settings in tmp_path / "config".
+    Every App made is closed after the test."""
+    from evapcool.app.applet import App
+    from evapcool.game.rules import Game, GameConfig
+
+    apps = []
+
+    def make(data_dir=None, **config) -> App:
+        a = App(
+            Game(GameConfig(seed=1, **config)),
+            data_dir=tmp_path / "data" if data_dir is None else data_dir,
+            config_dir=tmp_path / "config",
+        )
+        apps.append(a)
+        return a
+
+    yield make
+    for a in apps:
+        a.close()
+
+
+@pytest.fixture
+def app(make_app):
+    return make_app()

@@ -5,10 +5,10 @@ from __future__ import annotations
 import numpy as np
 import pygame
 import pytest
+from apphelp import SCORE_BOX, click, frames, key, post
 
 from evapcool import Simulation
 from evapcool.app.applet import App
-from evapcool.game import highscores, settings
 from evapcool.game.rules import HEIGHT_MAX, HEIGHT_MIN, Game, GameConfig
 from evapcool.view.scene import (
     BORDER,
@@ -21,7 +21,7 @@ from evapcool.view.scene import (
     THERMO_X,
 )
 
-SCORE_BOX = pygame.Rect(PLAY_RECT.left, PLAY_RECT.top + 100, PLAY_RECT.width, 140)
+pytestmark = pytest.mark.usefixtures("own_folders")
 
 
 @pytest.fixture
@@ -29,42 +29,6 @@ def app():
     a = App(Game(GameConfig(seed=1)))
     yield a
     a.close()
-
-
-@pytest.fixture(autouse=True)
-def _own_folders(tmp_path, monkeypatch):
-    """Scores and settings live in this test's folder, never in the user's."""
-    monkeypatch.setenv("EVAPCOOL_DATA_DIR", str(tmp_path / "data"))
-    monkeypatch.setenv("EVAPCOOL_CONFIG_DIR", str(tmp_path / "config"))
-    for module in (highscores, settings):
-        monkeypatch.setattr(module, "default_path", _no_user_folders)
-
-
-def _no_user_folders():
-    raise AssertionError("a test reached for the real user folders")
-
-
-def post(kind: int, **attrs) -> None:
-    pygame.event.post(pygame.event.Event(kind, **attrs))
-
-
-def frames(app: App, n: int = 1) -> None:
-    for _ in range(n):
-        app.frame(None)
-
-
-def click(app: App, xy: tuple[int, int]) -> None:
-    post(pygame.MOUSEMOTION, pos=xy, rel=(0, 0), buttons=(0, 0, 0))
-    post(pygame.MOUSEBUTTONDOWN, pos=xy, button=1)
-    frames(app)
-    post(pygame.MOUSEBUTTONUP, pos=xy, button=1)
-    frames(app)
-
-
-def key(app: App, k: int, unicode: str = "") -> None:
-    post(pygame.KEYDOWN, key=k, mod=0, unicode=unicode, scancode=0)
-    post(pygame.KEYUP, key=k, mod=0, unicode=unicode, scancode=0)
-    frames(app)
 
 
 def pixels(app: App) -> np.ndarray:

@@ -10,20 +10,8 @@ import pygame
 import pytest
 
 from evapcool.app.cli import main
-from evapcool.game import highscores, settings
 
-
-@pytest.fixture(autouse=True)
-def _own_folders(tmp_path, monkeypatch):
-    """Scores and settings live in this test's folder, never in the user's."""
-    monkeypatch.setenv("EVAPCOOL_DATA_DIR", str(tmp_path / "data"))
-    monkeypatch.setenv("EVAPCOOL_CONFIG_DIR", str(tmp_path / "config"))
-    for module in (highscores, settings):
-        monkeypatch.setattr(module, "default_path", _no_user_folders)
-
-
-def _no_user_folders():
-    raise AssertionError("a test reached for the real user folders")
+pytestmark = pytest.mark.usefixtures("own_folders")
 
 
 def run(args: list[str], capsys) -> tuple[int, str, str]:

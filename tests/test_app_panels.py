@@ -5,55 +5,13 @@ from __future__ import annotations
 import numpy as np
 import pygame
 import pytest
+from apphelp import click, frames, key
 
 from evapcool.app.applet import App
 from evapcool.app.charts import CHART_BUTTON_RECT
-from evapcool.game.rules import Game, GameConfig
 from evapcool.physics.simulation import GRAVITY
 from evapcool.view.panels import BAR, CONDENSATE, CUT, PLOT_BG
 from evapcool.view.scene import SCENE_SIZE
-
-
-@pytest.fixture
-def make_app(tmp_path):
-    apps = []
-
-    def make(**config) -> App:
-        game = Game(GameConfig(seed=1, **config))
-        a = App(game, data_dir=tmp_path / "data", config_dir=tmp_path / "config")
-        apps.append(a)
-        return a
-
-    yield make
-    for a in apps:
-        a.close()
-
-
-@pytest.fixture
-def app(make_app):
-    return make_app()
-
-
-def post(kind: int, **attrs) -> None:
-    pygame.event.post(pygame.event.Event(kind, **attrs))
-
-
-def frames(app: App, n: int = 1) -> None:
-    for _ in range(n):
-        app.frame(None)
-
-
-def key(app: App, k: int) -> None:
-    post(pygame.KEYDOWN, key=k, mod=0, unicode="", scancode=0)
-    post(pygame.KEYUP, key=k, mod=0, unicode="", scancode=0)
-    frames(app)
-
-
-def click(app: App, xy: tuple[int, int]) -> None:
-    post(pygame.MOUSEBUTTONDOWN, pos=xy, button=1)
-    frames(app)
-    post(pygame.MOUSEBUTTONUP, pos=xy, button=1)
-    frames(app)
 
 
 def window_size() -> tuple[int, int]:
@@ -87,9 +45,9 @@ def test_e_and_the_button_toggle_the_energy_chart(app):
     key(app, pygame.K_e)
     assert window_size() == SCENE_SIZE and not app.charts.show_energy
 
-    click(app, CHART_BUTTON_RECT.center)
+    click(app, CHART_BUTTON_RECT.center, move=False)
     assert app.charts.show_energy and window_size()[0] == SCENE_SIZE[0] + app.charts.width
-    click(app, CHART_BUTTON_RECT.center)
+    click(app, CHART_BUTTON_RECT.center, move=False)
     assert not app.charts.show_energy and window_size() == SCENE_SIZE
 
 

@@ -8,63 +8,20 @@ from datetime import datetime
 import numpy as np
 import pygame
 import pytest
+from apphelp import NOTICE_STRIP, SCORE_BOX, frames, key, post
 
 from evapcool import Simulation
 from evapcool.app.applet import NOTICE_SECONDS, App
 from evapcool.game.highscores import HighScoreTable
-from evapcool.game.rules import Game, GameConfig
 from evapcool.physics.simulation import FPS
 from evapcool.view.scene import PLAY_RECT
 
-SCORE_BOX = pygame.Rect(PLAY_RECT.left, PLAY_RECT.top + 100, PLAY_RECT.width, 140)
 CUP_BOTTOM = pygame.Rect(PLAY_RECT.left, PLAY_RECT.bottom - 140, PLAY_RECT.width, 140)
-NOTICE_STRIP = pygame.Rect(PLAY_RECT.left, PLAY_RECT.bottom - 90, PLAY_RECT.width, 90)
 
 
 @pytest.fixture
 def data(tmp_path):
     return tmp_path / "data"
-
-
-@pytest.fixture
-def make_app(tmp_path, data):
-    apps = []
-
-    def make(data_dir=None) -> App:
-        a = App(
-            Game(GameConfig(seed=1)),
-            data_dir=data if data_dir is None else data_dir,
-            config_dir=tmp_path / "config",
-        )
-        apps.append(a)
-        return a
-
-    yield make
-    for a in apps:
-        a.close()
-
-
-@pytest.fixture
-def app(make_app):
-    return make_app()
-
-
-def post(kind: int, **attrs) -> None:
-    pygame.event.post(pygame.event.Event(kind, **attrs))
-
-
-def frames(app: App, n: int = 1) -> None:
-    for _ in range(n):
-        app.frame(None)
-
-
-def key(app: App, k: int, text: str = "") -> None:
-    """A key press as SDL sends it while text input is on: KEYDOWN, then TEXTINPUT."""
-    post(pygame.KEYDOWN, key=k, mod=0, unicode=text, scancode=0)
-    if text:
-        post(pygame.TEXTINPUT, text=text)
-    post(pygame.KEYUP, key=k, mod=0, unicode=text, scancode=0)
-    frames(app)
 
 
 def type_text(app: App, text: str) -> None:
@@ -135,9 +92,9 @@ def test_a_typed_name_is_stored_and_enter_then_restarts(app, data):
     paused = app.game.paused
     type_text(app, "Ada")
     # Keys typed into the box are letters, not controls: no pause, restart or chart.
-    key(app, pygame.K_SPACE, " ")
-    key(app, pygame.K_r, "R")
-    key(app, pygame.K_e, "e")
+    key(app, pygame.K_SPACE, text=" ")
+    key(app, pygame.K_r, text="R")
+    key(app, pygame.K_e, text="e")
     assert app.game.sim is sim and app.game.paused == paused and not app.charts.show_energy
     key(app, pygame.K_BACKSPACE)
     key(app, pygame.K_RETURN)

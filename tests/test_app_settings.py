@@ -7,15 +7,11 @@ import json
 import numpy as np
 import pygame
 import pytest
+from apphelp import NOTICE_STRIP, key
 
 from evapcool.app import applet
-from evapcool.app.applet import App
 from evapcool.app.cli import main
-from evapcool.game.rules import Game, GameConfig
 from evapcool.game.settings import TC_EXPONENT_CUP, TC_EXPONENT_SEED
-from evapcool.view.scene import PLAY_RECT
-
-NOTICE_STRIP = pygame.Rect(PLAY_RECT.left, PLAY_RECT.bottom - 90, PLAY_RECT.width, 90)
 
 
 @pytest.fixture
@@ -25,31 +21,6 @@ def dirs(tmp_path, monkeypatch):
     monkeypatch.setenv("EVAPCOOL_DATA_DIR", str(data))
     monkeypatch.setenv("EVAPCOOL_CONFIG_DIR", str(config))
     return data, config
-
-
-@pytest.fixture
-def make_app(dirs):
-    apps = []
-
-    def make() -> App:
-        a = App(Game(GameConfig(seed=1)), data_dir=dirs[0], config_dir=dirs[1])
-        apps.append(a)
-        return a
-
-    yield make
-    for a in apps:
-        a.close()
-
-
-def post(kind: int, **attrs) -> None:
-    pygame.event.post(pygame.event.Event(kind, **attrs))
-
-
-def key(app: App, k: int, times: int = 1) -> None:
-    for _ in range(times):
-        post(pygame.KEYDOWN, key=k, mod=0, unicode="", scancode=0)
-        post(pygame.KEYUP, key=k, mod=0, unicode="", scancode=0)
-        app.frame(None)
 
 
 def saved(config) -> dict:
