@@ -168,3 +168,26 @@ def reflect_wall(x: float, vx: float, vy: float, a: float, keep: float) -> tuple
     vn = vx * sx + vy
     f = 2.0 * vn / nn
     return keep * (vx - f * sx), keep * (vy - f)
+
+
+def settle_wall(
+    x: float, vx: float, vy: float, a: float, keep: float, v_floor: float
+) -> tuple[float, float]:
+    """Damped bounce after the win (seed Eq. 34) that cannot collapse.
+
+    A damped atom sliding along the bowl would see its normal speed shrink
+    geometrically while gravity keeps its speed near the damping threshold: the
+    bounces would come ever faster (inelastic collapse). The inward normal speed
+    after the bounce is therefore at least v_floor; the tangential part is damped
+    as usual, so every damped bounce still removes energy when v_floor^2 is small
+    against the speed threshold.
+    """
+    ux, uy = reflect_wall(x, vx, vy, a, keep)
+    sx = -2.0 * a * x
+    nn = math.sqrt(sx * sx + 1.0)
+    vn = (ux * sx + uy) / nn
+    if vn < v_floor:
+        d = (v_floor - vn) / nn
+        ux = ux + d * sx
+        uy = uy + d
+    return ux, uy

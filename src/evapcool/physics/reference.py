@@ -25,6 +25,7 @@ from evapcool.physics.world import (
     TRAPPED,
     WIN_DAMPING,
     WIN_DAMPING_MIN_SPEED,
+    WIN_NORMAL_SPEED_FLOOR,
     World,
 )
 
@@ -184,9 +185,12 @@ class ReferenceEngine:
             keep = 1.0 - WIN_DAMPING
         if keep != 1.0:
             w.energy_sum -= self._energy(i)
-        w.vel[i, 0], w.vel[i, 1] = k.reflect_wall(x, vx, vy, w.curvature, keep)
-        if keep != 1.0:
+            w.vel[i, 0], w.vel[i, 1] = k.settle_wall(
+                x, vx, vy, w.curvature, keep, WIN_NORMAL_SPEED_FLOOR
+            )
             w.energy_sum += self._energy(i)
+        else:
+            w.vel[i, 0], w.vel[i, 1] = k.reflect_wall(x, vx, vy, w.curvature, 1.0)
         w.wall_count += 1
         w.counter[i] += 1
         self._log(EV_WALL, i, -1, t)

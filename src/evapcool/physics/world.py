@@ -33,6 +33,8 @@ ESCAPE_RULES = ("rim", "knife")
 WIN_DAMPING = 0.2
 #: ...but only while the speed is at least this (px/frame).
 WIN_DAMPING_MIN_SPEED = 1.0
+#: A damped bounce leaves the wall at least this fast (px/frame), see kernels.settle_wall.
+WIN_NORMAL_SPEED_FLOOR = 0.25
 
 
 @dataclass
