@@ -1,0 +1,22 @@
+"""The lab: headless evaporation experiments checked against kinetic theory (doc/lab.md).
+
+from evapcool.lab import run_experiment
+res = run_experiment(atoms=49, schedule="400@0,60@1800", frames=1800, seed=1)
+res.n_trapped, res.temperature, res.metadata
+"""
+
+from evapcool.lab import theory
+from evapcool.lab.experiment import LabConfig, LabResult, load_result, run_experiment
+from evapcool.lab.io import COLUMNS
+from evapcool.lab.schedule import Schedule, parse_schedule
+
+__all__ = [
+    "COLUMNS",
+    "LabConfig",
+    "LabResult",
+    "Schedule",
+    "load_result",
+    "parse_schedule",
+    "run_experiment",
+    "theory",
+]

@@ -1,0 +1,177 @@
+"""`evapcool lab`: headless evaporation experiments from the command line."""
+
+from __future__ import annotations
+
+import argparse
+import math
+import sys
+from typing import NoReturn
+
+from evapcool.lab.experiment import ESCAPES, START_HELP, TC_LAWS, LabConfig, run_experiment
+from evapcool.lab.io import COLUMNS, read_result, to_csv_text
+from evapcool.lab.schedule import SCHEDULE_HELP
+from evapcool.physics.simulation import ENGINES
+
+EXIT_USAGE = 2
+EXIT_INTERRUPTED = 130
+
+
+class _UsageError(Exception):
+    pass
+
+
+class _Parser(argparse.ArgumentParser):
+    """argparse that reports bad input as one line instead of usage plus traceback."""
+
+    def error(self, message: str) -> NoReturn:
+        raise _UsageError(message)
+
+
+def _whole(name: str, low: int):
+    def conv(text: str) -> int:
+        try:
+            v = int(text)
+        except ValueError:
+            v = low - 1
+        if v < low:
+            raise argparse.ArgumentTypeError(f"must be a whole number >= {low} (got {text!r})")
+        return v
+
+    conv.__name__ = name
+    return conv
+
+
+def _positive(text: str) -> float:
+    try:
+        v = float(text)
+    except ValueError:
+        v = math.nan
+    if not (math.isfinite(v) and v > 0.0):
+        raise argparse.ArgumentTypeError(f"must be a positive finite number (got {text!r})")
+    return v
+
+
+def _choice(options):
+    def conv(text: str) -> str:
+        if text not in options:
+            raise argparse.ArgumentTypeError(f"must be one of {', '.join(options)} (got {text!r})")
+        return text
+
+    return conv
+
+
+def build_parser() -> argparse.ArgumentParser:
+    d = LabConfig()
+    p = _Parser(
+        prog="evapcool lab",
+        description=(
+            "Run an evaporative-cooling experiment headless: a trap-height schedule in, "
+            "time series (CSV/JSON) and a figure out. See doc/lab.md."
+        ),
+    )
+    p.add_argument("--atoms", type=_whole("atoms", 1), help=f"number of atoms (default {d.atoms})")
+    p.add_argument("--radius", type=_positive, help=f"atom radius, px (default {d.radius:g})")
+    p.add_argument("--curvature", type=_positive, help=f"cup curvature a, 1/px ({d.curvature:g})")
+    p.add_argument("--gravity", type=_positive, help="g, px/frame^2 (default 10/30)")
+    p.add_argument("--seed", type=_whole("seed", 0), help="random seed (default: drawn, recorded)")
+    p.add_argument("--engine", type=_choice(ENGINES), help="physics engine (default auto)")
+    p.add_argument("--frames", type=_whole("frames", 1), help=f"run length ({d.frames} frames)")
+    p.add_argument(
+        "--every",
+        type=_whole("every", 1),
+        metavar="K",
+        help=f"record every K frames (default {d.every})",
+    )
+    p.add_argument(
+        "--escape",
+        type=_choice(ESCAPES),
+        help="rim: fly over the rim (the game); knife: E > m g H removed at once",
+    )
+    p.add_argument("--schedule", help=f"trap height H(t): {SCHEDULE_HELP} (default {d.schedule})")
+    p.add_argument(
+        "--tc-law",
+        dest="tc_law",
+        type=_choice(tuple(TC_LAWS)),
+        help="Tc ~ N^(2/3) (seed, default) or N^(2/5) (cup)",
+    )
+    p.add_argument("--start", help=f"initial atoms: {START_HELP} (default cup)")
+    p.add_argument(
+        "--continue-after-win",
+        dest="stop_at_win",
+        action="store_const",
+        const=False,
+        help="keep running under the game's rules once T < Tc",
+    )
+    p.add_argument(
+        "--from",
+        dest="from_file",
+        metavar="FILE",
+        help="repeat the run recorded in FILE (other options override)",
+    )
+    p.add_argument("--out", metavar="FILE", help="results, .csv or .json (default: CSV on stdout)")
+    p.add_argument("--plot", metavar="FILE.png", help="save the four-panel figure")
+    return p
+
+
+def _fail(message: str) -> int:
+    print(f"evapcool lab: error: {message}", file=sys.stderr)
+    return EXIT_USAGE
+
+
+_OPTION_OF = {"n_atoms": "atoms", "trap_height": "schedule"}
+
+
+def _option_message(message: str) -> str:
+    """'tc_law must be ...' -> '--tc-law must be ...' so the line names the CLI option."""
+    head, sep, rest = message.partition(" ")
+    word = head.rstrip(":")
+    word = _OPTION_OF.get(word, word)
+    known = set(LabConfig.__dataclass_fields__) | {"out", "plot"}
+    if word in known:
+        return "--" + word.replace("_", "-") + head[len(head.rstrip(":")) :] + sep + rest
+    return message
+
+
+def main(argv: list[str] | None = None) -> int:
+    """Entry point of `evapcool lab`; returns the exit status (2 on bad input)."""
+    try:
+        args = build_parser().parse_args(sys.argv[1:] if argv is None else argv)
+    except _UsageError as exc:
+        return _fail(str(exc))
+    params: dict = {}
+    if args.from_file is not None:
+        try:
+            params.update(read_result(args.from_file)[0]["parameters"])
+        except (OSError, ValueError, KeyError, TypeError) as exc:
+            return _fail(f"--from must name a lab result file (.csv or .json): {exc}")
+    for name in LabConfig.__dataclass_fields__:
+        value = getattr(args, name, None)
+        if value is not None:
+            params[name] = value
+    try:
+        result = run_experiment(out=args.out, plot=args.plot, progress=None, **params)
+    except ValueError as exc:
+        return _fail(_option_message(str(exc)))
+    except OSError as exc:
+        return _fail(f"could not write output: {exc}")
+    if args.out is None:
+        sys.stdout.write(to_csv_text(result.metadata, result.columns, result.final_energies))
+    n = result.n_trapped
+    t = result.temperature
+    won = result.metadata.get("won_frame")
+    summary = (
+        f"evapcool lab: {len(result)} records, N {n[0]} -> {n[-1]}, "
+        f"T {t[0]:.4g} -> {t[-1]:.4g}"
+        + (f", T < Tc from frame {won}" if won is not None else ", T > Tc throughout")
+        + (f"; wrote {args.out}" if args.out else "")
+    )
+    if not result.completed:
+        print(
+            summary + f" (interrupted at frame {result.metadata['frames_done']})", file=sys.stderr
+        )
+        return EXIT_INTERRUPTED
+    print(summary, file=sys.stderr)
+    return 0
+
+
+__all__ = ["COLUMNS", "build_parser", "main"]

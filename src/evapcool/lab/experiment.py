@@ -1,0 +1,327 @@
+"""run_experiment: one evaporation run with a trap-height schedule, recorded as time series."""
+
+from __future__ import annotations
+
+import math
+import numbers
+import os
+import time
+from collections.abc import Callable
+from dataclasses import asdict, dataclass
+from pathlib import Path
+
+import numpy as np
+
+from evapcool.lab.io import (
+    COLUMNS,
+    as_arrays,
+    check_writable,
+    output_format,
+    read_result,
+    write_result,
+)
+from evapcool.lab.progress import Progress
+from evapcool.lab.schedule import Schedule, parse_schedule
+from evapcool.lab.theory import thermal_cloud
+from evapcool.physics.simulation import (
+    ATOM_RADIUS,
+    CURVATURE,
+    ENGINES,
+    GRAVITY,
+    N_ATOMS,
+    TC_EXPONENT_CUP,
+    TC_EXPONENT_SEED,
+    Simulation,
+)
+
+TC_LAWS = {"seed": TC_EXPONENT_SEED, "cup": TC_EXPONENT_CUP}
+ESCAPES = ("rim", "knife")
+MASS = 1.0
+START_HELP = "'cup' (the game's loading) or 'thermal=KT' (a thermal cloud at kT > 0)"
+
+
+def _whole(name: str, value: object, low: int) -> int:
+    if isinstance(value, bool) or not isinstance(value, numbers.Integral) or value < low:
+        raise ValueError(f"{name} must be a whole number >= {low} (got {value!r})")
+    return int(value)
+
+
+def _positive(name: str, value: object) -> float:
+    if isinstance(value, bool) or not isinstance(value, numbers.Real):
+        raise ValueError(f"{name} must be a positive finite number (got {value!r})")
+    v = float(value)
+    if not (math.isfinite(v) and v > 0.0):
+        raise ValueError(f"{name} must be a positive finite number (got {value!r})")
+    return v
+
+
+def parse_start(text: str) -> float | None:
+    """None for 'cup', kT for 'thermal=KT'; ValueError otherwise."""
+    if text == "cup":
+        return None
+    if isinstance(text, str) and text.startswith("thermal="):
+        try:
+            kt = float(text[len("thermal=") :])
+        except ValueError:
+            kt = math.nan
+        if math.isfinite(kt) and kt > 0.0:
+            return kt
+    raise ValueError(f"start must be {START_HELP} (got {text!r})")
+
+
+@dataclass(frozen=True)
+class LabConfig:
+    """Every parameter of a lab run; together with the version it fixes the result bit for bit."""
+
+    atoms: int = N_ATOMS
+    radius: float = ATOM_RADIUS
+    curvature: float = CURVATURE
+    gravity: float = GRAVITY
+    seed: int | None = None
+    engine: str = "auto"
+    frames: int = 1800
+    every: int = 30
+    escape: str = "rim"
+    schedule: str = "400"
+    tc_law: str = "seed"
+    start: str = "cup"
+    stop_at_win: bool = True
+
+    def validated(self) -> LabConfig:
+        """A copy with checked, normalised values and a concrete seed; ValueError on bad input."""
+        seed = self.seed
+        if seed is None:
+            # Draw a seed now so that the file records it and the run can be repeated.
+            seed = int(np.random.SeedSequence().entropy % (2**32))
+        seed = _whole("seed", seed, 0)
+        if self.engine not in ENGINES:
+            raise ValueError(f"engine must be one of {', '.join(ENGINES)} (got {self.engine!r})")
+        if self.escape not in ESCAPES:
+            raise ValueError(f"escape must be rim or knife (got {self.escape!r})")
+        if self.tc_law not in TC_LAWS:
+            raise ValueError(f"tc_law must be seed (2/3) or cup (2/5) (got {self.tc_law!r})")
+        parse_schedule(self.schedule)
+        parse_start(self.start)
+        if not isinstance(self.stop_at_win, bool):
+            raise ValueError(f"stop_at_win must be True or False (got {self.stop_at_win!r})")
+        return LabConfig(
+            atoms=_whole("atoms", self.atoms, 1),
+            radius=_positive("radius", self.radius),
+            curvature=_positive("curvature", self.curvature),
+            gravity=_positive("gravity", self.gravity),
+            seed=seed,
+            engine=self.engine,
+            frames=_whole("frames", self.frames, 1),
+            every=_whole("every", self.every, 1),
+            escape=self.escape,
+            schedule=self.schedule.strip(),
+            tc_law=self.tc_law,
+            start=self.start,
+            stop_at_win=self.stop_at_win,
+        )
+
+
+class LabResult:
+    """Time series of a run (NumPy arrays by column name), its metadata and final energies."""
+
+    def __init__(self, metadata: dict, columns: dict[str, np.ndarray], energies: np.ndarray):
+        self.metadata = metadata
+        self.columns = columns
+        self.final_energies = np.asarray(energies, dtype=float)
+
+    def __getattr__(self, name: str) -> np.ndarray:
+        columns = self.__dict__.get("columns", {})
+        if name in columns:
+            return columns[name]
+        raise AttributeError(name)
+
+    def __len__(self) -> int:
+        return len(self.columns["frame"])
+
+    def __repr__(self) -> str:
+        p = self.parameters
+        return (
+            f"LabResult({len(self)} records, atoms={p.get('atoms')}, "
+            f"schedule={p.get('schedule')!r}, escape={p.get('escape')!r}, "
+            f"completed={self.completed})"
+        )
+
+    @property
+    def parameters(self) -> dict:
+        """The run's parameters: run_experiment(**result.parameters) repeats it."""
+        return dict(self.metadata.get("parameters", {}))
+
+    @property
+    def completed(self) -> bool:
+        return bool(self.metadata.get("completed", False))
+
+    @property
+    def eta(self) -> np.ndarray:
+        """Truncation parameter m g H / kT at each record, kT = 2/5 of the temperature column."""
+        kt = 0.4 * self.columns["temperature"]
+        with np.errstate(divide="ignore", invalid="ignore"):
+            return MASS * self.metadata["parameters"]["gravity"] * self.trap_height / kt
+
+    def save(self, path: str | os.PathLike[str]) -> None:
+        """Write as CSV or JSON (by extension), atomically."""
+        write_result(path, self.metadata, self.columns, self.final_energies)
+
+    def plot(self, path: str | os.PathLike[str] | None = None):
+        """The four-panel figure (doc/lab.md); saved to path if given; returns the Figure."""
+        from evapcool.lab.plot import plot_result
+
+        return plot_result(self, path)
+
+
+def load_result(path: str | os.PathLike[str]) -> LabResult:
+    """Read a CSV or JSON file written by the lab."""
+    return LabResult(*read_result(path))
+
+
+def _new_columns() -> dict[str, list]:
+    return {c: [] for c in COLUMNS}
+
+
+def _make_simulation(cfg: LabConfig, schedule: Schedule) -> Simulation:
+    kt = parse_start(cfg.start)
+    pos = vel = None
+    if kt is not None:
+        rng = np.random.default_rng(cfg.seed)
+        pos, vel = thermal_cloud(
+            cfg.atoms,
+            cfg.radius,
+            kt,
+            mass=MASS,
+            gravity=cfg.gravity,
+            curvature=cfg.curvature,
+            rng=rng,
+        )
+    h0 = schedule.fixed_height(0.0) if schedule.kind == "ramp" else math.inf
+    return Simulation(
+        n_atoms=cfg.atoms,
+        radius=cfg.radius,
+        mass=MASS,
+        curvature=cfg.curvature,
+        gravity=cfg.gravity,
+        trap_height=h0,
+        seed=cfg.seed,
+        engine=cfg.engine,
+        tc_exponent=TC_LAWS[cfg.tc_law],
+        escape=cfg.escape,
+        positions=pos,
+        velocities=vel,
+    )
+
+
+def run_experiment(
+    *,
+    out: str | os.PathLike[str] | None = None,
+    plot: str | os.PathLike[str] | None = None,
+    progress: bool | None = False,
+    checkpoint_seconds: float = 10.0,
+    on_record: Callable[[LabResult], None] | None = None,
+    **params: object,
+) -> LabResult:
+    """Run one evaporation experiment; ValueError on bad input, before any simulation work.
+
+    params are the LabConfig fields (atoms, radius, curvature, gravity, seed, engine,
+    frames, every, escape, schedule, tc_law, start, stop_at_win). The trap height
+    follows the schedule frame by frame; a record (a row) is taken every `every`
+    frames and at the end, which is the frame where T < Tc unless stop_at_win=False.
+    Ctrl-C stops the run early and returns (and writes) the rows so far, marked
+    completed=False. progress=None draws a bar only if stderr is a terminal.
+    """
+    unknown = sorted(set(params) - set(LabConfig.__dataclass_fields__))
+    if unknown:
+        raise ValueError(
+            f"unknown parameter {unknown[0]!r}; allowed: "
+            + ", ".join(LabConfig.__dataclass_fields__)
+        )
+    cfg = LabConfig(**params).validated()  # type: ignore[arg-type]
+    schedule = parse_schedule(cfg.schedule)
+    if out is not None:
+        output_format(out)
+        check_writable(out, "out")
+    if plot is not None:
+        if Path(plot).suffix.lower() != ".png":
+            raise ValueError(f"plot must be a file name ending in .png (got {str(plot)!r})")
+        check_writable(plot, "plot")
+    sim = _make_simulation(cfg, schedule)
+
+    from evapcool import __version__
+
+    metadata: dict = {
+        "program": "evapcool lab",
+        "version": __version__,
+        "parameters": asdict(cfg),
+        "mass": MASS,
+        "tc_exponent": sim.tc_exponent,
+        "columns": list(COLUMNS),
+        "completed": False,
+        "frames_done": 0,
+        "won_frame": None,
+    }
+    cols = _new_columns()
+    n0 = sim.n_atoms
+    psd0: list[float] = []  # N T^-5/2 at the first record, for the normalisation
+
+    def snapshot() -> LabResult:
+        arrays = {c: np.asarray(v) for c, v in cols.items()}
+        return LabResult(dict(metadata), as_arrays(arrays), sim.energies())
+
+    def record(frame: int) -> None:
+        n = sim.n_trapped
+        t = sim.temperature
+        psd = n * t**-2.5 if n and t > 0.0 else 0.0
+        if not psd0:
+            psd0.append(psd)
+        cols["frame"].append(frame)
+        cols["n_trapped"].append(n)
+        cols["temperature"].append(t)
+        cols["critical_temperature"].append(sim.critical_temperature if n else 0.0)
+        cols["trap_height"].append(sim.trap_height)
+        cols["total_energy"].append(sim.total_energy())
+        cols["pair_collisions"].append(sim.pair_collision_count)
+        cols["wall_collisions"].append(sim.wall_collision_count)
+        cols["escaped"].append(n0 - n)
+        cols["phase_space_density"].append(psd / psd0[0] if psd0[0] > 0.0 else 0.0)
+        cols["won"].append(int(sim.won))
+
+    bar = Progress(cfg.frames, enabled=progress)
+    last_write = time.monotonic()
+    try:
+        if schedule.kind == "eta":
+            schedule.apply(sim, 0.0)
+        record(0)
+        for frame in range(1, cfg.frames + 1):
+            sim.advance(1.0)
+            schedule.apply(sim, float(frame))
+            won_now = sim.won and metadata["won_frame"] is None
+            if won_now:
+                metadata["won_frame"] = frame
+            metadata["frames_done"] = frame
+            # After T < Tc the game's rules take over (no pair collisions, damped
+            # bounces), which is no longer an evaporation experiment: stop there.
+            stop = won_now and cfg.stop_at_win
+            if frame % cfg.every == 0 or frame == cfg.frames or stop:
+                record(frame)
+                if on_record is not None:
+                    on_record(snapshot())
+                if out is not None and time.monotonic() - last_write > checkpoint_seconds:
+                    snapshot().save(out)
+                    last_write = time.monotonic()
+            bar.update(frame, f"N={sim.n_trapped}")
+            if stop:
+                metadata["stopped_at_win"] = True
+                break
+        metadata["completed"] = True
+    except KeyboardInterrupt:
+        metadata["interrupted_at_frame"] = metadata["frames_done"]
+    finally:
+        bar.close()
+    result = snapshot()
+    if out is not None:
+        result.save(out)
+    if plot is not None:
+        result.plot(plot)
+    return result
