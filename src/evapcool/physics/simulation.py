@@ -34,7 +34,7 @@ TC_EXPONENT_SEED = 2.0 / 3.0  # seed Eq. (46), the 3D-box law
 TC_EXPONENT_CUP = 2.0 / 5.0  # ideal Bose gas with g(E) ~ E^(3/2) (SPEC 4)
 ENGINES = ("auto", "reference", "fast")
 #: engine="auto" uses the fast engine from this many atoms on (docs/benchmarks.md).
-AUTO_FAST_MIN_ATOMS = 150
+AUTO_FAST_MIN_ATOMS = 100
 
 
 def cup_vertex(window: tuple[int, int]) -> tuple[float, float]:

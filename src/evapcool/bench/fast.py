@@ -1,0 +1,122 @@
+"""Bench section 'fast': the fast engine's throughput, scaling, frame time and start-up.
+
+Figures (issue 4): collisions and events per second at 10 000 atoms; a scaling
+table at constant packing (radius = sqrt(10 000 / N)); the classic 49-atom
+start's physics time per frame; the time to the first frame in a fresh
+process with the compiled cache warm; and where the fast engine overtakes the
+reference engine (for AUTO_FAST_MIN_ATOMS). Compilation is warmed up first.
+Rates use process CPU time: the machine is shared, wall time is noisier.
+"""
+
+from __future__ import annotations
+
+import argparse
+import math
+import statistics
+import subprocess
+import sys
+import time
+
+from evapcool import Simulation
+
+_STARTUP_CODE = (
+    "import time; t0 = time.perf_counter()\n"
+    "from evapcool import Simulation\n"
+    "s = Simulation.classic(seed=1, engine={engine!r}); s.advance(1.0)\n"
+    "print(time.perf_counter() - t0)\n"
+)
+
+
+def throughput(n: int, frames: int, seed: int = 1) -> dict[str, float]:
+    """Collisions and events per CPU second over `frames` frames after a 1-frame warm-up."""
+    radius = math.sqrt(10_000 / n)
+    sim = Simulation(n_atoms=n, radius=radius, seed=seed, trap_height=450.0, engine="fast")
+    sim.advance(1.0)
+    eng = sim._engine
+    c0, x0, s0 = sim.collision_count, eng.crossing_count, eng.stale_count
+    t = time.process_time()
+    sim.advance(float(frames))
+    dt = time.process_time() - t
+    coll = sim.collision_count - c0
+    events = coll + (eng.crossing_count - x0) + (eng.stale_count - s0)
+    return {"n": n, "radius": radius, "frames": frames, "seconds": dt,
+            "collisions": coll, "coll_per_s": coll / dt, "events_per_s": events / dt,
+            "per_frame_ms": dt / frames * 1e3}  # fmt: skip
+
+
+def frame_median_ms(engine: str, n: int, frames: int, radius: float = 12.0) -> float:
+    """Median physics time per frame (ms) of advance(1) from the cup start, H = 450."""
+    sim = Simulation(n_atoms=n, radius=radius, seed=1, trap_height=450.0, engine=engine)
+    sim.advance(1.0)
+    times = []
+    for _ in range(frames):
+        t = time.perf_counter()
+        sim.advance(1.0)
+        times.append(time.perf_counter() - t)
+    return statistics.median(times) * 1e3
+
+
+def startup_seconds(engine: str, repeats: int) -> tuple[float, float]:
+    """(process wall time, in-process time) to the first frame, median over fresh processes."""
+    code = _STARTUP_CODE.format(engine=engine)
+    walls, inner = [], []
+    for _ in range(repeats):
+        t = time.perf_counter()
+        out = subprocess.run(
+            [sys.executable, "-c", code], capture_output=True, text=True, check=True
+        ).stdout
+        walls.append(time.perf_counter() - t)
+        inner.append(float(out.strip().splitlines()[-1]))
+    return statistics.median(walls), statistics.median(inner)
+
+
+def run(args: argparse.Namespace) -> None:
+    """Print the fast engine's figures."""
+    quick = bool(getattr(args, "quick", False))
+    # Warm-up: compile (or load from the cache) every compiled function.
+    Simulation(n_atoms=50, radius=3.0, seed=0, engine="fast", escape="knife").advance(2.0)
+
+    frames = 10 if quick else 30
+    r = throughput(10_000, frames)
+    print("[fast] Simulation(n_atoms=10000, radius=1.0, seed=1, trap_height=450, engine='fast')")
+    print(
+        f"  {r['collisions']:,} collisions in frames 1-{frames + 1}: "
+        f"{r['coll_per_s']:,.0f} collisions/s (atom-atom + wall), "
+        f"{r['events_per_s']:,.0f} events/s (with cell crossings and stale pops), "
+        f"{r['per_frame_ms']:.1f} ms per frame"
+    )
+
+    sizes = (1_000, 10_000) if quick else (1_000, 10_000, 100_000)
+    print("  scaling at constant packing (radius = sqrt(10000 / N)):")
+    print(f"  {'atoms':>8} {'radius':>7} {'frames':>6} {'collisions/s':>14} {'events/s':>12}")
+    rates = []
+    for n in sizes:
+        fr = max(2, int(frames * 10_000 / n)) if n < 10_000 else max(2, frames * 10_000 // n)
+        r = throughput(n, fr)
+        rates.append(r["coll_per_s"])
+        print(
+            f"  {n:>8,} {r['radius']:>7.3f} {fr:>6} "
+            f"{r['coll_per_s']:>14,.0f} {r['events_per_s']:>12,.0f}"
+        )
+    print(f"  max / min collisions/s across the table: {max(rates) / min(rates):.2f}")
+
+    nf = 300 if quick else 900
+    med = frame_median_ms("fast", 49, nf)
+    print(f"  classic start (49 atoms, R = 12, H = 450): median {med:.4f} ms physics per frame")
+
+    reps = 2 if quick else 5
+    for engine in ("fast", "reference"):
+        wall, inner = startup_seconds(engine, reps)
+        print(
+            f"  start-up to first frame, fresh process, engine={engine}: {wall:.2f} s "
+            f"(of which {inner:.2f} s import + build + first frame)"
+        )
+
+    print("  fast vs reference, median ms per frame (cup start, H = 450, R = 12 scaled):")
+    counts = (25, 49, 100, 200) if quick else (25, 49, 75, 100, 150, 200, 300)
+    for n in counts:
+        radius = min(12.0, 12.0 * math.sqrt(49 / n))
+        fr = 60 if quick else 150
+        ref = frame_median_ms("reference", n, fr, radius)
+        fst = frame_median_ms("fast", n, fr, radius)
+        print(f"  {n:>6} atoms R={radius:5.2f}: reference {ref:8.3f}  fast {fst:8.3f}")

@@ -1,0 +1,806 @@
+"""The fast engine: Numba, a cell grid and one pending event per atom.
+
+A drop-in for `ReferenceEngine` that reproduces its event sequence exactly:
+the scalar formulas of kernels.py are compiled here with Numba, so both
+engines do bit-identical arithmetic on the same stored states, and events are
+ordered by the same key (time, solo before pair, then atom indices).
+
+Techniques (Smallenburg, Eur. Phys. J. E 45, 22 (2022); Bannerman et al.,
+J. Comput. Chem. 32, 3329 (2011)):
+
+- Each atom keeps only its earliest event; the atoms sit in an indexed binary
+  heap keyed by that event. A pair event remembers the partner's collision
+  counter and is dropped (the atom re-predicted) if the partner changed since.
+- Trapped atoms live in a uniform grid of cells at least one contact distance
+  wide; pairs are only looked for in the 3 x 3 block around an atom. Crossing
+  a cell edge is an event (linear in x, the stable quadratic in y under
+  gravity) that changes no stored state. The edge cells are clamped, i.e. they
+  reach to infinity, so a trapped atom flying out of the nominal box is still
+  in a cell and still meets its neighbours.
+- Positions are advanced lazily: an atom's stored state moves only when it
+  takes part in a real event. Escaped atoms leave the grid and have only their
+  exit-window event.
+
+numba is imported by this module only, and this module only when the fast
+engine is used.
+"""
+
+from __future__ import annotations
+
+import math
+import types
+
+import numpy as np
+from numba import njit
+
+from evapcool.physics import kernels as _k
+from evapcool.physics.world import (
+    ESCAPED,
+    EV_ESCAPE,
+    EV_GONE,
+    EV_KNIFE,
+    EV_PAIR,
+    EV_WALL,
+    GONE,
+    TRAPPED,
+    WIN_DAMPING,
+    WIN_DAMPING_MIN_SPEED,
+    WIN_NORMAL_SPEED_FLOOR,
+    World,
+)
+
+INF = math.inf
+
+# The very kernels the reference engine mirrors; error_model="numpy" gives
+# inf/nan instead of raising, like the NumPy scalars of the reference engine.
+_jit = njit(cache=True, error_model="numpy")
+# The engine never allocates inside compiled code, so Numba's reference
+# counting (atomic operations on every array passed around) is switched off.
+_fn = njit(cache=True, _nrt=False)
+_flight_x = _jit(_k.flight_x)
+_flight_y = _jit(_k.flight_y)
+_flight_vy = _jit(_k.flight_vy)
+_atom_energy = _jit(_k.atom_energy)
+_pair_time = _jit(_k.pair_contact_time)
+_wall_time = _jit(_k.wall_contact_time)
+_exit_time = _jit(_k.exit_time)
+_collide = _jit(_k.collide_pair)
+_reflect = _jit(_k.reflect_wall)
+# settle_wall calls reflect_wall: compile it against the compiled one.
+_settle = _jit(
+    types.FunctionType(
+        _k.settle_wall.__code__, {**vars(_k), "reflect_wall": _reflect}, "settle_wall"
+    )
+)
+
+# The engine keeps its atoms in a few row-per-atom tables (one cache line of
+# floats per atom; few arrays also keep Numba's reference counting cheap) and
+# copies them from and to the World around every call.
+# S, float: stored state, radius, mass, and the time of the arc's last y crossing.
+X, Y, VX, VY, T, R, M, TLY = range(8)
+# A, int: lifecycle status, collision counter, cell, previous in cell.
+# head, int: the first atom of every cell, then the next atom in cell of every
+# atom (one array: the pair scan walks it only).
+A_ST, A_CNT, A_CX, A_CY, A_PRV = range(5)
+# E, float: heap key time, real-event time, crossing time.
+E_KEY, E_RT, E_CT = range(3)
+# V, int: the event tables. Each atom has a real event (wall, exit or pair) and a
+# cell crossing; its heap key is the earlier of the two.
+V_RANK, V_A, V_B = range(3)  # key: rank, then two tie-break indices
+V_RR, V_RA, V_RB, V_KIND, V_ARG, V_PC = range(3, 9)  # real: key parts, kind, partner, its counter
+V_XK, V_XT = 9, 10  # crossing: axis kind and target cell coordinate
+
+# Internal event kinds.
+K_NONE = 0
+K_PAIR = 1
+K_WALL = 2
+K_EXIT = 3
+K_CROSS_X = 4
+K_CROSS_Y = 5
+
+# Ranks order events of equal time: a cell crossing changes no state and may
+# reveal a partner, so it goes first; then solo events (the reference engine
+# prefers them to pairs on a tie); then pairs by (lower, higher) index.
+R_CROSS = -1
+R_SOLO = 0
+R_PAIR = 1
+
+# Float parameters fp and integer parameters ip (fixed for the engine's life).
+P_G, P_A, P_GX0, P_GY0, P_CS, P_XL, P_XR, P_YB = range(8)
+Q_NX, Q_NY, Q_KNIFE, Q_RECORD = range(4)
+# Running scalars: floats fs and integers js (copied from/to the World).
+S_TIME, S_ESUM, S_XRIM, S_H = range(4)
+J_WON, J_NTRAP, J_PAIRS, J_WALLS = range(4)
+# Engine-only event counts (stats): cell crossings and stale pair events.
+ST_CROSS, ST_STALE = range(2)
+
+LOG_CAPACITY = 1 << 16
+_LOG_ROOM = 4  # the most log lines one event can write (pair + two knives)
+
+#: Cell edge in contact distances; > 1 leaves room for round-off in crossing times.
+CELL_FACTOR = 1.25
+#: The nominal box reaches the height this percentile of trapped atoms can reach.
+BOX_PERCENTILE = 99.5
+#: At most this many cells per atom (bounds memory for tiny, sparse atoms).
+MAX_CELLS_PER_ATOM = 8
+
+
+# -- heap (4-ary: half the levels of a binary heap, kinder to the cache) ----------
+# heap[p] (p < N) is an atom, heap_t[p] a copy of its key time (keeps the sift
+# loops on contiguous arrays); heap[N + i] is atom i's place in the heap.
+@_fn
+def _less(x, tx, y, ty, V):
+    """True if atom x's key comes before atom y's: (t, rank, a, b)."""
+    if tx != ty:
+        return tx < ty
+    if V[x, V_RANK] != V[y, V_RANK]:
+        return V[x, V_RANK] < V[y, V_RANK]
+    if V[x, V_A] != V[y, V_A]:
+        return V[x, V_A] < V[y, V_A]
+    return V[x, V_B] < V[y, V_B]
+
+
+@_fn
+def _sift(p, heap, heap_t, V):
+    """Move the entry at heap place p up or down to its place (children 4p+1..4p+4)."""
+    n = heap_t.shape[0]
+    i = heap[p]
+    ti = heap_t[p]
+    while p > 0:
+        q = (p - 1) >> 2
+        j = heap[q]
+        tj = heap_t[q]
+        if not _less(i, ti, j, tj, V):
+            break
+        heap[p] = j
+        heap_t[p] = tj
+        heap[n + j] = p
+        p = q
+    while True:
+        c = 4 * p + 1
+        if c >= n:
+            break
+        end = c + 4 if c + 4 <= n else n
+        for d in range(c + 1, end):
+            if _less(heap[d], heap_t[d], heap[c], heap_t[c], V):
+                c = d
+        if not _less(heap[c], heap_t[c], i, ti, V):
+            break
+        heap[p] = heap[c]
+        heap_t[p] = heap_t[c]
+        heap[n + heap[c]] = p
+        p = c
+    heap[p] = i
+    heap_t[p] = ti
+    heap[n + i] = p
+
+
+@_fn
+def _set_key(i, A, E, V, heap, heap_t):
+    """Atom i's key is the earlier of its crossing and its real event; fix the heap."""
+    if E[i, E_CT] <= E[i, E_RT]:  # a crossing goes first on a tie
+        E[i, E_KEY] = E[i, E_CT]
+        V[i, V_RANK] = R_CROSS
+        V[i, V_A] = i
+        V[i, V_B] = V[i, V_XK]
+    else:
+        E[i, E_KEY] = E[i, E_RT]
+        V[i, V_RANK] = V[i, V_RR]
+        V[i, V_A] = V[i, V_RA]
+        V[i, V_B] = V[i, V_RB]
+    p = heap[heap_t.shape[0] + i]
+    heap_t[p] = E[i, E_KEY]
+    _sift(p, heap, heap_t, V)
+
+
+# -- grid ---------------------------------------------------------------------------
+@_fn
+def _clamp_cell(u, u0, cs, n):
+    """Cell coordinate of u; the edge cells reach to infinity."""
+    c = math.floor((u - u0) / cs)
+    if c < 0.0:
+        return 0
+    if c > n - 1:
+        return n - 1
+    return int(c)
+
+
+@_fn
+def _unlink(i, A, head, nx):
+    nc = head.shape[0] - A.shape[0]
+    p = A[i, A_PRV]
+    q = head[nc + i]
+    if p >= 0:
+        head[nc + p] = q
+    else:
+        head[A[i, A_CY] * nx + A[i, A_CX]] = q
+    if q >= 0:
+        A[q, A_PRV] = p
+    head[nc + i] = -1
+    A[i, A_PRV] = -1
+
+
+@_fn
+def _link(i, ci, cj, A, head, nx):
+    A[i, A_CX] = ci
+    A[i, A_CY] = cj
+    c = cj * nx + ci
+    q = head[c]
+    head[head.shape[0] - A.shape[0] + i] = q
+    A[i, A_PRV] = -1
+    if q >= 0:
+        A[q, A_PRV] = i
+    head[c] = i
+
+
+# -- predictions ----------------------------------------------------------------------
+@_fn
+def _scan(i, xlo, xhi, ylo, yhi, S, A, E, V, head, fp, ip):
+    """Pairs of trapped atom i with the atoms of cells [xlo, xhi] x [ylo, yhi].
+
+    Contact times are seed Eqs. (15)-(19) (kernels.pair_contact_time); an
+    earlier pair replaces i's real event. On a tie the solo event stays and
+    pairs go in (lower, higher) index order, as in the reference engine.
+    """
+    nx = ip[Q_NX]
+    nc = head.shape[0] - S.shape[0]
+    g = fp[P_G]
+    x = S[i, X]
+    y = S[i, Y]
+    vx = S[i, VX]
+    vy = S[i, VY]
+    t0 = S[i, T]
+    ri = S[i, R]
+    bt = E[i, E_RT]
+    pair = V[i, V_RR] == R_PAIR
+    ba = V[i, V_RA]
+    bb = V[i, V_RB]
+    best = -1
+    for yy in range(ylo, yhi + 1):
+        for xx in range(xlo, xhi + 1):
+            j = head[yy * nx + xx]
+            while j >= 0:
+                if j != i:
+                    t = _pair_time(
+                        x, y, vx, vy, t0,
+                        S[j, X], S[j, Y], S[j, VX], S[j, VY], S[j, T],
+                        ri + S[j, R], g,
+                    )  # fmt: skip
+                    if t <= bt:
+                        lo = i if i < j else j
+                        hi = j if i < j else i
+                        if t < bt or (pair and (lo < ba or (lo == ba and hi < bb))):
+                            bt = t
+                            pair = True
+                            ba = lo
+                            bb = hi
+                            best = j
+                j = head[nc + j]
+    if best >= 0:
+        E[i, E_RT] = bt
+        V[i, V_RR] = R_PAIR
+        V[i, V_RA] = ba
+        V[i, V_RB] = bb
+        V[i, V_KIND] = K_PAIR
+        V[i, V_ARG] = best
+        V[i, V_PC] = A[best, A_CNT]
+
+
+@_fn
+def _predict_real(i, S, A, E, V, head, fp, ip, won):
+    """Atom i's real event: wall (SPEC 2.1) or pair if trapped, exit if escaped."""
+    g = fp[P_G]
+    st = A[i, A_ST]
+    t = INF
+    kind = K_NONE
+    if st == TRAPPED:
+        t = _wall_time(S[i, X], S[i, Y], S[i, VX], S[i, VY], S[i, T], fp[P_A], g)
+        kind = K_WALL
+    elif st == ESCAPED:
+        r = S[i, R]
+        t = _exit_time(
+            S[i, X], S[i, Y], S[i, VX], S[i, VY], S[i, T], g,
+            fp[P_XL] - r, fp[P_XR] + r, fp[P_YB] - r,
+        )  # fmt: skip
+        kind = K_EXIT
+    E[i, E_RT] = t
+    V[i, V_RR] = R_SOLO
+    V[i, V_RA] = i
+    V[i, V_RB] = 0
+    V[i, V_KIND] = kind
+    if st == TRAPPED and not won:
+        nx = ip[Q_NX]
+        ny = ip[Q_NY]
+        ci = A[i, A_CX]
+        cj = A[i, A_CY]
+        _scan(
+            i,
+            ci - 1 if ci > 0 else 0,
+            ci + 1 if ci < nx - 1 else nx - 1,
+            cj - 1 if cj > 0 else 0,
+            cj + 1 if cj < ny - 1 else ny - 1,
+            S, A, E, V, head, fp, ip,
+        )  # fmt: skip
+
+
+@_fn
+def _predict_cross(i, S, A, E, V, fp, ip, won):
+    """Atom i's next cell crossing (none unless trapped and the game is on).
+
+    x: straight line to the next edge in the direction of vx. y: up through
+    the top edge (first root, if the arc really passes it: a grazing arc with
+    equal roots stays below), else down through the bottom edge; roots at or
+    before the arc's last y crossing (TLY) are ones already taken. Roots in
+    the cancellation-free form. Clamped edge cells have no outer edge.
+    """
+    bt = INF
+    bk = K_NONE
+    barg = 0
+    if A[i, A_ST] == TRAPPED and not won:
+        g = fp[P_G]
+        cs = fp[P_CS]
+        nx = ip[Q_NX]
+        ny = ip[Q_NY]
+        x = S[i, X]
+        y = S[i, Y]
+        vx = S[i, VX]
+        vy = S[i, VY]
+        t0 = S[i, T]
+        ci = A[i, A_CX]
+        cj = A[i, A_CY]
+        if vx > 0.0 and ci < nx - 1:
+            bt = t0 + ((fp[P_GX0] + (ci + 1) * cs) - x) / vx
+            bk = K_CROSS_X
+            barg = ci + 1
+        elif vx < 0.0 and ci > 0:
+            bt = t0 + ((fp[P_GX0] + ci * cs) - x) / vx
+            bk = K_CROSS_X
+            barg = ci - 1
+        tc = INF
+        tgt = 0
+        tl = S[i, TLY]
+        if vy > 0.0 and cj < ny - 1:
+            d = (fp[P_GY0] + (cj + 1) * cs) - y
+            disc = vy * vy - 2.0 * g * d
+            if disc > 0.0:
+                s = math.sqrt(disc)
+                t1 = t0 + 2.0 * d / (vy + s)
+                t2 = t0 + (vy + s) / g
+                if t2 > t1 and t1 > tl:
+                    tc = t1
+                    tgt = cj + 1
+        if tc == INF and cj > 0:
+            h = y - (fp[P_GY0] + cj * cs)
+            disc = vy * vy + 2.0 * g * h
+            if disc < 0.0:
+                disc = 0.0
+            s = math.sqrt(disc)
+            if vy > 0.0:
+                t2 = t0 + (vy + s) / g
+            elif s - vy > 0.0:
+                t2 = t0 + 2.0 * h / (s - vy)
+            else:
+                t2 = t0
+            if t2 > tl:
+                tc = t2
+                tgt = cj - 1
+        if tc < bt:  # x before y on a tie
+            bt = tc
+            bk = K_CROSS_Y
+            barg = tgt
+    E[i, E_CT] = bt
+    V[i, V_XK] = bk
+    V[i, V_XT] = barg
+
+
+@_fn
+def _predict(i, S, A, E, V, heap, heap_t, head, fp, ip, won):
+    """Everything about atom i from its stored state; store it and fix the heap."""
+    _predict_real(i, S, A, E, V, head, fp, ip, won)
+    _predict_cross(i, S, A, E, V, fp, ip, won)
+    _set_key(i, A, E, V, heap, heap_t)
+
+
+# -- state changes ------------------------------------------------------------------
+@_fn
+def _move(i, t, S, g):
+    """Carry atom i's stored state to time t (exact free flight, seed Eqs. 3-4)."""
+    dt = t - S[i, T]
+    S[i, X] = _flight_x(S[i, X], S[i, VX], dt)
+    S[i, Y] = _flight_y(S[i, Y], S[i, VY], 0.5 * g, dt)
+    S[i, VY] = _flight_vy(S[i, VY], g, dt)
+    S[i, T] = t
+    S[i, TLY] = -INF  # a new arc: none of its y crossings taken yet
+
+
+@_fn
+def _energy(i, S, g):
+    return _atom_energy(S[i, M], S[i, Y], S[i, VX], S[i, VY], g)
+
+
+@_fn
+def _log(kind, i, j, t, ip, log_i, log_t, nlog):
+    if ip[Q_RECORD] != 0:
+        log_i[nlog, 0] = kind
+        log_i[nlog, 1] = i
+        log_i[nlog, 2] = j
+        log_t[nlog] = t
+        return nlog + 1
+    return nlog
+
+
+@_fn
+def _check_win(fs, js, tc_table):
+    """T < Tc(N) with the running energy sum (seed Eqs. 1 and 46)."""
+    n = js[J_NTRAP]
+    if js[J_WON] != 0 or n == 0:
+        return
+    if fs[S_ESUM] / n < tc_table[n]:
+        js[J_WON] = 1
+
+
+@_fn
+def _remove(i, new_status, S, A, E, V, heap, heap_t, head, fp, ip, fs, js, tc_table):
+    """Atom i leaves the trapped set: off the grid, solo prediction, win check."""
+    A[i, A_ST] = new_status
+    js[J_NTRAP] -= 1
+    fs[S_ESUM] -= _energy(i, S, fp[P_G])
+    A[i, A_CNT] += 1
+    _unlink(i, A, head, ip[Q_NX])
+    _predict(i, S, A, E, V, heap, heap_t, head, fp, ip, js[J_WON] != 0)
+    _check_win(fs, js, tc_table)
+
+
+@_fn
+def _knife(i, t, S, A, E, V, heap, heap_t, head, fp, ip, fs, js, tc_table, log_i, log_t, nlog):
+    """Remove trapped atom i at once if its energy exceeds m g H; returns (removed, nlog)."""
+    if ip[Q_KNIFE] == 0:
+        return False, nlog
+    if _energy(i, S, fp[P_G]) > S[i, M] * fp[P_G] * fs[S_H]:
+        nlog = _log(EV_KNIFE, i, -1, t, ip, log_i, log_t, nlog)
+        _remove(i, GONE, S, A, E, V, heap, heap_t, head, fp, ip, fs, js, tc_table)
+        return True, nlog
+    return False, nlog
+
+
+# -- entry points ---------------------------------------------------------------------
+@_fn
+def _pull(S, A, pos, vel, t_atom, status, counter):
+    """World arrays -> engine tables."""
+    for i in range(S.shape[0]):
+        S[i, X] = pos[i, 0]
+        S[i, Y] = pos[i, 1]
+        S[i, VX] = vel[i, 0]
+        S[i, VY] = vel[i, 1]
+        S[i, T] = t_atom[i]
+        A[i, A_ST] = status[i]
+        A[i, A_CNT] = counter[i]
+
+
+@_fn
+def _push(S, A, pos, vel, t_atom, status, counter):
+    """Engine tables -> World arrays."""
+    for i in range(S.shape[0]):
+        pos[i, 0] = S[i, X]
+        pos[i, 1] = S[i, Y]
+        vel[i, 0] = S[i, VX]
+        vel[i, 1] = S[i, VY]
+        t_atom[i] = S[i, T]
+        status[i] = A[i, A_ST]
+        counter[i] = A[i, A_CNT]
+
+
+@_fn
+def _setup(S, A, E, V, heap, heap_t, head, fp, ip, now, won):
+    """Put trapped atoms in their cells (positions at now) and predict every atom."""
+    n = S.shape[0]
+    g = fp[P_G]
+    head[:] = -1
+    for i in range(n):
+        heap[i] = i
+        heap[n + i] = i
+        heap_t[i] = INF
+        A[i, A_PRV] = -1
+        E[i, :] = INF
+        V[i, :] = 0
+        V[i, V_A] = i
+        S[i, TLY] = -INF
+        if A[i, A_ST] == TRAPPED:
+            dt = now - S[i, T]
+            xn = _flight_x(S[i, X], S[i, VX], dt)
+            yn = _flight_y(S[i, Y], S[i, VY], 0.5 * g, dt)
+            ci = _clamp_cell(xn, fp[P_GX0], fp[P_CS], ip[Q_NX])
+            cj = _clamp_cell(yn, fp[P_GY0], fp[P_CS], ip[Q_NY])
+            _link(i, ci, cj, A, head, ip[Q_NX])
+    for i in range(n):
+        _predict(i, S, A, E, V, heap, heap_t, head, fp, ip, won)
+
+
+@_fn
+def _advance(t_end, S, A, E, V, heap, heap_t, head, fp, ip, fs, js, tc_table, log_i, log_t, stats):
+    """Process every event with time <= t_end in order; returns (done, log lines).
+
+    Mirrors ReferenceEngine.advance_to event for event. Stops early (done
+    False) when the log buffer is nearly full.
+    """
+    g = fp[P_G]
+    a = fp[P_A]
+    nx = ip[Q_NX]
+    ny = ip[Q_NY]
+    # Without recording nothing is logged and the buffer is never full.
+    cap = log_i.shape[0] - _LOG_ROOM if ip[Q_RECORD] != 0 else 1 << 62
+    nlog = 0
+    while True:
+        if nlog > cap:
+            return False, nlog
+        i = heap[0]
+        te = heap_t[0]
+        if not te <= t_end:
+            break
+        won = js[J_WON] != 0
+        kind = V[i, V_XK] if V[i, V_RANK] == R_CROSS else V[i, V_KIND]
+        if kind == K_PAIR:
+            j = V[i, V_ARG]
+            if won or A[j, A_CNT] != V[i, V_PC]:
+                stats[ST_STALE] += 1  # the partner moved on (or pairs are over)
+                _predict(i, S, A, E, V, heap, heap_t, head, fp, ip, won)
+                continue
+            lo = i if i < j else j
+            hi = j if i < j else i
+            t = te if te >= fs[S_TIME] else fs[S_TIME]
+            fs[S_TIME] = t
+            _move(lo, t, S, g)
+            _move(hi, t, S, g)
+            v = _collide(
+                S[hi, X] - S[lo, X], S[hi, Y] - S[lo, Y],
+                S[lo, VX], S[lo, VY], S[hi, VX], S[hi, VY], S[lo, M], S[hi, M],
+            )  # fmt: skip
+            S[lo, VX] = v[0]
+            S[lo, VY] = v[1]
+            S[hi, VX] = v[2]
+            S[hi, VY] = v[3]
+            js[J_PAIRS] += 1
+            A[lo, A_CNT] += 1
+            A[hi, A_CNT] += 1
+            nlog = _log(EV_PAIR, lo, hi, t, ip, log_i, log_t, nlog)
+            for b in (lo, hi):
+                gone, nlog = _knife(
+                    b, t, S, A, E, V, heap, heap_t, head, fp, ip, fs, js, tc_table,
+                    log_i, log_t, nlog,
+                )  # fmt: skip
+                if not gone:
+                    _predict(b, S, A, E, V, heap, heap_t, head, fp, ip, js[J_WON] != 0)
+        elif kind in (K_CROSS_X, K_CROSS_Y):
+            stats[ST_CROSS] += 1
+            if won:  # the grid is no longer kept once the gas has condensed
+                _predict(i, S, A, E, V, heap, heap_t, head, fp, ip, won)
+                continue
+            # Into the next cell. Only the row or column of cells that just came
+            # within reach needs scanning (Smallenburg 2022): pairs with the
+            # other neighbours are already held by i or by the partner.
+            ci = A[i, A_CX]
+            cj = A[i, A_CY]
+            tgt = V[i, V_XT]
+            _unlink(i, A, head, nx)
+            if kind == K_CROSS_X:
+                _link(i, tgt, cj, A, head, nx)
+                c = tgt + (tgt - ci)
+                if 0 <= c < nx:
+                    lo = cj - 1 if cj > 0 else 0
+                    hi = cj + 1 if cj < ny - 1 else ny - 1
+                    _scan(i, c, c, lo, hi, S, A, E, V, head, fp, ip)
+            else:
+                _link(i, ci, tgt, A, head, nx)
+                S[i, TLY] = te
+                c = tgt + (tgt - cj)
+                if 0 <= c < ny:
+                    lo = ci - 1 if ci > 0 else 0
+                    hi = ci + 1 if ci < nx - 1 else nx - 1
+                    _scan(i, lo, hi, c, c, S, A, E, V, head, fp, ip)
+            _predict_cross(i, S, A, E, V, fp, ip, won)
+            _set_key(i, A, E, V, heap, heap_t)
+        elif kind == K_WALL:
+            t = te if te >= fs[S_TIME] else fs[S_TIME]
+            fs[S_TIME] = t
+            _move(i, t, S, g)
+            x = S[i, X]
+            if abs(x) > fs[S_XRIM]:  # over the rim: escaped (SPEC 2.3)
+                nlog = _log(EV_ESCAPE, i, -1, t, ip, log_i, log_t, nlog)
+                _remove(i, ESCAPED, S, A, E, V, heap, heap_t, head, fp, ip, fs, js, tc_table)
+                continue
+            vx = S[i, VX]
+            vy = S[i, VY]
+            keep = 1.0
+            if won and math.sqrt(vx * vx + vy * vy) >= WIN_DAMPING_MIN_SPEED:
+                keep = 1.0 - WIN_DAMPING  # seed Eq. (34)
+            if keep != 1.0:  # damped, with a floor on the normal speed (no collapse)
+                fs[S_ESUM] -= _energy(i, S, g)
+                w = _settle(x, vx, vy, a, keep, WIN_NORMAL_SPEED_FLOOR)
+                S[i, VX] = w[0]
+                S[i, VY] = w[1]
+                fs[S_ESUM] += _energy(i, S, g)
+            else:
+                w = _reflect(x, vx, vy, a, 1.0)
+                S[i, VX] = w[0]
+                S[i, VY] = w[1]
+            js[J_WALLS] += 1
+            A[i, A_CNT] += 1
+            nlog = _log(EV_WALL, i, -1, t, ip, log_i, log_t, nlog)
+            _predict(i, S, A, E, V, heap, heap_t, head, fp, ip, won)
+        elif kind == K_EXIT:
+            t = te if te >= fs[S_TIME] else fs[S_TIME]
+            fs[S_TIME] = t
+            _move(i, t, S, g)
+            A[i, A_ST] = GONE
+            A[i, A_CNT] += 1
+            nlog = _log(EV_GONE, i, -1, t, ip, log_i, log_t, nlog)
+            _predict(i, S, A, E, V, heap, heap_t, head, fp, ip, won)
+        else:
+            break
+    return True, nlog
+
+
+@_fn
+def _knife_all(S, A, E, V, heap, heap_t, head, fp, ip, fs, js, tc_table, log_i, log_t):
+    """The knife at the clock time, in ascending atom order; returns log lines."""
+    nlog = 0
+    for i in range(S.shape[0]):
+        if A[i, A_ST] == TRAPPED:
+            _, nlog = _knife(
+                i, fs[S_TIME], S, A, E, V, heap, heap_t, head, fp, ip, fs, js, tc_table,
+                log_i, log_t, nlog,
+            )  # fmt: skip
+    return nlog
+
+
+@_fn
+def _grid_errors(S, A, fp, ip, now):
+    """Trapped atoms filed more than one cell away from the cell of their centre now."""
+    bad = 0
+    g = fp[P_G]
+    for i in range(S.shape[0]):
+        if A[i, A_ST] != TRAPPED:
+            continue
+        dt = now - S[i, T]
+        xn = _flight_x(S[i, X], S[i, VX], dt)
+        yn = _flight_y(S[i, Y], S[i, VY], 0.5 * g, dt)
+        ci = _clamp_cell(xn, fp[P_GX0], fp[P_CS], ip[Q_NX])
+        cj = _clamp_cell(yn, fp[P_GY0], fp[P_CS], ip[Q_NY])
+        if abs(ci - A[i, A_CX]) > 1 or abs(cj - A[i, A_CY]) > 1:
+            bad += 1
+    return bad
+
+
+# -- the engine -----------------------------------------------------------------------
+class FastEngine:
+    """Event-driven hard disks in the cup: Numba, cells, one event per atom in a heap."""
+
+    name = "fast"
+
+    def __init__(self, world: World) -> None:
+        self.w = world
+        n = len(world.radius)
+        g = float(world.gravity)
+        a = float(world.curvature)
+        cs = CELL_FACTOR * 2.0 * float(np.max(world.radius))
+        # Nominal box: the cup below the height the most energetic atoms reach
+        # (a high percentile: outliers just sit in the clamped edge cells).
+        trapped = world.status == TRAPPED
+        heights = world.energies()[trapped] / (world.mass[trapped] * g)
+        top = float(np.percentile(heights, BOX_PERCENTILE)) if len(heights) else 1.0
+        y_top = max(top, 1.0) + cs
+        half_w = math.sqrt(y_top / a) + cs
+        max_cells = MAX_CELLS_PER_ATOM * n + 64
+        if (2.0 * half_w / cs) * (y_top / cs) > max_cells:
+            cs = math.sqrt(2.0 * half_w * y_top / max_cells)
+        nx = max(1, math.ceil(2.0 * half_w / cs))
+        ny = max(1, math.ceil((y_top + 0.5 * cs) / cs))
+        self.fp = np.array(
+            [g, a, -0.5 * nx * cs, -0.5 * cs, cs, world.x_left, world.x_right, world.y_bottom]
+        )
+        self.ip = np.array([nx, ny, int(world.knife), int(world.record_events)], dtype=np.int64)
+        self.S = np.zeros((n, 8))
+        self.S[:, R] = world.radius
+        self.S[:, M] = world.mass
+        self.A = np.zeros((n, 5), dtype=np.int64)
+        self.E = np.full((n, 3), INF)
+        self.V = np.zeros((n, 11), dtype=np.int64)
+        self.heap = np.concatenate((np.arange(n), np.arange(n))).astype(np.int64)
+        self.heap_t = np.full(n, INF)
+        self.head = np.full(nx * ny + n, -1, dtype=np.int64)
+        self.fs = np.zeros(4)
+        self.js = np.zeros(4, dtype=np.int64)
+        self.stats = np.zeros(2, dtype=np.int64)
+        self._log_i = np.zeros((LOG_CAPACITY if world.record_events else 1, 3), dtype=np.int64)
+        self._log_t = np.zeros(len(self._log_i))
+        self._tc_key: tuple[float, float] | None = None
+        self._tc_table = np.zeros(n + 1)
+        self._pull()
+        _setup(
+            self.S, self.A, self.E, self.V, self.heap, self.heap_t, self.head,
+            self.fp, self.ip, float(world.time), bool(world.won),
+        )  # fmt: skip
+
+    # -- World <-> engine -----------------------------------------------------------
+    def _pull(self) -> None:
+        w = self.w
+        _pull(self.S, self.A, w.pos, w.vel, w.t_atom, w.status, w.counter)
+
+    def _load(self) -> None:
+        w = self.w
+        self._pull()
+        self.fs[:] = (w.time, w.energy_sum, w.rim_half_width, w.trap_height)
+        self.js[:] = (int(bool(w.won)), w.n_trapped, w.pair_count, w.wall_count)
+        key = (w.tc0, w.tc_exponent)
+        if key != self._tc_key:
+            # Tc(N) for every N, by the World's own expression (same float pow).
+            self._tc_table[:] = [w.critical_temperature_of(m) for m in range(w.n_initial + 1)]
+            self._tc_key = key
+
+    def _store(self, nlog: int) -> None:
+        w = self.w
+        _push(self.S, self.A, w.pos, w.vel, w.t_atom, w.status, w.counter)
+        w.time = float(self.fs[S_TIME])
+        w.energy_sum = float(self.fs[S_ESUM])
+        w.won = bool(self.js[J_WON])
+        w.n_trapped = int(self.js[J_NTRAP])
+        w.pair_count = int(self.js[J_PAIRS])
+        w.wall_count = int(self.js[J_WALLS])
+        if nlog:
+            li = self._log_i[:nlog].tolist()
+            lt = self._log_t[:nlog].tolist()
+            w.log.extend((e[0], e[1], e[2], t) for e, t in zip(li, lt, strict=True))
+
+    # -- public -------------------------------------------------------------------
+    def advance_to(self, t_end: float) -> None:
+        """Process every event with time <= t_end in time order, then set the clock."""
+        self._load()
+        while True:
+            done, nlog = _advance(
+                float(t_end), self.S, self.A, self.E, self.V, self.heap, self.heap_t,
+                self.head, self.fp, self.ip, self.fs, self.js, self._tc_table,
+                self._log_i, self._log_t, self.stats,
+            )  # fmt: skip
+            if done:
+                break
+            self._store(nlog)  # log buffer full: hand it over and go on
+        self.fs[S_TIME] = t_end
+        self._store(nlog)
+
+    def set_trap_height(self, height: float) -> None:
+        """New rim height; with the knife rule, atoms above m g H go at once."""
+        w = self.w
+        w.trap_height = height
+        if not w.knife:
+            return
+        self._load()
+        if len(self._log_i) < len(w.radius) + 1:
+            self._log_i = np.zeros((len(w.radius) + 1, 3), dtype=np.int64)
+            self._log_t = np.zeros(len(self._log_i))
+        nlog = _knife_all(
+            self.S, self.A, self.E, self.V, self.heap, self.heap_t, self.head,
+            self.fp, self.ip, self.fs, self.js, self._tc_table, self._log_i, self._log_t,
+        )  # fmt: skip
+        self._store(nlog)
+
+    # -- diagnostics --------------------------------------------------------------
+    @property
+    def crossing_count(self) -> int:
+        """Cell-crossing events processed so far."""
+        return int(self.stats[ST_CROSS])
+
+    @property
+    def stale_count(self) -> int:
+        """Pair events found stale (partner changed) and re-predicted so far."""
+        return int(self.stats[ST_STALE])
+
+    @property
+    def grid_shape(self) -> tuple[int, int, float]:
+        """(columns, rows, cell edge in px) of the cell grid."""
+        return int(self.ip[Q_NX]), int(self.ip[Q_NY]), float(self.fp[P_CS])
+
+    def grid_errors(self) -> int:
+        """Trapped atoms filed more than one cell away from where they are now (0 if sound)."""
+        if self.w.won:
+            return 0
+        return int(_grid_errors(self.S, self.A, self.fp, self.ip, float(self.w.time)))
