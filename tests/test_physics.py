@@ -317,6 +317,29 @@ def test_long_run_is_exact(engine: str, seed: int) -> None:
     assert sim.pair_collision_count > 10_000
 
 
+def test_mixed_radii_and_masses_stay_exact(engine: str) -> None:
+    # Per-atom radius and mass: the classic start with smaller, unequal atoms.
+    start = Simulation.classic(seed=11)
+    rng = np.random.default_rng(11)
+    radii = rng.uniform(5.0, 12.0, 49)
+    masses = rng.uniform(0.5, 3.0, 49)
+    sim = Simulation(
+        49,
+        radius=radii,
+        mass=masses,
+        positions=start.positions,
+        velocities=start.velocities,
+        trap_height=math.inf,
+        engine=engine,
+    )
+    e0 = sim.total_energy()
+    for _ in range(4):
+        sim.advance(500.0)
+        _check_invariants(sim, e0, 1.0 / A)
+    assert sim.pair_collision_count > 1000
+    assert np.array_equal(sim.radii, radii) and np.array_equal(sim.masses, masses)
+
+
 # -- validation -------------------------------------------------------------------------------
 
 
