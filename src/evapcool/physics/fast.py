@@ -57,6 +57,10 @@ _jit = njit(cache=True, error_model="numpy")
 # The engine never allocates inside compiled code, so Numba's reference
 # counting (atomic operations on every array passed around) is switched off.
 _fn = njit(cache=True, _nrt=False)
+# Small helpers on the hot path are inlined by Numba itself: a call between
+# compiled functions passes every array as its full descriptor (7-9 words
+# each, dozens of words per call), which LLVM's inliner rarely removes.
+_fni = njit(cache=True, _nrt=False, inline="always")
 _flight_x = _jit(_k.flight_x)
 _flight_y = _jit(_k.flight_y)
 _flight_vy = _jit(_k.flight_vy)
@@ -78,10 +82,11 @@ _settle = _jit(
 # copies them from and to the World around every call.
 # S, float: stored state, radius, mass, and the time of the arc's last y crossing.
 X, Y, VX, VY, T, R, M, TLY = range(8)
-# A, int: lifecycle status, collision counter, cell, previous in cell.
+# A, int: lifecycle status, collision counter, cell, previous in cell, and the
+# atom's index in the World (see "rows" below).
 # head, int: the first atom of every cell, then the next atom in cell of every
 # atom (one array: the pair scan walks it only).
-A_ST, A_CNT, A_CX, A_CY, A_PRV = range(5)
+A_ST, A_CNT, A_CX, A_CY, A_PRV, A_ID = range(6)
 # E, float: heap key time, real-event time, crossing time.
 E_KEY, E_RT, E_CT = range(3)
 # V, int: the event tables. Each atom has a real event (wall, exit or pair) and a
@@ -111,8 +116,9 @@ Q_NX, Q_NY, Q_KNIFE, Q_RECORD = range(4)
 # Running scalars: floats fs and integers js (copied from/to the World).
 S_TIME, S_ESUM, S_XRIM, S_H = range(4)
 J_WON, J_NTRAP, J_PAIRS, J_WALLS = range(4)
-# Engine-only event counts (stats): cell crossings and stale pair events.
-ST_CROSS, ST_STALE = range(2)
+# Engine-only event counts (stats): cell crossings and stale pair events; and
+# events since the rows were last put in cell order.
+ST_CROSS, ST_STALE, ST_SINCE = range(3)
 
 LOG_CAPACITY = 1 << 16
 _LOG_ROOM = 4  # the most log lines one event can write (pair + two knives)
@@ -123,12 +129,21 @@ CELL_FACTOR = 1.25
 BOX_PERCENTILE = 99.5
 #: At most this many cells per atom (bounds memory for tiny, sparse atoms).
 MAX_CELLS_PER_ATOM = 8
+#: Rows are put back in cell order every this many events per atom.
+RENUMBER_EVENTS_PER_ATOM = 8
+
+# Rows: the engine's tables hold atom i of the World in row rows[i], not row i.
+# Every so often the rows are renumbered in cell order (row-major), so that the
+# atoms of neighbouring cells sit next to each other in memory: the pair scans
+# of big systems then hit the cache instead of main memory. Everything that
+# orders events or is seen outside (tie-break indices, the log, the knife's
+# ascending order, pull and push) uses the World index A_ID, never the row.
 
 
 # -- heap (4-ary: half the levels of a binary heap, kinder to the cache) ----------
-# heap[p] (p < N) is an atom, heap_t[p] a copy of its key time (keeps the sift
-# loops on contiguous arrays); heap[N + i] is atom i's place in the heap.
-@_fn
+# heap[p] (p < N) is a row, heap_t[p] a copy of its key time (keeps the sift
+# loops on contiguous arrays); heap[N + i] is row i's place in the heap.
+@_fni
 def _less(x, tx, y, ty, V):
     """True if atom x's key comes before atom y's: (t, rank, a, b)."""
     if tx != ty:
@@ -140,7 +155,7 @@ def _less(x, tx, y, ty, V):
     return V[x, V_B] < V[y, V_B]
 
 
-@_fn
+@_fni
 def _sift(p, heap, heap_t, V):
     """Move the entry at heap place p up or down to its place (children 4p+1..4p+4)."""
     n = heap_t.shape[0]
@@ -175,13 +190,13 @@ def _sift(p, heap, heap_t, V):
     heap[n + i] = p
 
 
-@_fn
+@_fni
 def _set_key(i, A, E, V, heap, heap_t):
     """Atom i's key is the earlier of its crossing and its real event; fix the heap."""
     if E[i, E_CT] <= E[i, E_RT]:  # a crossing goes first on a tie
         E[i, E_KEY] = E[i, E_CT]
         V[i, V_RANK] = R_CROSS
-        V[i, V_A] = i
+        V[i, V_A] = A[i, A_ID]
         V[i, V_B] = V[i, V_XK]
     else:
         E[i, E_KEY] = E[i, E_RT]
@@ -194,7 +209,7 @@ def _set_key(i, A, E, V, heap, heap_t):
 
 
 # -- grid ---------------------------------------------------------------------------
-@_fn
+@_fni
 def _clamp_cell(u, u0, cs, n):
     """Cell coordinate of u; the edge cells reach to infinity."""
     c = math.floor((u - u0) / cs)
@@ -205,7 +220,7 @@ def _clamp_cell(u, u0, cs, n):
     return int(c)
 
 
-@_fn
+@_fni
 def _unlink(i, A, head, nx):
     nc = head.shape[0] - A.shape[0]
     p = A[i, A_PRV]
@@ -220,7 +235,7 @@ def _unlink(i, A, head, nx):
     A[i, A_PRV] = -1
 
 
-@_fn
+@_fni
 def _link(i, ci, cj, A, head, nx):
     A[i, A_CX] = ci
     A[i, A_CY] = cj
@@ -234,7 +249,7 @@ def _link(i, ci, cj, A, head, nx):
 
 
 # -- predictions ----------------------------------------------------------------------
-@_fn
+@_fni
 def _scan(i, xlo, xhi, ylo, yhi, S, A, E, V, head, fp, ip):
     """Pairs of trapped atom i with the atoms of cells [xlo, xhi] x [ylo, yhi].
 
@@ -255,6 +270,7 @@ def _scan(i, xlo, xhi, ylo, yhi, S, A, E, V, head, fp, ip):
     pair = V[i, V_RR] == R_PAIR
     ba = V[i, V_RA]
     bb = V[i, V_RB]
+    ii = A[i, A_ID]
     best = -1
     for yy in range(ylo, yhi + 1):
         for xx in range(xlo, xhi + 1):
@@ -266,9 +282,10 @@ def _scan(i, xlo, xhi, ylo, yhi, S, A, E, V, head, fp, ip):
                         S[j, X], S[j, Y], S[j, VX], S[j, VY], S[j, T],
                         ri + S[j, R], g,
                     )  # fmt: skip
-                    if t <= bt:
-                        lo = i if i < j else j
-                        hi = j if i < j else i
+                    if t <= bt:  # rare: only now read j's World index
+                        jj = A[j, A_ID]
+                        lo = ii if ii < jj else jj
+                        hi = jj if ii < jj else ii
                         if t < bt or (pair and (lo < ba or (lo == ba and hi < bb))):
                             bt = t
                             pair = True
@@ -286,7 +303,7 @@ def _scan(i, xlo, xhi, ylo, yhi, S, A, E, V, head, fp, ip):
         V[i, V_PC] = A[best, A_CNT]
 
 
-@_fn
+@_fni
 def _predict_real(i, S, A, E, V, head, fp, ip, won):
     """Atom i's real event: wall (SPEC 2.1) or pair if trapped, exit if escaped."""
     g = fp[P_G]
@@ -305,7 +322,7 @@ def _predict_real(i, S, A, E, V, head, fp, ip, won):
         kind = K_EXIT
     E[i, E_RT] = t
     V[i, V_RR] = R_SOLO
-    V[i, V_RA] = i
+    V[i, V_RA] = A[i, A_ID]
     V[i, V_RB] = 0
     V[i, V_KIND] = kind
     if st == TRAPPED and not won:
@@ -323,7 +340,7 @@ def _predict_real(i, S, A, E, V, head, fp, ip, won):
         )  # fmt: skip
 
 
-@_fn
+@_fni
 def _predict_cross(i, S, A, E, V, fp, ip, won):
     """Atom i's next cell crossing (none unless trapped and the game is on).
 
@@ -393,7 +410,7 @@ def _predict_cross(i, S, A, E, V, fp, ip, won):
     V[i, V_XT] = barg
 
 
-@_fn
+@_fni
 def _predict(i, S, A, E, V, heap, heap_t, head, fp, ip, won):
     """Everything about atom i from its stored state; store it and fix the heap."""
     _predict_real(i, S, A, E, V, head, fp, ip, won)
@@ -401,8 +418,13 @@ def _predict(i, S, A, E, V, heap, heap_t, head, fp, ip, won):
     _set_key(i, A, E, V, heap, heap_t)
 
 
+# The same, compiled once as an ordinary call for the paths off the hot loop
+# (atoms leaving the trap): every inlined copy of _predict costs compile time.
+_predict_outlined = _fn(_predict.py_func)
+
+
 # -- state changes ------------------------------------------------------------------
-@_fn
+@_fni
 def _move(i, t, S, g):
     """Carry atom i's stored state to time t (exact free flight, seed Eqs. 3-4)."""
     dt = t - S[i, T]
@@ -413,12 +435,12 @@ def _move(i, t, S, g):
     S[i, TLY] = -INF  # a new arc: none of its y crossings taken yet
 
 
-@_fn
+@_fni
 def _energy(i, S, g):
     return _atom_energy(S[i, M], S[i, Y], S[i, VX], S[i, VY], g)
 
 
-@_fn
+@_fni
 def _log(kind, i, j, t, ip, log_i, log_t, nlog):
     if ip[Q_RECORD] != 0:
         log_i[nlog, 0] = kind
@@ -447,7 +469,7 @@ def _remove(i, new_status, S, A, E, V, heap, heap_t, head, fp, ip, fs, js, tc_ta
     fs[S_ESUM] -= _energy(i, S, fp[P_G])
     A[i, A_CNT] += 1
     _unlink(i, A, head, ip[Q_NX])
-    _predict(i, S, A, E, V, heap, heap_t, head, fp, ip, js[J_WON] != 0)
+    _predict_outlined(i, S, A, E, V, heap, heap_t, head, fp, ip, js[J_WON] != 0)
     _check_win(fs, js, tc_table)
 
 
@@ -457,7 +479,7 @@ def _knife(i, t, S, A, E, V, heap, heap_t, head, fp, ip, fs, js, tc_table, log_i
     if ip[Q_KNIFE] == 0:
         return False, nlog
     if _energy(i, S, fp[P_G]) > S[i, M] * fp[P_G] * fs[S_H]:
-        nlog = _log(EV_KNIFE, i, -1, t, ip, log_i, log_t, nlog)
+        nlog = _log(EV_KNIFE, A[i, A_ID], -1, t, ip, log_i, log_t, nlog)
         _remove(i, GONE, S, A, E, V, heap, heap_t, head, fp, ip, fs, js, tc_table)
         return True, nlog
     return False, nlog
@@ -465,29 +487,105 @@ def _knife(i, t, S, A, E, V, heap, heap_t, head, fp, ip, fs, js, tc_table, log_i
 
 # -- entry points ---------------------------------------------------------------------
 @_fn
-def _pull(S, A, pos, vel, t_atom, status, counter):
+def _pull(S, A, rows, pos, vel, t_atom, status, counter):
     """World arrays -> engine tables."""
-    for i in range(S.shape[0]):
-        S[i, X] = pos[i, 0]
-        S[i, Y] = pos[i, 1]
-        S[i, VX] = vel[i, 0]
-        S[i, VY] = vel[i, 1]
-        S[i, T] = t_atom[i]
-        A[i, A_ST] = status[i]
-        A[i, A_CNT] = counter[i]
+    for k in range(S.shape[0]):
+        i = rows[k]
+        S[i, X] = pos[k, 0]
+        S[i, Y] = pos[k, 1]
+        S[i, VX] = vel[k, 0]
+        S[i, VY] = vel[k, 1]
+        S[i, T] = t_atom[k]
+        A[i, A_ST] = status[k]
+        A[i, A_CNT] = counter[k]
 
 
 @_fn
-def _push(S, A, pos, vel, t_atom, status, counter):
+def _push(S, A, rows, pos, vel, t_atom, status, counter):
     """Engine tables -> World arrays."""
-    for i in range(S.shape[0]):
-        pos[i, 0] = S[i, X]
-        pos[i, 1] = S[i, Y]
-        vel[i, 0] = S[i, VX]
-        vel[i, 1] = S[i, VY]
-        t_atom[i] = S[i, T]
-        status[i] = A[i, A_ST]
-        counter[i] = A[i, A_CNT]
+    for k in range(S.shape[0]):
+        i = rows[k]
+        pos[k, 0] = S[i, X]
+        pos[k, 1] = S[i, Y]
+        vel[k, 0] = S[i, VX]
+        vel[k, 1] = S[i, VY]
+        t_atom[k] = S[i, T]
+        status[k] = A[i, A_ST]
+        counter[k] = A[i, A_CNT]
+
+
+@_fn
+def _renumber(S, A, E, V, heap, head, rows, fsc, isc, nx):
+    """Renumber the rows in cell order (row-major), the atoms off the grid last.
+
+    Walks the cell lists, so the atoms of one cell get consecutive rows; then
+    moves every table row, relabels every row reference (heap, partners,
+    rows) and rebuilds the cell lists. The events, their keys and the in-cell
+    order's irrelevance (a scan keeps the least (t, rank, lo, hi) whatever the
+    order it meets the pairs in) leave the event sequence unchanged.
+    """
+    n = S.shape[0]
+    nc = head.shape[0] - n
+    # isc[old row, 0] = new row (plain loops: slicing would need Numba's runtime).
+    for j in range(n):
+        isc[j, 0] = -1
+    k = 0
+    for c in range(nc):
+        j = head[c]
+        while j >= 0:
+            isc[j, 0] = k
+            k += 1
+            j = head[nc + j]
+    nlinked = k
+    for o in range(n):
+        j = rows[o]
+        if isc[j, 0] < 0:
+            isc[j, 0] = k
+            k += 1
+    # Move the rows through the scratch tables, then relabel the row references.
+    for j in range(n):
+        for q in range(S.shape[1]):
+            fsc[j, q] = S[j, q]
+    for j in range(n):
+        r = isc[j, 0]
+        for q in range(S.shape[1]):
+            S[r, q] = fsc[j, q]
+    for j in range(n):
+        for q in range(E.shape[1]):
+            fsc[j, q] = E[j, q]
+    for j in range(n):
+        r = isc[j, 0]
+        for q in range(E.shape[1]):
+            E[r, q] = fsc[j, q]
+    for j in range(n):
+        for q in range(A.shape[1]):
+            isc[j, 1 + q] = A[j, q]
+    for j in range(n):
+        r = isc[j, 0]
+        for q in range(A.shape[1]):
+            A[r, q] = isc[j, 1 + q]
+    for j in range(n):
+        for q in range(V.shape[1]):
+            isc[j, 1 + q] = V[j, q]
+    for j in range(n):
+        r = isc[j, 0]
+        for q in range(V.shape[1]):
+            V[r, q] = isc[j, 1 + q]
+    for i in range(n):
+        V[i, V_ARG] = isc[V[i, V_ARG], 0]
+    for p in range(n):
+        i = isc[heap[p], 0]
+        heap[p] = i
+        heap[n + i] = p
+    for o in range(n):
+        rows[o] = isc[rows[o], 0]
+    # Cell lists: linking in descending row order leaves each in ascending order.
+    for c in range(head.shape[0]):
+        head[c] = -1
+    for i in range(n):
+        A[i, A_PRV] = -1
+    for i in range(nlinked - 1, -1, -1):
+        _link(i, A[i, A_CX], A[i, A_CY], A, head, nx)
 
 
 @_fn
@@ -503,7 +601,7 @@ def _setup(S, A, E, V, heap, heap_t, head, fp, ip, now, won):
         A[i, A_PRV] = -1
         E[i, :] = INF
         V[i, :] = 0
-        V[i, V_A] = i
+        V[i, V_A] = A[i, A_ID]
         S[i, TLY] = -INF
         if A[i, A_ST] == TRAPPED:
             dt = now - S[i, T]
@@ -517,7 +615,10 @@ def _setup(S, A, E, V, heap, heap_t, head, fp, ip, now, won):
 
 
 @_fn
-def _advance(t_end, S, A, E, V, heap, heap_t, head, fp, ip, fs, js, tc_table, log_i, log_t, stats):
+def _advance(
+    t_end, S, A, E, V, heap, heap_t, head, rows, fsc, isc, fp, ip, fs, js, tc_table,
+    log_i, log_t, stats,
+):  # fmt: skip
     """Process every event with time <= t_end in order; returns (done, log lines).
 
     Mirrors ReferenceEngine.advance_to event for event. Stops early (done
@@ -530,82 +631,92 @@ def _advance(t_end, S, A, E, V, heap, heap_t, head, fp, ip, fs, js, tc_table, lo
     # Without recording nothing is logged and the buffer is never full.
     cap = log_i.shape[0] - _LOG_ROOM if ip[Q_RECORD] != 0 else 1 << 62
     nlog = 0
+    every = RENUMBER_EVENTS_PER_ATOM * S.shape[0]
     while True:
         if nlog > cap:
             return False, nlog
+        stats[ST_SINCE] += 1
+        if stats[ST_SINCE] > every:
+            _renumber(S, A, E, V, heap, head, rows, fsc, isc, nx)
+            stats[ST_SINCE] = 0
         i = heap[0]
         te = heap_t[0]
         if not te <= t_end:
             break
         won = js[J_WON] != 0
         kind = V[i, V_XK] if V[i, V_RANK] == R_CROSS else V[i, V_KIND]
+        rp = -1  # the row to re-predict after the event, if any
         if kind == K_PAIR:
             j = V[i, V_ARG]
-            if won or A[j, A_CNT] != V[i, V_PC]:
+            # V_PC holds the low 32 bits of the partner's counter (V is int32).
+            if won or (A[j, A_CNT] - V[i, V_PC]) & 0xFFFFFFFF != 0:
                 stats[ST_STALE] += 1  # the partner moved on (or pairs are over)
-                _predict(i, S, A, E, V, heap, heap_t, head, fp, ip, won)
-                continue
-            lo = i if i < j else j
-            hi = j if i < j else i
-            t = te if te >= fs[S_TIME] else fs[S_TIME]
-            fs[S_TIME] = t
-            _move(lo, t, S, g)
-            _move(hi, t, S, g)
-            v = _collide(
-                S[hi, X] - S[lo, X], S[hi, Y] - S[lo, Y],
-                S[lo, VX], S[lo, VY], S[hi, VX], S[hi, VY], S[lo, M], S[hi, M],
-            )  # fmt: skip
-            S[lo, VX] = v[0]
-            S[lo, VY] = v[1]
-            S[hi, VX] = v[2]
-            S[hi, VY] = v[3]
-            js[J_PAIRS] += 1
-            A[lo, A_CNT] += 1
-            A[hi, A_CNT] += 1
-            nlog = _log(EV_PAIR, lo, hi, t, ip, log_i, log_t, nlog)
-            for b in (lo, hi):
-                gone, nlog = _knife(
-                    b, t, S, A, E, V, heap, heap_t, head, fp, ip, fs, js, tc_table,
-                    log_i, log_t, nlog,
+                rp = i
+            else:
+                lo = i  # lo, hi: the rows of the lower and higher World index
+                hi = j
+                if A[j, A_ID] < A[i, A_ID]:
+                    lo = j
+                    hi = i
+                t = te if te >= fs[S_TIME] else fs[S_TIME]
+                fs[S_TIME] = t
+                _move(lo, t, S, g)
+                _move(hi, t, S, g)
+                v = _collide(
+                    S[hi, X] - S[lo, X], S[hi, Y] - S[lo, Y],
+                    S[lo, VX], S[lo, VY], S[hi, VX], S[hi, VY], S[lo, M], S[hi, M],
                 )  # fmt: skip
-                if not gone:
-                    _predict(b, S, A, E, V, heap, heap_t, head, fp, ip, js[J_WON] != 0)
+                S[lo, VX] = v[0]
+                S[lo, VY] = v[1]
+                S[hi, VX] = v[2]
+                S[hi, VY] = v[3]
+                js[J_PAIRS] += 1
+                A[lo, A_CNT] += 1
+                A[hi, A_CNT] += 1
+                nlog = _log(EV_PAIR, A[lo, A_ID], A[hi, A_ID], t, ip, log_i, log_t, nlog)
+                for b in (lo, hi):
+                    gone, nlog = _knife(
+                        b, t, S, A, E, V, heap, heap_t, head, fp, ip, fs, js, tc_table,
+                        log_i, log_t, nlog,
+                    )  # fmt: skip
+                    if not gone:
+                        _predict(b, S, A, E, V, heap, heap_t, head, fp, ip, js[J_WON] != 0)
         elif kind in (K_CROSS_X, K_CROSS_Y):
             stats[ST_CROSS] += 1
             if won:  # the grid is no longer kept once the gas has condensed
-                _predict(i, S, A, E, V, heap, heap_t, head, fp, ip, won)
-                continue
-            # Into the next cell. Only the row or column of cells that just came
-            # within reach needs scanning (Smallenburg 2022): pairs with the
-            # other neighbours are already held by i or by the partner.
-            ci = A[i, A_CX]
-            cj = A[i, A_CY]
-            tgt = V[i, V_XT]
-            _unlink(i, A, head, nx)
-            if kind == K_CROSS_X:
-                _link(i, tgt, cj, A, head, nx)
-                c = tgt + (tgt - ci)
-                if 0 <= c < nx:
-                    lo = cj - 1 if cj > 0 else 0
-                    hi = cj + 1 if cj < ny - 1 else ny - 1
-                    _scan(i, c, c, lo, hi, S, A, E, V, head, fp, ip)
+                rp = i
             else:
-                _link(i, ci, tgt, A, head, nx)
-                S[i, TLY] = te
-                c = tgt + (tgt - cj)
-                if 0 <= c < ny:
-                    lo = ci - 1 if ci > 0 else 0
-                    hi = ci + 1 if ci < nx - 1 else nx - 1
-                    _scan(i, lo, hi, c, c, S, A, E, V, head, fp, ip)
-            _predict_cross(i, S, A, E, V, fp, ip, won)
-            _set_key(i, A, E, V, heap, heap_t)
+                # Into the next cell. Only the row or column of cells that just came
+                # within reach needs scanning (Smallenburg 2022): pairs with the
+                # other neighbours are already held by i or by the partner.
+                ci = A[i, A_CX]
+                cj = A[i, A_CY]
+                tgt = V[i, V_XT]
+                _unlink(i, A, head, nx)
+                if kind == K_CROSS_X:
+                    _link(i, tgt, cj, A, head, nx)
+                    c = tgt + (tgt - ci)
+                    if 0 <= c < nx:
+                        lo = cj - 1 if cj > 0 else 0
+                        hi = cj + 1 if cj < ny - 1 else ny - 1
+                        _scan(i, c, c, lo, hi, S, A, E, V, head, fp, ip)
+                else:
+                    _link(i, ci, tgt, A, head, nx)
+                    S[i, TLY] = te
+                    c = tgt + (tgt - cj)
+                    if 0 <= c < ny:
+                        lo = ci - 1 if ci > 0 else 0
+                        hi = ci + 1 if ci < nx - 1 else nx - 1
+                        _scan(i, lo, hi, c, c, S, A, E, V, head, fp, ip)
+                _predict_cross(i, S, A, E, V, fp, ip, won)
+                _set_key(i, A, E, V, heap, heap_t)
         elif kind == K_WALL:
             t = te if te >= fs[S_TIME] else fs[S_TIME]
             fs[S_TIME] = t
             _move(i, t, S, g)
             x = S[i, X]
             if abs(x) > fs[S_XRIM]:  # over the rim: escaped (SPEC 2.3)
-                nlog = _log(EV_ESCAPE, i, -1, t, ip, log_i, log_t, nlog)
+                nlog = _log(EV_ESCAPE, A[i, A_ID], -1, t, ip, log_i, log_t, nlog)
                 _remove(i, ESCAPED, S, A, E, V, heap, heap_t, head, fp, ip, fs, js, tc_table)
                 continue
             vx = S[i, VX]
@@ -625,26 +736,29 @@ def _advance(t_end, S, A, E, V, heap, heap_t, head, fp, ip, fs, js, tc_table, lo
                 S[i, VY] = w[1]
             js[J_WALLS] += 1
             A[i, A_CNT] += 1
-            nlog = _log(EV_WALL, i, -1, t, ip, log_i, log_t, nlog)
-            _predict(i, S, A, E, V, heap, heap_t, head, fp, ip, won)
+            nlog = _log(EV_WALL, A[i, A_ID], -1, t, ip, log_i, log_t, nlog)
+            rp = i
         elif kind == K_EXIT:
             t = te if te >= fs[S_TIME] else fs[S_TIME]
             fs[S_TIME] = t
             _move(i, t, S, g)
             A[i, A_ST] = GONE
             A[i, A_CNT] += 1
-            nlog = _log(EV_GONE, i, -1, t, ip, log_i, log_t, nlog)
-            _predict(i, S, A, E, V, heap, heap_t, head, fp, ip, won)
+            nlog = _log(EV_GONE, A[i, A_ID], -1, t, ip, log_i, log_t, nlog)
+            rp = i
         else:
             break
+        if rp >= 0:  # one call site: _predict is inlined, so every site costs code
+            _predict(rp, S, A, E, V, heap, heap_t, head, fp, ip, won)
     return True, nlog
 
 
 @_fn
-def _knife_all(S, A, E, V, heap, heap_t, head, fp, ip, fs, js, tc_table, log_i, log_t):
+def _knife_all(S, A, E, V, heap, heap_t, head, rows, fp, ip, fs, js, tc_table, log_i, log_t):
     """The knife at the clock time, in ascending atom order; returns log lines."""
     nlog = 0
-    for i in range(S.shape[0]):
+    for k in range(S.shape[0]):  # ascending World index
+        i = rows[k]
         if A[i, A_ST] == TRAPPED:
             _, nlog = _knife(
                 i, fs[S_TIME], S, A, E, V, heap, heap_t, head, fp, ip, fs, js, tc_table,
@@ -702,15 +816,21 @@ class FastEngine:
         self.S = np.zeros((n, 8))
         self.S[:, R] = world.radius
         self.S[:, M] = world.mass
-        self.A = np.zeros((n, 5), dtype=np.int64)
+        self.A = np.zeros((n, 6), dtype=np.int64)
+        self.A[:, A_ID] = np.arange(n)
+        self.rows = np.arange(n, dtype=np.int64)
+        # Scratch tables for renumbering (compiled code never allocates).
+        self._fsc = np.zeros((n, 8))
+        self._isc = np.zeros((n, 12), dtype=np.int64)
         self.E = np.full((n, 3), INF)
-        self.V = np.zeros((n, 11), dtype=np.int64)
-        self.heap = np.concatenate((np.arange(n), np.arange(n))).astype(np.int64)
+        self.V = np.zeros((n, 11), dtype=np.int32)
+        self.heap = np.concatenate((np.arange(n), np.arange(n))).astype(np.int32)
         self.heap_t = np.full(n, INF)
-        self.head = np.full(nx * ny + n, -1, dtype=np.int64)
+        self.head = np.full(nx * ny + n, -1, dtype=np.int32)
         self.fs = np.zeros(4)
         self.js = np.zeros(4, dtype=np.int64)
-        self.stats = np.zeros(2, dtype=np.int64)
+        self.stats = np.zeros(3, dtype=np.int64)
+        self.stats[ST_SINCE] = n * RENUMBER_EVENTS_PER_ATOM  # renumber at the first event
         self._log_i = np.zeros((LOG_CAPACITY if world.record_events else 1, 3), dtype=np.int64)
         self._log_t = np.zeros(len(self._log_i))
         self._tc_key: tuple[float, float] | None = None
@@ -724,7 +844,7 @@ class FastEngine:
     # -- World <-> engine -----------------------------------------------------------
     def _pull(self) -> None:
         w = self.w
-        _pull(self.S, self.A, w.pos, w.vel, w.t_atom, w.status, w.counter)
+        _pull(self.S, self.A, self.rows, w.pos, w.vel, w.t_atom, w.status, w.counter)
 
     def _load(self) -> None:
         w = self.w
@@ -739,7 +859,7 @@ class FastEngine:
 
     def _store(self, nlog: int) -> None:
         w = self.w
-        _push(self.S, self.A, w.pos, w.vel, w.t_atom, w.status, w.counter)
+        _push(self.S, self.A, self.rows, w.pos, w.vel, w.t_atom, w.status, w.counter)
         w.time = float(self.fs[S_TIME])
         w.energy_sum = float(self.fs[S_ESUM])
         w.won = bool(self.js[J_WON])
@@ -758,7 +878,8 @@ class FastEngine:
         while True:
             done, nlog = _advance(
                 float(t_end), self.S, self.A, self.E, self.V, self.heap, self.heap_t,
-                self.head, self.fp, self.ip, self.fs, self.js, self._tc_table,
+                self.head, self.rows, self._fsc, self._isc, self.fp, self.ip, self.fs,
+                self.js, self._tc_table,
                 self._log_i, self._log_t, self.stats,
             )  # fmt: skip
             if done:
@@ -778,7 +899,7 @@ class FastEngine:
             self._log_i = np.zeros((len(w.radius) + 1, 3), dtype=np.int64)
             self._log_t = np.zeros(len(self._log_i))
         nlog = _knife_all(
-            self.S, self.A, self.E, self.V, self.heap, self.heap_t, self.head,
+            self.S, self.A, self.E, self.V, self.heap, self.heap_t, self.head, self.rows,
             self.fp, self.ip, self.fs, self.js, self._tc_table, self._log_i, self._log_t,
         )  # fmt: skip
         self._store(nlog)
