@@ -158,6 +158,13 @@ def _user_message(exc: ValueError) -> str:
     return text
 
 
+def _no_display() -> bool:
+    """True on a Linux/BSD machine with neither an X11 nor a Wayland display."""
+    if sys.platform.startswith(("win", "darwin")):
+        return False
+    return not (os.environ.get("DISPLAY") or os.environ.get("WAYLAND_DISPLAY"))
+
+
 def main(argv: list[str] | None = None) -> int:
     """Play the applet (or, with --frames, run it headless); returns the exit status."""
     args = build_parser().parse_args(argv)
@@ -190,6 +197,8 @@ def main(argv: list[str] | None = None) -> int:
         return 2
 
     os.environ.setdefault("PYGAME_HIDE_SUPPORT_PROMPT", "1")
+    if args.frames is not None and _no_display():
+        os.environ.setdefault("SDL_VIDEODRIVER", "dummy")  # headless: no window needed
     import pygame  # only now: bad arguments should not pay for SDL start-up
 
     from evapcool.app.applet import App
