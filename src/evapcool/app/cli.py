@@ -3,13 +3,12 @@
 from __future__ import annotations
 
 import argparse
-import math
 import os
 import sys
-from collections.abc import Callable
 from pathlib import Path
 
 from evapcool.app.storage import settings_path
+from evapcool.argtypes import positive, whole
 from evapcool.game.rules import SPEED_MAX, SPEED_MIN, Game, GameConfig, check_speed
 from evapcool.game.settings import (
     RADIUS_MAX,
@@ -39,29 +38,6 @@ class _Parser(argparse.ArgumentParser):
         raise SystemExit(2)
 
 
-def _whole(minimum: int) -> Callable[[str], int]:
-    def parse(text: str) -> int:
-        try:
-            value = int(text)
-        except ValueError:
-            value = None
-        if value is None or value < minimum:
-            raise argparse.ArgumentTypeError(f"must be a whole number >= {minimum} (got {text!r})")
-        return value
-
-    return parse
-
-
-def _positive_float(text: str) -> float:
-    try:
-        value = float(text)
-    except ValueError:
-        value = math.nan
-    if not math.isfinite(value) or value <= 0.0:
-        raise argparse.ArgumentTypeError(f"must be a positive finite number (got {text!r})")
-    return value
-
-
 def _speed(text: str) -> float:
     try:
         return check_speed(float(text))
@@ -89,11 +65,11 @@ def build_parser() -> argparse.ArgumentParser:
     # Atoms, radius, Tc law and escape rule default to the saved settings (key O in
     # the applet); given here they apply to this run only and are not saved.
     p.add_argument(
-        "--atoms", type=_whole(1), default=None, metavar="N", help="atoms (saved setting; 49)"
+        "--atoms", type=whole(1), default=None, metavar="N", help="atoms (saved setting; 49)"
     )
     p.add_argument(
         "--radius",
-        type=_positive_float,
+        type=positive,
         default=None,
         metavar="R",
         help=f"atom radius, {RADIUS_MIN:g} to {RADIUS_MAX:g} px (saved setting; 12)",
@@ -111,7 +87,7 @@ def build_parser() -> argparse.ArgumentParser:
         help="atoms leave over the rim, or by the energy knife (saved setting; rim)",
     )
     p.add_argument(
-        "--seed", type=_whole(0), default=None, metavar="S", help="random seed (default: random)"
+        "--seed", type=whole(0), default=None, metavar="S", help="random seed (default: random)"
     )
     p.add_argument(
         "--speed",
@@ -123,7 +99,7 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--fullscreen", action="store_true", help="start in full screen")
     p.add_argument(
         "--frames",
-        type=_whole(0),
+        type=whole(0),
         default=None,
         metavar="N",
         help="play N frames without waiting for the clock (1 physics frame x speed each), exit",

@@ -3,10 +3,10 @@
 from __future__ import annotations
 
 import argparse
-import math
 import sys
 from typing import NoReturn
 
+from evapcool.argtypes import choice, positive, whole
 from evapcool.lab.experiment import ESCAPES, START_HELP, TC_LAWS, LabConfig, run_experiment
 from evapcool.lab.io import COLUMNS, read_result, to_csv_text
 from evapcool.lab.schedule import SCHEDULE_HELP
@@ -27,39 +27,6 @@ class _Parser(argparse.ArgumentParser):
         raise _UsageError(message)
 
 
-def _whole(name: str, low: int):
-    def conv(text: str) -> int:
-        try:
-            v = int(text)
-        except ValueError:
-            v = low - 1
-        if v < low:
-            raise argparse.ArgumentTypeError(f"must be a whole number >= {low} (got {text!r})")
-        return v
-
-    conv.__name__ = name
-    return conv
-
-
-def _positive(text: str) -> float:
-    try:
-        v = float(text)
-    except ValueError:
-        v = math.nan
-    if not (math.isfinite(v) and v > 0.0):
-        raise argparse.ArgumentTypeError(f"must be a positive finite number (got {text!r})")
-    return v
-
-
-def _choice(options):
-    def conv(text: str) -> str:
-        if text not in options:
-            raise argparse.ArgumentTypeError(f"must be one of {', '.join(options)} (got {text!r})")
-        return text
-
-    return conv
-
-
 def build_parser() -> argparse.ArgumentParser:
     d = LabConfig()
     p = _Parser(
@@ -69,29 +36,29 @@ def build_parser() -> argparse.ArgumentParser:
             "time series (CSV/JSON) and a figure out. See doc/lab.md."
         ),
     )
-    p.add_argument("--atoms", type=_whole("atoms", 1), help=f"number of atoms (default {d.atoms})")
-    p.add_argument("--radius", type=_positive, help=f"atom radius, px (default {d.radius:g})")
-    p.add_argument("--curvature", type=_positive, help=f"cup curvature a, 1/px ({d.curvature:g})")
-    p.add_argument("--gravity", type=_positive, help="g, px/frame^2 (default 10/30)")
-    p.add_argument("--seed", type=_whole("seed", 0), help="random seed (default: drawn, recorded)")
-    p.add_argument("--engine", type=_choice(ENGINES), help="physics engine (default auto)")
-    p.add_argument("--frames", type=_whole("frames", 1), help=f"run length ({d.frames} frames)")
+    p.add_argument("--atoms", type=whole(1), help=f"number of atoms (default {d.atoms})")
+    p.add_argument("--radius", type=positive, help=f"atom radius, px (default {d.radius:g})")
+    p.add_argument("--curvature", type=positive, help=f"cup curvature a, 1/px ({d.curvature:g})")
+    p.add_argument("--gravity", type=positive, help="g, px/frame^2 (default 10/30)")
+    p.add_argument("--seed", type=whole(0), help="random seed (default: drawn, recorded)")
+    p.add_argument("--engine", type=choice(ENGINES), help="physics engine (default auto)")
+    p.add_argument("--frames", type=whole(1), help=f"run length ({d.frames} frames)")
     p.add_argument(
         "--every",
-        type=_whole("every", 1),
+        type=whole(1),
         metavar="K",
         help=f"record every K frames (default {d.every})",
     )
     p.add_argument(
         "--escape",
-        type=_choice(ESCAPES),
+        type=choice(ESCAPES),
         help="rim: fly over the rim (the game); knife: E > m g H removed at once",
     )
     p.add_argument("--schedule", help=f"trap height H(t): {SCHEDULE_HELP} (default {d.schedule})")
     p.add_argument(
         "--tc-law",
         dest="tc_law",
-        type=_choice(tuple(TC_LAWS)),
+        type=choice(tuple(TC_LAWS)),
         help="Tc ~ N^(2/3) (seed, default) or N^(2/5) (cup)",
     )
     p.add_argument("--start", help=f"initial atoms: {START_HELP} (default cup)")

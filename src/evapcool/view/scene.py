@@ -245,14 +245,18 @@ class Scene:
         image = _text("Press Space or click play to start", 28, TEXT, True)
         self.surface.blit(image, image.get_rect(center=(PLAY_RECT.centerx, PLAY_RECT.top + 40)))
 
+    def _frame(self, rect: pygame.Rect) -> None:
+        """A translucent dark panel with the accent border."""
+        shade = pygame.Surface(rect.size, pygame.SRCALPHA)
+        shade.fill(OVERLAY_SHADE)
+        self.surface.blit(shade, rect)
+        pygame.draw.rect(self.surface, ACCENT, rect, width=2, border_radius=4)
+
     def _overlay(self, title: str, height: int) -> pygame.Rect:
         """A translucent framed panel over the play area with a title; returns its rect."""
         panel = pygame.Rect(0, 0, PLAY_RECT.width - 24, min(height, PLAY_RECT.height - 8))
         panel.center = PLAY_RECT.center
-        shade = pygame.Surface(panel.size, pygame.SRCALPHA)
-        shade.fill(OVERLAY_SHADE)
-        self.surface.blit(shade, panel)
-        pygame.draw.rect(self.surface, ACCENT, panel, width=2, border_radius=4)
+        self._frame(panel)
         image = _text(title, 34, ACCENT, True)
         self.surface.blit(image, image.get_rect(midtop=(panel.centerx, panel.top + 12)))
         return panel
@@ -327,10 +331,7 @@ class Scene:
     def draw_name_entry(self, box: TextInput, prompt: str) -> pygame.Rect:
         """Below the score: the prompt and the name being typed; returns the text box."""
         frame = pygame.Rect(PLAY_RECT.left + 40, PLAY_RECT.top + 250, PLAY_RECT.width - 80, 120)
-        shade = pygame.Surface(frame.size, pygame.SRCALPHA)
-        shade.fill(OVERLAY_SHADE)
-        self.surface.blit(shade, frame)
-        pygame.draw.rect(self.surface, ACCENT, frame, width=2, border_radius=4)
+        self._frame(frame)
         image = _text(prompt, 26, ACCENT, True)
         self.surface.blit(image, image.get_rect(midtop=(frame.centerx, frame.top + 10)))
         field = pygame.Rect(frame.left + 20, frame.top + 40, frame.width - 40, 40)
