@@ -31,7 +31,11 @@ import math
 import types
 
 import numpy as np
+from llvmlite import ir
 from numba import njit
+from numba.core import cgutils
+from numba.core import types as nt
+from numba.extending import intrinsic
 
 from evapcool.physics import kernels as _k
 from evapcool.physics.world import (
@@ -138,6 +142,48 @@ RENUMBER_EVENTS_PER_ATOM = 8
 # of big systems then hit the cache instead of main memory. Everything that
 # orders events or is seen outside (tie-break indices, the log, the knife's
 # ascending order, pull and push) uses the World index A_ID, never the row.
+
+
+# -- prefetch -------------------------------------------------------------------------
+@intrinsic
+def _prefetch(typingctx, arr, i):
+    """Hint the CPU to start loading row i of arr (a cache-line read, no fault).
+
+    Why: at 10^5 atoms the tables outgrow the caches and each event starts with
+    misses on its atom's rows; fetching the likely next atom's rows during the
+    current event overlaps those misses with useful work. No effect on results.
+    """
+
+    def codegen(context, builder, sig, args):
+        aryty = sig.args[0]
+        ary = context.make_array(aryty)(context, builder, args[0])
+        row = context.cast(builder, args[1], sig.args[1], nt.intp)
+        idx = [row] + [ir.Constant(ir.IntType(64), 0)] * (aryty.ndim - 1)
+        ptr = cgutils.get_item_pointer2(
+            context, builder, ary.data,
+            cgutils.unpack_tuple(builder, ary.shape),
+            cgutils.unpack_tuple(builder, ary.strides),
+            aryty.layout, idx, wraparound=False,
+        )  # fmt: skip
+        i8p = ir.IntType(8).as_pointer()
+        i32 = ir.IntType(32)
+        fnty = ir.FunctionType(ir.VoidType(), [i8p, i32, i32, i32])
+        fn = cgutils.get_or_insert_function(builder.module, fnty, "llvm.prefetch.p0")
+        # read, high temporal locality, data cache
+        builder.call(fn, [builder.bitcast(ptr, i8p), i32(0), i32(3), i32(1)])
+        return context.get_dummy_value()
+
+    return nt.void(arr, i), codegen
+
+
+@_fni
+def _prefetch_atom(j, S, A, E, V, heap):
+    """Start loading every table row of row j, and its heap place."""
+    _prefetch(S, j)
+    _prefetch(A, j)
+    _prefetch(E, j)
+    _prefetch(V, j)
+    _prefetch(heap, S.shape[0] + j)
 
 
 # -- heap (4-ary: half the levels of a binary heap, kinder to the cache) ----------
@@ -643,8 +689,26 @@ def _advance(
         te = heap_t[0]
         if not te <= t_end:
             break
+        # The next event is most likely the earliest child of the root's: load
+        # its rows while this event is processed.
+        nh = S.shape[0]
+        if nh > 1:
+            c = 1
+            end = 5 if nh >= 5 else nh
+            for d in range(2, end):
+                if heap_t[d] < heap_t[c]:
+                    c = d
+            _prefetch_atom(heap[c], S, A, E, V, heap)
         won = js[J_WON] != 0
         kind = V[i, V_XK] if V[i, V_RANK] == R_CROSS else V[i, V_KIND]
+        if kind == K_PAIR:  # the partner's rows, while the counters are compared
+            _prefetch_atom(V[i, V_ARG], S, A, E, V, heap)
+        if A[i, A_ST] == TRAPPED:  # the heads of the cells the scan will walk
+            ci = A[i, A_CX]
+            cx = ci - 1 if ci > 0 else 0
+            cj = A[i, A_CY]
+            for yy in range(cj - 1 if cj > 0 else 0, cj + 2 if cj < ny - 1 else ny):
+                _prefetch(head, yy * nx + cx)
         rp = -1  # the row to re-predict after the event, if any
         if kind == K_PAIR:
             j = V[i, V_ARG]
