@@ -561,6 +561,18 @@ def _push(S, A, rows, pos, vel, t_atom, status, counter):
 
 
 @_fn
+def _permute_rows(T, dest, scratch, off):
+    """Row j of T moves to row dest[j]; scratch[:, off:] holds the copy meanwhile."""
+    for j in range(T.shape[0]):
+        for q in range(T.shape[1]):
+            scratch[j, off + q] = T[j, q]
+    for j in range(T.shape[0]):
+        r = dest[j]
+        for q in range(T.shape[1]):
+            T[r, q] = scratch[j, off + q]
+
+
+@_fn
 def _renumber(S, A, E, V, heap, head, rows, fsc, isc, nx):
     """Renumber the rows in cell order (row-major), the atoms off the grid last.
 
@@ -589,27 +601,10 @@ def _renumber(S, A, E, V, heap, head, rows, fsc, isc, nx):
             isc[j, 0] = k
             k += 1
     # Move the rows through the scratch tables, then relabel the row references.
-    for j in range(n):
-        for q in range(S.shape[1]):
-            fsc[j, q] = S[j, q]
-    for j in range(n):
-        r = isc[j, 0]
-        for q in range(S.shape[1]):
-            S[r, q] = fsc[j, q]
-    for j in range(n):
-        for q in range(E.shape[1]):
-            fsc[j, q] = E[j, q]
-    for j in range(n):
-        r = isc[j, 0]
-        for q in range(E.shape[1]):
-            E[r, q] = fsc[j, q]
-    for j in range(n):
-        for q in range(A.shape[1]):
-            isc[j, 1 + q] = A[j, q]
-    for j in range(n):
-        r = isc[j, 0]
-        for q in range(A.shape[1]):
-            A[r, q] = isc[j, 1 + q]
+    dest = isc[:, 0]
+    _permute_rows(S, dest, fsc, 0)
+    _permute_rows(E, dest, fsc, 0)
+    _permute_rows(A, dest, isc, 1)  # isc column 0 holds dest itself
     for j in range(n):
         for q in range(V.shape[1]):
             isc[j, 1 + q] = V[j, q]
