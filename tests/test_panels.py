@@ -336,3 +336,21 @@ def test_condensate_appears_only_after_the_win_and_fades_in() -> None:
     assert tuple(arr[cx, cy]) != (159, 159, 159)
     assert arr[cx, cy, 0] > 200  # warm glow, unlike the cyan atoms
     assert draw_condensate(surf, sim, sim.to_screen, 3.0, strength=0.0) is None
+
+
+def test_panels_and_scene_text_survive_pygame_quit_and_init() -> None:
+    # Fonts die with pygame's font module; an applet reopened in one process (a
+    # notebook) must not draw with dead fonts.
+    from evapcool.view import scene
+
+    sim = _sim()
+    for _ in range(2):
+        energy, path = EnergyPanel(), PathPanel()
+        energy.record(sim)
+        path.record(sim)
+        surface = _surface()
+        energy.draw(surface, RECT)
+        path.draw(surface, RECT)
+        scene.Scene(pygame.Surface((640, 672))).draw_empty()
+        pygame.quit()
+        pygame.init()

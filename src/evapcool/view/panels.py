@@ -15,10 +15,13 @@ from __future__ import annotations
 
 import math
 from collections import deque
+from collections.abc import Callable
 from typing import Protocol
 
 import numpy as np
 import pygame
+
+from evapcool.view.fonts import font as _font
 
 # Light background, dark ink: what survives a washed-out classroom projector.
 BG = (244, 243, 238)
@@ -33,6 +36,18 @@ TC_LINE = (25, 60, 150)
 PATH = (215, 95, 10)
 KT_FRACTION = 0.4  # kT = 2/5 of the mean energy per atom in this cup (SPEC 4)
 _GAMMA_5_2 = 0.75 * math.sqrt(math.pi)
+
+
+def _blank_canvas(
+    rect: pygame.Rect, plot_rect: Callable[[pygame.Rect], pygame.Rect]
+) -> tuple[pygame.Surface, pygame.Rect, pygame.Rect]:
+    """A panel-sized surface in the background colour with its plot area filled."""
+    local = pygame.Rect(0, 0, rect.w, rect.h)
+    surf = pygame.Surface(local.size)
+    surf.fill(BG)
+    plot = plot_rect(local)
+    pygame.draw.rect(surf, PLOT_BG, plot)
+    return surf, local, plot
 
 
 class SimLike(Protocol):
@@ -52,20 +67,6 @@ class SimLike(Protocol):
     def masses(self) -> np.ndarray: ...
 
     def energies(self) -> np.ndarray: ...
-
-
-_fonts: dict[tuple[int, bool], pygame.font.Font] = {}
-
-
-def _font(size: int, bold: bool = False) -> pygame.font.Font:
-    if not pygame.font.get_init():
-        pygame.font.init()
-    key = (size, bold)
-    if key not in _fonts:
-        f = pygame.font.Font(None, size)  # pygame's bundled font: present everywhere
-        f.set_bold(bold)
-        _fonts[key] = f
-    return _fonts[key]
 
 
 def _font_size(rect: pygame.Rect) -> int:
@@ -273,11 +274,7 @@ class EnergyPanel:
         key = (rect.w, rect.h, id(self.bin_edges))
         if self._static is not None and self._static[0] == key:
             return self._static[1]
-        local = pygame.Rect(0, 0, rect.w, rect.h)
-        surf = pygame.Surface(local.size)
-        surf.fill(BG)
-        plot = self.plot_rect(local)
-        pygame.draw.rect(surf, PLOT_BG, plot)
+        surf, local, plot = _blank_canvas(rect, self.plot_rect)
         fs = _font_size(local)
         font, small = _font(fs, bold=True), _font(int(fs * 0.85))
         _blit_text(surf, "Energies of the trapped atoms", font, INK, midtop=(local.centerx, 4))
@@ -494,11 +491,7 @@ class PathPanel:
         key = (rect.w, rect.h, self.n_range, self.t_range, self.tc0, self.exponent, self.n0)
         if self._static is not None and self._static[0] == key:
             return self._static[1]
-        local = pygame.Rect(0, 0, rect.w, rect.h)
-        surf = pygame.Surface(local.size)
-        surf.fill(BG)
-        plot = self.plot_rect(local)
-        pygame.draw.rect(surf, PLOT_BG, plot)
+        surf, local, plot = _blank_canvas(rect, self.plot_rect)
         # Shading column by column, so pixel (x, y) is shaded exactly when the
         # (N, T) at its centre has T < Tc(N) (see from_pixel).
         xs = np.arange(plot.x, plot.right)

@@ -25,6 +25,7 @@ from evapcool.physics.simulation import (
     cup_vertex,
 )
 from evapcool.view.condensate import Condensate, draw_condensate
+from evapcool.view.fonts import font as _font
 from evapcool.view.sprites import draw_atoms
 from evapcool.view.text_input import TextInput
 
@@ -90,13 +91,6 @@ def cup_outline(
     slope = 2.0 * curvature * x
     norm = np.sqrt(1.0 + slope * slope)
     return np.column_stack((x + offset * slope / norm, curvature * x * x - offset / norm))
-
-
-@lru_cache(maxsize=128)
-def _font(size: int, bold: bool = False) -> pygame.font.Font:
-    font = pygame.font.Font(None, size)
-    font.set_bold(bold)
-    return font
 
 
 @lru_cache(maxsize=256)
