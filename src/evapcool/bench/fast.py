@@ -88,7 +88,10 @@ def run(args: argparse.Namespace) -> None:
 
     sizes = (1_000, 10_000) if quick else (1_000, 10_000, 100_000)
     print("  scaling at constant packing (radius = sqrt(10000 / N)):")
-    print(f"  {'atoms':>8} {'radius':>7} {'frames':>6} {'collisions/s':>14} {'events/s':>12}")
+    print(
+        f"  {'atoms':>8} {'radius':>7} {'frames':>6} {'collisions/s':>14} {'events/s':>12}"
+        f" {'events/collision':>16}"
+    )
     rates = []
     for n in sizes:
         fr = max(2, int(frames * 10_000 / n)) if n < 10_000 else max(2, frames * 10_000 // n)
@@ -96,7 +99,8 @@ def run(args: argparse.Namespace) -> None:
         rates.append(r["coll_per_s"])
         print(
             f"  {n:>8,} {r['radius']:>7.3f} {fr:>6} "
-            f"{r['coll_per_s']:>14,.0f} {r['events_per_s']:>12,.0f}"
+            f"{r['coll_per_s']:>14,.0f} {r['events_per_s']:>12,.0f} "
+            f"{r['events_per_s'] / r['coll_per_s']:>16.2f}"
         )
     print(f"  max / min collisions/s across the table: {max(rates) / min(rates):.2f}")
 

@@ -8,11 +8,13 @@ ordered by the same key (time, solo before pair, then atom indices).
 Techniques (Smallenburg, Eur. Phys. J. E 45, 22 (2022); Bannerman et al.,
 J. Comput. Chem. 32, 3329 (2011)):
 
-- Each atom keeps only its earliest event; the atoms sit in an indexed binary
-  heap keyed by that event. A pair event remembers the partner's collision
+- Each atom keeps only its earliest event, filed under that event's time in an
+  event calendar (Paul, J. Comput. Phys. 221, 615 (2007)): time bins, the
+  current one in a small indexed 4-ary heap ordered by the full key, later
+  ones in unordered lists. A pair event remembers the partner's collision
   counter and is dropped (the atom re-predicted) if the partner changed since.
 - Trapped atoms live in a uniform grid of cells at least one contact distance
-  wide; pairs are only looked for in the 3 x 3 block around an atom. Crossing
+  wide (1.1 of it); pairs are only looked for in the 3 x 3 block around an atom. Crossing
   a cell edge is an event (linear in x, the stable quadratic in y under
   gravity) that changes no stored state. The edge cells are clamped, i.e. they
   reach to infinity, so a trapped atom flying out of the nominal box is still
@@ -84,15 +86,19 @@ _settle = _jit(
 # The engine keeps its atoms in a few row-per-atom tables (one cache line of
 # floats per atom; few arrays also keep Numba's reference counting cheap) and
 # copies them from and to the World around every call.
-# S, float: stored state, radius, mass, and the time of the arc's last y crossing.
-X, Y, VX, VY, T, R, M, TLY = range(8)
-# A, int: lifecycle status, collision counter, cell, previous in cell, and the
-# atom's index in the World (see "rows" below).
+# S, float: stored state, radius, collision counter and the atom's index in the World
+# (both exact as floats): the pair scan and the partner check read them with the
+# state, on the same cache line.
+X, Y, VX, VY, T, R, CNT, SID = range(8)
+# A, int: lifecycle status, cell, previous in cell, and the atom's index in the World
+# (see "rows" below).
 # head, int: the first atom of every cell, then the next atom in cell of every
 # atom (one array: the pair scan walks it only).
-A_ST, A_CNT, A_CX, A_CY, A_PRV, A_ID = range(6)
-# E, float: heap key time, real-event time, crossing time.
-E_KEY, E_RT, E_CT = range(3)
+A_ST, A_CX, A_CY, A_PRV, A_ID = range(5)
+# E, float: key time, real-event time, crossing time, the time of the arc's last y
+# crossing, mass; then the queue's links (Q_POS.. below), read through an int32
+# view Q of the same rows, so filing an atom touches the line that holds its key.
+E_KEY, E_RT, E_CT, E_TLY, E_M = range(5)
 # V, int: the event tables. Each atom has a real event (wall, exit or pair) and a
 # cell crossing; its heap key is the earlier of the two.
 V_RANK, V_A, V_B = range(3)  # key: rank, then two tie-break indices
@@ -116,7 +122,7 @@ R_PAIR = 1
 
 # Float parameters fp and integer parameters ip (fixed for the engine's life).
 P_G, P_A, P_GX0, P_GY0, P_CS, P_XL, P_XR, P_YB = range(8)
-Q_NX, Q_NY, Q_KNIFE, Q_RECORD = range(4)
+Q_NX, Q_NY, Q_KNIFE, Q_RECORD, Q_RENUMBER = range(5)
 # Running scalars: floats fs and integers js (copied from/to the World).
 S_TIME, S_ESUM, S_XRIM, S_H = range(4)
 J_WON, J_NTRAP, J_PAIRS, J_WALLS = range(4)
@@ -128,7 +134,7 @@ LOG_CAPACITY = 1 << 16
 _LOG_ROOM = 4  # the most log lines one event can write (pair + two knives)
 
 #: Cell edge in contact distances; > 1 leaves room for round-off in crossing times.
-CELL_FACTOR = 1.25
+CELL_FACTOR = 1.1
 #: The nominal box reaches the height this percentile of trapped atoms can reach.
 BOX_PERCENTILE = 99.5
 #: At most this many cells per atom (bounds memory for tiny, sparse atoms).
@@ -177,18 +183,44 @@ def _prefetch(typingctx, arr, i):
 
 
 @_fni
-def _prefetch_atom(j, S, A, E, V, heap):
-    """Start loading every table row of row j, and its heap place."""
+def _prefetch_atom(j, S, A, E, V, Q):
+    """Start loading every table row of row j (its queue links share E's row)."""
     _prefetch(S, j)
     _prefetch(A, j)
     _prefetch(E, j)
     _prefetch(V, j)
-    _prefetch(heap, S.shape[0] + j)
 
 
-# -- heap (4-ary: half the levels of a binary heap, kinder to the cache) ----------
-# heap[p] (p < N) is a row, heap_t[p] a copy of its key time (keeps the sift
-# loops on contiguous arrays); heap[N + i] is row i's place in the heap.
+# -- event queue: a calendar of time bins in front of a small 4-ary heap ------------
+# (Paul, J. Comput. Phys. 221, 615 (2007); Smallenburg 2022.) Time is cut into
+# bins of width dt from a base time. Atoms whose key lies in the current bin or
+# earlier sit in the heap, ordered by the full key; later ones sit, unordered,
+# in the list of their bin (a ring of NB lists covering NB bins), beyond the
+# ring in an overflow list, or with no event at all in a list of their own. The
+# bin of a time is floor((t - base) / dt), monotone in t, so every heap key comes
+# before every listed key: the heap's root is the earliest event, the order is
+# the plain heap's. The heap stays small (about EVENTS_PER_BIN atoms), so its
+# sifts stay in cache; filing an atom in a list touches two rows instead of a
+# sift path through a heap of all atoms (which, at 10^5 atoms, misses the cache
+# at every level). The bin width is set from the pending events whenever the
+# queue is rebuilt (with the rows' renumbering).
+# heap[p] (p < heap size) is a row and heap_t[p] its key time; Q[i] holds row i's
+# heap place (-1 if listed), list (-1 if in the heap), and list neighbours.
+Q_POS, Q_LST, Q_NXT, Q_PRV = range(12, 16)  # int32 columns: bytes 48-63 of E's row
+# cal, int: heap size, current bin, bin of the last overflow scan, ring size, atoms
+# in the ring, atoms in the overflow list, cursors walking the next two bins' lists
+# ahead of time (prefetch); then the list heads: NB ring bins, the overflow list,
+# the no-event list.
+C_HN, C_CB, C_SCAN, C_NB, C_NRING, C_NOVER, C_CUR, C_CUR2 = range(8)
+C_HEADS = 8
+# calf, float: base time, bin width.
+F_BASE, F_DT = range(2)
+#: The bin width aims at this many events per bin (the heap's typical size).
+EVENTS_PER_BIN = 8
+#: The ring spans about this many events per atom into the future.
+RING_EVENTS_PER_ATOM = 2
+
+
 @_fni
 def _less(x, tx, y, ty, V):
     """True if atom x's key comes before atom y's: (t, rank, a, b)."""
@@ -202,9 +234,9 @@ def _less(x, tx, y, ty, V):
 
 
 @_fni
-def _sift(p, heap, heap_t, V):
+def _sift(p, heap, heap_t, Q, cal, V):
     """Move the entry at heap place p up or down to its place (children 4p+1..4p+4)."""
-    n = heap_t.shape[0]
+    n = cal[C_HN]
     i = heap[p]
     ti = heap_t[p]
     while p > 0:
@@ -215,7 +247,7 @@ def _sift(p, heap, heap_t, V):
             break
         heap[p] = j
         heap_t[p] = tj
-        heap[n + j] = p
+        Q[j, Q_POS] = p
         p = q
     while True:
         c = 4 * p + 1
@@ -229,16 +261,215 @@ def _sift(p, heap, heap_t, V):
             break
         heap[p] = heap[c]
         heap_t[p] = heap_t[c]
-        heap[n + heap[c]] = p
+        Q[heap[c], Q_POS] = p
         p = c
     heap[p] = i
     heap_t[p] = ti
-    heap[n + i] = p
+    Q[i, Q_POS] = p
 
 
 @_fni
-def _set_key(i, A, E, V, heap, heap_t):
-    """Atom i's key is the earlier of its crossing and its real event; fix the heap."""
+def _heap_push(i, t, heap, heap_t, Q, cal, V):
+    p = cal[C_HN]
+    cal[C_HN] = p + 1
+    heap[p] = i
+    heap_t[p] = t
+    _sift(p, heap, heap_t, Q, cal, V)
+
+
+@_fni
+def _list_add(i, lst, Q, cal):
+    h = cal[C_HEADS + lst]
+    Q[i, Q_LST] = lst
+    Q[i, Q_NXT] = h
+    Q[i, Q_PRV] = -1
+    if h >= 0:
+        Q[h, Q_PRV] = i
+    cal[C_HEADS + lst] = i
+    nb = cal[C_NB]
+    if lst < nb:
+        cal[C_NRING] += 1
+    elif lst == nb:
+        cal[C_NOVER] += 1
+
+
+@_fni
+def _list_del(i, Q, cal):
+    lst = Q[i, Q_LST]
+    p = Q[i, Q_PRV]
+    q = Q[i, Q_NXT]
+    if p >= 0:
+        Q[p, Q_NXT] = q
+    else:
+        cal[C_HEADS + lst] = q
+    if q >= 0:
+        Q[q, Q_PRV] = p
+    Q[i, Q_LST] = -1
+    nb = cal[C_NB]
+    if lst < nb:
+        cal[C_NRING] -= 1
+    elif lst == nb:
+        cal[C_NOVER] -= 1
+
+
+@_fni
+def _place(i, t, heap, heap_t, Q, cal, calf, V):
+    """File atom i under key time t: in the heap if its bin has come, else in a list."""
+    q = (t - calf[F_BASE]) / calf[F_DT]
+    cb = cal[C_CB]
+    nb = cal[C_NB]
+    p = Q[i, Q_POS]
+    if q < cb + 1:  # bin <= current bin: into the heap, or moved within it
+        if p < 0:
+            if Q[i, Q_LST] >= 0:
+                _list_del(i, Q, cal)
+            p = cal[C_HN]
+            cal[C_HN] = p + 1
+            heap[p] = i
+        heap_t[p] = t
+    else:
+        if t == INF:
+            lst = nb + 1
+        elif q < cb + nb:
+            lst = int(q) % nb
+        else:
+            lst = nb
+        if p < 0:
+            if Q[i, Q_LST] == lst:  # lists are unordered: nothing to do
+                return
+            if Q[i, Q_LST] >= 0:
+                _list_del(i, Q, cal)
+        _list_add(i, lst, Q, cal)
+        if p < 0:
+            return
+        # Out of the heap: its last entry fills the hole.
+        Q[i, Q_POS] = -1
+        last = cal[C_HN] - 1
+        cal[C_HN] = last
+        if p == last:
+            return
+        heap[p] = heap[last]
+        heap_t[p] = heap_t[last]
+    _sift(p, heap, heap_t, Q, cal, V)  # one call site: every inlined copy costs compile time
+
+
+@_fn
+def _rebuild(base, dt, E, V, heap, heap_t, Q, cal, calf):
+    """Empty the queue and file every atom again, with a new base time and bin width."""
+    nb = cal[C_NB]
+    for k in range(C_HEADS + nb + 2):
+        cal[k] = -1 if k >= C_HEADS else 0
+    cal[C_NB] = nb
+    cal[C_CUR] = -1
+    cal[C_CUR2] = -1
+    calf[F_BASE] = base
+    calf[F_DT] = dt
+    for i in range(Q.shape[0]):
+        Q[i, Q_POS] = -1
+        Q[i, Q_LST] = -1
+    for i in range(Q.shape[0]):
+        _place(i, E[i, E_KEY], heap, heap_t, Q, cal, calf, V)
+
+
+@_fn
+def _bin_width(now, E):
+    """Bin width for EVENTS_PER_BIN events per bin, from the event rate of the bulk.
+
+    Residual times of the pending events: their mean, trimmed twice to the bulk
+    (a few atoms high above the cup or escaping would otherwise dominate it),
+    over their count is the time between events.
+    """
+    m = INF
+    for _ in range(3):
+        s = 0.0
+        c = 0
+        for i in range(E.shape[0]):
+            g = E[i, E_KEY] - now
+            if g < m * 3.0:
+                s += g if g > 0.0 else 0.0
+                c += 1
+        if c == 0 or s <= 0.0:
+            return 1.0
+        m = s / c
+    return EVENTS_PER_BIN * m / c
+
+
+@_fn  # once per bin: an ordinary call
+def _next_bin(E, V, heap, heap_t, Q, cal, calf):
+    """Fill the empty heap from the next non-empty bin; False if no atom has an event."""
+    nb = cal[C_NB]
+    while cal[C_HN] == 0:
+        if cal[C_NRING] == 0:
+            if cal[C_NOVER] == 0:
+                return False
+            # Nothing in the ring: jump to the overflow's earliest bin.
+            m = INF
+            j = cal[C_HEADS + nb]
+            while j >= 0:
+                if E[j, E_KEY] < m:
+                    m = E[j, E_KEY]
+                j = Q[j, Q_NXT]
+            q = (m - calf[F_BASE]) / calf[F_DT]
+            if q > 1e15:  # far beyond: start the bins there
+                _rebuild(m, calf[F_DT], E, V, heap, heap_t, Q, cal, calf)
+                continue
+            cal[C_CB] = int(q) - 1  # q > 0 beyond the ring: int() is floor
+            cal[C_SCAN] = cal[C_CB] - nb
+        cb = cal[C_CB] + 1
+        cal[C_CB] = cb
+        if cb >= cal[C_SCAN] + nb:  # the ring moved on by its length: refile the overflow
+            cal[C_SCAN] = cb
+            j = cal[C_HEADS + nb]
+            while j >= 0:
+                k = Q[j, Q_NXT]
+                _place(j, E[j, E_KEY], heap, heap_t, Q, cal, calf, V)
+                j = k
+        s = C_HEADS + cb % nb
+        j = cal[s]
+        cal[s] = -1
+        while j >= 0:
+            k = Q[j, Q_NXT]
+            Q[j, Q_LST] = -1
+            cal[C_NRING] -= 1
+            _heap_push(j, E[j, E_KEY], heap, heap_t, Q, cal, V)
+            j = k
+    # The cursor of the bin after the next goes on along the same list.
+    cal[C_CUR] = cal[C_CUR2] if cal[C_CUR2] >= 0 else cal[C_HEADS + (cal[C_CB] + 1) % nb]
+    j = cal[C_HEADS + (cal[C_CB] + 2) % nb]
+    cal[C_CUR2] = j
+    if j >= 0:
+        _prefetch(E, j)
+    return True
+
+
+@_fni
+def _walk_step(j, lst, E, Q):
+    """One step of a cursor along list lst: the next row, asked for; -1 at the end."""
+    if j < 0 or Q[j, Q_LST] != lst:  # the atom left the list: its links moved on
+        return -1
+    j = Q[j, Q_NXT]
+    if j >= 0:
+        _prefetch(E, j)
+    return j
+
+
+@_fni
+def _walk_ahead(E, Q, cal):
+    """Walk the lists of the next two bins one step each (their dumps then hit the cache).
+
+    A list is a chain of rows: walked only when its bin comes, every step would
+    wait for memory. Each step reads a row asked for one event earlier, and a list
+    is walked for two bins' time, as fast as bins fill.
+    """
+    nb = cal[C_NB]
+    cb = cal[C_CB]
+    cal[C_CUR] = _walk_step(cal[C_CUR], (cb + 1) % nb, E, Q)
+    cal[C_CUR2] = _walk_step(cal[C_CUR2], (cb + 2) % nb, E, Q)
+
+
+@_fni
+def _set_key(i, A, E, V, heap, heap_t, Q, cal, calf):
+    """Atom i's key is the earlier of its crossing and its real event; refile it."""
     if E[i, E_CT] <= E[i, E_RT]:  # a crossing goes first on a tie
         E[i, E_KEY] = E[i, E_CT]
         V[i, V_RANK] = R_CROSS
@@ -249,9 +480,7 @@ def _set_key(i, A, E, V, heap, heap_t):
         V[i, V_RANK] = V[i, V_RR]
         V[i, V_A] = V[i, V_RA]
         V[i, V_B] = V[i, V_RB]
-    p = heap[heap_t.shape[0] + i]
-    heap_t[p] = E[i, E_KEY]
-    _sift(p, heap, heap_t, V)
+    _place(i, E[i, E_KEY], heap, heap_t, Q, cal, calf, V)
 
 
 # -- grid ---------------------------------------------------------------------------
@@ -316,7 +545,7 @@ def _scan(i, xlo, xhi, ylo, yhi, S, A, E, V, head, fp, ip):
     pair = V[i, V_RR] == R_PAIR
     ba = V[i, V_RA]
     bb = V[i, V_RB]
-    ii = A[i, A_ID]
+    ii = int(S[i, SID])
     best = -1
     for yy in range(ylo, yhi + 1):
         for xx in range(xlo, xhi + 1):
@@ -329,7 +558,7 @@ def _scan(i, xlo, xhi, ylo, yhi, S, A, E, V, head, fp, ip):
                         ri + S[j, R], g,
                     )  # fmt: skip
                     if t <= bt:  # rare: only now read j's World index
-                        jj = A[j, A_ID]
+                        jj = int(S[j, SID])
                         lo = ii if ii < jj else jj
                         hi = jj if ii < jj else ii
                         if t < bt or (pair and (lo < ba or (lo == ba and hi < bb))):
@@ -346,7 +575,7 @@ def _scan(i, xlo, xhi, ylo, yhi, S, A, E, V, head, fp, ip):
         V[i, V_RB] = bb
         V[i, V_KIND] = K_PAIR
         V[i, V_ARG] = best
-        V[i, V_PC] = A[best, A_CNT]
+        V[i, V_PC] = int(S[best, CNT])  # low 32 bits
 
 
 @_fni
@@ -421,7 +650,7 @@ def _predict_cross(i, S, A, E, V, fp, ip, won):
             barg = ci - 1
         tc = INF
         tgt = 0
-        tl = S[i, TLY]
+        tl = E[i, E_TLY]
         if vy > 0.0 and cj < ny - 1:
             d = (fp[P_GY0] + (cj + 1) * cs) - y
             disc = vy * vy - 2.0 * g * d
@@ -457,11 +686,11 @@ def _predict_cross(i, S, A, E, V, fp, ip, won):
 
 
 @_fni
-def _predict(i, S, A, E, V, heap, heap_t, head, fp, ip, won):
+def _predict(i, S, A, E, V, heap, heap_t, Q, cal, calf, head, fp, ip, won):
     """Everything about atom i from its stored state; store it and fix the heap."""
     _predict_real(i, S, A, E, V, head, fp, ip, won)
     _predict_cross(i, S, A, E, V, fp, ip, won)
-    _set_key(i, A, E, V, heap, heap_t)
+    _set_key(i, A, E, V, heap, heap_t, Q, cal, calf)
 
 
 # The same, compiled once as an ordinary call for the paths off the hot loop
@@ -471,19 +700,19 @@ _predict_outlined = _fn(_predict.py_func)
 
 # -- state changes ------------------------------------------------------------------
 @_fni
-def _move(i, t, S, g):
+def _move(i, t, S, E, g):
     """Carry atom i's stored state to time t (exact free flight, seed Eqs. 3-4)."""
     dt = t - S[i, T]
     S[i, X] = _flight_x(S[i, X], S[i, VX], dt)
     S[i, Y] = _flight_y(S[i, Y], S[i, VY], 0.5 * g, dt)
     S[i, VY] = _flight_vy(S[i, VY], g, dt)
     S[i, T] = t
-    S[i, TLY] = -INF  # a new arc: none of its y crossings taken yet
+    E[i, E_TLY] = -INF  # a new arc: none of its y crossings taken yet
 
 
 @_fni
-def _energy(i, S, g):
-    return _atom_energy(S[i, M], S[i, Y], S[i, VX], S[i, VY], g)
+def _energy(i, S, E, g):
+    return _atom_energy(E[i, E_M], S[i, Y], S[i, VX], S[i, VY], g)
 
 
 @_fni
@@ -508,25 +737,27 @@ def _check_win(fs, js, tc_table):
 
 
 @_fn
-def _remove(i, new_status, S, A, E, V, heap, heap_t, head, fp, ip, fs, js, tc_table):
+def _remove(i, new_status, S, A, E, V, heap, heap_t, Q, cal, calf, head, fp, ip, fs, js, tc_table):
     """Atom i leaves the trapped set: off the grid, solo prediction, win check."""
     A[i, A_ST] = new_status
     js[J_NTRAP] -= 1
-    fs[S_ESUM] -= _energy(i, S, fp[P_G])
-    A[i, A_CNT] += 1
+    fs[S_ESUM] -= _energy(i, S, E, fp[P_G])
+    S[i, CNT] += 1.0
     _unlink(i, A, head, ip[Q_NX])
-    _predict_outlined(i, S, A, E, V, heap, heap_t, head, fp, ip, js[J_WON] != 0)
+    _predict_outlined(i, S, A, E, V, heap, heap_t, Q, cal, calf, head, fp, ip, js[J_WON] != 0)
     _check_win(fs, js, tc_table)
 
 
 @_fn
-def _knife(i, t, S, A, E, V, heap, heap_t, head, fp, ip, fs, js, tc_table, log_i, log_t, nlog):
+def _knife(
+    i, t, S, A, E, V, heap, heap_t, Q, cal, calf, head, fp, ip, fs, js, tc_table, log_i, log_t, nlog
+):
     """Remove trapped atom i at once if its energy exceeds m g H; returns (removed, nlog)."""
     if ip[Q_KNIFE] == 0:
         return False, nlog
-    if _energy(i, S, fp[P_G]) > S[i, M] * fp[P_G] * fs[S_H]:
+    if _energy(i, S, E, fp[P_G]) > E[i, E_M] * fp[P_G] * fs[S_H]:
         nlog = _log(EV_KNIFE, A[i, A_ID], -1, t, ip, log_i, log_t, nlog)
-        _remove(i, GONE, S, A, E, V, heap, heap_t, head, fp, ip, fs, js, tc_table)
+        _remove(i, GONE, S, A, E, V, heap, heap_t, Q, cal, calf, head, fp, ip, fs, js, tc_table)
         return True, nlog
     return False, nlog
 
@@ -543,7 +774,7 @@ def _pull(S, A, rows, pos, vel, t_atom, status, counter):
         S[i, VY] = vel[k, 1]
         S[i, T] = t_atom[k]
         A[i, A_ST] = status[k]
-        A[i, A_CNT] = counter[k]
+        S[i, CNT] = counter[k]
 
 
 @_fn
@@ -557,7 +788,7 @@ def _push(S, A, rows, pos, vel, t_atom, status, counter):
         vel[k, 1] = S[i, VY]
         t_atom[k] = S[i, T]
         status[k] = A[i, A_ST]
-        counter[k] = A[i, A_CNT]
+        counter[k] = int(S[i, CNT])
 
 
 @_fn
@@ -573,14 +804,15 @@ def _permute_rows(T, dest, scratch, off):
 
 
 @_fn
-def _renumber(S, A, E, V, heap, head, rows, fsc, isc, nx):
+def _renumber(S, A, E, V, heap, heap_t, Q, cal, calf, head, rows, fsc, isc, nx, now):
     """Renumber the rows in cell order (row-major), the atoms off the grid last.
 
     Walks the cell lists, so the atoms of one cell get consecutive rows; then
-    moves every table row, relabels every row reference (heap, partners,
-    rows) and rebuilds the cell lists. The events, their keys and the in-cell
-    order's irrelevance (a scan keeps the least (t, rank, lo, hi) whatever the
-    order it meets the pairs in) leave the event sequence unchanged.
+    moves every table row, relabels every row reference (partners, rows),
+    rebuilds the cell lists and refiles the queue from the current time. The
+    events, their keys and the in-cell order's irrelevance (a scan keeps the
+    least (t, rank, lo, hi) whatever the order it meets the pairs in) leave the
+    event sequence unchanged.
     """
     n = S.shape[0]
     nc = head.shape[0] - n
@@ -614,10 +846,6 @@ def _renumber(S, A, E, V, heap, head, rows, fsc, isc, nx):
             V[r, q] = isc[j, 1 + q]
     for i in range(n):
         V[i, V_ARG] = isc[V[i, V_ARG], 0]
-    for p in range(n):
-        i = isc[heap[p], 0]
-        heap[p] = i
-        heap[n + i] = p
     for o in range(n):
         rows[o] = isc[rows[o], 0]
     # Cell lists: linking in descending row order leaves each in ascending order.
@@ -627,23 +855,23 @@ def _renumber(S, A, E, V, heap, head, rows, fsc, isc, nx):
         A[i, A_PRV] = -1
     for i in range(nlinked - 1, -1, -1):
         _link(i, A[i, A_CX], A[i, A_CY], A, head, nx)
+    _rebuild(now, _bin_width(now, E), E, V, heap, heap_t, Q, cal, calf)
 
 
 @_fn
-def _setup(S, A, E, V, heap, heap_t, head, fp, ip, now, won):
+def _setup(S, A, E, V, heap, heap_t, Q, cal, calf, head, fp, ip, now, won):
     """Put trapped atoms in their cells (positions at now) and predict every atom."""
     n = S.shape[0]
     g = fp[P_G]
     head[:] = -1
     for i in range(n):
-        heap[i] = i
-        heap[n + i] = i
-        heap_t[i] = INF
         A[i, A_PRV] = -1
-        E[i, :] = INF
+        E[i, E_KEY] = INF
+        E[i, E_RT] = INF
+        E[i, E_CT] = INF
+        E[i, E_TLY] = -INF
         V[i, :] = 0
         V[i, V_A] = A[i, A_ID]
-        S[i, TLY] = -INF
         if A[i, A_ST] == TRAPPED:
             dt = now - S[i, T]
             xn = _flight_x(S[i, X], S[i, VX], dt)
@@ -651,13 +879,16 @@ def _setup(S, A, E, V, heap, heap_t, head, fp, ip, now, won):
             ci = _clamp_cell(xn, fp[P_GX0], fp[P_CS], ip[Q_NX])
             cj = _clamp_cell(yn, fp[P_GY0], fp[P_CS], ip[Q_NY])
             _link(i, ci, cj, A, head, ip[Q_NX])
+    # Every finite key in the heap for now (bin width inf), the bins set after.
+    _rebuild(now, INF, E, V, heap, heap_t, Q, cal, calf)
     for i in range(n):
-        _predict(i, S, A, E, V, heap, heap_t, head, fp, ip, won)
+        _predict_outlined(i, S, A, E, V, heap, heap_t, Q, cal, calf, head, fp, ip, won)
+    _rebuild(now, _bin_width(now, E), E, V, heap, heap_t, Q, cal, calf)
 
 
 @_fn
 def _advance(
-    t_end, S, A, E, V, heap, heap_t, head, rows, fsc, isc, fp, ip, fs, js, tc_table,
+    t_end, S, A, E, V, heap, heap_t, Q, cal, calf, head, rows, fsc, isc, fp, ip, fs, js, tc_table,
     log_i, log_t, stats,
 ):  # fmt: skip
     """Process every event with time <= t_end in order; returns (done, log lines).
@@ -672,74 +903,84 @@ def _advance(
     # Without recording nothing is logged and the buffer is never full.
     cap = log_i.shape[0] - _LOG_ROOM if ip[Q_RECORD] != 0 else 1 << 62
     nlog = 0
-    every = RENUMBER_EVENTS_PER_ATOM * S.shape[0]
+    every = ip[Q_RENUMBER]
     while True:
         if nlog > cap:
             return False, nlog
         stats[ST_SINCE] += 1
         if stats[ST_SINCE] > every:
-            _renumber(S, A, E, V, heap, head, rows, fsc, isc, nx)
+            _renumber(S, A, E, V, heap, heap_t, Q, cal, calf, head, rows, fsc, isc, nx, fs[S_TIME])
             stats[ST_SINCE] = 0
+        if cal[C_HN] == 0 and not _next_bin(E, V, heap, heap_t, Q, cal, calf):
+            break  # no atom has an event
         i = heap[0]
         te = heap_t[0]
         if not te <= t_end:
             break
         # The next event is most likely the earliest child of the root's: load
         # its rows while this event is processed.
-        nh = S.shape[0]
+        nh = cal[C_HN]
+        nxt = -1
         if nh > 1:
             c = 1
             end = 5 if nh >= 5 else nh
             for d in range(2, end):
                 if heap_t[d] < heap_t[c]:
                     c = d
-            _prefetch_atom(heap[c], S, A, E, V, heap)
+            nxt = heap[c]
+            _prefetch_atom(nxt, S, A, E, V, Q)
         won = js[J_WON] != 0
         kind = V[i, V_XK] if V[i, V_RANK] == R_CROSS else V[i, V_KIND]
         if kind == K_PAIR:  # the partner's rows, while the counters are compared
-            _prefetch_atom(V[i, V_ARG], S, A, E, V, heap)
+            _prefetch_atom(V[i, V_ARG], S, A, E, V, Q)
         if A[i, A_ST] == TRAPPED:  # the heads of the cells the scan will walk
             ci = A[i, A_CX]
             cx = ci - 1 if ci > 0 else 0
             cj = A[i, A_CY]
             for yy in range(cj - 1 if cj > 0 else 0, cj + 2 if cj < ny - 1 else ny):
                 _prefetch(head, yy * nx + cx)
-        rp = -1  # the row to re-predict after the event, if any
+        # After the event: rp's prediction (full, or only its crossing if the real
+        # event stands), then the pair's second atom's knife test and prediction.
+        # One site for all: _predict's parts are inlined, every site costs code.
+        rp = -1
+        full = True
+        pend = -1
+        t = te
         if kind == K_PAIR:
             j = V[i, V_ARG]
             # V_PC holds the low 32 bits of the partner's counter (V is int32).
-            if won or (A[j, A_CNT] - V[i, V_PC]) & 0xFFFFFFFF != 0:
+            if won or (int(S[j, CNT]) - V[i, V_PC]) & 0xFFFFFFFF != 0:
                 stats[ST_STALE] += 1  # the partner moved on (or pairs are over)
                 rp = i
             else:
                 lo = i  # lo, hi: the rows of the lower and higher World index
                 hi = j
-                if A[j, A_ID] < A[i, A_ID]:
+                if S[j, SID] < S[i, SID]:  # S rows: in hand already
                     lo = j
                     hi = i
                 t = te if te >= fs[S_TIME] else fs[S_TIME]
                 fs[S_TIME] = t
-                _move(lo, t, S, g)
-                _move(hi, t, S, g)
+                _move(lo, t, S, E, g)
+                _move(hi, t, S, E, g)
                 v = _collide(
                     S[hi, X] - S[lo, X], S[hi, Y] - S[lo, Y],
-                    S[lo, VX], S[lo, VY], S[hi, VX], S[hi, VY], S[lo, M], S[hi, M],
+                    S[lo, VX], S[lo, VY], S[hi, VX], S[hi, VY], E[lo, E_M], E[hi, E_M],
                 )  # fmt: skip
                 S[lo, VX] = v[0]
                 S[lo, VY] = v[1]
                 S[hi, VX] = v[2]
                 S[hi, VY] = v[3]
                 js[J_PAIRS] += 1
-                A[lo, A_CNT] += 1
-                A[hi, A_CNT] += 1
+                S[lo, CNT] += 1.0
+                S[hi, CNT] += 1.0
                 nlog = _log(EV_PAIR, A[lo, A_ID], A[hi, A_ID], t, ip, log_i, log_t, nlog)
-                for b in (lo, hi):
-                    gone, nlog = _knife(
-                        b, t, S, A, E, V, heap, heap_t, head, fp, ip, fs, js, tc_table,
-                        log_i, log_t, nlog,
-                    )  # fmt: skip
-                    if not gone:
-                        _predict(b, S, A, E, V, heap, heap_t, head, fp, ip, js[J_WON] != 0)
+                gone, nlog = _knife(
+                    lo, t, S, A, E, V, heap, heap_t, Q, cal, calf, head, fp, ip, fs, js,
+                    tc_table, log_i, log_t, nlog,
+                )  # fmt: skip
+                if not gone:
+                    rp = lo
+                pend = hi
         elif kind in (K_CROSS_X, K_CROSS_Y):
             stats[ST_CROSS] += 1
             if won:  # the grid is no longer kept once the gas has condensed
@@ -755,28 +996,35 @@ def _advance(
                 if kind == K_CROSS_X:
                     _link(i, tgt, cj, A, head, nx)
                     c = tgt + (tgt - ci)
-                    if 0 <= c < nx:
-                        lo = cj - 1 if cj > 0 else 0
-                        hi = cj + 1 if cj < ny - 1 else ny - 1
-                        _scan(i, c, c, lo, hi, S, A, E, V, head, fp, ip)
+                    inside = 0 <= c < nx
+                    x0 = c
+                    x1 = c
+                    y0 = cj - 1 if cj > 0 else 0
+                    y1 = cj + 1 if cj < ny - 1 else ny - 1
                 else:
                     _link(i, ci, tgt, A, head, nx)
-                    S[i, TLY] = te
+                    E[i, E_TLY] = te
                     c = tgt + (tgt - cj)
-                    if 0 <= c < ny:
-                        lo = ci - 1 if ci > 0 else 0
-                        hi = ci + 1 if ci < nx - 1 else nx - 1
-                        _scan(i, lo, hi, c, c, S, A, E, V, head, fp, ip)
-                _predict_cross(i, S, A, E, V, fp, ip, won)
-                _set_key(i, A, E, V, heap, heap_t)
+                    inside = 0 <= c < ny
+                    x0 = ci - 1 if ci > 0 else 0
+                    x1 = ci + 1 if ci < nx - 1 else nx - 1
+                    y0 = c
+                    y1 = c
+                if inside:
+                    _scan(i, x0, x1, y0, y1, S, A, E, V, head, fp, ip)
+                rp = i
+                full = False
         elif kind == K_WALL:
             t = te if te >= fs[S_TIME] else fs[S_TIME]
             fs[S_TIME] = t
-            _move(i, t, S, g)
+            _move(i, t, S, E, g)
             x = S[i, X]
             if abs(x) > fs[S_XRIM]:  # over the rim: escaped (SPEC 2.3)
                 nlog = _log(EV_ESCAPE, A[i, A_ID], -1, t, ip, log_i, log_t, nlog)
-                _remove(i, ESCAPED, S, A, E, V, heap, heap_t, head, fp, ip, fs, js, tc_table)
+                _remove(
+                    i, ESCAPED, S, A, E, V, heap, heap_t, Q, cal, calf, head, fp, ip, fs, js,
+                    tc_table,
+                )  # fmt: skip
                 continue
             vx = S[i, VX]
             vy = S[i, VY]
@@ -784,44 +1032,73 @@ def _advance(
             if won and math.sqrt(vx * vx + vy * vy) >= WIN_DAMPING_MIN_SPEED:
                 keep = 1.0 - WIN_DAMPING  # seed Eq. (34)
             if keep != 1.0:  # damped, with a floor on the normal speed (no collapse)
-                fs[S_ESUM] -= _energy(i, S, g)
+                fs[S_ESUM] -= _energy(i, S, E, g)
                 w = _settle(x, vx, vy, a, keep, WIN_NORMAL_SPEED_FLOOR)
                 S[i, VX] = w[0]
                 S[i, VY] = w[1]
-                fs[S_ESUM] += _energy(i, S, g)
+                fs[S_ESUM] += _energy(i, S, E, g)
             else:
                 w = _reflect(x, vx, vy, a, 1.0)
                 S[i, VX] = w[0]
                 S[i, VY] = w[1]
             js[J_WALLS] += 1
-            A[i, A_CNT] += 1
+            S[i, CNT] += 1.0
             nlog = _log(EV_WALL, A[i, A_ID], -1, t, ip, log_i, log_t, nlog)
             rp = i
         elif kind == K_EXIT:
             t = te if te >= fs[S_TIME] else fs[S_TIME]
             fs[S_TIME] = t
-            _move(i, t, S, g)
+            _move(i, t, S, E, g)
             A[i, A_ST] = GONE
-            A[i, A_CNT] += 1
+            S[i, CNT] += 1.0
             nlog = _log(EV_GONE, A[i, A_ID], -1, t, ip, log_i, log_t, nlog)
             rp = i
         else:
             break
-        if rp >= 0:  # one call site: _predict is inlined, so every site costs code
-            _predict(rp, S, A, E, V, heap, heap_t, head, fp, ip, won)
+        while True:
+            if rp >= 0:
+                w = js[J_WON] != 0
+                if full:
+                    _predict_real(rp, S, A, E, V, head, fp, ip, w)
+                _predict_cross(rp, S, A, E, V, fp, ip, w)
+                _set_key(rp, A, E, V, heap, heap_t, Q, cal, calf)
+            if pend < 0:
+                break
+            rp = pend
+            pend = -1
+            gone, nlog = _knife(
+                rp, t, S, A, E, V, heap, heap_t, Q, cal, calf, head, fp, ip, fs, js,
+                tc_table, log_i, log_t, nlog,
+            )  # fmt: skip
+            if gone:
+                rp = -1
+        # Ahead of the next event: the likely next atom's rows asked for at the top
+        # have come, so its partner's rows and its cells' heads can be asked for.
+        if nxt >= 0:
+            if V[nxt, V_RANK] != R_CROSS and V[nxt, V_KIND] == K_PAIR:
+                _prefetch_atom(V[nxt, V_ARG], S, A, E, V, Q)
+            if A[nxt, A_ST] == TRAPPED:
+                ci = A[nxt, A_CX]
+                cx = ci - 1 if ci > 0 else 0
+                cj = A[nxt, A_CY]
+                for yy in range(cj - 1 if cj > 0 else 0, cj + 2 if cj < ny - 1 else ny):
+                    _prefetch(head, yy * nx + cx)
+        _walk_ahead(E, Q, cal)
     return True, nlog
 
 
 @_fn
-def _knife_all(S, A, E, V, heap, heap_t, head, rows, fp, ip, fs, js, tc_table, log_i, log_t):
+def _knife_all(
+    S, A, E, V, heap, heap_t, Q, cal, calf, head, rows, fp, ip, fs, js, tc_table, log_i, log_t
+):
     """The knife at the clock time, in ascending atom order; returns log lines."""
     nlog = 0
     for k in range(S.shape[0]):  # ascending World index
         i = rows[k]
         if A[i, A_ST] == TRAPPED:
             _, nlog = _knife(
-                i, fs[S_TIME], S, A, E, V, heap, heap_t, head, fp, ip, fs, js, tc_table,
-                log_i, log_t, nlog,
+                i, fs[S_TIME], S, A, E, V, heap, heap_t, Q, cal, calf, head, fp, ip, fs, js,
+                tc_table, log_i, log_t, nlog,
             )  # fmt: skip
     return nlog
 
@@ -871,33 +1148,45 @@ class FastEngine:
         self.fp = np.array(
             [g, a, -0.5 * nx * cs, -0.5 * cs, cs, world.x_left, world.x_right, world.y_bottom]
         )
-        self.ip = np.array([nx, ny, int(world.knife), int(world.record_events)], dtype=np.int64)
+        renumber = RENUMBER_EVENTS_PER_ATOM * n
+        self.ip = np.array(
+            [nx, ny, int(world.knife), int(world.record_events), renumber], dtype=np.int64
+        )
         self.S = np.zeros((n, 8))
         self.S[:, R] = world.radius
-        self.S[:, M] = world.mass
-        self.A = np.zeros((n, 6), dtype=np.int64)
+        self.A = np.zeros((n, 5), dtype=np.int64)
         self.A[:, A_ID] = np.arange(n)
+        self.S[:, SID] = np.arange(n)
         self.rows = np.arange(n, dtype=np.int64)
         # Scratch tables for renumbering (compiled code never allocates).
         self._fsc = np.zeros((n, 8))
         self._isc = np.zeros((n, 12), dtype=np.int64)
-        self.E = np.full((n, 3), INF)
+        self.E = np.full((n, 8), INF)
+        self.E[:, E_TLY] = -INF
+        self.E[:, E_M] = world.mass
         self.V = np.zeros((n, 11), dtype=np.int32)
-        self.heap = np.concatenate((np.arange(n), np.arange(n))).astype(np.int32)
+        self.heap = np.zeros(n, dtype=np.int32)
         self.heap_t = np.full(n, INF)
+        self.Q = self.E.view(np.int32)  # the queue columns of E, read as integers
+        ring = max(
+            16, 1 << math.ceil(math.log2(max(1, RING_EVENTS_PER_ATOM * n // EVENTS_PER_BIN)))
+        )
+        self.cal = np.zeros(C_HEADS + ring + 2, dtype=np.int64)
+        self.cal[C_NB] = ring
+        self.calf = np.zeros(2)
         self.head = np.full(nx * ny + n, -1, dtype=np.int32)
         self.fs = np.zeros(4)
         self.js = np.zeros(4, dtype=np.int64)
         self.stats = np.zeros(3, dtype=np.int64)
-        self.stats[ST_SINCE] = n * RENUMBER_EVENTS_PER_ATOM  # renumber at the first event
+        self.stats[ST_SINCE] = renumber  # renumber at the first event
         self._log_i = np.zeros((LOG_CAPACITY if world.record_events else 1, 3), dtype=np.int64)
         self._log_t = np.zeros(len(self._log_i))
         self._tc_key: tuple[float, float] | None = None
         self._tc_table = np.zeros(n + 1)
         self._pull()
         _setup(
-            self.S, self.A, self.E, self.V, self.heap, self.heap_t, self.head,
-            self.fp, self.ip, float(world.time), bool(world.won),
+            self.S, self.A, self.E, self.V, self.heap, self.heap_t, self.Q, self.cal, self.calf,
+            self.head, self.fp, self.ip, float(world.time), bool(world.won),
         )  # fmt: skip
 
     # -- World <-> engine -----------------------------------------------------------
@@ -936,10 +1225,9 @@ class FastEngine:
         self._load()
         while True:
             done, nlog = _advance(
-                float(t_end), self.S, self.A, self.E, self.V, self.heap, self.heap_t,
-                self.head, self.rows, self._fsc, self._isc, self.fp, self.ip, self.fs,
-                self.js, self._tc_table,
-                self._log_i, self._log_t, self.stats,
+                float(t_end), self.S, self.A, self.E, self.V, self.heap, self.heap_t, self.Q,
+                self.cal, self.calf, self.head, self.rows, self._fsc, self._isc, self.fp,
+                self.ip, self.fs, self.js, self._tc_table, self._log_i, self._log_t, self.stats,
             )  # fmt: skip
             if done:
                 break
@@ -958,8 +1246,9 @@ class FastEngine:
             self._log_i = np.zeros((len(w.radius) + 1, 3), dtype=np.int64)
             self._log_t = np.zeros(len(self._log_i))
         nlog = _knife_all(
-            self.S, self.A, self.E, self.V, self.heap, self.heap_t, self.head, self.rows,
-            self.fp, self.ip, self.fs, self.js, self._tc_table, self._log_i, self._log_t,
+            self.S, self.A, self.E, self.V, self.heap, self.heap_t, self.Q, self.cal, self.calf,
+            self.head, self.rows, self.fp, self.ip, self.fs, self.js, self._tc_table,
+            self._log_i, self._log_t,
         )  # fmt: skip
         self._store(nlog)
 
