@@ -685,17 +685,12 @@ def _predict_cross(i, S, A, E, V, fp, ip, won):
     V[i, V_XT] = barg
 
 
-@_fni
+@_fn  # an ordinary call, off the hot loop (which has its own inlined copy of the parts)
 def _predict(i, S, A, E, V, heap, heap_t, Q, cal, calf, head, fp, ip, won):
-    """Everything about atom i from its stored state; store it and fix the heap."""
+    """Everything about atom i from its stored state; store it and refile it."""
     _predict_real(i, S, A, E, V, head, fp, ip, won)
     _predict_cross(i, S, A, E, V, fp, ip, won)
     _set_key(i, A, E, V, heap, heap_t, Q, cal, calf)
-
-
-# The same, compiled once as an ordinary call for the paths off the hot loop
-# (atoms leaving the trap): every inlined copy of _predict costs compile time.
-_predict_outlined = _fn(_predict.py_func)
 
 
 # -- state changes ------------------------------------------------------------------
@@ -744,7 +739,7 @@ def _remove(i, new_status, S, A, E, V, heap, heap_t, Q, cal, calf, head, fp, ip,
     fs[S_ESUM] -= _energy(i, S, E, fp[P_G])
     S[i, CNT] += 1.0
     _unlink(i, A, head, ip[Q_NX])
-    _predict_outlined(i, S, A, E, V, heap, heap_t, Q, cal, calf, head, fp, ip, js[J_WON] != 0)
+    _predict(i, S, A, E, V, heap, heap_t, Q, cal, calf, head, fp, ip, js[J_WON] != 0)
     _check_win(fs, js, tc_table)
 
 
@@ -882,7 +877,7 @@ def _setup(S, A, E, V, heap, heap_t, Q, cal, calf, head, fp, ip, now, won):
     # Every finite key in the heap for now (bin width inf), the bins set after.
     _rebuild(now, INF, E, V, heap, heap_t, Q, cal, calf)
     for i in range(n):
-        _predict_outlined(i, S, A, E, V, heap, heap_t, Q, cal, calf, head, fp, ip, won)
+        _predict(i, S, A, E, V, heap, heap_t, Q, cal, calf, head, fp, ip, won)
     _rebuild(now, _bin_width(now, E), E, V, heap, heap_t, Q, cal, calf)
 
 
@@ -911,8 +906,12 @@ def _advance(
         if stats[ST_SINCE] > every:
             _renumber(S, A, E, V, heap, heap_t, Q, cal, calf, head, rows, fsc, isc, nx, fs[S_TIME])
             stats[ST_SINCE] = 0
-        if cal[C_HN] == 0 and not _next_bin(E, V, heap, heap_t, Q, cal, calf):
-            break  # no atom has an event
+        if cal[C_HN] == 0:
+            if not _next_bin(E, V, heap, heap_t, Q, cal, calf):
+                break  # no atom has an event
+            for p in range(cal[C_HN]):  # a new bin: its atoms' events are the next few
+                _prefetch(V, heap[p])
+                _prefetch(S, heap[p])
         i = heap[0]
         te = heap_t[0]
         if not te <= t_end:
