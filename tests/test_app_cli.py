@@ -121,3 +121,23 @@ def test_zero_frames_still_draws_the_start(tmp_path, capsys):
     img = pygame.image.load(str(path))
     assert img.get_at((296, 546))[:3] == (0, 0, 0)  # the cup is there
     assert img.get_at((20, 300))[:3] == (79, 79, 79)
+
+
+def test_a_slow_start_says_why_once(tmp_path, monkeypatch, capsys):
+    """The fast engine's first compile keeps the window away: one line says why."""
+    import time
+
+    from evapcool.app import cli
+
+    real = cli.Game
+
+    def slow_game(config):
+        time.sleep(0.3)
+        return real(config)
+
+    monkeypatch.setattr(cli, "SLOW_START_NOTICE_S", 0.05)
+    monkeypatch.setattr(cli, "Game", slow_game)
+    rc, _, err = run(["--frames", "2", "--seed", "1"], capsys)
+    assert rc == 0
+    assert err.count("compiles it") == 1
+    assert len(err.strip().splitlines()) == 1

@@ -5,6 +5,7 @@ from __future__ import annotations
 import argparse
 import os
 import sys
+import threading
 from pathlib import Path
 
 from evapcool.app.storage import settings_path
@@ -21,6 +22,8 @@ from evapcool.game.settings import (
 from evapcool.physics.world import ESCAPE_RULES
 
 PROG = "evapcool"
+#: A start slower than this (s) is the fast engine compiling: say so once.
+SLOW_START_NOTICE_S = 2.0
 #: Parameter names -> our options, so ValueErrors name what the user typed.
 _OPTION_OF = {
     "n_atoms": "--atoms",
@@ -141,6 +144,29 @@ def _no_display() -> bool:
     return not (os.environ.get("DISPLAY") or os.environ.get("WAYLAND_DISPLAY"))
 
 
+def _build_game(config: GameConfig) -> Game:
+    """Game(config), with one line on stderr if it keeps the player waiting.
+
+    The first start with the Numba engine on a machine compiles it (about half a
+    minute); without a word the window would just not appear for that long.
+    """
+    notice = threading.Timer(
+        SLOW_START_NOTICE_S,
+        lambda: print(
+            f"{PROG}: preparing the fast engine; its first start on this machine compiles it "
+            "(about half a minute, once)...",
+            file=sys.stderr,
+            flush=True,
+        ),
+    )
+    notice.daemon = True
+    notice.start()
+    try:
+        return Game(config)
+    finally:
+        notice.cancel()
+
+
 def main(argv: list[str] | None = None) -> int:
     """Play the applet (or, with --frames, run it headless); returns the exit status."""
     args = build_parser().parse_args(argv)
@@ -167,7 +193,7 @@ def main(argv: list[str] | None = None) -> int:
             tc_exponent=run.tc_exponent,
             escape=run.escape,
         )
-        game = Game(config)
+        game = _build_game(config)
     except ValueError as exc:
         print(f"{PROG}: {_user_message(exc)}", file=sys.stderr)
         return 2
