@@ -5,6 +5,7 @@ from __future__ import annotations
 import math
 
 import numpy as np
+import pytest
 from hypothesis import assume, given, settings
 from hypothesis import strategies as st
 
@@ -25,6 +26,12 @@ def _at(x, y, vx, vy, t0, t):
     return x + vx * d, y + vy * d - 0.5 * G * d * d
 
 
+def _size(x, y, vx, vy, t0, t):
+    """The largest terms _at adds up: its round-off is about 1e-16 of this."""
+    d = t - t0
+    return abs(x) + abs(y) + abs(vx * d) + abs(vy * d) + 0.5 * G * d * d
+
+
 @settings(max_examples=400, deadline=None)
 @given(coord, coord, speed, speed, stamp, coord, coord, speed, speed, stamp, radius, radius)
 def test_pair_contact_is_real_and_first(x1, y1, vx1, vy1, t1, x2, y2, vx2, vy2, t2, r1, r2) -> None:
@@ -42,7 +49,10 @@ def test_pair_contact_is_real_and_first(x1, y1, vx1, vy1, t1, x2, y2, vx2, vy2, 
         assert s >= 0
         q1, q2 = _at(x1, y1, vx1, vy1, t1, t), _at(x2, y2, vx2, vy2, t2, t)
         d = math.hypot(q1[0] - q2[0], q1[1] - q2[1])
-        assert abs(d - sigma) <= 1e-9 * sigma + 1e-12 * math.hypot(rx, ry)
+        # Long flights (a slow approach from far) reach positions ~1e7 px: evaluating
+        # them here costs ~1e-16 of that, more than the kernel's own error.
+        size = _size(x1, y1, vx1, vy1, t1, t) + _size(x2, y2, vx2, vy2, t2, t)
+        assert abs(d - sigma) <= 1e-9 * sigma + 1e-12 * math.hypot(rx, ry) + 1e-15 * size
         # First contact: still approaching at s (the earlier root is the one taken).
         assert b + vv * s <= 1e-9 * math.sqrt(vv) * sigma
     else:
@@ -115,3 +125,11 @@ def test_reflection_preserves_speed_and_tangent() -> None:
         tx, ty = 1.0, 0.02 * x  # tangent of y = a x^2
         assert math.isclose(math.hypot(ux, uy), math.hypot(vx, vy), rel_tol=1e-13)
         assert math.isclose(ux * tx + uy * ty, vx * tx + vy * ty, rel_tol=1e-12, abs_tol=1e-10)
+
+
+def test_pair_contact_after_a_slow_approach_from_far() -> None:
+    """Found by hypothesis: two atoms falling together, 29 px apart, meet after 11 239 frames."""
+    t = k.pair_contact_time(0.0, 31.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0078125, 2.0, G)
+    q1, q2 = _at(0.0, 31.0, 0.0, 0.0, 0.0, t), _at(1.0, 0.0, 0.0, 0.0, 0.0078125, t)
+    assert 11_000 < t < 11_500
+    assert math.hypot(q1[0] - q2[0], q1[1] - q2[1]) == pytest.approx(2.0, abs=1e-8)
