@@ -90,11 +90,12 @@ _settle = _jit(
 # (both exact as floats): the pair scan and the partner check read them with the
 # state, on the same cache line.
 X, Y, VX, VY, T, R, CNT, SID = range(8)
-# A, int: lifecycle status, cell, previous in cell, and the atom's index in the World
-# (see "rows" below).
+# A, int32: lifecycle status, cell, previous in cell, and the atom's index in the World
+# (see "rows" below): the last columns of V's rows (A and V are one table, so an
+# atom's integers fill one cache line), named apart for reading.
 # head, int: the first atom of every cell, then the next atom in cell of every
 # atom (one array: the pair scan walks it only).
-A_ST, A_CX, A_CY, A_PRV, A_ID = range(5)
+A_ST, A_CX, A_CY, A_PRV, A_ID = range(11, 16)
 # E, float: key time, real-event time, crossing time, the time of the arc's last y
 # crossing, mass; then the queue's links (Q_POS.. below), read through an int32
 # view Q of the same rows, so filing an atom touches the line that holds its key.
@@ -184,9 +185,8 @@ def _prefetch(typingctx, arr, i):
 
 @_fni
 def _prefetch_atom(j, S, A, E, V, Q):
-    """Start loading every table row of row j (its queue links share E's row)."""
+    """Start loading every table row of row j (queue links share E's row, A is in V's)."""
     _prefetch(S, j)
-    _prefetch(A, j)
     _prefetch(E, j)
     _prefetch(V, j)
 
@@ -831,7 +831,7 @@ def _renumber(S, A, E, V, heap, heap_t, Q, cal, calf, head, rows, fsc, isc, nx, 
     dest = isc[:, 0]
     _permute_rows(S, dest, fsc, 0)
     _permute_rows(E, dest, fsc, 0)
-    _permute_rows(A, dest, isc, 1)  # isc column 0 holds dest itself
+    # A is columns of V (moved with it below).
     for j in range(n):
         for q in range(V.shape[1]):
             isc[j, 1 + q] = V[j, q]
@@ -865,7 +865,8 @@ def _setup(S, A, E, V, heap, heap_t, Q, cal, calf, head, fp, ip, now, won):
         E[i, E_RT] = INF
         E[i, E_CT] = INF
         E[i, E_TLY] = -INF
-        V[i, :] = 0
+        for q in range(V_XT + 1):  # V's own columns (A's follow them in the row)
+            V[i, q] = 0
         V[i, V_A] = A[i, A_ID]
         if A[i, A_ST] == TRAPPED:
             dt = now - S[i, T]
@@ -1168,7 +1169,8 @@ class FastEngine:
         )
         self.S = _rows(n, 8, np.float64, 0.0)
         self.S[:, R] = world.radius
-        self.A = _rows(n, 8, np.int64, 0)  # 5 used, padded to a cache line
+        self.V = _rows(n, 16, np.int32, 0)  # the event tables, then A: one cache line
+        self.A = self.V
         self.A[:, A_ID] = np.arange(n)
         self.S[:, SID] = np.arange(n)
         self.rows = np.arange(n, dtype=np.int64)
@@ -1178,7 +1180,6 @@ class FastEngine:
         self.E = _rows(n, 8, np.float64, INF)
         self.E[:, E_TLY] = -INF
         self.E[:, E_M] = world.mass
-        self.V = _rows(n, 16, np.int32, 0)  # 11 used, padded to a cache line
         self.heap = np.zeros(n, dtype=np.int32)
         self.heap_t = np.full(n, INF)
         self.Q = self.E.view(np.int32)  # the queue columns of E, read as integers
