@@ -1055,6 +1055,18 @@ def _advance(
             rp = i
         else:
             break
+        # Ahead of the next event: the likely next atom's rows asked for at the top
+        # have come, so its partner's rows and its cells' heads can be asked for
+        # (before the predictions, the slow part: they arrive meanwhile).
+        if nxt >= 0:
+            if V[nxt, V_RANK] != R_CROSS and V[nxt, V_KIND] == K_PAIR:
+                _prefetch_atom(V[nxt, V_ARG], S, A, E, V, Q)
+            if A[nxt, A_ST] == TRAPPED:
+                ci = A[nxt, A_CX]
+                cx = ci - 1 if ci > 0 else 0
+                cj = A[nxt, A_CY]
+                for yy in range(cj - 1 if cj > 0 else 0, cj + 2 if cj < ny - 1 else ny):
+                    _prefetch(head, yy * nx + cx)
         while True:
             if rp >= 0:
                 w = js[J_WON] != 0
@@ -1072,17 +1084,6 @@ def _advance(
             )  # fmt: skip
             if gone:
                 rp = -1
-        # Ahead of the next event: the likely next atom's rows asked for at the top
-        # have come, so its partner's rows and its cells' heads can be asked for.
-        if nxt >= 0:
-            if V[nxt, V_RANK] != R_CROSS and V[nxt, V_KIND] == K_PAIR:
-                _prefetch_atom(V[nxt, V_ARG], S, A, E, V, Q)
-            if A[nxt, A_ST] == TRAPPED:
-                ci = A[nxt, A_CX]
-                cx = ci - 1 if ci > 0 else 0
-                cj = A[nxt, A_CY]
-                for yy in range(cj - 1 if cj > 0 else 0, cj + 2 if cj < ny - 1 else ny):
-                    _prefetch(head, yy * nx + cx)
         _walk_ahead(E, Q, cal)
     return True, nlog
 
