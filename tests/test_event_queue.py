@@ -112,3 +112,11 @@ def test_bin_width_follows_the_bulk_not_the_stragglers() -> None:
     dt = F._bin_width(0.0, e)
     # 990 events in ~0.0015: EVENTS_PER_BIN of them per bin.
     assert dt == pytest.approx(F.EVENTS_PER_BIN * 0.0015 / 990, rel=0.05)
+
+
+def test_queue_with_no_time_at_all_stops() -> None:
+    """A NaN key (a bug elsewhere) ends the events instead of spinning over empty bins."""
+    q = Queue(2, 16)
+    q.E[:, F.E_KEY] = [math.nan, math.inf]
+    q.rebuild(0.0, 1.0)
+    assert q.pop() == -1

@@ -409,6 +409,8 @@ def _next_bin(E, V, heap, heap_t, Q, cal, calf):
                 if E[j, E_KEY] < m:
                     m = E[j, E_KEY]
                 j = Q[j, Q_NXT]
+            if not m < INF:  # no time at all (only a NaN could do this): nothing to pop
+                return False
             q = (m - calf[F_BASE]) / calf[F_DT]
             if q > 1e15:  # far beyond: start the bins there
                 _rebuild(m, calf[F_DT], E, V, heap, heap_t, Q, cal, calf)
