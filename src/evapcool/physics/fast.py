@@ -184,7 +184,7 @@ def _prefetch(typingctx, arr, i):
 
 
 @_fni
-def _prefetch_atom(j, S, A, E, V, Q):
+def _prefetch_atom(j, S, E, V):
     """Start loading every table row of row j (queue links share E's row, A is in V's)."""
     _prefetch(S, j)
     _prefetch(E, j)
@@ -930,11 +930,11 @@ def _advance(
                 if heap_t[d] < heap_t[c]:
                     c = d
             nxt = heap[c]
-            _prefetch_atom(nxt, S, A, E, V, Q)
+            _prefetch_atom(nxt, S, E, V)
         won = js[J_WON] != 0
         kind = V[i, V_XK] if V[i, V_RANK] == R_CROSS else V[i, V_KIND]
         if kind == K_PAIR:  # the partner's rows, while the counters are compared
-            _prefetch_atom(V[i, V_ARG], S, A, E, V, Q)
+            _prefetch_atom(V[i, V_ARG], S, E, V)
         if A[i, A_ST] == TRAPPED:  # the heads of the cells the scan will walk
             ci = A[i, A_CX]
             cx = ci - 1 if ci > 0 else 0
@@ -1062,7 +1062,7 @@ def _advance(
         # (before the predictions, the slow part: they arrive meanwhile).
         if nxt >= 0:
             if V[nxt, V_RANK] != R_CROSS and V[nxt, V_KIND] == K_PAIR:
-                _prefetch_atom(V[nxt, V_ARG], S, A, E, V, Q)
+                _prefetch_atom(V[nxt, V_ARG], S, E, V)
             if A[nxt, A_ST] == TRAPPED:
                 ci = A[nxt, A_CX]
                 cx = ci - 1 if ci > 0 else 0
