@@ -1067,8 +1067,14 @@ def _advance(
                 ci = A[nxt, A_CX]
                 cx = ci - 1 if ci > 0 else 0
                 cj = A[nxt, A_CY]
-                for yy in range(cj - 1 if cj > 0 else 0, cj + 2 if cj < ny - 1 else ny):
-                    _prefetch(head, yy * nx + cx)
+                if V[nxt, V_RANK] == R_CROSS and V[nxt, V_XK] == K_CROSS_Y:
+                    # Into the next row of cells: the row beyond it is the one scanned.
+                    yy = 2 * V[nxt, V_XT] - cj
+                    if 0 <= yy < ny:
+                        _prefetch(head, yy * nx + cx)
+                else:
+                    for yy in range(cj - 1 if cj > 0 else 0, cj + 2 if cj < ny - 1 else ny):
+                        _prefetch(head, yy * nx + cx)
         while True:
             if rp >= 0:
                 w = js[J_WON] != 0
