@@ -49,7 +49,8 @@ class Queue:
         """The root's row (left in place, as in the engine), or -1 if no atom has an event."""
         if self.cal[F.C_HN] == 0 and not F._next_bin(self.E, self.V, *self.tables()):
             return -1
-        F._walk_ahead(self.E, self.Q, self.cal)  # a prefetch: must not disturb anything
+        # A prefetch: must not disturb anything.
+        F._walk_ahead(self.E, self.V, self.Q, self.cal, True)
         return int(self.heap[0])
 
 

@@ -123,7 +123,7 @@ R_PAIR = 1
 
 # Float parameters fp and integer parameters ip (fixed for the engine's life).
 P_G, P_A, P_GX0, P_GY0, P_CS, P_XL, P_XR, P_YB = range(8)
-Q_NX, Q_NY, Q_KNIFE, Q_RECORD, Q_RENUMBER = range(5)
+Q_NX, Q_NY, Q_KNIFE, Q_RECORD, Q_RENUMBER, Q_DEEP = range(6)
 # Running scalars: floats fs and integers js (copied from/to the World).
 S_TIME, S_ESUM, S_XRIM, S_H = range(4)
 J_WON, J_NTRAP, J_PAIRS, J_WALLS = range(4)
@@ -142,6 +142,10 @@ BOX_PERCENTILE = 99.5
 MAX_CELLS_PER_ATOM = 8
 #: Rows are put back in cell order every this many events per atom.
 RENUMBER_EVENTS_PER_ATOM = 8
+#: From this many atoms the tables are far beyond the caches the core has to itself,
+#: and the event loop asks two events ahead for the rows the scans will read (with
+#: fewer atoms they are found in cache anyway, and the asking only costs time).
+DEEP_MIN_ATOMS = 20_000
 
 # Rows: the engine's tables hold atom i of the World in row rows[i], not row i.
 # Every so often the rows are renumbered in cell order (row-major), so that the
@@ -189,6 +193,55 @@ def _prefetch_atom(j, S, E, V):
     _prefetch(S, j)
     _prefetch(E, j)
     _prefetch(V, j)
+
+
+@_fni
+def _coming_cells(j, A, V, nx, ny):
+    """The block of cells atom j's next event will scan: (x0, x1, y0, y1), empty if x0 > x1.
+
+    A crossing scans the row or column beyond its new cell; other events the 3 x 3
+    block around it (a pair's partner scans around its own cell, not included).
+    """
+    ci = A[j, A_CX]
+    cj = A[j, A_CY]
+    x0 = ci - 1 if ci > 0 else 0
+    x1 = ci + 1 if ci < nx - 1 else nx - 1
+    y0 = cj - 1 if cj > 0 else 0
+    y1 = cj + 1 if cj < ny - 1 else ny - 1
+    if V[j, V_RANK] == R_CROSS:
+        c = 2 * V[j, V_XT] - (ci if V[j, V_XK] == K_CROSS_X else cj)
+        if V[j, V_XK] == K_CROSS_X:
+            x0 = c
+            x1 = c if 0 <= c < nx else c - 1
+        else:
+            y0 = c
+            y1 = c if 0 <= c < ny else c - 1
+    if A[j, A_ST] != TRAPPED:
+        x1 = x0 - 1
+    return x0, x1, y0, y1
+
+
+@_fni
+def _ask_heads(j, A, V, head, nx, ny):
+    """Ask for the lines of cell heads atom j's next event will read."""
+    x0, x1, y0, y1 = _coming_cells(j, A, V, nx, ny)
+    if x0 <= x1:
+        for yy in range(y0, y1 + 1):
+            _prefetch(head, yy * nx + x0)
+
+
+@_fni
+def _ask_firsts(j, S, A, V, head, nx, ny):
+    """Read those heads (asked for an event earlier) and ask for their atoms' rows.
+
+    Most cells hold one atom or none, so the first is most of a scan's misses.
+    No branch on empty cells: row 0 is asked for instead, harmlessly.
+    """
+    x0, x1, y0, y1 = _coming_cells(j, A, V, nx, ny)
+    if x0 <= x1:
+        for yy in range(y0, y1 + 1):
+            for xx in range(x0, x1 + 1):
+                _prefetch(S, max(head[yy * nx + xx], 0))
 
 
 # -- event queue: a calendar of time bins in front of a small 4-ary heap ------------
@@ -445,18 +498,23 @@ def _next_bin(E, V, heap, heap_t, Q, cal, calf):
 
 
 @_fni
-def _walk_step(j, lst, E, Q):
-    """One step of a cursor along list lst: the next row, asked for; -1 at the end."""
+def _walk_step(j, lst, E, V, Q, deep):
+    """One step of a cursor along list lst: the next row, asked for; -1 at the end.
+
+    deep: its V row too (its cells are read two events before its own).
+    """
     if j < 0 or Q[j, Q_LST] != lst:  # the atom left the list: its links moved on
         return -1
     j = Q[j, Q_NXT]
     if j >= 0:
         _prefetch(E, j)
+        if deep:
+            _prefetch(V, j)
     return j
 
 
 @_fni
-def _walk_ahead(E, Q, cal):
+def _walk_ahead(E, V, Q, cal, deep):
     """Walk the lists of the next two bins one step each (their dumps then hit the cache).
 
     A list is a chain of rows: walked only when its bin comes, every step would
@@ -465,8 +523,8 @@ def _walk_ahead(E, Q, cal):
     """
     nb = cal[C_NB]
     cb = cal[C_CB]
-    cal[C_CUR] = _walk_step(cal[C_CUR], (cb + 1) % nb, E, Q)
-    cal[C_CUR2] = _walk_step(cal[C_CUR2], (cb + 2) % nb, E, Q)
+    cal[C_CUR] = _walk_step(cal[C_CUR], (cb + 1) % nb, E, V, Q, deep)
+    cal[C_CUR2] = _walk_step(cal[C_CUR2], (cb + 2) % nb, E, V, Q, deep)
 
 
 @_fni
@@ -902,6 +960,7 @@ def _advance(
     cap = log_i.shape[0] - _LOG_ROOM if ip[Q_RECORD] != 0 else 1 << 62
     nlog = 0
     every = ip[Q_RENUMBER]
+    deep = ip[Q_DEEP] != 0
     while True:
         if nlog > cap:
             return False, nlog
@@ -931,6 +990,21 @@ def _advance(
                     c = d
             nxt = heap[c]
             _prefetch_atom(nxt, S, E, V)
+            if deep and nh > 2:
+                # The event after the next: the earliest of the root's other children
+                # and the next one's children (its rows came with its bin).
+                p2 = -1
+                t2 = INF
+                for d in range(1, end):
+                    if d != c and heap_t[d] < t2:
+                        p2 = d
+                        t2 = heap_t[d]
+                for d in range(4 * c + 1, 4 * c + 5 if 4 * c + 5 <= nh else nh):
+                    if heap_t[d] < t2:
+                        p2 = d
+                        t2 = heap_t[d]
+                if p2 >= 0:
+                    _ask_heads(heap[p2], A, V, head, nx, ny)
         won = js[J_WON] != 0
         kind = V[i, V_XK] if V[i, V_RANK] == R_CROSS else V[i, V_KIND]
         if kind == K_PAIR:  # the partner's rows, while the counters are compared
@@ -1063,7 +1137,9 @@ def _advance(
         if nxt >= 0:
             if V[nxt, V_RANK] != R_CROSS and V[nxt, V_KIND] == K_PAIR:
                 _prefetch_atom(V[nxt, V_ARG], S, E, V)
-            if A[nxt, A_ST] == TRAPPED:
+            if deep:  # its heads were asked for an event ago: now its neighbours' rows
+                _ask_firsts(nxt, S, A, V, head, nx, ny)
+            elif A[nxt, A_ST] == TRAPPED:  # its cells' heads
                 ci = A[nxt, A_CX]
                 cx = ci - 1 if ci > 0 else 0
                 cj = A[nxt, A_CY]
@@ -1092,7 +1168,7 @@ def _advance(
             )  # fmt: skip
             if gone:
                 rp = -1
-        _walk_ahead(E, Q, cal)
+        _walk_ahead(E, V, Q, cal, deep)
     return True, nlog
 
 
@@ -1174,7 +1250,8 @@ class FastEngine:
         )
         renumber = RENUMBER_EVENTS_PER_ATOM * n
         self.ip = np.array(
-            [nx, ny, int(world.knife), int(world.record_events), renumber], dtype=np.int64
+            [nx, ny, int(world.knife), int(world.record_events), renumber, n >= DEEP_MIN_ATOMS],
+            dtype=np.int64,
         )
         self.S = _rows(n, 8, np.float64, 0.0)
         self.S[:, R] = world.radius
