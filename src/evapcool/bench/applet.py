@@ -70,6 +70,13 @@ def _time_frames(app, pygame, frames: int, *out: list) -> None:
             cpu.append(c2 - c0)
 
 
+def _print_times(t: dict[str, np.ndarray], names: tuple[str, ...]) -> None:
+    """One line per part: median and 95th percentile in ms."""
+    for name in names:
+        ms = t[name] * 1e3
+        print(f"  {name:8s} median {np.median(ms):6.2f} ms   p95 {np.percentile(ms, 95):6.2f} ms")
+
+
 def run(args: argparse.Namespace) -> None:
     """Print the applet's frame time, median and 95th percentile."""
     quick = bool(getattr(args, "quick", False))
@@ -83,10 +90,7 @@ def run(args: argparse.Namespace) -> None:
         print(f"[applet] frame time at the classic start (49 atoms, headless, {what}), {n} frames:")
         # cpu: the process's CPU time per frame; unlike the wall clock it does not count
         # time the scheduler gave to other programs (a shared machine's noise).
-        for name in ("physics", "drawing", "total", "cpu"):
-            ms = t[name] * 1e3
-            med, p95 = np.median(ms), np.percentile(ms, 95)
-            print(f"  {name:8s} median {med:6.2f} ms   p95 {p95:6.2f} ms")
+        _print_times(t, ("physics", "drawing", "total", "cpu"))
         med = float(np.median(t["total"]) * 1e3)
         verdict = "meets" if med < target else "MISSES"
         print(f"  total median {med:.2f} ms {verdict} the target of < {target:g} ms")
@@ -95,9 +99,7 @@ def run(args: argparse.Namespace) -> None:
     t = measure(60 if quick else 150, 1, n_atoms=10_000, radius=1.0)
     n = len(t["total"])
     print(f"[applet] frame time with 10 000 atoms (R = 1, headless, scene only), {n} frames:")
-    for name in ("physics", "drawing", "total"):
-        ms = t[name] * 1e3
-        print(f"  {name:8s} median {np.median(ms):6.2f} ms   p95 {np.percentile(ms, 95):6.2f} ms")
+    _print_times(t, ("physics", "drawing", "total"))
     fps = 1.0 / float(np.median(t["total"]))
     verdict = "meets" if fps >= TARGET_BIG_FPS else "MISSES"
     print(f"  {fps:.1f} frames per second (median) {verdict} the target of >= {TARGET_BIG_FPS:g}")
