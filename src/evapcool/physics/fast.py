@@ -49,6 +49,7 @@ from evapcool.physics.world import (
     EV_WALL,
     GONE,
     TRAPPED,
+    WALL_MIN_NORMAL_SPEED,
     WIN_DAMPING,
     WIN_DAMPING_MIN_SPEED,
     WIN_NORMAL_SPEED_FLOOR,
@@ -76,6 +77,11 @@ _wall_time = _jit(_k.wall_contact_time)
 _exit_time = _jit(_k.exit_time)
 _collide = _jit(_k.collide_pair)
 _reflect = _jit(_k.reflect_wall)
+_bounce = _jit(
+    types.FunctionType(
+        _k.bounce_wall.__code__, {**vars(_k), "reflect_wall": _reflect}, "bounce_wall"
+    )
+)
 # settle_wall calls reflect_wall: compile it against the compiled one.
 _settle = _jit(
     types.FunctionType(
@@ -1104,19 +1110,18 @@ def _advance(
                 continue
             vx = S[i, VX]
             vy = S[i, VY]
-            keep = 1.0
-            if won and math.sqrt(vx * vx + vy * vy) >= WIN_DAMPING_MIN_SPEED:
-                keep = 1.0 - WIN_DAMPING  # seed Eq. (34)
-            if keep != 1.0:  # damped, with a floor on the normal speed (no collapse)
+            speed = math.sqrt(vx * vx + vy * vy)
+            damped = won and speed >= WIN_DAMPING_MIN_SPEED  # seed Eq. (34)
+            if damped or speed < WALL_MIN_NORMAL_SPEED:  # the energy changes
                 fs[S_ESUM] -= _energy(i, S, E, g)
-                w = _settle(x, vx, vy, a, keep, WIN_NORMAL_SPEED_FLOOR)
-                S[i, VX] = w[0]
-                S[i, VY] = w[1]
+            if damped:  # with a floor on the normal speed (no collapse)
+                w = _settle(x, vx, vy, a, 1.0 - WIN_DAMPING, WIN_NORMAL_SPEED_FLOOR)
+            else:  # at least WALL_MIN_NORMAL_SPEED along the normal (no stall)
+                w = _bounce(x, vx, vy, a, WALL_MIN_NORMAL_SPEED)
+            S[i, VX] = w[0]
+            S[i, VY] = w[1]
+            if damped or speed < WALL_MIN_NORMAL_SPEED:
                 fs[S_ESUM] += _energy(i, S, E, g)
-            else:
-                w = _reflect(x, vx, vy, a, 1.0)
-                S[i, VX] = w[0]
-                S[i, VY] = w[1]
             js[J_WALLS] += 1
             S[i, CNT] += 1.0
             nlog = _log(EV_WALL, A[i, A_ID], -1, t, ip, log_i, log_t, nlog)
@@ -1282,7 +1287,7 @@ class FastEngine:
         self.stats[ST_SINCE] = renumber  # renumber at the first event
         self._log_i = np.zeros((LOG_CAPACITY if world.record_events else 1, 3), dtype=np.int64)
         self._log_t = np.zeros(len(self._log_i))
-        self._tc_key: tuple[float, float] | None = None
+        self._tc_key: tuple[float, float, bool] | None = None
         self._tc_table = np.zeros(n + 1)
         self._pull()
         _setup(
@@ -1300,10 +1305,10 @@ class FastEngine:
         self._pull()
         self.fs[:] = (w.time, w.energy_sum, w.rim_half_width, w.trap_height)
         self.js[:] = (int(bool(w.won)), w.n_trapped, w.pair_count, w.wall_count)
-        key = (w.tc0, w.tc_exponent)
+        key = (w.tc0, w.tc_exponent, w.win_rule)
         if key != self._tc_key:
             # Tc(N) for every N, by the World's own expression (same float pow).
-            self._tc_table[:] = [w.critical_temperature_of(m) for m in range(w.n_initial + 1)]
+            self._tc_table[:] = [w.win_threshold_of(m) for m in range(w.n_initial + 1)]
             self._tc_key = key
 
     def _store(self, nlog: int) -> None:

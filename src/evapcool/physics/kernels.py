@@ -170,6 +170,35 @@ def reflect_wall(x: float, vx: float, vy: float, a: float, keep: float) -> tuple
     return keep * (vx - f * sx), keep * (vy - f)
 
 
+def bounce_wall(x: float, vx: float, vy: float, a: float, v_min: float) -> tuple[float, float]:
+    """Elastic bounce (SPEC 2.1) that leaves the wall at least v_min along the normal.
+
+    Exact elastic dynamics of an atom grazing or resting on the wall is an
+    endless run of ever shorter hops (the limit is sliding), so a bounce whose
+    inward normal speed would be below v_min is turned, not scaled: the normal
+    part becomes v_min and the tangential part keeps its sign and takes the
+    rest of the speed, so the energy is unchanged. Only an atom slower than
+    v_min (at rest on the wall) gains speed, to exactly v_min along the normal.
+    Hops then last at least about 2 v_min / (g + 2 a v^2): events per frame are bounded.
+    """
+    ux, uy = reflect_wall(x, vx, vy, a, 1.0)
+    sx = -2.0 * a * x
+    nn = math.sqrt(sx * sx + 1.0)
+    nx = sx / nn  # inward unit normal (nx, ny); unit tangent (ny, -nx)
+    ny = 1.0 / nn
+    un = ux * nx + uy * ny
+    if un >= v_min:
+        return ux, uy
+    ut = ux * ny - uy * nx
+    rest = (ux * ux + uy * uy) - v_min * v_min
+    wt = 0.0
+    if rest > 0.0:
+        wt = math.sqrt(rest)
+        if ut < 0.0:
+            wt = -wt
+    return v_min * nx + wt * ny, v_min * ny - wt * nx
+
+
 def settle_wall(
     x: float, vx: float, vy: float, a: float, keep: float, v_floor: float
 ) -> tuple[float, float]:

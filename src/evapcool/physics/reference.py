@@ -23,6 +23,7 @@ from evapcool.physics.world import (
     EV_WALL,
     GONE,
     TRAPPED,
+    WALL_MIN_NORMAL_SPEED,
     WIN_DAMPING,
     WIN_DAMPING_MIN_SPEED,
     WIN_NORMAL_SPEED_FLOOR,
@@ -141,7 +142,7 @@ class ReferenceEngine:
         w = self.w
         if w.won or w.n_trapped == 0:
             return
-        if w.energy_sum / w.n_trapped < w.critical_temperature_of(w.n_trapped):
+        if w.energy_sum / w.n_trapped < w.win_threshold_of(w.n_trapped):
             w.won = True
 
     def _knife(self, i: int, t: float) -> bool:
@@ -180,17 +181,20 @@ class ReferenceEngine:
             self._remove(i, ESCAPED, t)
             return
         vx, vy = w.vel[i]
-        keep = 1.0
-        if w.won and math.sqrt(vx * vx + vy * vy) >= WIN_DAMPING_MIN_SPEED:
-            keep = 1.0 - WIN_DAMPING
-        if keep != 1.0:
+        speed = math.sqrt(vx * vx + vy * vy)
+        if w.won and speed >= WIN_DAMPING_MIN_SPEED:
+            # Damped (seed Eq. 34), with a floor on the normal speed (no collapse).
             w.energy_sum -= self._energy(i)
             w.vel[i, 0], w.vel[i, 1] = k.settle_wall(
-                x, vx, vy, w.curvature, keep, WIN_NORMAL_SPEED_FLOOR
+                x, vx, vy, w.curvature, 1.0 - WIN_DAMPING, WIN_NORMAL_SPEED_FLOOR
             )
             w.energy_sum += self._energy(i)
+        elif speed < WALL_MIN_NORMAL_SPEED:  # at rest on the wall: gains up to v_min
+            w.energy_sum -= self._energy(i)
+            w.vel[i, 0], w.vel[i, 1] = k.bounce_wall(x, vx, vy, w.curvature, WALL_MIN_NORMAL_SPEED)
+            w.energy_sum += self._energy(i)
         else:
-            w.vel[i, 0], w.vel[i, 1] = k.reflect_wall(x, vx, vy, w.curvature, 1.0)
+            w.vel[i, 0], w.vel[i, 1] = k.bounce_wall(x, vx, vy, w.curvature, WALL_MIN_NORMAL_SPEED)
         w.wall_count += 1
         w.counter[i] += 1
         self._log(EV_WALL, i, -1, t)

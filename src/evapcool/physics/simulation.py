@@ -89,6 +89,7 @@ class Simulation:
         tc_exponent: float = TC_EXPONENT_SEED,
         escape: str = "rim",
         record_events: bool = False,
+        win: bool = True,
         positions: np.ndarray | None = None,
         velocities: np.ndarray | None = None,
     ) -> None:
@@ -115,6 +116,8 @@ class Simulation:
             isinstance(seed, bool) or not isinstance(seed, numbers.Integral) or seed < 0
         ):
             raise _bad("seed", "a whole number >= 0 or None", seed)
+        if not isinstance(win, bool):
+            raise _bad("win", "True or False", win)
         if engine not in ENGINES:
             raise _bad("engine", "one of " + ", ".join(ENGINES), engine)
         if escape not in ESCAPE_RULES:
@@ -138,13 +141,13 @@ class Simulation:
             for name, arr in (("positions", pos), ("velocities", vel)):
                 if arr.shape != (n, 2) or not np.all(np.isfinite(arr)):
                     raise _bad(name, f"a finite array of shape ({n}, 2)", arr.shape)
-            # A centre on or outside the wall is not in the cup (and one at rest on it
-            # would bounce forever at one instant).
-            outside = np.flatnonzero(pos[:, 1] <= a * pos[:, 0] * pos[:, 0])
+            # A centre below the wall is outside the cup; one on it touches the wall.
+            outside = np.flatnonzero(pos[:, 1] < a * pos[:, 0] * pos[:, 0])
             if outside.size:
                 raise _bad(
-                    "positions", "centres strictly inside the cup, y > a x^2", pos[outside[0]]
-                )
+                    "positions", "centres inside the cup or on its wall, y >= a x^2",
+                    pos[outside[0]],
+                )  # fmt: skip
 
         self._world = World(
             pos=pos,
@@ -160,6 +163,7 @@ class Simulation:
             tc_exponent=tc_p,
             escape_rule=escape,
             record_events=bool(record_events),
+            win_rule=win,
         )
         self._engine = self._make_engine(engine, n)
         self._engine.set_trap_height(height)
@@ -310,8 +314,13 @@ class Simulation:
 
     @property
     def won(self) -> bool:
-        """True once T < Tc(N) (latched): the gas has condensed."""
+        """True once T < Tc(N) (latched): the gas has condensed. Never with win=False."""
         return self._world.won
+
+    @property
+    def win_rule(self) -> bool:
+        """False if the game's win rule is off (win=False): the gas stays a gas below Tc."""
+        return self._world.win_rule
 
     # -- counters ---------------------------------------------------------------
     @property

@@ -29,6 +29,9 @@ EVENT_NAMES = ("pair", "wall", "escape", "gone", "knife")
 
 ESCAPE_RULES = ("rim", "knife")
 
+#: An elastic bounce leaves the wall at least this fast along the normal (px/frame), so
+#: grazing and resting atoms hop instead of stalling (kernels.bounce_wall, doc/model.md).
+WALL_MIN_NORMAL_SPEED = 1e-3
 #: After the win, wall bounces keep 1 - 0.2 of the speed (seed Eq. 34)...
 WIN_DAMPING = 0.2
 #: ...but only while the speed is at least this (px/frame).
@@ -54,6 +57,7 @@ class World:
     tc_exponent: float = 2.0 / 3.0
     escape_rule: str = "rim"
     record_events: bool = False
+    win_rule: bool = True  # False: T < Tc never ends the gas (lab runs past Tc)
     t_atom: np.ndarray = field(init=False)
     status: np.ndarray = field(init=False)
     counter: np.ndarray = field(init=False)  # events per atom (lazy invalidation)
@@ -112,6 +116,10 @@ class World:
     def critical_temperature_of(self, n: int) -> float:
         """Tc(N) = Tc0 (N / N0)^p, seed Eq. (46) with exponent p."""
         return self.tc0 * (n / self.n_initial) ** self.tc_exponent
+
+    def win_threshold_of(self, n: int) -> float:
+        """The temperature below which N atoms have won: Tc(N), or -inf without the win rule."""
+        return self.critical_temperature_of(n) if self.win_rule else -math.inf
 
     def state_at(self, idx: np.ndarray, t: float) -> tuple[np.ndarray, np.ndarray]:
         """Positions and velocities of atoms idx carried to time t (no mutation)."""
