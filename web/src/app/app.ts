@@ -47,7 +47,8 @@ import { actionFor, helpRows, HEIGHT_STEP, type Action } from "./bindings";
 import { FrameStats } from "./stats";
 
 const NOTICE_SECONDS = 8;
-const NOTICE_MAX = 3;
+/** Notices at once (a damaged store can give several, each must be seen). */
+const NOTICE_MAX = 5;
 const LABELS: Record<ControlName, string> = {
   pause: "Play",
   restart: "Restart: new atoms, trap at 400, paused",
@@ -744,7 +745,7 @@ export class App {
     const l = this.layout;
     const g = this.game;
     const sim = g.sim;
-    sim.trapped(this.atoms);
+    this.atoms = sim.trapped();
     this.record();
     ctx.setTransform(1, 0, 0, 1, 0, 0);
     ctx.fillStyle = "rgb(0,0,0)";
@@ -760,7 +761,7 @@ export class App {
     );
     this.scene.deviceScale = s;
     const fade = this.condensate.update(sim, this.atoms, g.generation, this.animTime);
-    this.scene.draw(ctx, g, 1 - fade);
+    this.scene.draw(ctx, g, this.atoms, 1 - fade);
     if (fade > 0) {
       ctx.save();
       ctx.beginPath();

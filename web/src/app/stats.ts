@@ -41,23 +41,19 @@ export class FrameStats {
     const m = Math.min(n, this.count, this.capacity);
     if (m === 0) return { frames: 0, medianMs: 0, p95Ms: 0, fps: 0 };
     const work = new Float64Array(m);
-    const gaps = new Float64Array(Math.max(0, m - 1));
     for (let k = 0; k < m; k++) {
       const idx = (this.count - m + k) % this.capacity;
       work[k] = this.work[idx];
-      if (k > 0) {
-        const prev = (this.count - m + k - 1) % this.capacity;
-        gaps[k - 1] = this.stamps[idx] - this.stamps[prev];
-      }
     }
     work.sort();
-    gaps.sort();
-    const gap = quantile(gaps, 0.5);
+    const first = this.stamps[(this.count - m) % this.capacity];
+    const last = this.stamps[(this.count - 1) % this.capacity];
     return {
       frames: m,
       medianMs: quantile(work, 0.5),
       p95Ms: quantile(work, 0.95),
-      fps: gap > 0 ? 1000 / gap : 0,
+      // Frames shown per second over the span (a slow frame counts for its whole length).
+      fps: last > first ? ((m - 1) * 1000) / (last - first) : 0,
     };
   }
 }

@@ -36,28 +36,13 @@ export interface SimLike {
   /** Screen position (px, y down) of the trap origin in the 640 x 672 window. */
   readonly screenOrigin: readonly [number, number];
   advance(dt: number): void;
-  /** Fill `out` with the trapped atoms now (reusing its arrays when long enough). */
-  trapped(out: AtomArrays): AtomArrays;
-  /** Fill `out` with the escaped atoms still falling inside the window. */
-  escaped(out: AtomArrays): AtomArrays;
+  /** The trapped atoms now (a snapshot reused by the next call). */
+  trapped(): AtomArrays;
+  /** The escaped atoms still falling inside the window (reused likewise). */
+  escaped(): AtomArrays;
 }
 
 export function emptyAtoms(): AtomArrays {
   const z = () => new Float64Array(0);
   return { x: z(), y: z(), vx: z(), vy: z(), radius: z(), mass: z(), count: 0 };
-}
-
-/** Grow the arrays of `out` to hold n atoms (kept when already long enough). */
-export function ensureAtoms(out: AtomArrays, n: number): AtomArrays {
-  if (out.x.length < n) {
-    const cap = Math.max(n, Math.ceil(out.x.length * 1.5));
-    out.x = new Float64Array(cap);
-    out.y = new Float64Array(cap);
-    out.vx = new Float64Array(cap);
-    out.vy = new Float64Array(cap);
-    out.radius = new Float64Array(cap);
-    out.mass = new Float64Array(cap);
-  }
-  out.count = n;
-  return out;
 }

@@ -6,10 +6,9 @@
 import { BORDER_TOP } from "../game/constants";
 import type { Game } from "../game/rules";
 import type { AtomArrays, SimLike } from "../game/sim";
-import { emptyAtoms } from "../game/sim";
 import * as C from "./colors";
 import { PLAY_RECT, SCENE_W, SCENE_H, type Rect } from "./geometry";
-import { atomSprite } from "./sprites";
+import { AtomLayer, atomSprite } from "./sprites";
 import { drawText } from "./text";
 
 // Thermometer in the right border; the mercury top is at SCALE_ZERO - f (SCALE_ZERO - SCALE_FULL).
@@ -52,15 +51,16 @@ export function cupOutline(a: number, xRim: number, offset: number, samples = 16
 }
 
 export class Scene {
-  private trappedBuf: AtomArrays = emptyAtoms();
-  private escapedBuf: AtomArrays = emptyAtoms();
   private cupKey = "";
   private cupPath: Path2D | null = null;
   /** Device px per logical px (set by the app before drawing). */
   deviceScale = 1;
+  private layer = new AtomLayer();
+  /** From this many atoms on, one image of the play area instead of a drawImage per atom. */
+  static LAYER_MIN_ATOMS = 200;
 
   /** Background, cup, atoms, borders, title, thermometer, status text. */
-  draw(ctx: CanvasRenderingContext2D, game: Game, atomAlpha = 1): void {
+  draw(ctx: CanvasRenderingContext2D, game: Game, atoms: AtomArrays, atomAlpha = 1): void {
     const sim = game.sim;
     ctx.fillStyle = C.BACKGROUND;
     ctx.fillRect(PLAY_RECT.x, PLAY_RECT.y, PLAY_RECT.w, PLAY_RECT.h);
@@ -69,7 +69,7 @@ export class Scene {
     ctx.rect(PLAY_RECT.x, PLAY_RECT.y, PLAY_RECT.w, PLAY_RECT.h);
     ctx.clip(); // escaping atoms slide under the borders
     this.drawCup(ctx, sim);
-    this.drawAtoms(ctx, sim, atomAlpha);
+    this.drawAtoms(ctx, sim, atoms, atomAlpha);
     ctx.restore();
   }
 
@@ -114,12 +114,25 @@ export class Scene {
   }
 
   /** The atoms, escaped ones too, from one sprite per radius in one pass. */
-  drawAtoms(ctx: CanvasRenderingContext2D, sim: SimLike, alpha = 1): void {
+  drawAtoms(ctx: CanvasRenderingContext2D, sim: SimLike, atoms: AtomArrays, alpha = 1): void {
     const [ox, oy] = sim.screenOrigin;
-    const esc = sim.escaped(this.escapedBuf);
+    const esc = sim.escaped();
+    if (atoms.count + esc.count >= Scene.LAYER_MIN_ATOMS) {
+      // Device px of the play area's corner; the layer covers the play area.
+      const s = this.deviceScale;
+      const m = ctx.getTransform();
+      const left = Math.round(m.e + PLAY_RECT.x * s);
+      const top = Math.round(m.f + PLAY_RECT.y * s);
+      const x0 = m.e + ox * s - left;
+      const y0 = m.f + oy * s - top;
+      this.layer.begin(PLAY_RECT.w * s, PLAY_RECT.h * s);
+      this.layer.add(esc.x, esc.y, esc.radius, esc.count, s, x0, y0);
+      if (alpha > 0) this.layer.add(atoms.x, atoms.y, atoms.radius, atoms.count, s, x0, y0);
+      this.layer.draw(ctx, left, top);
+      return;
+    }
     this.blitAtoms(ctx, esc, ox, oy);
     if (alpha <= 0) return;
-    const atoms = sim.trapped(this.trappedBuf);
     ctx.globalAlpha = alpha;
     this.blitAtoms(ctx, atoms, ox, oy);
     ctx.globalAlpha = 1;

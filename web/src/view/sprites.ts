@@ -74,3 +74,119 @@ export function atomSprite(radius: number, scale: number): Sprite {
   }
   return sprite;
 }
+
+/** Pixels of the sprite of `radius` at `scale`, as 32-bit RGBA words (little-endian). */
+const wordsCache = new Map<string, { size: number; words: Uint32Array }>();
+function spriteWords(radius: number, scale: number): { size: number; words: Uint32Array } {
+  const key = `${spriteKey(radius)}@${scale.toFixed(4)}`;
+  let w = wordsCache.get(key);
+  if (!w) {
+    const { size, data } = spherePixels(spriteKey(radius) * scale);
+    w = { size, words: new Uint32Array(data.buffer, data.byteOffset, size * size) };
+    if (wordsCache.size > 64) wordsCache.clear();
+    wordsCache.set(key, w);
+  }
+  return w;
+}
+
+/**
+ * Thousands of atoms: the sprites are copied into one image of the play area in plain
+ * typed-array loops (edges blended), then that image is drawn once. Far cheaper than a
+ * drawImage call per atom when there are many small ones.
+ */
+export class AtomLayer {
+  private image: ImageData | null = null;
+  private words: Uint32Array = new Uint32Array(0);
+  private canvas: HTMLCanvasElement | OffscreenCanvas | null = null;
+  private dirty = true;
+
+  /** Start a frame covering w x h device px. */
+  begin(w: number, h: number): void {
+    w = Math.max(1, Math.ceil(w));
+    h = Math.max(1, Math.ceil(h));
+    if (!this.image || this.image.width !== w || this.image.height !== h) {
+      this.image = new ImageData(w, h);
+      this.words = new Uint32Array(this.image.data.buffer);
+      this.canvas =
+        typeof OffscreenCanvas !== "undefined"
+          ? new OffscreenCanvas(w, h)
+          : Object.assign(document.createElement("canvas"), { width: w, height: h });
+    } else if (this.dirty) {
+      this.words.fill(0);
+    }
+    this.dirty = false;
+  }
+
+  /** Add atoms whose centres are at device px (x0 + sx * x, y0 - sy * y) of the layer. */
+  add(
+    xs: Float64Array,
+    ys: Float64Array,
+    radii: Float64Array,
+    count: number,
+    scale: number,
+    x0: number,
+    y0: number,
+  ): void {
+    if (count === 0 || !this.image) return;
+    this.dirty = true;
+    const W = this.image.width;
+    const H = this.image.height;
+    const dst = this.words;
+    let key = NaN;
+    let sp = spriteWords(radii[0], scale);
+    for (let i = 0; i < count; i++) {
+      if (radii[i] !== key) {
+        key = radii[i];
+        sp = spriteWords(key, scale);
+      }
+      const size = sp.size;
+      const left = Math.floor(x0 + xs[i] * scale - size / 2 + 0.5);
+      const top = Math.floor(y0 - ys[i] * scale - size / 2 + 0.5);
+      if (left >= W || top >= H || left + size <= 0 || top + size <= 0) continue;
+      const sx0 = Math.max(0, -left);
+      const sy0 = Math.max(0, -top);
+      const sx1 = Math.min(size, W - left);
+      const sy1 = Math.min(size, H - top);
+      const src = sp.words;
+      for (let sy = sy0; sy < sy1; sy++) {
+        let d = (top + sy) * W + left + sx0;
+        let s = sy * size + sx0;
+        for (let sx = sx0; sx < sx1; sx++, d++, s++) {
+          const p = src[s];
+          const a = p >>> 24;
+          if (a === 0) continue;
+          const q = dst[d];
+          if (a === 255 || q === 0) {
+            dst[d] = p;
+            continue;
+          }
+          dst[d] = over(p, q, a);
+        }
+      }
+    }
+  }
+
+  /** Draw the layer with its top-left at device px (x, y). */
+  draw(ctx: CanvasRenderingContext2D, x: number, y: number, alpha = 1): void {
+    if (!this.image || !this.canvas) return;
+    const c = this.canvas.getContext("2d") as CanvasRenderingContext2D;
+    c.putImageData(this.image, 0, 0);
+    const m = ctx.getTransform();
+    ctx.setTransform(1, 0, 0, 1, 0, 0);
+    ctx.globalAlpha = alpha;
+    ctx.drawImage(this.canvas, x, y);
+    ctx.globalAlpha = 1;
+    ctx.setTransform(m);
+  }
+}
+
+/** Source-over of RGBA word p (alpha a) onto q, unpremultiplied. */
+function over(p: number, q: number, a: number): number {
+  const b = q >>> 24;
+  const fa = a / 255;
+  const fb = (b / 255) * (1 - fa);
+  const out = fa + fb;
+  const ch = (shift: number) =>
+    Math.round((((p >>> shift) & 255) * fa + ((q >>> shift) & 255) * fb) / out) & 255;
+  return ((Math.round(out * 255) << 24) | (ch(16) << 16) | (ch(8) << 8) | ch(0)) >>> 0;
+}
