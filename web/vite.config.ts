@@ -2,7 +2,12 @@
  * `npm run build` writes dist/evapcool.html: one self-contained page (script, styles and
  * font inline; no other file, no network request), the same bytes from the same sources.
  */
+import { copyFileSync } from "node:fs";
+import { resolve } from "node:path";
 import { defineConfig, type Plugin } from "vite";
+
+/** The copy shipped in the Python package (`evapcool web`); CI checks it equals a fresh build. */
+const PACKAGE_COPY = resolve(import.meta.dirname, "../src/evapcool/web/evapcool.html");
 
 /** Inline the built script and stylesheet into the HTML and drop the separate files. */
 function singleFile(): Plugin {
@@ -66,6 +71,9 @@ export default defineConfig({
         if (html) {
           html.fileName = "evapcool.html";
         }
+      },
+      writeBundle(options) {
+        copyFileSync(resolve(options.dir ?? "dist", "evapcool.html"), PACKAGE_COPY);
       },
     },
   ],

@@ -20,6 +20,7 @@ HERE = Path(__file__).resolve().parent
 UNICODES = [*range(0x20, 0x7F), *range(0xA0, 0x180), 0x2013, 0x2014, 0x2018, 0x2019]
 UNICODES += [0x201C, 0x201D, 0x2022, 0x2026, 0x2190, 0x2192, 0x2212, 0x00D7]
 FAMILY = "EvapSans"
+SOURCE = "/usr/share/fonts/truetype/liberation2/LiberationSans-Bold.ttf"
 
 
 def main(source: str) -> None:
@@ -49,4 +50,4 @@ def main(source: str) -> None:
 
 
 if __name__ == "__main__":
-    main(sys.argv[1] if len(sys.argv) > 1 else "/usr/share/fonts/truetype/liberation2/LiberationSans-Bold.ttf")
+    main(sys.argv[1] if len(sys.argv) > 1 else SOURCE)
