@@ -16,13 +16,23 @@ try {
   const first = [];
   for (let k = 0; k < 7; k++) {
     const { page } = await openPage(browser, { query: `?seed=${k}` });
-    await page.waitForFunction(() => performance.getEntriesByName("evapcool-first-frame").length > 0);
-    first.push(await page.evaluate(() => performance.getEntriesByName("evapcool-first-frame")[0].startTime));
+    await page.waitForFunction(
+      () => performance.getEntriesByName("evapcool-first-frame").length > 0,
+    );
+    first.push(
+      await page.evaluate(() => performance.getEntriesByName("evapcool-first-frame")[0].startTime),
+    );
     await page.close();
   }
   console.log(`page size: ${statSync(PAGE).size} bytes`);
-  console.log(`time to first frame (file://, 7 loads): median ${median(first).toFixed(0)} ms (${first.map((t) => t.toFixed(0)).join(", ")})`);
-  for (const [atoms, radius] of [[49, 12], [5000, 1], [10000, 1]]) {
+  console.log(
+    `time to first frame (file://, 7 loads): median ${median(first).toFixed(0)} ms (${first.map((t) => t.toFixed(0)).join(", ")})`,
+  );
+  for (const [atoms, radius] of [
+    [49, 12],
+    [5000, 1],
+    [10000, 1],
+  ]) {
     const { page, log } = await openPage(browser, {
       viewport: { width: 1280, height: 720 },
       query: `?atoms=${atoms}&radius=${radius}&seed=1`,
