@@ -7,6 +7,8 @@ import type { AtomArrays, SimLike } from "./sim";
 export class EngineSim implements SimLike {
   private trappedSnap: AtomSnapshot | undefined;
   private escapedSnap: AtomSnapshot | undefined;
+  private temperatureKey = "";
+  private temperatureValue = 0;
 
   constructor(readonly sim: Simulation) {}
 
@@ -37,8 +39,15 @@ export class EngineSim implements SimLike {
   get gravity() {
     return this.sim.gravity;
   }
+  /** T sums every trapped atom's energy: asked for several times a frame, computed once. */
   get temperature() {
-    return this.sim.temperature;
+    const s = this.sim;
+    const key = `${s.time}|${s.collisionCount}|${s.nTrapped}|${s.trapHeight}`;
+    if (key !== this.temperatureKey) {
+      this.temperatureKey = key;
+      this.temperatureValue = s.temperature;
+    }
+    return this.temperatureValue;
   }
   get initialTemperature() {
     return this.sim.initialTemperature;

@@ -150,13 +150,21 @@ describe("the page", () => {
       await page.keyboard.press(k);
       return state(page);
     };
+    const live = () => page.locator("#live").textContent();
     assert.equal((await key("Space")).paused, false);
+    assert.equal(await live(), "Playing");
     assert.equal((await key("Space")).paused, true);
+    assert.equal(await live(), "Paused");
     assert.equal((await key("ArrowLeft")).trapHeight, 395);
     assert.equal((await key("ArrowDown")).trapHeight, 390);
     assert.equal((await key("ArrowRight")).trapHeight, 395);
     assert.equal((await key("ArrowUp")).trapHeight, 400);
-    assert.equal((await key("s")).time, 1);
+    await key("ArrowDown");
+    await page.waitForTimeout(600); // the height is spoken once the player stops
+    assert.equal(await live(), "Trap height 395");
+    await key("ArrowUp");
+    const t0 = (await state(page)).time;
+    assert.equal((await key("s")).time, t0 + 1);
     assert.equal((await key("+")).speed, 2);
     assert.equal((await key("=")).speed, 4);
     assert.equal((await key("+")).speed, 4);
@@ -240,6 +248,11 @@ describe("the page", () => {
     }
     assert.equal(s.won, true, "the ramp condenses the gas");
     assert.ok(s.score > 10, `score ${s.score}`);
+    // Said at the moment of the win (an atom above the rim may still leave afterwards).
+    assert.match(
+      await page.locator("#live").textContent(),
+      /^Temperature below Tc: (\d+) atoms, score \1$/,
+    );
     assert.equal(s.nameBox, true);
     await page.evaluate(() => window.evapcool.runFrames(60));
     const img = await shot(page);
@@ -315,6 +328,32 @@ describe("the page", () => {
     const notes = s.notices.join("\n");
     assert.match(notes, /atoms must be a whole number >= 1 \(got -3\)/);
     assert.match(notes, /radius must be a positive number \(got nan\)/);
+    assert.deepEqual(log.errors, []);
+    await page.close();
+  });
+
+  test("keyboard focus is visible on the controls; a hidden tab pauses", async () => {
+    const { page, log } = await openPage(browser, { query: "?seed=5" });
+    await page.keyboard.press("s");
+    assert.equal((await state(page)).time, 1);
+    // The canvas (its text alternative), then the controls in screen order.
+    for (let k = 0; k < 3; k++) await page.keyboard.press("Tab");
+    const focused = await page.evaluate(() => document.activeElement?.dataset.control);
+    assert.equal(focused, "restart");
+    const box = await controlBox(page, '[data-control="restart"]');
+    const img = await shot(page);
+    // The focus ring (blue) just outside the button's target.
+    const ring = regionStats(img, box.x - 4, box.y + box.height / 2 - 10, 4, 20);
+    assert.ok(ring.rgb[2] > 200 && ring.rgb[0] < 120, `focus ring colour ${ring.rgb}`);
+    await page.keyboard.press("Enter"); // presses the focused button: restart
+    assert.equal((await state(page)).time, 0);
+    await page.keyboard.press("Space");
+    assert.equal((await state(page)).paused, false);
+    await page.evaluate(() => {
+      Object.defineProperty(document, "hidden", { value: true, configurable: true });
+      document.dispatchEvent(new Event("visibilitychange"));
+    });
+    assert.equal((await state(page)).paused, true);
     assert.deepEqual(log.errors, []);
     await page.close();
   });
