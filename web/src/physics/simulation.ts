@@ -716,6 +716,19 @@ export class Simulation {
     return this.engine.pairCount + this.engine.wallCount;
   }
 
+  /** Events recorded so far (recordEvents), without building the log. */
+  get eventCount(): number {
+    return this.engine.nLog;
+  }
+
+  /** Recorded event k (0 <= k < eventCount). */
+  eventAt(k: number): PhysicsEvent {
+    if (!Number.isInteger(k) || k < 0 || k >= this.engine.nLog)
+      throw bad("k", `a whole number from 0 to ${this.engine.nLog - 1}`, k);
+    const [kind, i, j, time] = this.engine.logEntry(k);
+    return { kind: EVENT_NAMES[kind], i, j, time };
+  }
+
   /** Every event so far if recordEvents was set, else []. */
   get eventLog(): PhysicsEvent[] {
     const e = this.engine;
