@@ -107,6 +107,7 @@ export class App {
   private buttons = new Map<ControlName, HTMLButtonElement>();
   private sliderEl!: HTMLDivElement;
   private pressed: ControlName | null = null;
+  private clickHandledAt = -Infinity;
   private sliding = false;
   private hot: ControlName | "slider" | null = null;
   private ctx: CanvasRenderingContext2D;
@@ -472,16 +473,13 @@ export class App {
   /** A tap or click on the canvas: overlay targets first, then closing the help. */
   private tap(ev: PointerEvent): void {
     const [x, y] = this.toLogical(ev.clientX, ev.clientY);
-    const slop = MIN_TARGET_CSS / this.layout.scale / 2;
-    for (const t of this.targets) {
-      const r = t.action === "close" ? t.rect : atLeast(t.rect, 2 * slop);
-      if (contains(r, x, y) || (t.action !== "close" && contains(atLeast(t.rect, 0), x, y))) {
-        ev.preventDefault();
-        this.target(t.action);
-        return;
-      }
+    const hit = pickTarget(this.targets, x, y, MIN_TARGET_CSS / this.layout.scale);
+    if (hit) {
+      ev.preventDefault();
+      this.target(hit.action);
+    } else if (this.overlay === "help") {
+      this.overlay = null;
     }
-    if (this.overlay === "help") this.overlay = null;
   }
 
   private target(action: string): void {
@@ -550,9 +548,26 @@ export class App {
       b.addEventListener("pointerenter", (ev) => {
         if (ev.pointerType === "mouse") this.hot = name;
       });
-      b.addEventListener("pointerup", () => (this.pressed = null));
+      // A press and release on the button acts at once (no wait for a synthesized click,
+      // which touch screens may delay or drop); the click that follows is then ignored.
+      b.addEventListener("pointerup", (ev) => {
+        const r = b.getBoundingClientRect();
+        const inside =
+          ev.clientX >= r.left &&
+          ev.clientX <= r.right &&
+          ev.clientY >= r.top &&
+          ev.clientY <= r.bottom;
+        if (this.pressed === name && inside) {
+          this.clickHandledAt = performance.now();
+          this.press(name);
+        }
+        this.pressed = null;
+      });
       b.addEventListener("pointercancel", () => (this.pressed = null));
-      b.addEventListener("click", () => this.press(name));
+      b.addEventListener("click", () => {
+        if (performance.now() - this.clickHandledAt > 600) this.press(name); // keyboard
+        this.clickHandledAt = -Infinity;
+      });
       this.buttons.set(name, b);
       layer.append(b);
     };
@@ -918,4 +933,24 @@ export function speedText(s: number): string {
 function describeRun(s: Settings): string {
   const law = s.tcLaw === "seed" ? "Tc ~ N^(2/3)" : "Tc ~ N^(2/5)";
   return `${s.nAtoms} atoms of radius ${s.radius}, ${law}, ${s.escape === "rim" ? "rim" : "knife"}`;
+}
+
+/**
+ * The target under a tap: one drawn under the point first (the first listed wins), else
+ * the nearest whose area grown to `min` logical px (44 CSS px) holds the point, so small
+ * targets on a phone can still be hit with a finger.
+ */
+export function pickTarget(targets: Target[], x: number, y: number, min: number): Target | null {
+  const exact = targets.find((t) => contains(t.rect, x, y));
+  if (exact) return exact;
+  let best: Target | null = null;
+  let bestD = Infinity;
+  for (const t of targets) {
+    if (!contains(atLeast(t.rect, min), x, y)) continue;
+    const cx = Math.max(t.rect.x, Math.min(x, t.rect.x + t.rect.w));
+    const cy = Math.max(t.rect.y, Math.min(y, t.rect.y + t.rect.h));
+    const d = Math.hypot(x - cx, y - cy);
+    if (d < bestD) [best, bestD] = [t, d];
+  }
+  return best;
 }

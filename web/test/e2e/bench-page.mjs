@@ -44,7 +44,7 @@ try {
     const st = await page.evaluate(() => window.evapcool.frameStats(100000));
     const s = await page.evaluate(() => window.evapcool.state());
     console.log(
-      `${atoms} atoms (radius ${radius}), ${seconds} s: frame work median ${st.medianMs.toFixed(2)} ms, ` +
+      `${atoms} atoms (radius ${radius}), 1280 x 720 at ${scale}x, ${seconds} s: frame work median ${st.medianMs.toFixed(2)} ms, ` +
         `p95 ${st.p95Ms.toFixed(2)} ms, ${st.fps.toFixed(1)} frames/s shown, ` +
         `play ${(s.time / 30).toFixed(1)} s of ${seconds + 0.5} s, ${s.nTrapped} trapped` +
         (log.errors.length ? `, errors: ${log.errors.join("; ")}` : ""),

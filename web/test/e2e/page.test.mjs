@@ -139,6 +139,27 @@ describe("the page", () => {
     await touch("touchEnd", x1, y);
     const h = (await state(page)).trapHeight;
     assert.ok(Math.abs(h - 237.5) < 15, `finger put the trap at ${h}`);
+    // Settings by touch: the gear, ">" on the first row (atoms), then Save.
+    const tapAt = async (x, y) => {
+      await touch("touchStart", x, y);
+      await touch("touchEnd", x, y);
+    };
+    const gear = await controlBox(page, '[data-control="settings"]');
+    await tapAt(gear.x + gear.width / 2, gear.y + gear.height / 2);
+    assert.equal((await state(page)).overlay, "settings");
+    const tapTarget = async (action) => {
+      const r = await page.evaluate(
+        (a) => window.evapcool.app.targets.find((t) => t.action === a).rect,
+        action,
+      );
+      await tapAt(...(await toCss(page, r.x + r.w / 2, r.y + r.h / 2)));
+    };
+    await tapTarget("inc:0");
+    await tapTarget("save");
+    assert.equal((await state(page)).overlay, null);
+    const saved = await page.evaluate(() => JSON.parse(localStorage.getItem("evapcool.settings")));
+    assert.equal(saved.n_atoms, 54);
+    await page.evaluate(() => localStorage.clear());
     assert.deepEqual(log.errors, []);
     await page.screenshot({ path: join(outDir(), "phone.png") });
     await page.close();

@@ -151,3 +151,23 @@ describe("keys and help", () => {
     expect(s.fps).toBeCloseTo(50, 9);
   });
 });
+
+describe("tap targets", () => {
+  test("a tap under a target hits it; near small ones, the nearest within 44 px", async () => {
+    const { pickTarget } = await import("../../src/app/app");
+    const t = (x: number, y: number, w: number, h: number, action: string) => ({
+      rect: { x, y, w, h },
+      action,
+    });
+    const targets = [
+      t(100, 100, 20, 20, "a"),
+      t(100, 140, 20, 20, "b"),
+      t(0, 0, 600, 600, "close"),
+    ];
+    expect(pickTarget(targets, 110, 110, 70)?.action).toBe("a");
+    expect(pickTarget(targets, 110, 133, 70)?.action).toBe("close");
+    expect(pickTarget(targets.slice(0, 2), 110, 133, 70)?.action).toBe("b");
+    expect(pickTarget(targets.slice(0, 2), 110, 126, 70)?.action).toBe("a");
+    expect(pickTarget(targets.slice(0, 2), 300, 300, 70)).toBeNull();
+  });
+});
