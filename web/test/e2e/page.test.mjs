@@ -379,6 +379,45 @@ describe("the page", () => {
     await page.close();
   });
 
+  test("the condensate's glow breathes, and stands still for prefers-reduced-motion", async () => {
+    const glowChanges = async (reducedMotion) => {
+      const { page, log } = await openPage(browser, { query: "?seed=6", reducedMotion });
+      const changed = await page.evaluate(() => {
+        const api = window.evapcool;
+        api.app.stop();
+        api.app.game.sim.sim.forceWin(); // the physics' own switch: settle now
+        api.runFrames(400);
+        const c = document.getElementById("scene");
+        const l = api.app.layout;
+        const grab = () => {
+          api.app.draw();
+          const x = Math.round(l.offsetX + 200 * l.scale);
+          const y = Math.round(l.offsetY + 440 * l.scale);
+          return Array.from(c.getContext("2d").getImageData(x, y, 200, 110).data);
+        };
+        const a = grab();
+        api.app.animTime += 0.37;
+        const b = grab();
+        let diff = 0;
+        for (let k = 0; k < a.length; k++) diff += Math.abs(a[k] - b[k]);
+        return { diff, fade: api.app.condensate.level };
+      });
+      // (The test's own two readbacks make Chromium suggest willReadFrequently.)
+      assert.deepEqual(
+        log.errors.filter((e) => !e.includes("willReadFrequently")),
+        [],
+      );
+      await page.close();
+      return changed;
+    };
+    const moving = await glowChanges("no-preference");
+    const still = await glowChanges("reduce");
+    assert.equal(moving.fade, 1, "the packet has faded in");
+    assert.ok(moving.diff > 1000, `the glow moves (${moving.diff})`);
+    assert.equal(still.fade, 1);
+    assert.equal(still.diff, 0, "reduced motion: the glow stands still");
+  });
+
   test("HiDPI: drawn at the device pixel ratio (sharp edges)", async () => {
     const { page, log } = await openPage(browser, { scale: 2, query: "?seed=1" });
     const size = await page.evaluate(() => {
