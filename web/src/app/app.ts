@@ -432,6 +432,19 @@ export class App {
     const { canvas, nameInput } = this.el;
     window.addEventListener("resize", () => this.resize());
     window.visualViewport?.addEventListener("resize", () => this.resize());
+    // A window moved to a screen of another pixel ratio: redraw sharp for that one.
+    const watchRatio = () => {
+      if (typeof matchMedia !== "function") return;
+      matchMedia(`(resolution: ${window.devicePixelRatio}dppx)`).addEventListener(
+        "change",
+        () => {
+          this.resize();
+          watchRatio();
+        },
+        { once: true },
+      );
+    };
+    watchRatio();
     window.addEventListener("keydown", (ev) => {
       if (ev.ctrlKey || ev.metaKey || ev.altKey) return;
       const target = ev.target as HTMLElement | null;
