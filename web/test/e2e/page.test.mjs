@@ -64,6 +64,30 @@ describe("the page", () => {
     await page.close();
   });
 
+  test("works from a static web server too (one request: the page)", async () => {
+    const { createServer } = await import("node:http");
+    const { readFileSync } = await import("node:fs");
+    const body = readFileSync(PAGE);
+    const seen = [];
+    const server = createServer((req, res) => {
+      seen.push(req.url);
+      res.writeHead(200, { "content-type": "text/html; charset=utf-8" });
+      res.end(body);
+    });
+    await new Promise((ok) => server.listen(0, "127.0.0.1", ok));
+    const page = await browser.context.newPage();
+    const errors = [];
+    page.on("console", (m) => m.type() === "error" && errors.push(m.text()));
+    page.on("pageerror", (e) => errors.push(e.message));
+    await page.goto(`http://127.0.0.1:${server.address().port}/evapcool.html?seed=1`);
+    await page.waitForFunction(() => window.evapcool !== undefined);
+    assert.equal((await state(page)).nTrapped, 49);
+    assert.deepEqual(seen, ["/evapcool.html?seed=1"]);
+    assert.deepEqual(errors, []);
+    await page.close();
+    server.close();
+  });
+
   test("play button, mouse drag of the slider: the rim line and the thermometer move", async () => {
     const { page, log } = await openPage(browser, { query: "?seed=2" });
     const before = await shot(page);
