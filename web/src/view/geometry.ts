@@ -158,5 +158,30 @@ export function layoutFor(viewW: number, viewH: number, charts: ChartsShown): La
   // wide one would make buttons too small to touch.
   const wideButtonCss = PAUSE_RECT.w * fw.scale;
   const useTall = viewH > viewW && (ft.scale >= fw.scale || wideButtonCss < MIN_TARGET_CSS);
-  return useTall ? { ...tall, ...ft } : { ...wide, ...fw };
+  if (useTall) return { ...tall, ...ft };
+  return toolsBeside({ ...wide, ...fw }, viewW);
+}
+
+/** CSS px of a tool button put beside the scene, and of the gap around it. */
+const SIDE_TOOL_CSS = 52;
+const SIDE_GAP_CSS = 10;
+
+/**
+ * A small landscape screen (a phone on its side) draws the top border's tool buttons and
+ * the chart button too small to touch; when the space beside the scene allows, they move
+ * there at 52 CSS px.
+ */
+function toolsBeside(l: Layout, viewW: number): Layout {
+  const room = viewW - (l.offsetX + l.width * l.scale);
+  // In the top border they sit 42 px apart: below 44 CSS px their touch areas would overlap.
+  if (l.scale * 42 >= MIN_TARGET_CSS || room < SIDE_TOOL_CSS + 2 * SIDE_GAP_CSS) return l;
+  const size = SIDE_TOOL_CSS / l.scale;
+  const gap = SIDE_GAP_CSS / l.scale;
+  const buttons = { ...l.buttons };
+  const names: ControlName[] = [...TOOLS, "chart"];
+  if (gap + names.length * (size + gap) > l.height) return l;
+  names.forEach((name, k) => {
+    buttons[name] = rect(l.width + gap, gap + k * (size + gap), size, size);
+  });
+  return { ...l, buttons };
 }

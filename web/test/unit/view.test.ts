@@ -171,3 +171,19 @@ describe("tap targets", () => {
     expect(pickTarget(targets.slice(0, 2), 300, 300, 70)).toBeNull();
   });
 });
+
+describe("tools on a phone on its side", () => {
+  test("beside the scene, 52 CSS px, inside the window; on a desktop in the top border", () => {
+    const none = { energy: false, path: false };
+    const l = layoutFor(844, 390, none);
+    expect(l.mode).toBe("wide");
+    for (const name of ["help", "table", "settings", "fullscreen", "chart"] as const) {
+      const b = l.buttons[name];
+      expect(b.w * l.scale).toBeCloseTo(52, 9);
+      expect(b.x).toBeGreaterThanOrEqual(l.width);
+      expect(l.offsetX + (b.x + b.w) * l.scale).toBeLessThanOrEqual(844);
+      expect(l.offsetY + (b.y + b.h) * l.scale).toBeLessThanOrEqual(390);
+    }
+    expect(layoutFor(1280, 800, none).buttons.help.y).toBe(6);
+  });
+});
