@@ -122,6 +122,10 @@ export class App {
   private pausedByHiding = false;
   private readonly reducedMotion: boolean;
   private readonly coarse: boolean;
+  /** Set by any input: the next frame draws. */
+  dirty = true;
+  private lastPicture = "";
+  private drawnAt = -1;
   /** Errors thrown while drawing a frame (kept, not rethrown, so one bad frame is not fatal). */
   errors: string[] = [];
 
@@ -168,6 +172,7 @@ export class App {
 
   // -- notices and the live region ---------------------------------------------------------
   notify(text: string): void {
+    this.dirty = true;
     this.notices.push([text, this.animTime + NOTICE_SECONDS]);
     this.notices.splice(0, Math.max(0, this.notices.length - NOTICE_MAX));
     this.say(text);
@@ -430,6 +435,9 @@ export class App {
 
   private wire(): void {
     const { canvas, nameInput } = this.el;
+    for (const type of ["keydown", "keyup", "pointerdown", "pointermove", "pointerup", "input"]) {
+      window.addEventListener(type, () => (this.dirty = true), { capture: true, passive: true });
+    }
     window.addEventListener("resize", () => this.resize());
     window.visualViewport?.addEventListener("resize", () => this.resize());
     // A window moved to a screen of another pixel ratio: redraw sharp for that one.
@@ -672,6 +680,7 @@ export class App {
 
   // -- layout -------------------------------------------------------------------------------
   resize(): void {
+    this.dirty = true;
     const vw = Math.max(1, window.innerWidth);
     const vh = Math.max(1, window.innerHeight);
     this.layout = layoutFor(vw, vh, { energy: this.showEnergy, path: this.showPath });
@@ -739,6 +748,11 @@ export class App {
     try {
       this.game.update(dt);
       this.animTime += Math.min(dt, 0.25);
+      const key = this.pictureKey();
+      if (!this.dirty && key !== "" && key === this.lastPicture) return; // nothing changed
+      this.lastPicture = key;
+      this.dirty = false;
+      this.drawnAt = now;
       this.draw();
     } catch (err) {
       // Keep the page alive; the message is kept for the console and the tests.
@@ -746,7 +760,35 @@ export class App {
       if (this.errors.length < 20) this.errors.push(text);
       if (this.errors.length === 1) console.error(err);
     }
-    this.stats.add(now, performance.now() - t0);
+    if (this.drawnAt === now) this.stats.add(now, performance.now() - t0);
+  }
+
+  /**
+   * What the picture depends on besides input (every input event marks it dirty): while
+   * this stays the same, a frame draws nothing (a paused applet costs no battery). ""
+   * means animated: draw every frame.
+   */
+  private pictureKey(): string {
+    const g = this.game;
+    const c = this.condensate.level;
+    if ((g.won && !this.reducedMotion) || (c > 0 && c < 1)) return "";
+    const l = this.layout;
+    const cv = this.el.canvas;
+    return [
+      g.generation,
+      g.sim.time,
+      g.trapHeight,
+      g.paused,
+      g.speed,
+      this.visibleNotices.length,
+      l.scale,
+      l.offsetX,
+      l.offsetY,
+      l.width,
+      l.height,
+      cv.width,
+      cv.height,
+    ].join("|");
   }
 
   /** Advance n display frames of one physics frame x speed each, drawing each (tests). */

@@ -59,6 +59,13 @@ describe("the page", () => {
     assert.deepEqual(pixel(img, bx, by).slice(0, 3), [79, 79, 79]);
     const [px, py] = await toCss(page, 60, 560);
     assert.deepEqual(pixel(img, px, py).slice(0, 3), [159, 159, 159]);
+    // Paused and untouched: frames come, nothing is redrawn (no battery spent).
+    await page.evaluate(() => window.evapcool.resetStats());
+    await page.waitForTimeout(500);
+    assert.equal((await page.evaluate(() => window.evapcool.frameStats())).frames, 0);
+    await page.mouse.move(300, 300);
+    await page.waitForTimeout(100);
+    assert.ok((await page.evaluate(() => window.evapcool.frameStats())).frames >= 1);
     assert.deepEqual(log.errors, []);
     assert.deepEqual(log.requests, []);
     await page.close();
