@@ -2,7 +2,8 @@
 
     python scripts/golden_traces.py write            # web/test/golden/*.json from the reference
                                                      # engine; the fast engine must agree
-    python scripts/golden_traces.py check            # the committed traces still match
+    python scripts/golden_traces.py check            # the committed traces still match (exit 1
+                                                     # naming the ones that do not)
     python scripts/golden_traces.py run STATE.json --events N [--engine fast]
                                                      # any state: its trace on stdout
 
@@ -51,9 +52,11 @@ def _write(out: Path, only: list[str] | None) -> int:
     return 0
 
 
-def _check(out: Path) -> int:
+def _check(out: Path, only: list[str] | None) -> int:
     bad = 0
     for case in GOLDEN_CASES:
+        if only and case.name not in only:
+            continue
         path = out / f"{case.name}.json"
         fresh = trace_text(golden_trace(case))
         if not path.exists() or path.read_text(encoding="utf-8") != fresh:
@@ -84,6 +87,7 @@ def main(argv: list[str] | None = None) -> int:
     w.add_argument("cases", nargs="*", help="only these cases")
     c = sub.add_parser("check", help="check the committed golden traces")
     c.add_argument("--out", type=Path, default=GOLDEN_DIR)
+    c.add_argument("cases", nargs="*", help="only these cases")
     r = sub.add_parser("run", help="print the trace of any state file")
     r.add_argument("state", type=Path)
     r.add_argument("--events", type=int, default=2000)
@@ -92,7 +96,7 @@ def main(argv: list[str] | None = None) -> int:
     if args.command == "write":
         return _write(args.out, args.cases)
     if args.command == "check":
-        return _check(args.out)
+        return _check(args.out, args.cases)
     if args.events < 1:
         parser.error("--events must be a whole number >= 1")
     return _run(args.state, args.events, args.engine)

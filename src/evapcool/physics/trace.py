@@ -194,6 +194,42 @@ def _mixed(n: int = 200, seed: int = 11) -> dict:
     return to_state(sim)
 
 
+def _mirror(seed: int = 9) -> dict:
+    """The classic cells with mirror-image atoms (x -> -x): many events tie exactly, so the
+    order of ties (solo by index, pairs by (lower, higher) index) decides the run."""
+    rng = np.random.default_rng(seed)
+    centres = cell_centres(49, 12.0, 0.01, 532.0)
+    pos = centres.copy()
+    vel = np.zeros_like(pos)
+    for i, (x, y) in enumerate(centres):
+        if x < 0.0:
+            continue
+        dx, dy = rng.uniform(-5.0, 5.0, 2)
+        speed, theta = rng.uniform(3.0, 6.0), rng.uniform(0.0, 2 * math.pi)
+        v = (speed * math.cos(theta), speed * math.sin(theta))
+        if x == 0.0:
+            pos[i] = (x, y + dy)
+            vel[i] = (0.0, v[1])
+            continue
+        m = int(np.flatnonzero((centres[:, 0] == -x) & (centres[:, 1] == y))[0])
+        pos[i], vel[i] = (x + dx, y + dy), v
+        pos[m], vel[m] = (-(x + dx), y + dy), (-v[0], v[1])
+    sim = Simulation(n_atoms=49, positions=pos, velocities=vel, engine="reference")
+    return to_state(sim)
+
+
+def _ties_now() -> dict:
+    """Events due at once at the start, all at t = 0: two touching pairs closing in and two
+    centres on the wall moving outwards. The reference order: the solo events by index,
+    then the pairs by (lower, higher) index."""
+    a = 0.01
+    pos = [[-40.0, 60.0], [-16.0, 60.0], [40.0, 60.0], [64.0, 60.0], [10.0, a * 10.0 * 10.0],
+           [-30.0, a * -30.0 * -30.0], [0.0, 120.0]]  # fmt: skip
+    vel = [[1.0, 0.0], [-1.0, 0.0], [1.0, 0.0], [-1.0, 0.0], [1.0, -1.0], [-1.0, -1.0],
+           [0.5, 2.0]]  # fmt: skip
+    return to_state(Simulation(n_atoms=7, positions=pos, velocities=vel, engine="reference"))
+
+
 def _classic(seed: int, **kw: object) -> Callable[[], dict]:
     return lambda: to_state(Simulation.classic(seed=seed, engine="reference", **kw))
 
@@ -209,6 +245,8 @@ GOLDEN_CASES: tuple[GoldenCase, ...] = (
         "1 atom at rest on the vertex: it hops at the floor speed",
         lambda: _one_atom(0.0, 1e-300, 0.0, 0.0),
     ),
+    GoldenCase("mirror", "mirror-image atoms: events tie exactly", _mirror),
+    GoldenCase("ties-now", "touching pairs and centres on the wall: ties at t = 0", _ties_now),
     GoldenCase("mixed-200", "200 atoms, radii 4-8 px, masses 0.5-4", _mixed),
     GoldenCase(
         "knife",
