@@ -28,13 +28,15 @@ try {
   console.log(
     `time to first frame (file://, 7 loads): median ${median(first).toFixed(0)} ms (${first.map((t) => t.toFixed(0)).join(", ")})`,
   );
-  for (const [atoms, radius] of [
-    [49, 12],
-    [5000, 1],
-    [10000, 1],
+  for (const [atoms, radius, scale] of [
+    [49, 12, 1],
+    [49, 12, 2],
+    [5000, 1, 1],
+    [10000, 1, 1],
   ]) {
     const { page, log } = await openPage(browser, {
       viewport: { width: 1280, height: 720 },
+      scale,
       query: `?atoms=${atoms}&radius=${radius}&seed=1`,
     });
     await page.keyboard.press("Space");
