@@ -953,6 +953,7 @@ export class App {
   }
 
   private lastStatus = "";
+  private statusAt = -Infinity;
 
   /** The canvas's text alternative: what is on screen, in words (updated when it changes). */
   private updateStatus(): void {
@@ -969,10 +970,15 @@ export class App {
       `${state} ${sim.nTrapped} atoms in the cup, trap height ${Math.round(g.trapHeight)} px, ` +
       `temperature ${fmt(sim.temperature)}, critical temperature ${fmt(sim.criticalTemperature)} ` +
       `(${sim.temperature < sim.criticalTemperature ? "below" : "above"} Tc).`;
-    // Coarse enough to change only a few times a second.
-    if (text !== this.lastStatus && (this.animTime * 2) % 1 < 0.2) {
+    if (text === this.lastStatus) return;
+    // At most twice a second; until then keep drawing so the last change is written.
+    const now = performance.now();
+    if (now - this.statusAt >= 500) {
+      this.statusAt = now;
       this.lastStatus = text;
       this.el.status.textContent = text;
+    } else {
+      this.dirty = true;
     }
   }
 }

@@ -211,6 +211,12 @@ describe("the page", () => {
     assert.equal((await key("ArrowDown")).trapHeight, 390);
     assert.equal((await key("ArrowRight")).trapHeight, 395);
     assert.equal((await key("ArrowUp")).trapHeight, 400);
+    // The canvas's text alternative says what is on screen.
+    await page.waitForTimeout(600);
+    assert.match(
+      await page.locator("#status").textContent(),
+      /^Paused\. 49 atoms in the cup, trap height 400 px, temperature [\d.]+, critical temperature [\d.]+ \(above Tc\)\.$/,
+    );
     await key("ArrowDown");
     await page.waitForTimeout(600); // the height is spoken once the player stops
     assert.equal(await live(), "Trap height 395");
