@@ -493,8 +493,10 @@ export class App {
 
   /** A tap or click on the canvas: overlay targets first, then closing the help. */
   private tap(ev: PointerEvent): void {
-    const [x, y] = this.toLogical(ev.clientX, ev.clientY);
-    const hit = pickTarget(this.targets, x, y, MIN_TARGET_CSS / this.layout.scale);
+    const [lx, ly] = this.toLogical(ev.clientX, ev.clientY);
+    const z = this.overlayZoom();
+    const [x, y] = [z.cx + (lx - z.x) / z.k, z.cy + (ly - z.y) / z.k];
+    const hit = pickTarget(this.targets, x, y, MIN_TARGET_CSS / (this.layout.scale * z.k));
     if (hit) {
       ev.preventDefault();
       this.target(hit.action);
@@ -853,6 +855,11 @@ export class App {
     }
     this.targets = [];
     if (this.nameBoxOpen) drawNameFrame(ctx, "Top 10! Type your name:");
+    const zoom = this.overlayZoom();
+    ctx.save();
+    ctx.translate(zoom.x, zoom.y);
+    ctx.scale(zoom.k, zoom.k);
+    ctx.translate(-zoom.cx, -zoom.cy);
     if (this.overlay === "help") {
       this.targets = drawHelp(ctx, helpRows(), this.fpsLine());
     } else if (this.overlay === "table") {
@@ -872,6 +879,7 @@ export class App {
         this.settingsFooter(),
       );
     }
+    ctx.restore();
     drawNotices(ctx, this.visibleNotices);
     if (l.charts.energy) this.energy.draw(ctx, l.charts.energy);
     if (l.charts.path) this.path.draw(ctx, l.charts.path);
@@ -913,6 +921,21 @@ export class App {
       this.sliderEl.setAttribute("aria-valuetext", `${h} px`);
     }
     this.sliderEl.setAttribute("aria-disabled", String(g.won));
+  }
+
+  /**
+   * Panels over the play area (help, scores, settings) drawn larger in the tall layout,
+   * centred on the whole scene and strip, so their text stays readable on a phone: the
+   * point (cx, cy) of the play area goes to (x, y), scaled by k.
+   */
+  overlayZoom(): { k: number; cx: number; cy: number; x: number; y: number } {
+    const cx = PLAY_RECT.x + PLAY_RECT.w / 2;
+    const cy = PLAY_RECT.y + PLAY_RECT.h / 2;
+    const l = this.layout;
+    if (l.mode !== "tall" || !l.strip) return { k: 1, cx, cy, x: cx, y: cy };
+    const bottom = l.strip.y + l.strip.h;
+    const k = Math.min((l.width - 16) / (PLAY_RECT.w - 24), (bottom - 8) / PLAY_RECT.h);
+    return { k, cx, cy, x: l.width / 2, y: bottom / 2 };
   }
 
   private tableFooter(): string[] {

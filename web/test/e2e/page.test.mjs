@@ -179,11 +179,18 @@ describe("the page", () => {
     await tapAt(gear.x + gear.width / 2, gear.y + gear.height / 2);
     assert.equal((await state(page)).overlay, "settings");
     const tapTarget = async (action) => {
-      const r = await page.evaluate(
-        (a) => window.evapcool.app.targets.find((t) => t.action === a).rect,
-        action,
+      // Target rectangles are in the panel's own coordinates; the tall layout zooms it.
+      // They are those of the last drawn frame: wait for one.
+      await page.evaluate(
+        () => new Promise((ok) => requestAnimationFrame(() => requestAnimationFrame(ok))),
       );
-      await tapAt(...(await toCss(page, r.x + r.w / 2, r.y + r.h / 2)));
+      const [x, y] = await page.evaluate((a) => {
+        const app = window.evapcool.app;
+        const r = app.targets.find((t) => t.action === a).rect;
+        const z = app.overlayZoom();
+        return [z.x + (r.x + r.w / 2 - z.cx) * z.k, z.y + (r.y + r.h / 2 - z.cy) * z.k];
+      }, action);
+      await tapAt(...(await toCss(page, x, y)));
     };
     await tapTarget("inc:0");
     await tapTarget("save");
