@@ -34,6 +34,7 @@ import type { Look, SymbolName } from "../view/icons";
 import {
   drawHelp,
   drawNameFrame,
+  nameField,
   drawNotices,
   drawSettings,
   drawTable,
@@ -320,6 +321,9 @@ export class App {
     const g = this.game;
     const score = g.score ?? 0;
     const seconds = g.wonAt ?? 0;
+    // The win is what matters now: a trap height still waiting to be spoken is dropped.
+    if (this.heightTimer !== null) clearTimeout(this.heightTimer);
+    this.heightTimer = null;
     this.say(`Temperature below Tc: ${score} atoms, score ${score}`);
     if (this.table.qualifies(score, seconds)) {
       this.overlay = null; // the name box must be seen
@@ -723,7 +727,7 @@ export class App {
 
   private placeNameBox(): void {
     if (!this.nameBoxOpen || !this.layout) return;
-    const field = { x: PLAY_RECT.x + 60, y: PLAY_RECT.y + 290, w: PLAY_RECT.w - 120, h: 40 };
+    const field = nameField();
     const input = this.el.nameInput;
     this.place(input, field);
     input.style.fontSize = `${32 * 0.6875 * this.layout.scale}px`;
@@ -848,13 +852,21 @@ export class App {
     }
     this.scene.drawFrame(ctx, g, l.sceneHeight);
     this.drawControls(ctx);
+    const tooFew = g.score === null ? g.tooFewAtoms(this.lightestMass()) : null;
     if (g.score !== null) this.scene.drawScore(ctx, g.score);
-    else if (g.allEscaped) this.scene.drawEmpty(ctx);
-    else if (g.paused && sim.time === 0 && this.overlay === null) {
+    else if (tooFew !== null) {
+      this.scene.drawTooFew(ctx, tooFew);
+      if (tooFew !== this.saidTooFew)
+        this.say(`Too few atoms left. ${tooFew} Press R to try again.`);
+    } else if (g.paused && sim.time === 0 && this.overlay === null) {
       this.scene.drawStartHint(ctx, this.coarse);
     }
     this.targets = [];
-    if (this.nameBoxOpen) drawNameFrame(ctx, "Top 10! Type your name:");
+    this.saidTooFew = tooFew;
+    if (this.nameBoxOpen) {
+      const length = Array.from(this.el.nameInput.value).length;
+      drawNameFrame(ctx, "Top 10! Type your name:", length, NAME_MAX);
+    }
     const zoom = this.overlayZoom();
     ctx.save();
     ctx.translate(zoom.x, zoom.y);
@@ -976,6 +988,15 @@ export class App {
   }
 
   private lastStatus = "";
+  private saidTooFew: string | null = null;
+
+  /** The lightest trapped atom's mass (the escape energy of the too-few rule). */
+  private lightestMass(): number {
+    const a = this.atoms;
+    let m = Infinity;
+    for (let i = 0; i < a.count; i++) m = Math.min(m, a.mass[i]);
+    return Number.isFinite(m) ? m : 1;
+  }
   private statusAt = -Infinity;
 
   /** The canvas's text alternative: what is on screen, in words (updated when it changes). */

@@ -1,9 +1,12 @@
 /**
- * How many atoms of a radius the initial loading fits (SPEC 1 rows of cells), computed
- * the way Python's `physics/loading.cell_centres` decides it, so the settings screen
- * offers the same "1 to N" as the desktop.
+ * How many atoms of a radius the initial loading fits (SPEC 1 rows of cells) with every
+ * disk below the starting rim, computed like the desktop's `loading.capacity` (whole rows
+ * of cells, the same 64-gon test), so the settings screen offers the same "1 to N".
  */
-import { CURVATURE, cupVertex } from "./constants";
+import { BORDER_TOP, CURVATURE, cupVertex } from "./constants";
+
+/** The rim at the start, px: no atom of the start may sit above it (or under the border). */
+const START_HEIGHT = 400;
 
 const POLYGON = 64;
 
@@ -22,12 +25,13 @@ function diskInsideCup(xc: number, yc: number, rad: number, a: number): boolean 
 
 const cache = new Map<number, number>();
 
-/** Atoms of this radius that fit below the window top in the classic window. */
+/** Atoms of this radius that start wholly inside the cup, below its rim, in view. */
 export function cupCapacity(radius: number, curvature = CURVATURE): number {
   const key = radius * 1e6 + curvature;
   const hit = cache.get(key);
   if (hit !== undefined) return hit;
-  const yTop = cupVertex()[1] - radius;
+  // The border's edge in trap coordinates, or the rim if that is lower.
+  const yTop = Math.min(START_HEIGHT, cupVertex()[1] - radius - BORDER_TOP);
   const jitter = (radius * 8) / 12;
   const cell = radius + jitter;
   const spacing = 2 * cell;

@@ -61,6 +61,9 @@ export class EngineSim implements SimLike {
   get won() {
     return this.sim.won;
   }
+  get winRule() {
+    return this.sim.winRule;
+  }
   get collisionCount() {
     return this.sim.collisionCount;
   }

@@ -15,8 +15,13 @@ export const HEIGHT_MAX = 450;
 export const HEIGHT_START = 400;
 export const SPEED_MIN = 0.25;
 export const SPEED_MAX = 4;
-/** One wall-clock step never advances more than this (s): a stalled tab does not jump ahead. */
-export const MAX_WALL_STEP = 0.1;
+/**
+ * One drawn frame never advances more than this much play (s): when frames fall behind (a
+ * slow device, thousands of atoms) the game slows down instead of taking ever larger steps,
+ * each costlier than the last; a stalled tab does not jump ahead. At 1x: at most 2 physics
+ * frames a drawn frame (the desktop's number).
+ */
+export const MAX_WALL_STEP = 1 / 15;
 
 export interface GameConfig {
   nAtoms: number;
@@ -178,4 +183,37 @@ export class Game {
   get allEscaped(): boolean {
     return this.sim.nTrapped === 0 && !this.sim.won;
   }
+
+  /** Why the gas can no longer condense (say so, offer a restart), or null; `lightest`: mass. */
+  tooFewAtoms(lightest = 1): string | null {
+    const sim = this.sim;
+    if (sim.won || !sim.winRule) return null;
+    const n = sim.nTrapped;
+    return outOfReach(
+      n,
+      sim.temperature * n,
+      sim.criticalTemperature,
+      lightest * sim.gravity * HEIGHT_MIN,
+    );
+  }
+}
+
+/**
+ * Why T < Tc can no longer be reached by n trapped atoms of total energy E, or null (the
+ * desktop's rule). T = E / N changes only when atoms leave, and an atom leaves only with
+ * more than escapeEnergy = m g H_min. Out of reach exactly when no atom is left; when one
+ * atom is left above Tc(1) (alone it never collides); or when T >= Tc(N) and no atom can
+ * ever leave (E <= escapeEnergy).
+ */
+export function outOfReach(
+  n: number,
+  energy: number,
+  criticalTemperature: number,
+  escapeEnergy: number,
+): string | null {
+  if (n <= 0) return "All the atoms escaped.";
+  if (energy / n < criticalTemperature) return null; // condensing now
+  if (n === 1) return "One atom alone cannot cool below Tc.";
+  if (energy <= escapeEnergy) return "No atom can leave any more: T stays above Tc.";
+  return null;
 }

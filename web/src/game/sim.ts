@@ -32,6 +32,8 @@ export interface SimLike {
   readonly criticalTemperature: number;
   readonly tcExponent: number;
   readonly won: boolean;
+  /** False if the game's win rule is off (the gas stays a gas below Tc). */
+  readonly winRule: boolean;
   readonly collisionCount: number;
   /** Screen position (px, y down) of the trap origin in the 640 x 672 window. */
   readonly screenOrigin: readonly [number, number];

@@ -5,7 +5,7 @@
 import { formatSeconds, type Entry } from "../game/highscores";
 import * as C from "./colors";
 import { PLAY_RECT, rect, type Rect } from "./geometry";
-import { frame } from "./scene";
+import { frame, UNDER_MESSAGE } from "./scene";
 import { drawText, textWidth, wrap } from "./text";
 
 export interface Target {
@@ -185,22 +185,37 @@ export function drawSettings(
   return targets;
 }
 
-/** The frame and prompt of the name box; returns where the text field goes. */
-export function drawNameFrame(ctx: CanvasRenderingContext2D, prompt: string): Rect {
-  const f = rect(PLAY_RECT.x + 40, PLAY_RECT.y + 250, PLAY_RECT.w - 80, 120);
+/** The name box's frame, prompt, length and keys under the score; returns the field. */
+export function drawNameFrame(
+  ctx: CanvasRenderingContext2D,
+  prompt: string,
+  length: number,
+  maxLength: number,
+): Rect {
+  const f = rect(PLAY_RECT.x + 30, UNDER_MESSAGE, PLAY_RECT.w - 60, 136);
   frame(ctx, f);
   drawText(ctx, prompt, 26, C.ACCENT, f.x + f.w / 2, f.y + 10, "midtop", true);
-  const field = rect(f.x + 20, f.y + 40, f.w - 40, 40);
+  const field = nameField();
+  const below = field.y + field.h + 8;
+  const full = length >= maxLength;
+  const count = `${length}/${maxLength}`;
   drawText(
     ctx,
-    "Enter: store   Esc: skip",
+    full ? `${count}  (full)` : count,
     22,
-    C.TEXT,
-    f.x + f.w / 2,
-    field.y + field.h + 8,
-    "midtop",
+    full ? C.ACCENT : C.TEXT,
+    field.x + field.w,
+    below,
+    "topright",
+    full,
   );
+  drawText(ctx, "Enter: store   Esc: skip", 22, C.TEXT, field.x, below, "topleft");
   return field;
+}
+
+/** Where the name is typed (an input element over the canvas), logical px. */
+export function nameField(): Rect {
+  return rect(PLAY_RECT.x + 50, UNDER_MESSAGE + 40, PLAY_RECT.w - 100, 44);
 }
 
 /** Notices at the bottom of the play area, wrapped; returns their box (or null). */

@@ -9,7 +9,11 @@ import type { AtomArrays, SimLike } from "../game/sim";
 import * as C from "./colors";
 import { PLAY_RECT, SCENE_W, SCENE_H, type Rect } from "./geometry";
 import { AtomLayer, atomSprite } from "./sprites";
-import { drawText } from "./text";
+import { drawText, wrap } from "./text";
+
+/** Where messages over the play area go (the desktop's), and panels under them. */
+export const MESSAGE_Y = PLAY_RECT.y + 62;
+export const UNDER_MESSAGE = PLAY_RECT.y + 150;
 
 // Thermometer in the right border; the mercury top is at SCALE_ZERO - f (SCALE_ZERO - SCALE_FULL).
 export const THERMO_X = 592;
@@ -195,19 +199,23 @@ export class Scene {
   }
 
   // -- messages over the play area -------------------------------------------------
+  /** "Score: N" in large text at the top of the play area (the win). */
   drawScore(ctx: CanvasRenderingContext2D, score: number): void {
     const cx = PLAY_RECT.x + PLAY_RECT.w / 2;
-    shadowed(ctx, `Score: ${score}`, 84, cx, PLAY_RECT.y + 150);
-    drawText(ctx, "The gas has condensed!", 30, C.TEXT, cx, PLAY_RECT.y + 215, "center", true);
+    shadowed(ctx, `Score: ${score}`, 84, cx, MESSAGE_Y);
+    drawText(ctx, "The gas has condensed!", 30, C.TEXT, cx, MESSAGE_Y + 58, "center", true);
   }
 
-  drawEmpty(ctx: CanvasRenderingContext2D): void {
+  /** The gas can no longer condense: say why and offer a restart. */
+  drawTooFew(ctx: CanvasRenderingContext2D, reason: string): void {
     const cx = PLAY_RECT.x + PLAY_RECT.w / 2;
-    const y = PLAY_RECT.y + 170;
-    shadowed(ctx, "All the atoms escaped!", 52, cx, y);
-    const lines = ["Nothing left to cool.", "Press R or tap restart to try again."];
+    shadowed(ctx, "Too few atoms left", 52, cx, MESSAGE_Y);
+    const lines = [
+      ...wrap(ctx, reason, 26, PLAY_RECT.w - 40),
+      "Press R (or restart) to try again.",
+    ];
     lines.forEach((line, k) =>
-      drawText(ctx, line, 30, C.TEXT, cx, y + 55 + 32 * k, "center", true),
+      drawText(ctx, line, 26, C.TEXT, cx, MESSAGE_Y + 48 + 30 * k, "center", true),
     );
   }
 

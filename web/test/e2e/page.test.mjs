@@ -323,7 +323,7 @@ describe("the page", () => {
     const img = await shot(page);
     await page.screenshot({ path: join(outDir(), "win.png") });
     // "Score: N" in large white text over the play area, not hidden by the name box.
-    const [sx, sy] = await toCss(page, 296, 48 + 150);
+    const [sx, sy] = await toCss(page, 296, 48 + 62);
     assert.ok(regionStats(img, sx - 120, sy - 20, 240, 40).white > 200, "the score is drawn");
     const input = page.locator("#name");
     assert.ok(await input.isVisible());
@@ -377,11 +377,25 @@ describe("the page", () => {
     assert.match(notes, /radius must be a number from 3 to 20 px \(got 'big'\)/);
     assert.match(
       notes,
-      /n_atoms must be a whole number from 1 to 93 for radius 12 \(got 1000000000\)/,
+      /n_atoms must be a whole number from 1 to 62 for radius 12 \(got 1000000000\)/,
     );
     assert.deepEqual((await state(page)).errors, []);
     assert.deepEqual(log.errors, []);
     await page.evaluate(() => localStorage.clear());
+    await page.close();
+  });
+
+  test("too few atoms to condense: the page says why and offers a restart", async () => {
+    const { page, log } = await openPage(browser, { query: "?atoms=1&seed=1" });
+    await page.waitForTimeout(200);
+    assert.equal(
+      await page.locator("#live").textContent(),
+      "Too few atoms left. One atom alone cannot cool below Tc. Press R to try again.",
+    );
+    const img = await shot(page);
+    const [sx, sy] = await toCss(page, 296, 48 + 62);
+    assert.ok(regionStats(img, sx - 150, sy - 15, 300, 30).white > 200, "the message is drawn");
+    assert.deepEqual(log.errors, []);
     await page.close();
   });
 
