@@ -2,6 +2,7 @@
 import { makeSimulation } from "../game/engine";
 import { loadSettings } from "../game/settingsStore";
 import { MemoryStore, reason, type KeyValue } from "../game/store";
+import { drawPageIcon } from "../view/icons";
 import { App } from "./app";
 import { exposeApi } from "./api";
 import { parseParams } from "./params";
@@ -56,9 +57,21 @@ async function main(): Promise<void> {
     },
   );
   exposeApi(app);
+  setIcon();
   app.draw();
   performance.mark("evapcool-first-frame");
   app.start();
+}
+
+/** The tab's icon, drawn in code (no image file). */
+function setIcon(): void {
+  const c = document.createElement("canvas");
+  c.width = c.height = 64;
+  const ctx = c.getContext("2d");
+  const link = document.querySelector<HTMLLinkElement>('link[rel="icon"]');
+  if (!ctx || !link) return;
+  drawPageIcon(ctx, 64);
+  link.href = c.toDataURL("image/png");
 }
 
 /** Storage seen through a read-only window (loading twice must not set aside twice). */

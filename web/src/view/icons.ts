@@ -166,3 +166,49 @@ const SYMBOLS: Record<SymbolName, Painter> = {
     }
   },
 };
+
+/** The page's icon (like the desktop's window icon): atoms in a black cup on a grey tile. */
+export function drawPageIcon(ctx: CanvasRenderingContext2D, s: number): void {
+  ctx.fillStyle = "rgb(159,159,159)";
+  ctx.beginPath();
+  ctx.roundRect(0, 0, s, s, s / 6);
+  ctx.fill();
+  ctx.strokeStyle = "rgb(79,79,79)";
+  ctx.lineWidth = s / 32;
+  ctx.stroke();
+  // The cup y = k x^2 through (±0.38 s, 0.30 s) with its bottom at 0.80 s.
+  const k = (0.8 - 0.3) / (0.38 * 0.38 * s);
+  ctx.strokeStyle = BLACK;
+  ctx.lineWidth = s / 16;
+  ctx.beginPath();
+  for (let x = -0.38 * s; x <= 0.38 * s + 1e-9; x += s / 64) {
+    const y = 0.8 * s - k * x * x;
+    if (x === -0.38 * s) ctx.moveTo(s / 2 + x, y);
+    else ctx.lineTo(s / 2 + x, y);
+  }
+  ctx.stroke();
+  const r = 0.085 * s;
+  for (const [fx, fy] of [
+    [0.5, 0.7],
+    [0.34, 0.62],
+    [0.66, 0.62],
+    [0.5, 0.52],
+    [0.6, 0.3],
+  ]) {
+    const g = ctx.createRadialGradient(
+      fx * s - r / 3,
+      fy * s - r / 2,
+      r / 6,
+      fx * s,
+      fy * s - r / 4,
+      r,
+    );
+    g.addColorStop(0, "rgb(200,250,255)");
+    g.addColorStop(0.5, "rgb(30,215,245)");
+    g.addColorStop(1, "rgb(12,90,110)");
+    ctx.fillStyle = g;
+    ctx.beginPath();
+    ctx.arc(fx * s, fy * s - s / 32, r, 0, 2 * Math.PI);
+    ctx.fill();
+  }
+}
