@@ -443,6 +443,13 @@ export class App {
       window.addEventListener(type, () => (this.dirty = true), { capture: true, passive: true });
     }
     window.addEventListener("resize", () => this.resize());
+    // Another tab stored a score: show the table as it is now.
+    window.addEventListener("storage", (ev) => {
+      if (ev.key !== null && ev.key !== this.table.key) return;
+      this.table.load();
+      this.table.takeNotices().forEach((t) => this.notify(t));
+      this.dirty = true;
+    });
     window.visualViewport?.addEventListener("resize", () => this.resize());
     // A window moved to a screen of another pixel ratio: redraw sharp for that one.
     const watchRatio = () => {

@@ -82,6 +82,8 @@ export function scoresKey(settingsKey: string): string {
 
 export class HighScoreTable {
   private rows: Entry[] = [];
+  /** Results of this visit not yet written (the browser refused them so far). */
+  private unsaved: Entry[] = [];
   /** Messages for the page (damaged table set aside, storage refused...); see takeNotices. */
   notices: string[] = [];
 
@@ -99,26 +101,18 @@ export class HighScoreTable {
 
   /** (Re)read the table; a damaged or foreign one is set aside with one notice. */
   load(): void {
-    this.rows = [];
-    const text = readKey(this.kv, this.key, this.notices);
-    if (text === null) return;
+    const rows = this.read();
+    if (rows !== null) this.rows = sortRows([...rows, ...this.unsaved]);
+  }
+
+  /** The stored rows ([] if none, or set aside); null if storage cannot be read. */
+  private read(): Entry[] | null {
+    const notices: string[] = [];
+    const text = readKey(this.kv, this.key, notices);
+    this.notices.push(...notices);
+    if (text === null) return notices.length ? null : [];
     try {
-      let data: unknown;
-      try {
-        data = JSON.parse(text);
-      } catch {
-        throw new Error("not valid JSON");
-      }
-      if (typeof data !== "object" || data === null || Array.isArray(data)) {
-        throw new Error("not a table");
-      }
-      const d = data as Record<string, unknown>;
-      if (d.version !== undefined && d.version !== FORMAT_VERSION) {
-        throw new Error(`format version ${JSON.stringify(d.version)}, not ${FORMAT_VERSION}`);
-      }
-      if (!Array.isArray(d.entries)) throw new Error("no 'entries' list");
-      const rows = d.entries.map(entryFromJson);
-      this.rows = rows.sort(compareEntries).slice(0, MAX_ENTRIES);
+      return parseTable(text);
     } catch (err) {
       const moved = setAside(this.kv, this.key, text);
       const why = (err as Error).message;
@@ -127,6 +121,7 @@ export class HighScoreTable {
           ? `The stored high-score table was damaged (${why}); it was kept as "${moved}" and a new table was started.`
           : `The stored high-score table is damaged (${why}) and could not be set aside; starting an empty table.`,
       );
+      return [];
     }
   }
 
@@ -143,7 +138,12 @@ export class HighScoreTable {
     return out;
   }
 
-  /** Store a result; its 1-based rank, or null if it did not make the top 10. */
+  /**
+   * Store a result; its 1-based rank, or null if it did not make the top 10. The stored
+   * table is read again first and the result merged into it, so what another tab stored
+   * meanwhile is kept (the desktop does the same with its file). The table here is
+   * updated even if the browser refuses to save (a notice says so).
+   */
   add(name: string, score: number, seconds: number, when = new Date()): number | null {
     if (!Number.isInteger(score) || score < 0) {
       throw new RangeError(`score must be a whole number >= 0 (got ${score})`);
@@ -158,22 +158,65 @@ export class HighScoreTable {
       seconds: Math.round(seconds * 100) / 100,
       date: formatDate(when),
     };
-    const table = [...this.rows, entry].sort(compareEntries).slice(0, MAX_ENTRIES);
-    const index = table.indexOf(entry);
-    if (index < 0) return null;
-    this.rows = table;
-    this.save();
-    return index + 1;
+    this.unsaved.push(entry);
+    this.write(true);
+    const index = this.rows.indexOf(entry);
+    if (index < 0) this.unsaved = this.unsaved.filter((e) => e !== entry);
+    return index < 0 ? null : index + 1;
   }
 
   /** Empty the table and save (the page asks for confirmation first). */
   reset(): boolean {
     this.rows = [];
-    return this.save();
+    this.unsaved = [];
+    return this.write(false);
   }
 
+  /** Write the table (merged with the stored one); false and a notice on failure. */
   save(): boolean {
-    const payload = { version: FORMAT_VERSION, entries: this.rows };
-    return writeKey(this.kv, this.key, JSON.stringify(payload), "High scores", this.notices);
+    return this.write(true);
   }
+
+  private write(merge: boolean): boolean {
+    if (merge) {
+      const stored = this.read();
+      const base = stored ?? this.knownRows();
+      this.rows = sortRows([...base, ...this.unsaved]);
+    }
+    const payload = JSON.stringify({ version: FORMAT_VERSION, entries: this.rows });
+    if (!writeKey(this.kv, this.key, payload, "High scores", this.notices)) {
+      this.rows = sortRows([...this.knownRows(), ...this.unsaved]);
+      return false;
+    }
+    this.unsaved = [];
+    return true;
+  }
+
+  /** Rows here that came from storage (not this visit's unsaved ones). */
+  private knownRows(): Entry[] {
+    return this.rows.filter((e) => !this.unsaved.includes(e));
+  }
+}
+
+function sortRows(rows: Entry[]): Entry[] {
+  return rows.sort(compareEntries).slice(0, MAX_ENTRIES);
+}
+
+/** The rows of a stored table; throws Error saying what is off (damaged or foreign). */
+export function parseTable(text: string): Entry[] {
+  let data: unknown;
+  try {
+    data = JSON.parse(text);
+  } catch {
+    throw new Error("not valid JSON");
+  }
+  if (typeof data !== "object" || data === null || Array.isArray(data)) {
+    throw new Error("not a table");
+  }
+  const d = data as Record<string, unknown>;
+  if (d.version !== undefined && d.version !== FORMAT_VERSION) {
+    throw new Error(`format version ${JSON.stringify(d.version)}, not ${FORMAT_VERSION}`);
+  }
+  if (!Array.isArray(d.entries)) throw new Error("no 'entries' list");
+  return d.entries.map(entryFromJson);
 }

@@ -149,6 +149,20 @@ describe("high scores", () => {
     }
   });
 
+  test("two tabs: each result is merged into what the other stored meanwhile", () => {
+    const kv = new MemoryStore();
+    const key = scoresKey("k");
+    const a = new HighScoreTable(kv, key);
+    const b = new HighScoreTable(kv, key);
+    expect(a.add("Ann", 20, 10)).toBe(1);
+    expect(b.add("Ben", 30, 10)).toBe(1);
+    expect(b.entries.map((e) => e.name)).toEqual(["Ben", "Ann"]);
+    expect(a.add("Cy", 25, 10)).toBe(2);
+    expect(new HighScoreTable(kv, key).entries.map((e) => e.name)).toEqual(["Ben", "Cy", "Ann"]);
+    b.load();
+    expect(b.entries).toHaveLength(3);
+  });
+
   test("a browser that refuses to store gives a notice, the table lives on", () => {
     const kv = new MemoryStore();
     kv.setItem = () => {
