@@ -146,13 +146,25 @@ export class App {
     this.settings = saved;
     this.settingsDraft = saved;
     this.overrides = opts.overrides ?? {};
-    const run = this.runSettings();
-    this.game = new Game(opts.factory, { ...opts.config, ...this.configFor(run) });
+    this.game = this.firstGame();
     this.game.onWin.push(() => this.onWin());
     this.openTable();
     this.buildControls();
     this.resize();
     this.wire();
+  }
+
+  /** The first game: the address's settings, or the saved ones if the physics refuses those. */
+  private firstGame(): Game {
+    const config = this.opts.config ?? {};
+    try {
+      return new Game(this.opts.factory, { ...config, ...this.configFor(this.runSettings()) });
+    } catch (err) {
+      if (!(err instanceof RangeError) || !Object.keys(this.overrides).length) throw err;
+      this.notify(`Address: ${err.message}; playing the saved settings.`);
+      this.overrides = {};
+      return new Game(this.opts.factory, { ...config, ...this.configFor(this.runSettings()) });
+    }
   }
 
   // -- settings and the table ------------------------------------------------------------

@@ -11,11 +11,11 @@ export const FORMAT_VERSION = 1;
 export const TC_LAWS = { seed: TC_EXPONENT_SEED, cup: TC_EXPONENT_CUP } as const;
 export type TcLaw = keyof typeof TC_LAWS;
 const TC_LAW_NAMES = Object.keys(TC_LAWS) as TcLaw[];
-/** Below 3 px an atom is a speck on a projector; above 20 px fewer than 49 fit. */
-export const RADIUS_MIN = 3;
+/** The applet's ranges (the desktop's limits.APPLET_RADIUS and APPLET_ATOMS). */
+export const RADIUS_MIN = 1;
 export const RADIUS_MAX = 20;
-/** Hard cap whatever the radius, like the desktop's. */
-export const ATOMS_MAX = 2000;
+/** Hard cap whatever the radius; maxAtoms also caps by what fits in the cup. */
+export const ATOMS_MAX = 20_000;
 
 export interface Settings {
   nAtoms: number;

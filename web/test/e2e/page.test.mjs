@@ -374,7 +374,7 @@ describe("the page", () => {
     await page.reload();
     await page.waitForFunction(() => window.evapcool !== undefined);
     const notes = (await state(page)).notices.join("\n");
-    assert.match(notes, /radius must be a number from 3 to 20 px \(got 'big'\)/);
+    assert.match(notes, /radius must be a number from 1 to 20 px \(got 'big'\)/);
     assert.match(
       notes,
       /n_atoms must be a whole number from 1 to 62 for radius 12 \(got 1000000000\)/,
@@ -395,6 +395,18 @@ describe("the page", () => {
     const img = await shot(page);
     const [sx, sy] = await toCss(page, 296, 48 + 62);
     assert.ok(regionStats(img, sx - 150, sy - 15, 300, 30).white > 200, "the message is drawn");
+    assert.deepEqual(log.errors, []);
+    await page.close();
+  });
+
+  test("address options the physics refuses: one message, the saved settings played", async () => {
+    const { page, log } = await openPage(browser, { query: "?atoms=99999&radius=1" });
+    const s = await state(page);
+    assert.equal(s.nAtoms, 49);
+    assert.match(
+      s.notices.join("\n"),
+      /^Address: .*99999 atoms of radius 1 do not fit.*; playing the saved settings\.$/m,
+    );
     assert.deepEqual(log.errors, []);
     await page.close();
   });

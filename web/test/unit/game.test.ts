@@ -52,14 +52,16 @@ describe("cup capacity", () => {
     expect(cupCapacity(2.5)).toBe(1498);
     expect(cupCapacity(7.3)).toBe(158);
     expect(maxAtoms(3)).toBe(1038);
-    expect(maxAtoms(1)).toBe(2000);
+    expect(step({ ...DEFAULTS, radius: 1 }, "radius", -1).radius).toBe(1);
+    expect(maxAtoms(1)).toBe(9508);
+    expect(maxAtoms(0.5)).toBe(20000);
   });
 });
 
 describe("settings", () => {
   test("one clear message per bad value, as the desktop words it", () => {
-    expect(() => validate({ ...DEFAULTS, radius: 2 })).toThrow(
-      "radius must be a number from 3 to 20 px (got 2)",
+    expect(() => validate({ ...DEFAULTS, radius: 0.5 })).toThrow(
+      "radius must be a number from 1 to 20 px (got 0.5)",
     );
     expect(() => validate({ ...DEFAULTS, nAtoms: 63 })).toThrow(
       "n_atoms must be a whole number from 1 to 62 for radius 12 (got 63)",
@@ -71,7 +73,7 @@ describe("settings", () => {
     expect(s).toEqual({ nAtoms: 49, radius: 12, tcLaw: "seed", escape: "knife" });
     expect(notices).toEqual([
       "Settings: ignored unknown entries colour.",
-      "Settings: radius must be a number from 3 to 20 px (got 30); using the default 12.",
+      "Settings: radius must be a number from 1 to 20 px (got 30); using the default 12.",
       "Settings: n_atoms must be a whole number from 1 to 62 for radius 12 (got 'many'); using the default 49.",
     ]);
   });
