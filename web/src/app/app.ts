@@ -422,9 +422,11 @@ export class App {
     this.overlay = null;
     const draft = this.settingsDraft;
     if (!save || sameSettings(draft, this.settings)) return;
-    this.settings = draft;
+    const base = this.settings;
     this.overrides = {}; // a choice made here beats the address for the rest of the visit
-    const problems = saveSettings(this.opts.storage, draft);
+    // What was stored: this draft's changes over another tab's choices made meanwhile.
+    const { saved, notices: problems } = saveSettings(this.opts.storage, draft, base);
+    this.settings = saved;
     problems.forEach((t) => this.notify(t));
     if (!problems.length) this.notify("Settings saved. Press R (restart) to play with them.");
   }

@@ -100,9 +100,18 @@ describe("settings", () => {
     );
     expect([...kv.map.values()]).toEqual(["{not json"]);
     expect(loadSettings(kv)[1]).toEqual([]);
-    expect(saveSettings(kv, { ...DEFAULTS, nAtoms: 60 })).toEqual([]);
+    expect(saveSettings(kv, { ...DEFAULTS, nAtoms: 60 }).notices).toEqual([]);
     expect(loadSettings(kv)[0].nAtoms).toBe(60);
     expect(() => saveSettings(kv, { ...DEFAULTS, nAtoms: 0 })).toThrow(RangeError);
+  });
+
+  test("two tabs: saving writes only the fields this tab changed", () => {
+    const kv = new MemoryStore();
+    const base = { ...DEFAULTS };
+    saveSettings(kv, { ...base, escape: "knife" }, base); // tab A
+    const { saved } = saveSettings(kv, { ...base, tcLaw: "cup" }, base); // tab B
+    expect(saved).toEqual({ ...DEFAULTS, escape: "knife", tcLaw: "cup" });
+    expect(loadSettings(kv)[0]).toEqual(saved);
   });
 });
 
