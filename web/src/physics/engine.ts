@@ -9,7 +9,7 @@
  * - each atom keeps only its earliest event (wall, exit, pair, or crossing a cell edge),
  *   keyed (time, rank, a, b) so ties fall as in the reference engine: crossings first (they
  *   change no state), then solo events by atom index, then pairs by (lower, higher) index;
- *   the keys sit in an indexed 4-ary heap of all atoms;
+ *   the keys sit in an event calendar (queue.ts);
  * - a pair event remembers the partner's event counter and is re-predicted if the partner
  *   has changed since (lazy invalidation);
  * - trapped atoms live in a uniform grid of cells 1.1 contact distances wide, its edge cells
@@ -18,7 +18,12 @@
  * - stored states move only at an atom's real events (lazy positions); escaped atoms leave
  *   the grid and have only their exit event.
  *
- * Everything lives in typed arrays allocated once: no allocation per event.
+ * Memory: atom i of the world lives in row row[i] of a few tables whose rows fill cache
+ * lines (S: stored state; I: integers; E: event times), and every few events per atom the
+ * rows are renumbered in cell order, so the atoms of neighbouring cells sit next to each
+ * other. What orders events or is seen outside (tie-break indices, the log, the knife's
+ * order) uses the world index, never the row. Everything is allocated once: no allocation
+ * per event.
  */
 import {
   ESCAPED,
@@ -35,6 +40,28 @@ import {
   WIN_NORMAL_SPEED_FLOOR,
 } from "./constants";
 import {
+  IO_A,
+  IO_G,
+  IO_KEEP,
+  IO_M1,
+  IO_M2,
+  IO_OUT,
+  IO_RX,
+  IO_RY,
+  IO_SIZE,
+  IO_VMIN,
+  IO_VX,
+  IO_VX1,
+  IO_VX2,
+  IO_VY,
+  IO_VY1,
+  IO_VY2,
+  IO_T0,
+  IO_X,
+  IO_XL,
+  IO_XR,
+  IO_Y,
+  IO_YB,
   atomEnergy,
   bounceWall,
   collidePair,
@@ -46,8 +73,9 @@ import {
   settleWall,
   wallContactTime,
 } from "./kernels";
+import { EventQueue } from "./queue";
 
-// Stored state: one row of 8 floats (64 bytes, a cache line) per atom.
+// S, 8 floats a row: the stored state at the atom's own time, radius, mass, world index.
 const X = 0;
 const Y = 1;
 const VX = 2;
@@ -55,7 +83,30 @@ const VY = 3;
 const T = 4;
 const R = 5;
 const M = 6;
-const ROW = 8;
+const SID = 7;
+const SW = 8;
+// I, 16 integers a row: lifecycle, event counter, cell and the previous row in it, the real
+// event (kind, partner row, partner's counter, key parts), the crossing (axis, target cell).
+const I_ST = 0;
+const I_CNT = 1;
+const I_CX = 2;
+const I_CY = 3;
+const I_PRV = 4;
+const I_KIND = 5;
+const I_ARG = 6;
+const I_PC = 7;
+const I_RANK = 8;
+const I_RA = 9;
+const I_RB = 10;
+const I_XK = 11;
+const I_XT = 12;
+const I_ID = 13;
+const IW = 16;
+// E, 4 floats a row: real-event time, crossing time, the time of the arc's last y crossing.
+const E_RT = 0;
+const E_CT = 1;
+const E_TLY = 2;
+const EW = 4;
 
 // Internal event kinds.
 const K_NONE = 0;
@@ -74,6 +125,8 @@ const R_PAIR = 1;
 const CELL_FACTOR = 1.1;
 /** At most this many cells per atom (bounds memory for tiny, sparse atoms). */
 const MAX_CELLS_PER_ATOM = 8;
+/** Rows are put in cell order, and the queue's bins fitted, every this many events per atom. */
+const RENUMBER_EVENTS_PER_ATOM = 8;
 
 /** Everything an engine needs besides the atoms. */
 export interface EngineSetup {
@@ -122,57 +175,35 @@ export class Engine {
   readonly tcExponent: number;
   readonly recordEvents: boolean;
 
-  // -- the world: stored states at their own times, lifecycle, clock, sums ---------------
-  /** Rows of (x, y, vx, vy, t, radius, mass, -) per atom: the stored (lazy) states. */
-  readonly S: Float64Array;
-  readonly status: Int8Array;
-  /** Events per atom (lazy invalidation of pairs). */
-  readonly counter: Int32Array;
-  time = 0;
+  // -- the world --------------------------------------------------------------------------
+  private S: Float64Array;
+  private I: Int32Array;
+  private E: Float64Array;
+  /** row[i]: the row of world atom i. */
+  private readonly row: Int32Array;
+  time = 0.5;
   trapHeight: number;
   xRim: number;
   won = false;
   nTrapped = 0;
   pairCount = 0;
   wallCount = 0;
-  energySum = 0;
-  initialTemperature = 0;
-  tc0 = 0;
+  energySum = 0.5;
+  initialTemperature = 0.5;
+  tc0 = 0.5;
 
-  // -- the pending events ---------------------------------------------------------------
-  /** Real event (wall, exit, pair): time, kind, partner, partner's counter, key parts. */
-  private readonly rt: Float64Array;
-  private readonly rKind: Uint8Array;
-  private readonly rArg: Int32Array;
-  private readonly rPc: Int32Array;
-  private readonly rRank: Int8Array;
-  private readonly rA: Int32Array;
-  private readonly rB: Int32Array;
-  /** Cell crossing: time, axis kind, target cell; time of the arc's last y crossing. */
-  private readonly ct: Float64Array;
-  private readonly xk: Uint8Array;
-  private readonly xt: Int32Array;
-  private readonly tly: Float64Array;
-  /** Heap key parts beside the time (rank, a, b). */
-  private readonly kRank: Int8Array;
-  private readonly kA: Int32Array;
-  private readonly kB: Int32Array;
-  /** Indexed 4-ary heap of all atoms: heap[p] is an atom, heapT[p] its key time. */
-  private readonly heap: Int32Array;
-  private readonly heapT: Float64Array;
-  private readonly hpos: Int32Array;
+  private readonly queue: EventQueue;
+  /** Events since the rows were last renumbered. */
+  private sinceRenumber = 0;
 
-  // -- the grid -------------------------------------------------------------------------
+  // -- the grid: head of every cell, then the next row in cell of every row -----------------
   readonly nx: number;
   readonly ny: number;
   readonly cs: number;
   private readonly gx0: number;
   private readonly gy0: number;
-  private readonly head: Int32Array;
-  private readonly next: Int32Array;
-  private readonly prev: Int32Array;
-  private readonly cx: Int32Array;
-  private readonly cy: Int32Array;
+  private readonly nc: number;
+  private next: Int32Array;
 
   // -- log and statistics -----------------------------------------------------------------
   private logKind = new Uint8Array(0);
@@ -182,8 +213,15 @@ export class Engine {
   nLog = 0;
   crossingCount = 0;
   staleCount = 0;
+  renumberCount = 0;
 
-  private readonly out = new Float64Array(4);
+  /** The velocity kernels' in/out buffer. */
+  private readonly io = new Float64Array(IO_SIZE);
+  /** Spare tables for renumbering (swapped with the live ones). */
+  private S2: Float64Array;
+  private I2: Int32Array;
+  private E2: Float64Array;
+  private readonly order: Int32Array;
 
   constructor(setup: EngineSetup, atoms: EngineAtoms) {
     const n = atoms.x.length;
@@ -200,12 +238,17 @@ export class Engine {
     this.trapHeight = setup.trapHeight;
     this.xRim = Math.sqrt(setup.trapHeight / setup.curvature);
 
-    const S = new Float64Array(ROW * n);
-    this.S = S;
-    this.status = new Int8Array(n);
-    this.counter = new Int32Array(n);
+    this.S = new Float64Array(SW * n);
+    this.I = new Int32Array(IW * n);
+    this.E = new Float64Array(EW * n);
+    this.S2 = new Float64Array(SW * n);
+    this.I2 = new Int32Array(IW * n);
+    this.E2 = new Float64Array(EW * n);
+    this.order = new Int32Array(n);
+    this.row = new Int32Array(n);
+    const S = this.S;
     for (let i = 0; i < n; i++) {
-      const b = ROW * i;
+      const b = SW * i;
       S[b + X] = atoms.x[i];
       S[b + Y] = atoms.y[i];
       S[b + VX] = atoms.vx[i];
@@ -213,7 +256,12 @@ export class Engine {
       S[b + T] = atoms.t[i];
       S[b + R] = atoms.radius[i];
       S[b + M] = atoms.mass[i];
-      this.status[i] = atoms.status[i];
+      S[b + SID] = i;
+      this.I[IW * i + I_ST] = atoms.status[i];
+      this.I[IW * i + I_ID] = i;
+      this.I[IW * i + I_PRV] = -1;
+      this.E[EW * i + E_TLY] = -Infinity;
+      this.row[i] = i;
       if (atoms.status[i] === TRAPPED) this.nTrapped++;
     }
     this.time = atoms.time;
@@ -226,42 +274,22 @@ export class Engine {
     // seed Eq. (46): Tc0 is 3/4 of the starting temperature.
     this.tc0 = 0.75 * this.initialTemperature;
 
-    this.rt = new Float64Array(n);
-    this.rKind = new Uint8Array(n);
-    this.rArg = new Int32Array(n);
-    this.rPc = new Int32Array(n);
-    this.rRank = new Int8Array(n);
-    this.rA = new Int32Array(n);
-    this.rB = new Int32Array(n);
-    this.ct = new Float64Array(n);
-    this.xk = new Uint8Array(n);
-    this.xt = new Int32Array(n);
-    this.tly = new Float64Array(n).fill(-Infinity);
-    this.kRank = new Int8Array(n);
-    this.kA = new Int32Array(n);
-    this.kB = new Int32Array(n);
-    this.heap = new Int32Array(n);
-    this.heapT = new Float64Array(n);
-    this.hpos = new Int32Array(n);
-
+    this.queue = new EventQueue(n);
     const grid = this.gridShape();
     this.cs = grid.cs;
     this.nx = grid.nx;
     this.ny = grid.ny;
     this.gx0 = -0.5 * grid.nx * grid.cs;
     this.gy0 = -0.5 * grid.cs;
-    this.head = new Int32Array(grid.nx * grid.ny).fill(-1);
-    this.next = new Int32Array(n).fill(-1);
-    this.prev = new Int32Array(n).fill(-1);
-    this.cx = new Int32Array(n);
-    this.cy = new Int32Array(n);
+    this.nc = grid.nx * grid.ny;
+    this.next = new Int32Array(this.nc + n).fill(-1);
     this.setup();
   }
 
-  /** Sum of trapped energies added in index order (the engines continue it). */
+  /** Sum of trapped energies added in world index order (the engines continue it). */
   sequentialEnergySum(): number {
     let total = 0.0;
-    for (let i = 0; i < this.n; i++) if (this.status[i] === TRAPPED) total += this.energy(i);
+    for (let i = 0; i < this.n; i++) if (this.statusOf(i) === TRAPPED) total += this.atomEnergy(i);
     return total;
   }
 
@@ -275,11 +303,11 @@ export class Engine {
     const S = this.S;
     let rMax = 0;
     let top = 1;
-    for (let i = 0; i < this.n; i++) {
-      if (this.status[i] !== TRAPPED) continue;
-      const b = ROW * i;
+    for (let r = 0; r < this.n; r++) {
+      if (this.I[IW * r + I_ST] !== TRAPPED) continue;
+      const b = SW * r;
       if (S[b + R] > rMax) rMax = S[b + R];
-      const h = this.energy(i) / (S[b + M] * this.g);
+      const h = this.energy(r) / (S[b + M] * this.g);
       if (h > top) top = h;
     }
     const cs = rMax > 0 ? CELL_FACTOR * 2 * rMax : 1;
@@ -295,105 +323,67 @@ export class Engine {
     }
   }
 
-  private energy(i: number): number {
-    const b = ROW * i;
-    return atomEnergy(this.S[b + M], this.S[b + Y], this.S[b + VX], this.S[b + VY], this.g);
+  /** Energy of row r from its stored state (conserved in flight). */
+  private energy(r: number): number {
+    const S = this.S;
+    const b = SW * r;
+    return atomEnergy(S[b + M], S[b + Y], S[b + VX], S[b + VY], this.g);
   }
 
-  /** Put trapped atoms in their cells (positions now) and predict every atom. */
+  /** Put trapped atoms in their cells (positions now), predict every atom, file the keys. */
   private setup(): void {
     const S = this.S;
     const halfG = 0.5 * this.g;
     const now = this.time;
-    for (let i = 0; i < this.n; i++) {
-      if (this.status[i] !== TRAPPED) continue;
-      const b = ROW * i;
+    for (let r = 0; r < this.n; r++) {
+      if (this.I[IW * r + I_ST] !== TRAPPED) continue;
+      const b = SW * r;
       const dt = now - S[b + T];
       const xn = flightX(S[b + X], S[b + VX], dt);
       const yn = flightY(S[b + Y], S[b + VY], halfG, dt);
-      this.link(i, this.clampCell(xn, this.gx0, this.nx), this.clampCell(yn, this.gy0, this.ny));
+      this.link(r, this.clampCell(xn, this.gx0, this.nx), this.clampCell(yn, this.gy0, this.ny));
     }
-    for (let i = 0; i < this.n; i++) {
-      this.heap[i] = i;
-      this.hpos[i] = i;
-      this.heapT[i] = Infinity;
+    for (let r = 0; r < this.n; r++) {
+      this.predictReal(r);
+      this.predictCross(r);
+      this.loadKey(r);
     }
-    for (let i = 0; i < this.n; i++) {
-      this.predictReal(i);
-      this.predictCross(i);
-      this.setKey(i);
-    }
+    this.queue.rebuild(now);
+    this.sinceRenumber = 0;
   }
 
-  // -- heap ------------------------------------------------------------------------------
-  /** True if atom x's key (tx, rank, a, b) comes before atom y's. */
-  private less(x: number, tx: number, y: number, ty: number): boolean {
-    if (tx !== ty) return tx < ty;
-    const kr = this.kRank;
-    if (kr[x] !== kr[y]) return kr[x] < kr[y];
-    const ka = this.kA;
-    if (ka[x] !== ka[y]) return ka[x] < ka[y];
-    return this.kB[x] < this.kB[y];
-  }
-
-  /** Atom i's key time changed to t: move it up or down to its place. */
-  private sift(i: number, t: number): void {
-    const heap = this.heap;
-    const heapT = this.heapT;
-    const hpos = this.hpos;
-    const n = this.n;
-    let p = hpos[i];
-    while (p > 0) {
-      const q = (p - 1) >> 2;
-      const j = heap[q];
-      const tj = heapT[q];
-      if (!this.less(i, t, j, tj)) break;
-      heap[p] = j;
-      heapT[p] = tj;
-      hpos[j] = p;
-      p = q;
-    }
-    for (;;) {
-      let c = 4 * p + 1;
-      if (c >= n) break;
-      const end = c + 4 <= n ? c + 4 : n;
-      let cj = heap[c];
-      let tc = heapT[c];
-      for (let d = c + 1; d < end; d++) {
-        const dj = heap[d];
-        const td = heapT[d];
-        if (this.less(dj, td, cj, tc)) {
-          c = d;
-          cj = dj;
-          tc = td;
-        }
-      }
-      if (!this.less(cj, tc, i, t)) break;
-      heap[p] = cj;
-      heapT[p] = tc;
-      hpos[cj] = p;
-      p = c;
-    }
-    heap[p] = i;
-    heapT[p] = t;
-    hpos[i] = p;
-  }
-
-  /** Atom i's key is the earlier of its crossing and its real event. */
-  private setKey(i: number): void {
-    let t: number;
-    if (this.ct[i] <= this.rt[i]) {
-      t = this.ct[i];
-      this.kRank[i] = R_CROSS;
-      this.kA[i] = i;
-      this.kB[i] = this.xk[i];
+  // -- keys ------------------------------------------------------------------------------
+  /** Row r's key is the earlier of its crossing and its real event; re-file it. */
+  private setKey(r: number): void {
+    const I = this.I;
+    const i = IW * r;
+    const e = EW * r;
+    const ct = this.E[e + E_CT];
+    const rt = this.E[e + E_RT];
+    const q = this.queue;
+    if (ct <= rt) {
+      q.keyT[r] = ct;
+      q.file(r, R_CROSS, I[i + I_ID], I[i + I_XK]);
     } else {
-      t = this.rt[i];
-      this.kRank[i] = this.rRank[i];
-      this.kA[i] = this.rA[i];
-      this.kB[i] = this.rB[i];
+      q.keyT[r] = rt;
+      q.file(r, I[i + I_RANK], I[i + I_RA], I[i + I_RB]);
     }
-    this.sift(i, t);
+  }
+
+  private loadKey(r: number): void {
+    const I = this.I;
+    const i = IW * r;
+    const e = EW * r;
+    const ct = this.E[e + E_CT];
+    const rt = this.E[e + E_RT];
+    const q = this.queue;
+    if (ct <= rt) {
+      q.keyT[r] = ct;
+      q.load(r, R_CROSS, I[i + I_ID], I[i + I_XK]);
+    } else {
+      q.keyT[r] = rt;
+      q.load(r, I[i + I_RANK], I[i + I_RA], I[i + I_RB]);
+    }
   }
 
   // -- grid ------------------------------------------------------------------------------
@@ -404,57 +394,66 @@ export class Engine {
     return c;
   }
 
-  private link(i: number, ci: number, cj: number): void {
-    this.cx[i] = ci;
-    this.cy[i] = cj;
+  private link(r: number, ci: number, cj: number): void {
+    const I = this.I;
+    const next = this.next;
+    I[IW * r + I_CX] = ci;
+    I[IW * r + I_CY] = cj;
     const c = cj * this.nx + ci;
-    const q = this.head[c];
-    this.next[i] = q;
-    this.prev[i] = -1;
-    if (q >= 0) this.prev[q] = i;
-    this.head[c] = i;
+    const q = next[c];
+    next[this.nc + r] = q;
+    I[IW * r + I_PRV] = -1;
+    if (q >= 0) I[IW * q + I_PRV] = r;
+    next[c] = r;
   }
 
-  private unlink(i: number): void {
-    const p = this.prev[i];
-    const q = this.next[i];
-    if (p >= 0) this.next[p] = q;
-    else if (this.head[this.cy[i] * this.nx + this.cx[i]] === i)
-      this.head[this.cy[i] * this.nx + this.cx[i]] = q;
-    if (q >= 0) this.prev[q] = p;
-    this.next[i] = -1;
-    this.prev[i] = -1;
+  private unlink(r: number): void {
+    const I = this.I;
+    const next = this.next;
+    const p = I[IW * r + I_PRV];
+    const q = next[this.nc + r];
+    const c = I[IW * r + I_CY] * this.nx + I[IW * r + I_CX];
+    if (p >= 0) next[this.nc + p] = q;
+    else if (next[c] === r) next[c] = q;
+    if (q >= 0) I[IW * q + I_PRV] = p;
+    next[this.nc + r] = -1;
+    I[IW * r + I_PRV] = -1;
   }
 
   // -- predictions -----------------------------------------------------------------------
   /**
-   * Pairs of trapped atom i with the atoms of cells [xlo, xhi] x [ylo, yhi] (seed Eqs.
-   * 15-19). An earlier pair replaces i's real event; on a tie the solo event stays and
-   * pairs go in (lower, higher) index order, as in the reference engine.
+   * Pairs of trapped row r with the rows of cells [xlo, xhi] x [ylo, yhi] (seed Eqs. 15-19).
+   * An earlier pair replaces r's real event; on a tie the solo event stays and pairs go in
+   * (lower, higher) world index order, as in the reference engine.
    */
-  private scan(i: number, xlo: number, xhi: number, ylo: number, yhi: number): void {
+  private scan(r: number, xlo: number, xhi: number, ylo: number, yhi: number): void {
     const S = this.S;
-    const head = this.head;
+    const E = this.E;
+    const I = this.I;
     const next = this.next;
+    const nc = this.nc;
     const nx = this.nx;
     const g = this.g;
-    const bi = ROW * i;
-    const x = S[bi + X];
-    const y = S[bi + Y];
-    const vx = S[bi + VX];
-    const vy = S[bi + VY];
-    const t0 = S[bi + T];
-    const ri = S[bi + R];
-    let bt = this.rt[i];
-    let pair = this.rRank[i] === R_PAIR;
-    let ba = this.rA[i];
-    let bb = this.rB[i];
+    const b = SW * r;
+    const x = S[b + X];
+    const y = S[b + Y];
+    const vx = S[b + VX];
+    const vy = S[b + VY];
+    const t0 = S[b + T];
+    const ri = S[b + R];
+    const ii = S[b + SID];
+    const ir = IW * r;
+    let bt = E[EW * r + E_RT];
+    let pair = I[ir + I_RANK] === R_PAIR;
+    let ba = I[ir + I_RA];
+    let bb = I[ir + I_RB];
     let best = -1;
     for (let yy = ylo; yy <= yhi; yy++) {
+      const rowStart = yy * nx;
       for (let xx = xlo; xx <= xhi; xx++) {
-        for (let j = head[yy * nx + xx]; j >= 0; j = next[j]) {
-          if (j === i) continue;
-          const bj = ROW * j;
+        for (let j = next[rowStart + xx]; j >= 0; j = next[nc + j]) {
+          if (j === r) continue;
+          const bj = SW * j;
           const t = pairContactTime(
             x,
             y,
@@ -470,8 +469,9 @@ export class Engine {
             g,
           );
           if (t <= bt) {
-            const lo = i < j ? i : j;
-            const hi = i < j ? j : i;
+            const jj = S[bj + SID]; // rare: only now the partner's world index
+            const lo = ii < jj ? ii : jj;
+            const hi = ii < jj ? jj : ii;
             if (t < bt || (pair && (lo < ba || (lo === ba && hi < bb)))) {
               bt = t;
               pair = true;
@@ -484,51 +484,57 @@ export class Engine {
       }
     }
     if (best >= 0) {
-      this.rt[i] = bt;
-      this.rRank[i] = R_PAIR;
-      this.rA[i] = ba;
-      this.rB[i] = bb;
-      this.rKind[i] = K_PAIR;
-      this.rArg[i] = best;
-      this.rPc[i] = this.counter[best];
+      E[EW * r + E_RT] = bt;
+      I[ir + I_RANK] = R_PAIR;
+      I[ir + I_RA] = ba;
+      I[ir + I_RB] = bb;
+      I[ir + I_KIND] = K_PAIR;
+      I[ir + I_ARG] = best;
+      I[ir + I_PC] = I[IW * best + I_CNT];
     }
   }
 
-  /** Atom i's real event: wall (SPEC 2.1) or pair if trapped, exit if escaped. */
-  private predictReal(i: number): void {
+  /** Row r's real event: wall (SPEC 2.1) or pair if trapped, exit if escaped. */
+  private predictReal(r: number): void {
     const S = this.S;
-    const b = ROW * i;
-    const st = this.status[i];
+    const I = this.I;
+    const b = SW * r;
+    const ir = IW * r;
+    const st = I[ir + I_ST];
     let t = Infinity;
     let kind = K_NONE;
-    if (st === TRAPPED) {
-      t = wallContactTime(S[b + X], S[b + Y], S[b + VX], S[b + VY], S[b + T], this.a, this.g);
-      kind = K_WALL;
-    } else if (st === ESCAPED) {
-      const r = S[b + R];
-      t = exitTime(
-        S[b + X],
-        S[b + Y],
-        S[b + VX],
-        S[b + VY],
-        S[b + T],
-        this.g,
-        this.xLeft - r,
-        this.xRight + r,
-        this.yBottom - r,
-      );
-      kind = K_EXIT;
+    if (st === TRAPPED || st === ESCAPED) {
+      const io = this.io;
+      io[IO_X] = S[b + X];
+      io[IO_Y] = S[b + Y];
+      io[IO_VX] = S[b + VX];
+      io[IO_VY] = S[b + VY];
+      io[IO_T0] = S[b + T];
+      io[IO_G] = this.g;
+      if (st === TRAPPED) {
+        io[IO_A] = this.a;
+        wallContactTime(io);
+        kind = K_WALL;
+      } else {
+        const rad = S[b + R];
+        io[IO_XL] = this.xLeft - rad;
+        io[IO_XR] = this.xRight + rad;
+        io[IO_YB] = this.yBottom - rad;
+        exitTime(io);
+        kind = K_EXIT;
+      }
+      t = io[IO_OUT];
     }
-    this.rt[i] = t;
-    this.rRank[i] = R_SOLO;
-    this.rA[i] = i;
-    this.rB[i] = 0;
-    this.rKind[i] = kind;
+    this.E[EW * r + E_RT] = t;
+    I[ir + I_RANK] = R_SOLO;
+    I[ir + I_RA] = I[ir + I_ID];
+    I[ir + I_RB] = 0;
+    I[ir + I_KIND] = kind;
     if (st === TRAPPED && !this.won) {
-      const ci = this.cx[i];
-      const cj = this.cy[i];
+      const ci = I[ir + I_CX];
+      const cj = I[ir + I_CY];
       this.scan(
-        i,
+        r,
         ci > 0 ? ci - 1 : 0,
         ci < this.nx - 1 ? ci + 1 : this.nx - 1,
         cj > 0 ? cj - 1 : 0,
@@ -538,18 +544,21 @@ export class Engine {
   }
 
   /**
-   * Atom i's next cell crossing (none unless trapped and the game is on). x: straight to
-   * the next edge along vx. y: up through the top edge (first root, if the arc passes it),
-   * else down through the bottom edge; roots at or before the arc's last y crossing (tly)
-   * are ones already taken. Edge cells reach to infinity: no outer edge.
+   * Row r's next cell crossing (none unless trapped and the game is on). x: straight to the
+   * next edge along vx. y: up through the top edge (first root, if the arc passes it), else
+   * down through the bottom edge; roots at or before the arc's last y crossing (TLY) are
+   * ones already taken. Edge cells reach to infinity: no outer edge.
    */
-  private predictCross(i: number): void {
+  private predictCross(r: number): void {
+    const I = this.I;
+    const E = this.E;
+    const ir = IW * r;
     let bt = Infinity;
     let bk = K_NONE;
     let barg = 0;
-    if (this.status[i] === TRAPPED && !this.won) {
+    if (I[ir + I_ST] === TRAPPED && !this.won) {
       const S = this.S;
-      const b = ROW * i;
+      const b = SW * r;
       const g = this.g;
       const cs = this.cs;
       const x = S[b + X];
@@ -557,8 +566,8 @@ export class Engine {
       const vx = S[b + VX];
       const vy = S[b + VY];
       const t0 = S[b + T];
-      const ci = this.cx[i];
-      const cj = this.cy[i];
+      const ci = I[ir + I_CX];
+      const cj = I[ir + I_CY];
       if (vx > 0.0 && ci < this.nx - 1) {
         bt = t0 + (this.gx0 + (ci + 1) * cs - x) / vx;
         bk = K_CROSS_X;
@@ -570,7 +579,7 @@ export class Engine {
       }
       let tc = Infinity;
       let tgt = 0;
-      const tl = this.tly[i];
+      const tl = E[EW * r + E_TLY];
       if (vy > 0.0 && cj < this.ny - 1) {
         const d = this.gy0 + (cj + 1) * cs - y;
         const disc = vy * vy - 2.0 * g * d;
@@ -604,33 +613,36 @@ export class Engine {
         barg = tgt;
       }
     }
-    this.ct[i] = bt;
-    this.xk[i] = bk;
-    this.xt[i] = barg;
+    E[EW * r + E_CT] = bt;
+    I[ir + I_XK] = bk;
+    I[ir + I_XT] = barg;
   }
 
-  /** Everything about atom i from its stored state. */
-  private predict(i: number): void {
-    this.predictReal(i);
-    this.predictCross(i);
-    this.setKey(i);
+  /** Everything about row r from its stored state. */
+  private predict(r: number): void {
+    this.predictReal(r);
+    this.predictCross(r);
+    this.setKey(r);
   }
 
   // -- state changes ---------------------------------------------------------------------
-  /** Carry atom i's stored state to time t (exact free flight, seed Eqs. 3-4). */
-  private move(i: number, t: number): void {
+  /** Carry row r's stored state to the clock (exact free flight, seed Eqs. 3-4). */
+  private move(r: number): void {
+    const t = this.time;
     const S = this.S;
-    const b = ROW * i;
+    const b = SW * r;
     const dt = t - S[b + T];
     S[b + X] = flightX(S[b + X], S[b + VX], dt);
     S[b + Y] = flightY(S[b + Y], S[b + VY], 0.5 * this.g, dt);
     S[b + VY] = flightVy(S[b + VY], this.g, dt);
     S[b + T] = t;
-    this.tly[i] = -Infinity; // a new arc: none of its y crossings taken yet
+    this.E[EW * r + E_TLY] = -Infinity; // a new arc: none of its y crossings taken yet
   }
 
-  private log(kind: number, i: number, j: number, t: number): void {
+  /** Log an event at the clock's time (world indices; j = -1 for solo events). */
+  private log(kind: number, i: number, j: number): void {
     if (!this.recordEvents) return;
+    const t = this.time;
     const k = this.nLog;
     if (k === this.logT.length) {
       const cap = Math.max(1024, 2 * k);
@@ -650,7 +662,7 @@ export class Engine {
     this.nLog = k + 1;
   }
 
-  /** Event k of the log: [kind, i, j, time]. */
+  /** Event k of the log: [kind, i, j, time] with world indices. */
   logEntry(k: number): [number, number, number, number] {
     return [this.logKind[k], this.logI[k], this.logJ[k], this.logT[k]];
   }
@@ -667,43 +679,106 @@ export class Engine {
     if (this.energySum / n < this.criticalTemperatureOf(n)) this.won = true;
   }
 
-  /** Atom i leaves the trapped set (over the rim or by the knife). */
-  private remove(i: number, newStatus: number): void {
-    this.status[i] = newStatus;
+  /** Row r leaves the trapped set (over the rim or by the knife). */
+  private remove(r: number, newStatus: number): void {
+    const I = this.I;
+    I[IW * r + I_ST] = newStatus;
     this.nTrapped--;
-    this.energySum -= this.energy(i);
-    this.counter[i] = (this.counter[i] + 1) | 0;
-    this.unlink(i);
-    this.predict(i);
+    this.energySum -= this.energy(r);
+    I[IW * r + I_CNT] = (I[IW * r + I_CNT] + 1) | 0;
+    this.unlink(r);
+    this.predict(r);
     this.checkWin();
   }
 
-  /** Remove trapped atom i at once if its energy exceeds m g H; true if removed. */
-  private knifeCut(i: number, t: number): boolean {
+  /** Remove trapped row r now if its energy exceeds m g H; true if removed. */
+  private knifeCut(r: number): boolean {
     if (!this.knife) return false;
-    const m = this.S[ROW * i + M];
-    if (this.energy(i) > m * this.g * this.trapHeight) {
-      this.log(EV_KNIFE, i, -1, t);
-      this.remove(i, GONE);
+    const m = this.S[SW * r + M];
+    if (this.energy(r) > m * this.g * this.trapHeight) {
+      this.log(EV_KNIFE, this.I[IW * r + I_ID], -1);
+      this.remove(r, GONE);
       return true;
     }
     return false;
   }
 
+  /**
+   * Renumber the rows in cell order (row-major), the atoms off the grid last: the atoms of
+   * neighbouring cells then sit next to each other in memory and the pair scans stay in the
+   * caches. Moves every table row, relabels partners, rebuilds the cell lists and re-files
+   * the queue. Events, their keys (world indices) and so the event order are unchanged.
+   */
+  private renumber(): void {
+    const n = this.n;
+    const nc = this.nc;
+    const next = this.next;
+    const order = this.order; // order[new row] = old row
+    const fresh = this.row; // reused below as old row -> new row via I2's scratch
+    let k = 0;
+    for (let c = 0; c < nc; c++) for (let j = next[c]; j >= 0; j = next[nc + j]) order[k++] = j;
+    const linked = k;
+    const I = this.I;
+    for (let r = 0; r < n; r++) {
+      const i = I[IW * r + I_ID];
+      fresh[i] = -1;
+    }
+    for (let q = 0; q < linked; q++) fresh[I[IW * order[q] + I_ID]] = q;
+    for (let r = 0; r < n; r++) if (fresh[I[IW * r + I_ID]] < 0) order[k++] = r;
+    for (let q = linked; q < n; q++) fresh[I[IW * order[q] + I_ID]] = q;
+    // Move the rows into the spare tables, then swap.
+    const S = this.S;
+    const E = this.E;
+    const S2 = this.S2;
+    const I2 = this.I2;
+    const E2 = this.E2;
+    for (let q = 0; q < n; q++) {
+      const o = order[q];
+      for (let k = 0; k < SW; k++) S2[SW * q + k] = S[SW * o + k];
+      for (let k = 0; k < IW; k++) I2[IW * q + k] = I[IW * o + k];
+      for (let k = 0; k < EW; k++) E2[EW * q + k] = E[EW * o + k];
+    }
+    this.S = S2;
+    this.I = I2;
+    this.E = E2;
+    this.S2 = S;
+    this.I2 = I;
+    this.E2 = E;
+    // Partners are rows: relabel them (the old row's world index, then its new row).
+    const In = this.I;
+    for (let q = 0; q < n; q++) {
+      const p = IW * q;
+      if (In[p + I_KIND] === K_PAIR) In[p + I_ARG] = fresh[I[IW * In[p + I_ARG] + I_ID]];
+    }
+    // Cell lists: linking in descending row order leaves each list ascending.
+    next.fill(-1);
+    for (let q = linked - 1; q >= 0; q--) this.link(q, In[IW * q + I_CX], In[IW * q + I_CY]);
+    for (let q = 0; q < n; q++) this.loadKey(q);
+    this.queue.rebuild(this.time);
+    this.renumberCount++;
+  }
+
   // -- public ----------------------------------------------------------------------------
   /** Process every event with time <= tEnd in time order, then set the clock. */
   advanceTo(tEnd: number): void {
-    const S = this.S;
     const a = this.a;
-    const heap = this.heap;
-    const heapT = this.heapT;
-    const counter = this.counter;
-    const out = this.out;
+    const queue = this.queue;
+    const io = this.io;
+    const every = RENUMBER_EVENTS_PER_ATOM * this.n;
     for (;;) {
-      const i = heap[0];
-      const te = heapT[0];
+      if (++this.sinceRenumber > every) {
+        this.sinceRenumber = 0;
+        if (this.won) queue.rebuild(this.time);
+        else this.renumber();
+      }
+      const r = queue.top();
+      if (r < 0) break;
+      const te = queue.keyT[r];
       if (!(te <= tEnd)) break;
-      const kind = this.kRank[i] === R_CROSS ? this.xk[i] : this.rKind[i];
+      const S = this.S;
+      const I = this.I;
+      const ir = IW * r;
+      const kind = queue.rankOf(r) === R_CROSS ? I[ir + I_XK] : I[ir + I_KIND];
       // After the event: rp's prediction (full, or only its crossing if its real event
       // stands), then the pair's second atom's knife test and prediction.
       let rp = -1;
@@ -711,77 +786,77 @@ export class Engine {
       let pend = -1;
       let t = te;
       if (kind === K_PAIR) {
-        const j = this.rArg[i];
-        if (this.won || counter[j] !== this.rPc[i]) {
+        const j = I[ir + I_ARG];
+        if (this.won || I[IW * j + I_CNT] !== I[ir + I_PC]) {
           this.staleCount++; // the partner moved on (or pairs are over)
-          rp = i;
+          rp = r;
         } else {
-          const lo = i < j ? i : j;
-          const hi = i < j ? j : i;
+          // lo, hi: the rows of the lower and higher world index
+          const swap = S[SW * j + SID] < S[SW * r + SID];
+          const lo = swap ? j : r;
+          const hi = swap ? r : j;
           t = te >= this.time ? te : this.time;
           this.time = t;
-          this.move(lo, t);
-          this.move(hi, t);
-          const bl = ROW * lo;
-          const bh = ROW * hi;
-          collidePair(
-            S[bh + X] - S[bl + X],
-            S[bh + Y] - S[bl + Y],
-            S[bl + VX],
-            S[bl + VY],
-            S[bh + VX],
-            S[bh + VY],
-            S[bl + M],
-            S[bh + M],
-            out,
-          );
-          S[bl + VX] = out[0];
-          S[bl + VY] = out[1];
-          S[bh + VX] = out[2];
-          S[bh + VY] = out[3];
+          this.move(lo);
+          this.move(hi);
+          const bl = SW * lo;
+          const bh = SW * hi;
+          io[IO_RX] = S[bh + X] - S[bl + X];
+          io[IO_RY] = S[bh + Y] - S[bl + Y];
+          io[IO_VX1] = S[bl + VX];
+          io[IO_VY1] = S[bl + VY];
+          io[IO_VX2] = S[bh + VX];
+          io[IO_VY2] = S[bh + VY];
+          io[IO_M1] = S[bl + M];
+          io[IO_M2] = S[bh + M];
+          collidePair(io);
+          S[bl + VX] = io[IO_OUT];
+          S[bl + VY] = io[IO_OUT + 1];
+          S[bh + VX] = io[IO_OUT + 2];
+          S[bh + VY] = io[IO_OUT + 3];
           this.pairCount++;
-          counter[lo] = (counter[lo] + 1) | 0;
-          counter[hi] = (counter[hi] + 1) | 0;
-          this.log(EV_PAIR, lo, hi, t);
-          if (!this.knifeCut(lo, t)) rp = lo;
+          I[IW * lo + I_CNT] = (I[IW * lo + I_CNT] + 1) | 0;
+          I[IW * hi + I_CNT] = (I[IW * hi + I_CNT] + 1) | 0;
+          this.log(EV_PAIR, I[IW * lo + I_ID], I[IW * hi + I_ID]);
+          if (!this.knifeCut(lo)) rp = lo;
           pend = hi;
         }
       } else if (kind === K_CROSS_X || kind === K_CROSS_Y) {
         this.crossingCount++;
         if (this.won) {
-          rp = i; // the grid is no longer kept once the gas has condensed
+          rp = r; // the grid is no longer kept once the gas has condensed
         } else {
           // Into the next cell; only the row or column of cells that came within reach
           // needs a scan: pairs with the other neighbours are held already.
-          const ci = this.cx[i];
-          const cj = this.cy[i];
-          const tgt = this.xt[i];
-          this.unlink(i);
+          const ci = I[ir + I_CX];
+          const cj = I[ir + I_CY];
+          const tgt = I[ir + I_XT];
+          this.unlink(r);
           if (kind === K_CROSS_X) {
-            this.link(i, tgt, cj);
+            this.link(r, tgt, cj);
             const c = 2 * tgt - ci;
             if (c >= 0 && c < this.nx)
-              this.scan(i, c, c, cj > 0 ? cj - 1 : 0, cj < this.ny - 1 ? cj + 1 : this.ny - 1);
+              this.scan(r, c, c, cj > 0 ? cj - 1 : 0, cj < this.ny - 1 ? cj + 1 : this.ny - 1);
           } else {
-            this.link(i, ci, tgt);
-            this.tly[i] = te;
+            this.link(r, ci, tgt);
+            this.E[EW * r + E_TLY] = te;
             const c = 2 * tgt - cj;
             if (c >= 0 && c < this.ny)
-              this.scan(i, ci > 0 ? ci - 1 : 0, ci < this.nx - 1 ? ci + 1 : this.nx - 1, c, c);
+              this.scan(r, ci > 0 ? ci - 1 : 0, ci < this.nx - 1 ? ci + 1 : this.nx - 1, c, c);
           }
-          rp = i;
+          rp = r;
           full = false;
         }
       } else if (kind === K_WALL) {
         t = te >= this.time ? te : this.time;
         this.time = t;
-        this.move(i, t);
-        const b = ROW * i;
+        this.move(r);
+        const b = SW * r;
         const x = S[b + X];
         if (Math.abs(x) > this.xRim) {
           // over the rim: escaped (SPEC 2.3)
-          this.log(EV_ESCAPE, i, -1, t);
-          this.remove(i, ESCAPED);
+          this.log(EV_ESCAPE, I[ir + I_ID], -1);
+          this.remove(r, ESCAPED);
           continue;
         }
         const vx = S[b + VX];
@@ -789,24 +864,34 @@ export class Engine {
         const speed = Math.sqrt(vx * vx + vy * vy);
         const damped = this.won && speed >= WIN_DAMPING_MIN_SPEED; // seed Eq. (34)
         const changes = damped || speed < WALL_MIN_NORMAL_SPEED;
-        if (changes) this.energySum -= this.energy(i);
-        if (damped) settleWall(x, vx, vy, a, 1.0 - WIN_DAMPING, WIN_NORMAL_SPEED_FLOOR, out);
-        else bounceWall(x, vx, vy, a, WALL_MIN_NORMAL_SPEED, out);
-        S[b + VX] = out[0];
-        S[b + VY] = out[1];
-        if (changes) this.energySum += this.energy(i);
+        if (changes) this.energySum -= this.energy(r);
+        io[IO_X] = x;
+        io[IO_VX] = vx;
+        io[IO_VY] = vy;
+        io[IO_A] = a;
+        if (damped) {
+          io[IO_KEEP] = 1.0 - WIN_DAMPING;
+          io[IO_VMIN] = WIN_NORMAL_SPEED_FLOOR;
+          settleWall(io);
+        } else {
+          io[IO_VMIN] = WALL_MIN_NORMAL_SPEED;
+          bounceWall(io);
+        }
+        S[b + VX] = io[IO_OUT];
+        S[b + VY] = io[IO_OUT + 1];
+        if (changes) this.energySum += this.energy(r);
         this.wallCount++;
-        counter[i] = (counter[i] + 1) | 0;
-        this.log(EV_WALL, i, -1, t);
-        rp = i;
+        I[ir + I_CNT] = (I[ir + I_CNT] + 1) | 0;
+        this.log(EV_WALL, I[ir + I_ID], -1);
+        rp = r;
       } else if (kind === K_EXIT) {
         t = te >= this.time ? te : this.time;
         this.time = t;
-        this.move(i, t);
-        this.status[i] = GONE;
-        counter[i] = (counter[i] + 1) | 0;
-        this.log(EV_GONE, i, -1, t);
-        rp = i;
+        this.move(r);
+        I[ir + I_ST] = GONE;
+        I[ir + I_CNT] = (I[ir + I_CNT] + 1) | 0;
+        this.log(EV_GONE, I[ir + I_ID], -1);
+        rp = r;
       } else {
         break;
       }
@@ -817,7 +902,7 @@ export class Engine {
           this.setKey(rp);
         }
         if (pend < 0) break;
-        rp = this.knifeCut(pend, t) ? -1 : pend;
+        rp = this.knifeCut(pend) ? -1 : pend;
         pend = -1;
         full = true;
       }
@@ -831,7 +916,8 @@ export class Engine {
     this.xRim = Math.sqrt(height / this.a);
     if (!this.knife) return;
     for (let i = 0; i < this.n; i++) {
-      if (this.status[i] === TRAPPED) this.knifeCut(i, this.time);
+      const r = this.row[i];
+      if (this.I[IW * r + I_ST] === TRAPPED) this.knifeCut(r);
     }
   }
 
@@ -840,21 +926,25 @@ export class Engine {
     this.won = true;
   }
 
-  // -- reading ---------------------------------------------------------------------------
-  /** Stored state of atom i: [x, y, vx, vy, t, radius, mass]. */
-  stored(i: number): Float64Array {
-    return this.S.subarray(ROW * i, ROW * i + 7);
+  // -- reading, by world index -------------------------------------------------------------
+  statusOf(i: number): number {
+    return this.I[IW * this.row[i] + I_ST];
   }
 
-  /** Atom i's energy 1/2 m v^2 + m g y from its stored state (conserved in flight). */
+  /** Stored value k of world atom i: 0 x, 1 y, 2 vx, 3 vy, 4 t, 5 radius, 6 mass. */
+  storedOf(i: number, k: number): number {
+    return this.S[SW * this.row[i] + k];
+  }
+
+  /** World atom i's energy 1/2 m v^2 + m g y from its stored state (conserved in flight). */
   atomEnergy(i: number): number {
-    return this.energy(i);
+    return this.energy(this.row[i]);
   }
 
-  /** Position and velocity of atom i carried to time t into out = [x, y, vx, vy]. */
+  /** Position and velocity of world atom i carried to time t into out = [x, y, vx, vy]. */
   stateAt(i: number, t: number, out: Float64Array): void {
     const S = this.S;
-    const b = ROW * i;
+    const b = SW * this.row[i];
     const dt = t - S[b + T];
     out[0] = flightX(S[b + X], S[b + VX], dt);
     out[1] = flightY(S[b + Y], S[b + VY], 0.5 * this.g, dt);
@@ -866,14 +956,15 @@ export class Engine {
   gridErrors(): number {
     if (this.won) return 0;
     const S = this.S;
+    const I = this.I;
     let bad = 0;
-    for (let i = 0; i < this.n; i++) {
-      if (this.status[i] !== TRAPPED) continue;
-      const b = ROW * i;
+    for (let r = 0; r < this.n; r++) {
+      if (I[IW * r + I_ST] !== TRAPPED) continue;
+      const b = SW * r;
       const dt = this.time - S[b + T];
       const ci = this.clampCell(flightX(S[b + X], S[b + VX], dt), this.gx0, this.nx);
       const cj = this.clampCell(flightY(S[b + Y], S[b + VY], 0.5 * this.g, dt), this.gy0, this.ny);
-      if (Math.abs(ci - this.cx[i]) > 1 || Math.abs(cj - this.cy[i]) > 1) bad++;
+      if (Math.abs(ci - I[IW * r + I_CX]) > 1 || Math.abs(cj - I[IW * r + I_CY]) > 1) bad++;
     }
     return bad;
   }

@@ -425,11 +425,11 @@ export class Simulation {
     const n = e.n;
     const col = (k: number): number[] => {
       const out = new Array<number>(n);
-      for (let i = 0; i < n; i++) out[i] = e.S[8 * i + k];
+      for (let i = 0; i < n; i++) out[i] = e.storedOf(i, k);
       return out;
     };
     const status = new Array<(typeof STATUS_NAMES)[number]>(n);
-    for (let i = 0; i < n; i++) status[i] = STATUS_NAMES[e.status[i]];
+    for (let i = 0; i < n; i++) status[i] = STATUS_NAMES[e.statusOf(i)];
     return {
       format: STATE_FORMAT,
       version: STATE_VERSION,
@@ -537,19 +537,19 @@ export class Simulation {
 
   /** Atoms that left the trap and are still falling inside the window. */
   get nEscaped(): number {
+    const e = this.engine;
     let k = 0;
-    const st = this.engine.status;
-    for (let i = 0; i < st.length; i++) if (st[i] === ESCAPED) k++;
+    for (let i = 0; i < e.n; i++) if (e.statusOf(i) === ESCAPED) k++;
     return k;
   }
 
   private indices(status: number): Int32Array {
-    const st = this.engine.status;
+    const e = this.engine;
     let k = 0;
-    for (let i = 0; i < st.length; i++) if (st[i] === status) k++;
+    for (let i = 0; i < e.n; i++) if (e.statusOf(i) === status) k++;
     const out = new Int32Array(k);
     k = 0;
-    for (let i = 0; i < st.length; i++) if (st[i] === status) out[k++] = i;
+    for (let i = 0; i < e.n; i++) if (e.statusOf(i) === status) out[k++] = i;
     return out;
   }
 
@@ -569,8 +569,8 @@ export class Simulation {
     const out = new Float64Array(wide ? 2 * idx.length : idx.length);
     for (let k = 0; k < idx.length; k++) {
       const i = idx[k];
-      if (what === "radius") out[k] = e.S[8 * i + 5];
-      else if (what === "mass") out[k] = e.S[8 * i + 6];
+      if (what === "radius") out[k] = e.storedOf(i, 5);
+      else if (what === "mass") out[k] = e.storedOf(i, 6);
       else {
         e.stateAt(i, e.time, s);
         out[2 * k] = what === "pos" ? s[0] : s[2];
@@ -637,15 +637,15 @@ export class Simulation {
     const s = this.scratch;
     let k = 0;
     for (let i = 0; i < e.n; i++) {
-      if (e.status[i] !== status) continue;
+      if (e.statusOf(i) !== status) continue;
       e.stateAt(i, e.time, s);
       snap.index[k] = i;
       snap.x[k] = s[0];
       snap.y[k] = s[1];
       snap.vx[k] = s[2];
       snap.vy[k] = s[3];
-      snap.radius[k] = e.S[8 * i + 5];
-      snap.mass[k] = e.S[8 * i + 6];
+      snap.radius[k] = e.storedOf(i, 5);
+      snap.mass[k] = e.storedOf(i, 6);
       snap.energy[k] = e.atomEnergy(i);
       k++;
     }
@@ -658,7 +658,7 @@ export class Simulation {
     const e = this.engine;
     const out = new Float64Array(e.nTrapped);
     let k = 0;
-    for (let i = 0; i < e.n; i++) if (e.status[i] === TRAPPED) out[k++] = e.atomEnergy(i);
+    for (let i = 0; i < e.n; i++) if (e.statusOf(i) === TRAPPED) out[k++] = e.atomEnergy(i);
     return out;
   }
 
