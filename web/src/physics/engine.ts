@@ -86,9 +86,11 @@ const R = 5;
 const CNT = 6;
 const SID = 7;
 const SW = 8;
-// I, 16 integers a row: lifecycle, cell and the previous row in it, the real event (kind,
-// partner row, key parts), the crossing (axis, target cell), world index.
+// I, 16 integers a row: lifecycle, the partner's event counter (low 32 bits) when the pair was
+// predicted, cell and the previous row in it, the real event (kind, partner row, key parts),
+// the crossing (axis, target cell), world index.
 const I_ST = 0;
+const I_PC = 1;
 const I_CX = 2;
 const I_CY = 3;
 const I_PRV = 4;
@@ -101,14 +103,13 @@ const I_XK = 11;
 const I_XT = 12;
 const I_ID = 13;
 const IW = 16;
-// E, 8 floats a row: real-event time, crossing time, the time of the arc's last y crossing,
-// mass, the partner's event counter when the pair was predicted.
+// E, 4 floats a row: real-event time, crossing time, the time of the arc's last y crossing,
+// mass.
 const E_RT = 0;
 const E_CT = 1;
 const E_TLY = 2;
 const E_M = 3;
-const E_PC = 4;
-const EW = 8;
+const EW = 4;
 
 // Internal event kinds.
 const K_NONE = 0;
@@ -493,7 +494,7 @@ export class Engine {
       I[ir + I_RB] = bb;
       I[ir + I_KIND] = K_PAIR;
       I[ir + I_ARG] = best;
-      E[EW * r + E_PC] = S[SW * best + CNT];
+      I[ir + I_PC] = S[SW * best + CNT] | 0;
     }
   }
 
@@ -790,7 +791,7 @@ export class Engine {
       let t = te;
       if (kind === K_PAIR) {
         const j = I[ir + I_ARG];
-        if (this.won || S[SW * j + CNT] !== this.E[EW * r + E_PC]) {
+        if (this.won || (S[SW * j + CNT] | 0) !== I[ir + I_PC]) {
           this.staleCount++; // the partner moved on (or pairs are over)
           rp = r;
         } else {
