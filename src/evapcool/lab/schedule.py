@@ -6,8 +6,9 @@ import itertools
 import math
 import re
 from dataclasses import dataclass
+from functools import cached_property
 
-from evapcool.lab.theory import kt_from_truncated_mean, truncation_height
+from evapcool.lab.theory import truncated_mean_energy, truncation_height
 
 SCHEDULE_HELP = (
     "a height > 0 like 400 (or inf), a ramp like 400@0,60@1800 "
@@ -31,6 +32,11 @@ class Schedule:
     points: tuple[tuple[float, float], ...] = ()
     eta: float = math.nan
     text: str = ""
+
+    @cached_property
+    def mean_energy_per_kt(self) -> float:
+        """<E> / kT of the law E^(3/2) exp(-E/kT) cut at eta kT (eta schedules)."""
+        return float(truncated_mean_energy(self.eta))
 
     def fixed_height(self, frame: float) -> float:
         """H at this frame for a constant or ramp schedule; linear between points, held outside."""
@@ -58,7 +64,7 @@ class Schedule:
             n_before = sim.n_trapped
             if n_before == 0:
                 return
-            kt = kt_from_truncated_mean(sim.temperature, self.eta)
+            kt = sim.temperature / self.mean_energy_per_kt
             sim.trap_height = max(truncation_height(self.eta, kt, mass, sim.gravity), 1e-300)
             if sim.n_trapped == n_before:
                 return
