@@ -1,0 +1,114 @@
+"""Constant-eta evaporation over several seeds, pooled against the model (doc/lab.md's table).
+
+    python -m evapcool.lab.campaign --eta 4 5 6 7 --seeds 24
+
+runs, for each eta, `seeds` knife runs of a thermal cloud at eta= with the win rule off,
+compares each with the truncated-Boltzmann model (LabResult.theory()) and pools them.
+"""
+
+from __future__ import annotations
+
+import argparse
+import math
+import sys
+from dataclasses import dataclass
+
+import numpy as np
+
+from evapcool.lab.compare import SETTLE_COLLISIONS, TheoryReport
+from evapcool.lab.experiment import run_experiment
+
+#: The runs of doc/lab.md: 300 disks of radius 0.5 px from kT = 60 (peak packing ~1 %).
+RUN = dict(atoms=300, radius=0.5, start="thermal=60", every=20, escape="knife", win=False)
+#: Frames in which about half the atoms evaporate, by eta.
+FRAMES = {4.0: 600, 5.0: 800, 6.0: 1400, 7.0: 3000}
+DEFAULT_FRAMES = 1500
+
+
+@dataclass(frozen=True)
+class Pooled:
+    """One quantity over all runs: pooled measured and model values, spread of the runs."""
+
+    symbol: str
+    measured: float
+    predicted: float
+    spread: float  # standard error of the per-run ratio measured / model
+    events: int
+
+    @property
+    def ratio(self) -> float:
+        return self.measured / self.predicted
+
+
+def run_eta(eta: float, seeds: range | list[int], *, frames: int | None = None, **overrides):
+    """TheoryReports of one knife run per seed at constant eta (RUN's gas unless overridden)."""
+    params = {**RUN, **overrides}
+    frames = frames or FRAMES.get(float(eta), DEFAULT_FRAMES)
+    reports = []
+    for seed in seeds:
+        result = run_experiment(schedule=f"eta={eta:g}", frames=frames, seed=seed, **params)
+        reports.append(result.theory(settle=SETTLE_COLLISIONS))
+    return reports
+
+
+def pool(reports: list[TheoryReport]) -> dict[str, Pooled]:
+    """Counts added over runs; each model value weighted by the events it predicts."""
+    out = {}
+    pairs = np.array([r["Gamma_pair"].events for r in reports], dtype=float)
+    for symbol in ("Gamma_pair", "Gamma_ev/gamma_el", "kappa", "alpha"):
+        rows = [r[symbol] for r in reports if symbol in {x.symbol for x in r.rows}]
+        if not rows:
+            continue
+        m = np.array([r.measured for r in rows])
+        p = np.array([r.predicted for r in rows])
+        events = np.array([r.events for r in rows], dtype=float)
+        if symbol == "Gamma_pair":  # rate = pairs / span: add pairs and spans
+            span = events / m
+            measured, predicted = events.sum() / span.sum(), (p * span).sum() / span.sum()
+        elif symbol == "Gamma_ev/gamma_el":  # evaporated / (2 pairs): add both
+            measured = events.sum() / (2.0 * pairs.sum())
+            predicted = (p * pairs).sum() / pairs.sum()
+        else:  # kappa per evaporated atom, alpha per atom lost
+            measured, predicted = (
+                (m * events).sum() / events.sum(),
+                (p * events).sum() / events.sum(),
+            )
+        ratios = m / p
+        spread = float(ratios.std(ddof=1) / math.sqrt(len(rows))) if len(rows) > 1 else math.nan
+        out[symbol] = Pooled(symbol, float(measured), float(predicted), spread, int(events.sum()))
+    return out
+
+
+def table(results: dict[float, dict[str, Pooled]]) -> str:
+    """Markdown table: one row per eta and quantity."""
+    lines = [
+        "| eta | quantity | measured | model | measured / model | events |",
+        "|---|---|---|---|---|---|",
+    ]
+    for eta, pooled in results.items():
+        for q in pooled.values():
+            lines.append(
+                f"| {eta:g} | {q.symbol} | {q.measured:.4g} | {q.predicted:.4g} | "
+                f"{q.ratio:.3f} +- {q.spread:.3f} | {q.events} |"
+            )
+    return "\n".join(lines)
+
+
+def main(argv: list[str] | None = None) -> int:
+    p = argparse.ArgumentParser(prog="python -m evapcool.lab.campaign", description=__doc__)
+    p.add_argument("--eta", type=float, nargs="+", default=[4.0, 5.0, 6.0, 7.0])
+    p.add_argument("--seeds", type=int, default=8, help="runs per eta (seeds 0 .. n-1)")
+    p.add_argument("--engine", default="fast", choices=("auto", "reference", "fast"))
+    args = p.parse_args(sys.argv[1:] if argv is None else argv)
+    if args.seeds < 2 or any(not (math.isfinite(e) and e > 0) for e in args.eta):
+        p.error("--seeds must be >= 2 and every --eta > 0")
+    results = {}
+    for eta in args.eta:
+        results[eta] = pool(run_eta(eta, range(args.seeds), engine=args.engine))
+        print(f"eta = {eta:g} done", file=sys.stderr, flush=True)
+    print(table(results))
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())
