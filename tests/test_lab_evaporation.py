@@ -17,7 +17,7 @@ import pytest
 from evapcool import Simulation
 from evapcool.lab import parse_schedule, run_experiment
 from evapcool.lab import theory as th
-from evapcool.lab.campaign import RUN, pool, run_eta
+from evapcool.lab.campaign import RUN, pool, quench, run_eta
 
 G, A = 1.0 / 3.0, 0.01
 SEEDS = range(24)  # resolves the per-eta ratios to about 2 % (doc/lab.md)
@@ -94,43 +94,12 @@ def test_evaporation_per_collision_at_constant_eta(eta):
     assert _campaign(eta)["Gamma_ev/gamma_el"].ratio == pytest.approx(1.0, abs=0.10)
 
 
-def _quench(eta: float, runs: int, *, n=1000, radius=0.3, kt=60.0, span=0.1):
-    """Cut equilibrium clouds at eta kT and count, in the first `span` collision times, the
-    atoms collisions push over the fixed cut and the pair collisions: at that moment the
-    gas below the cut is exactly the truncated Boltzmann law the model assumes."""
-    cup = th.Cup(radius=radius, gravity=G, curvature=A)
-    kept = n * float(th.gamma_p_half(2.5, eta))
-    model = th.TruncatedCloud(cup, kept, kt, eta)
-    window = span / model.elastic_collision_rate
-    evaporated = pairs = 0
-    for seed in range(runs):
-        rng = np.random.default_rng(seed)
-        pos, vel = th.thermal_cloud(n, radius, kt, gravity=G, curvature=A, rng=rng)
-        sim = Simulation(
-            n,
-            radius,
-            1.0,
-            curvature=A,
-            gravity=G,
-            trap_height=math.inf,
-            engine="fast",
-            escape="knife",
-            win=False,
-            positions=pos,
-            velocities=vel,
-        )
-        sim.trap_height = eta * kt / G
-        n0 = sim.n_trapped
-        sim.advance(window)
-        evaporated += n0 - sim.n_trapped
-        pairs += sim.pair_collision_count
-    return evaporated, evaporated / (2.0 * pairs) / model.evaporation_per_collision
-
-
 @pytest.mark.slow
 @pytest.mark.parametrize(("eta", "runs"), [(4.0, 400), (7.0, 2000)])
 def test_evaporation_at_the_moment_of_the_cut_is_the_model(eta, runs):
-    events, ratio = _quench(eta, runs)
+    """Right after cutting an equilibrium cloud, the gas below the cut is exactly the law
+    the model assumes: the first tenth of a collision time measures the model itself."""
+    (_, _, events, ratio), *_ = quench(eta, runs, times=(0.1,))
     print(f"eta = {eta}: {events} evaporated, measured / model = {ratio:.3f}")
     assert events > 400  # about 5 % statistics
     assert ratio == pytest.approx(1.0, abs=0.10)

@@ -4,6 +4,11 @@
 
 runs, for each eta, `seeds` knife runs of a thermal cloud at eta= with the win rule off,
 compares each with the truncated-Boltzmann model (LabResult.theory()) and pools them.
+
+    python -m evapcool.lab.campaign --eta 4 7 --quench 1000
+
+cuts 1000 equilibrium clouds per eta once and follows the evaporation per collision from
+the moment of the cut (see quench()).
 """
 
 from __future__ import annotations
@@ -17,6 +22,8 @@ import numpy as np
 
 from evapcool.lab.compare import SETTLE_COLLISIONS, TheoryReport
 from evapcool.lab.experiment import run_experiment
+from evapcool.lab.theory import Cup, TruncatedCloud, gamma_p_half, thermal_cloud
+from evapcool.physics.simulation import CURVATURE, GRAVITY, Simulation
 
 #: The runs of doc/lab.md: 300 disks of radius 0.5 px from kT = 60 (peak packing ~1 %).
 RUN = dict(atoms=300, radius=0.5, start="thermal=60", every=20, escape="knife", win=False)
@@ -94,14 +101,70 @@ def table(results: dict[float, dict[str, Pooled]]) -> str:
     return "\n".join(lines)
 
 
+#: Collision times after the cut at which the quench counts are read.
+QUENCH_TIMES = (0.1, 0.2, 0.4, 0.7, 1.0, 1.5)
+
+
+def quench(
+    eta: float, runs: int, *, times=QUENCH_TIMES, n=1000, radius=0.3, kt=60.0, engine="fast"
+) -> list[tuple[float, float, int, float]]:
+    """Cut equilibrium clouds at a fixed eta kT and count, between the given times after the
+    cut (in collision times 1/gamma_el), the atoms that collisions push over it and the pair
+    collisions. At the cut the gas below it is exactly the truncated Boltzmann law; it then
+    departs from it. Rows (from, to, evaporated, measured / model Gamma_ev/gamma_el)."""
+    cup = Cup(radius=radius, mass=1.0, gravity=GRAVITY, curvature=CURVATURE)
+    model = TruncatedCloud(cup, n * float(gamma_p_half(2.5, eta)), kt, eta)
+    tau = 1.0 / model.elastic_collision_rate
+    edges = np.concatenate(([0.0], times)) * tau
+    counts = np.zeros((len(times), 2))
+    for seed in range(runs):
+        rng = np.random.default_rng(seed)
+        pos, vel = thermal_cloud(n, radius, kt, gravity=GRAVITY, curvature=CURVATURE, rng=rng)
+        sim = Simulation(
+            n,
+            radius,
+            1.0,
+            curvature=CURVATURE,
+            gravity=GRAVITY,
+            trap_height=math.inf,
+            seed=seed,
+            engine=engine,
+            escape="knife",
+            win=False,
+            positions=pos,
+            velocities=vel,
+        )
+        sim.trap_height = eta * kt / GRAVITY
+        for i, dt in enumerate(np.diff(edges)):
+            atoms, pairs = sim.n_trapped, sim.pair_collision_count
+            sim.advance(float(dt))
+            counts[i] += (atoms - sim.n_trapped, sim.pair_collision_count - pairs)
+    per_collision = model.evaporation_per_collision
+    return [
+        (float(a), float(b), int(ev), ev / (2.0 * pairs) / per_collision)
+        for a, b, (ev, pairs) in zip(edges[:-1] / tau, edges[1:] / tau, counts, strict=True)
+    ]
+
+
 def main(argv: list[str] | None = None) -> int:
     p = argparse.ArgumentParser(prog="python -m evapcool.lab.campaign", description=__doc__)
     p.add_argument("--eta", type=float, nargs="+", default=[4.0, 5.0, 6.0, 7.0])
     p.add_argument("--seeds", type=int, default=8, help="runs per eta (seeds 0 .. n-1)")
     p.add_argument("--engine", default="fast", choices=("auto", "reference", "fast"))
+    p.add_argument("--quench", type=int, metavar="RUNS", help="instead: the quench, RUNS clouds")
     args = p.parse_args(sys.argv[1:] if argv is None else argv)
     if args.seeds < 2 or any(not (math.isfinite(e) and e > 0) for e in args.eta):
         p.error("--seeds must be >= 2 and every --eta > 0")
+    if args.quench is not None:
+        if args.quench < 1:
+            p.error("--quench must be >= 1")
+        print("| eta | collision times after the cut | evaporated | measured / model |")
+        print("|---|---|---|---|")
+        for eta in args.eta:
+            for a, b, events, ratio in quench(eta, args.quench, engine=args.engine):
+                error = ratio / math.sqrt(events) if events else math.nan
+                print(f"| {eta:g} | {a:.1f} - {b:.1f} | {events} | {ratio:.3f} +- {error:.3f} |")
+        return 0
     results = {}
     for eta in args.eta:
         results[eta] = pool(run_eta(eta, range(args.seeds), engine=args.engine))

@@ -152,7 +152,7 @@ def _collision_panel(ax, result, theory) -> None:
     )
     ax.plot(frames / 30.0, theory.track.pair_rate[w], **MODEL_STYLE, label="model")
     row = theory["Gamma_pair"]
-    ax.set_title(f"pair collisions per frame (measured / model = {row.ratio:.3f})")
+    ax.set_title(f"pair collisions per frame (measured / model = {row.ratio:.3f})", fontsize=10)
     ax.set_xlabel("time (s = 30 frames)")
     ax.set_ylabel("pair collisions per frame")
     ax.set_ylim(bottom=0)
@@ -171,7 +171,7 @@ def _evaporation_panel(ax, result, theory) -> None:
         model = np.concatenate(([0.0], np.cumsum(0.5 * (per_pair[1:] + per_pair[:-1]) * d_pairs)))
         ratio = theory["Gamma_ev/gamma_el"].ratio
         ax.plot(seconds, model, **MODEL_STYLE, label="model: 2 (Gamma_ev/gamma_el) per collision")
-        ax.set_title(f"evaporated by collisions (measured / model = {ratio:.3f})")
+        ax.set_title(f"evaporated by collisions (measured / model = {ratio:.3f})", fontsize=10)
     else:
         ax.set_title("evaporated by collisions")
     ax.set_xlabel("time (s = 30 frames)")
