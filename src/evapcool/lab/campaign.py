@@ -8,7 +8,11 @@ compares each with the truncated-Boltzmann model (LabResult.theory()) and pools 
     python -m evapcool.lab.campaign --eta 4 7 --quench 1000
 
 cuts 1000 equilibrium clouds per eta once and follows the evaporation per collision from
-the moment of the cut (see quench()).
+the moment of the cut (see quench()), and
+
+    python -m evapcool.lab.campaign --equilibrium 0.5 1 1.5 2 --seeds 3
+
+sets the pair-collision rate of uncut gases against the model (see equilibrium()).
 """
 
 from __future__ import annotations
@@ -146,15 +150,66 @@ def quench(
     ]
 
 
+def equilibrium(
+    radius: float, seeds, *, n=300, kt=30.0, settle=600.0, frames=3000.0, engine="fast"
+) -> tuple[float, float, float]:
+    """Pair collisions per frame of an uncut equilibrium gas over the model's, with the
+    local-density profile and with the barometric one; and the peak packing fraction."""
+    cup = Cup(radius=radius, mass=1.0, gravity=GRAVITY, curvature=CURVATURE)
+    ratios = []
+    for seed in seeds:
+        rng = np.random.default_rng(seed)
+        pos, vel = thermal_cloud(n, radius, kt, gravity=GRAVITY, curvature=CURVATURE, rng=rng)
+        sim = Simulation(
+            n,
+            radius,
+            1.0,
+            curvature=CURVATURE,
+            gravity=GRAVITY,
+            trap_height=math.inf,
+            seed=seed,
+            engine=engine,
+            positions=pos,
+            velocities=vel,
+        )
+        sim.advance(settle)
+        pairs, means = sim.pair_collision_count, []
+        for _ in range(int(frames / 10)):
+            sim.advance(10.0)
+            means.append(sim.temperature)
+        rate = (sim.pair_collision_count - pairs) / frames
+        mean = float(np.mean(means))
+        dense = TruncatedCloud.from_measured(cup, n, mean, math.inf)
+        ideal = TruncatedCloud.from_measured(cup, n, mean, math.inf, dense=False)
+        ratios.append(
+            (rate / dense.pair_collision_rate, rate / ideal.pair_collision_rate, dense.peak_packing)
+        )
+    return tuple(float(x) for x in np.mean(ratios, axis=0))
+
+
 def main(argv: list[str] | None = None) -> int:
     p = argparse.ArgumentParser(prog="python -m evapcool.lab.campaign", description=__doc__)
     p.add_argument("--eta", type=float, nargs="+", default=[4.0, 5.0, 6.0, 7.0])
     p.add_argument("--seeds", type=int, default=8, help="runs per eta (seeds 0 .. n-1)")
     p.add_argument("--engine", default="fast", choices=("auto", "reference", "fast"))
     p.add_argument("--quench", type=int, metavar="RUNS", help="instead: the quench, RUNS clouds")
+    p.add_argument(
+        "--equilibrium",
+        type=float,
+        nargs="+",
+        metavar="R",
+        help="instead: uncut gases of disks of these radii against the model",
+    )
     args = p.parse_args(sys.argv[1:] if argv is None else argv)
     if args.seeds < 2 or any(not (math.isfinite(e) and e > 0) for e in args.eta):
         p.error("--seeds must be >= 2 and every --eta > 0")
+    if args.equilibrium:
+        print("| R | peak packing | measured / model | measured / barometric model |")
+        print("|---|---|---|---|")
+        for radius in args.equilibrium:
+            dense, ideal, phi = equilibrium(radius, range(args.seeds), engine=args.engine)
+            print(f"| {radius:g} | {phi:.3f} | {dense:.3f} | {ideal:.3f} |")
+        return 0
     if args.quench is not None:
         if args.quench < 1:
             p.error("--quench must be >= 1")
