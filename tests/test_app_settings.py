@@ -27,8 +27,8 @@ def saved(config) -> dict:
     return json.loads((config / "settings.json").read_text(encoding="utf-8"))
 
 
-def notice_pixels() -> int:
-    px = pygame.surfarray.array3d(pygame.display.get_surface()).astype(int)
+def notice_pixels(app) -> int:
+    px = pygame.surfarray.array3d(app.window.surface).astype(int)
     box = px[NOTICE_STRIP.left : NOTICE_STRIP.right, NOTICE_STRIP.top : NOTICE_STRIP.bottom]
     return int(np.count_nonzero((box[..., 0] > 90) & (box[..., 1] < 60) & (box[..., 2] < 60)))
 
@@ -85,9 +85,9 @@ def test_a_bad_value_in_the_file_falls_back_with_a_visible_notice(make_app, dirs
     )
     app = make_app()
     app.frame(None)
-    assert app.settings.n_atoms == 49 and app.settings.tc_law == "cup"
+    assert app.options.settings.n_atoms == 49 and app.options.settings.tc_law == "cup"
     assert any("n_atoms" in n and "default" in n for n in app.visible_notices)
-    assert notice_pixels() > 2000
+    assert notice_pixels(app) > 2000
     key(app, pygame.K_r)
     assert app.game.sim.n_atoms == 49 and app.game.sim.escape_rule == "knife"
 
