@@ -402,7 +402,7 @@ def test_empty_cup_says_too_few_atoms_and_r_restarts(app):
     app.game.set_trap_height(25.0)
     app.game.paused = False
     frames(app, 2)
-    assert app.game.too_few_atoms == "One atom alone never cools: T stays above Tc."
+    assert app.game.too_few_atoms == "One atom alone cannot cool below Tc."
     for _ in range(200):
         frames(app)
         if app.game.sim.n_trapped == 0:
@@ -428,7 +428,7 @@ def test_two_cold_atoms_that_cannot_leave_are_too_few(app):
     assert sim.temperature > sim.critical_temperature
     assert sim.total_energy() < 1.0 * sim.gravity * rules.HEIGHT_MIN
     frames(app)
-    assert app.game.too_few_atoms == "No atom can leave any more, so T stays above Tc."
+    assert app.game.too_few_atoms == "No atom can leave any more: T stays above Tc."
     assert count(app, SCORE_BOX, white) > 300
 
 

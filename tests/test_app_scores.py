@@ -5,9 +5,10 @@ from __future__ import annotations
 import json
 from datetime import datetime
 
+import numpy as np
 import pygame
 import pytest
-from apphelp import NOTICE_STRIP, SCORE_BOX, count, frames, key, post
+from apphelp import NOTICE_STRIP, SCORE_BOX, count, frames, key, pixels, post, white
 
 from evapcool import Simulation
 from evapcool.app.applet import NOTICE_SECONDS, App
@@ -207,3 +208,44 @@ def test_an_unusable_data_folder_gives_a_notice_not_a_crash(make_app, tmp_path):
     assert app.overlay == "table" and app.running
     key(app, pygame.K_RETURN)
     assert app.game.sim.time == 0.0
+
+
+# -- the score stays in view; the name's limit shows (issue 14, items 5 and 10) ---------------
+
+
+def _score_text(app: App) -> np.ndarray:
+    """Where the score box is pure white: the letters of "Score: N" (atoms are never white)."""
+    px = pixels(app)[SCORE_BOX.left : SCORE_BOX.right, SCORE_BOX.top : SCORE_BOX.bottom]
+    return white(px[..., 0], px[..., 1], px[..., 2])
+
+
+def test_the_score_stays_visible_over_the_name_box_and_the_table(app):
+    win_with(app, 12)
+    letters = _score_text(app)
+    assert app.scores.name_box is not None and letters.sum() > 300
+    type_text(app, "Ada")
+    key(app, pygame.K_RETURN)
+    assert app.overlay == "table"
+    # The table opened below the score: "Score: 12" is untouched, pixel for pixel.
+    np.testing.assert_array_equal(_score_text(app), letters)
+    # ...and with a full table too.
+    for k in range(10):
+        app.scores.table.add(f"P{k}", 20 + k, 10.0)
+    frames(app)
+    np.testing.assert_array_equal(_score_text(app), letters)
+
+
+def test_the_name_box_shows_the_length_and_the_limit(app):
+    win_with(app, 12)
+    box = app.scores.name_box
+    counter = pygame.Rect(PLAY_RECT.right - 160, PLAY_RECT.top + 230, 110, 30)
+    type_text(app, "Ada")
+    assert box.text == "Ada"
+    few = count(app, counter, lambda r, g, b: (r > 240) & (g > 240) & (b > 240))
+    assert few > 20  # "3/16" in white
+    type_text(app, "abcdefghijklmnopqrstu")  # 24 letters offered, 16 kept
+    assert box.text == "Adaabcdefghijklm" and len(box.text) == box.max_length
+    full = count(app, counter, lambda r, g, b: (r > 230) & (g > 190) & (b < 90))
+    assert full > 40  # "16/16 (full)" in the accent colour
+    key(app, pygame.K_BACKSPACE)
+    assert count(app, counter, lambda r, g, b: (r > 230) & (g > 190) & (b < 90)) == 0

@@ -224,7 +224,7 @@ def out_of_reach(
     if energy / n < critical_temperature:
         return None  # condensing now
     if n == 1:
-        return "One atom alone never cools: T stays above Tc."
+        return "One atom alone cannot cool below Tc."
     if energy <= escape_energy:
-        return "No atom can leave any more, so T stays above Tc."
+        return "No atom can leave any more: T stays above Tc."
     return None

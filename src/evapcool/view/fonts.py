@@ -144,12 +144,22 @@ def _sdl_font(path: str | None, size: int, bold: bool, script: str | None) -> py
     return f
 
 
+def _cap_height(f: pygame.font.Font) -> int:
+    """Height of a capital H above the baseline (0 if the font has no H)."""
+    metrics = f.metrics("H")
+    return metrics[0][3] if metrics and metrics[0] else 0
+
+
 @lru_cache(maxsize=256)
 def _matched_size(path: str, size: int) -> int:
-    """The point size at which this font's ascent equals the bundled font's at `size`."""
-    target = pygame.font.Font(None, size).get_ascent()
-    probe = pygame.font.Font(path, size).get_ascent()
-    return max(1, round(size * target / max(1, probe)))
+    """The size at which this font's capitals are as tall as the bundled font's at `size`
+    (its ascent, for a font without Latin letters): letters of every script then sit
+    at one visual size, as a designer pairs fonts, rather than shrunk by tall ascents."""
+    primary, probe = pygame.font.Font(None, size), pygame.font.Font(path, size)
+    want, have = _cap_height(primary), _cap_height(probe)
+    if not (want and have):
+        want, have = primary.get_ascent(), probe.get_ascent()
+    return max(1, round(size * want / max(1, have)))
 
 
 def font(size: int, bold: bool = False) -> pygame.font.Font:
@@ -165,23 +175,28 @@ def _script(ch: str) -> str | None:
 
 
 def _joins_previous(ch: str) -> bool:
-    """Marks, joiners, variation selectors and spaces stay in the run before them."""
-    return ch.isspace() or unicodedata.category(ch) in ("Mn", "Me", "Cf", "Sk")
+    """Marks, joiners, variation selectors and modifiers stay with the letter before them."""
+    return unicodedata.category(ch) in ("Mn", "Me", "Cf", "Sk")
 
 
 def runs(text: str) -> list[tuple[int, str | None, str]]:
-    """(face index, RTL script or None, text) runs in logical order, one font each."""
+    """(face index, RTL script or None, text) runs in logical order, one font each.
+
+    Spaces make runs of their own, so they stay between words when right-to-left
+    runs are turned round.
+    """
     chain = faces()
     out: list[tuple[int, str | None, str]] = []
     for ch in text:
-        if out and _joins_previous(ch) and (chain[out[-1][0]].has(ch) or ch.isspace()):
+        if out and _joins_previous(ch) and not out[-1][2][-1].isspace():
             k, script, s = out[-1]
             out[-1] = (k, script, s + ch)
             continue
         k = next((i for i, face in enumerate(chain) if face.has(ch)), 0)
         script = _script(ch)
-        if out and out[-1][0] == k and out[-1][1] == script:
-            out[-1] = (k, script, out[-1][2] + ch)
+        prev = out[-1] if out else None
+        if prev and prev[0] == k and prev[1] == script and prev[2][-1].isspace() == ch.isspace():
+            out[-1] = (k, script, prev[2] + ch)
         else:
             out.append((k, script, ch))
     return out

@@ -238,8 +238,9 @@ class Scene:
         """The gas can no longer condense: say why and offer a restart."""
         cx = PLAY_RECT.centerx
         _shadowed(pen, "Too few atoms left", 52, (cx, MESSAGE_Y))
-        for k, line in enumerate((reason, "Press R to try again.")):
-            pen.text(line, 28, TEXT, True, center=(cx, MESSAGE_Y + 50 + 32 * k))
+        lines = [*wrap(reason, 26, PLAY_RECT.width - 40, True), "Press R to try again."]
+        for k, line in enumerate(lines):
+            pen.text(line, 26, TEXT, True, center=(cx, MESSAGE_Y + 48 + 30 * k))
 
     def draw_start_hint(self, pen: Pen) -> None:
         pen.text(
@@ -401,7 +402,7 @@ def draw_progress(
         if done:
             pen.fill(MERCURY, (inner.left, inner.top, done, inner.h))
     pen.box(CUP_COLOR, bar, width=2)
-    for k, line in enumerate(wrap(what, 26, bar.w)):
+    for k, line in enumerate(wrap(what, 26, bar.w, True)):
         pen.text(line, 26, TEXT, True, midtop=(cx, bar.bottom + 14 + 28 * k))
     pen.text(f"{elapsed:.0f} s", 26, TEXT, midtop=(cx, bar.bottom + 80))
     for k, line in enumerate(wrap(note, 22, bar.w)):
@@ -409,13 +410,13 @@ def draw_progress(
     return pen.rect(bar)
 
 
-def wrap(text: str, size: int, width: float) -> list[str]:
+def wrap(text: str, size: int, width: float, bold: bool = False) -> list[str]:
     """Greedy word wrap to a logical width (a word longer than it gets its own row)."""
     rows: list[str] = []
     row = ""
     for word in text.split():
         candidate = f"{row} {word}" if row else word
-        if row and text_size(candidate, size)[0] > width:
+        if row and text_size(candidate, size, bold)[0] > width:
             rows.append(row)
             row = word
         else:
