@@ -97,3 +97,15 @@ def fake_fast_engine(monkeypatch, steps: int = 4, seconds: float = 0.1) -> list:
     monkeypatch.setattr(warmup, "_fast_ready", False)
     monkeypatch.setattr(warmup, "uses_fast_engine", lambda config: True)
     return reports
+
+
+def blends(px: np.ndarray, background: tuple, inks: list[tuple], tolerance: int = 3) -> np.ndarray:
+    """Which pixels are a blend of the background and one of the inks (antialiased text)."""
+    px = px.astype(float)
+    ok = np.zeros(px.shape[:2], dtype=bool)
+    bg = np.array(background, dtype=float)
+    for ink in inks:
+        d = np.array(ink, dtype=float) - bg
+        t = np.clip(((px - bg) @ d) / max(1.0, d @ d), 0.0, 1.0)
+        ok |= np.abs(px - (bg + t[..., None] * d)).max(axis=-1) <= tolerance
+    return ok

@@ -7,6 +7,7 @@ import math
 import numpy as np
 import pygame
 import pytest
+from apphelp import blends
 
 from evapcool import Simulation
 from evapcool.view import panels
@@ -363,17 +364,6 @@ def test_panels_and_scene_text_survive_pygame_quit_and_init() -> None:
 DATA_COLOURS = (panels.BAR, panels.CUT, panels.PATH, panels.CONDENSATE, panels.TC_LINE)
 
 
-def _mixes(px: np.ndarray, background: tuple, inks: list[tuple]) -> np.ndarray:
-    """Pixels that are a blend of the background and one of the inks (antialiased text)."""
-    ok = np.zeros(px.shape[:2], dtype=bool)
-    bg = np.array(background, dtype=float)
-    for ink in inks:
-        d = np.array(ink, dtype=float) - bg
-        t = np.clip(((px - bg) @ d) / max(1.0, d @ d), 0.0, 1.0)
-        ok |= np.abs(px - (bg + t[..., None] * d)).max(axis=-1) <= 3
-    return ok
-
-
 def _runs(tc_exponent: float) -> list:
     """Energy and path charts in states where data reach every edge of their plots."""
     hot = _sim(tc_exponent=tc_exponent)
@@ -411,7 +401,7 @@ def test_no_label_is_crossed_by_data(scale: float, tc_exponent: float) -> None:
             cells = px[r.left : r.right, r.top : r.bottom]
             # Text is ink (or the cut's red, for nothing but the legend swatch's words) on
             # the panel's background: no bar, path or line colour anywhere in a label.
-            clean = _mixes(cells, panels.BG, [panels.INK])
+            clean = blends(cells, panels.BG, [panels.INK])
             assert clean.all(), (type(panel).__name__, r, int((~clean).sum()))
         # ...and the data stay inside the plot: none of their colours outside it, but
         # in the legend's swatches.

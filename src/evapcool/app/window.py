@@ -17,6 +17,8 @@ from evapcool.fileio import atomic_write_bytes
 
 #: Room left on the screen for the title bar and a task bar when sizing the window.
 DECORATION = (16, 80)
+#: Room for a window manager's frame (borders, title bar) when keeping a window on screen.
+FRAME = (16, 40)
 
 
 class Window:
@@ -74,11 +76,14 @@ class Window:
             return
         self.requested = size
         self.win.size = size
-        # A window manager keeps a window on screen itself; without one, do it here.
+        # Keep it on the screen, frame and all (a window manager may do the same; asking
+        # for room to spare, so it has nothing left to correct, and nothing creeps).
         x, y = self.win.position
         sw, sh = self.screen_size()
-        if x + size[0] > sw or y + size[1] > sh:
-            nx, ny = max(0, min(x, sw - size[0])), max(0, min(y, sh - size[1]))
+        mx, my = FRAME
+        if x + size[0] + mx > sw or y + size[1] + my > sh:
+            nx = max(0, min(x, sw - size[0] - mx))
+            ny = max(0, min(y, sh - size[1] - my))
             if (nx, ny) != (x, y):
                 self.win.position = (nx, ny)
 
