@@ -84,7 +84,7 @@ def where(server: XServer, app: App) -> tuple[int, int, int, int]:
 def test_panels_and_full_screen_never_move_or_remake_the_window(small_screen, on):
     app = on(small_screen)
     wid = app.window.win.handle
-    x0, y0, w0, h0 = where(small_screen, app)
+    _, y0, w0, h0 = where(small_screen, app)
     assert (w0, h0) == (640, 672)
     windowed = []
     for k in (pygame.K_e, pygame.K_g, pygame.K_e, pygame.K_g, pygame.K_e):
