@@ -373,6 +373,7 @@ def test_forced_win_stops_collisions_and_shows_the_score(app):
     assert app.game.sim.pair_collision_count > before  # collisions happen while playing
     app.game.sim.force_win()
     frames(app)
+    won_with = app.game.sim.n_trapped
     pairs = app.game.sim.pair_collision_count
     energy = app.game.sim.total_energy()
     app.game.set_speed(4.0)
@@ -380,7 +381,7 @@ def test_forced_win_stops_collisions_and_shows_the_score(app):
     sim = app.game.sim
     assert sim.pair_collision_count == pairs
     assert sim.total_energy() < 0.5 * energy  # damped bounces: the atoms settle
-    assert app.game.score == sim.n_trapped > 0
+    assert app.game.score == won_with > 0  # fixed when the gas condensed
     assert count(app, SCORE_BOX, white) > 300  # "Score: N" in large text
     # The trap is frozen once the gas has condensed.
     post(pygame.MOUSEBUTTONDOWN, pos=(SLIDER_RECT.left, SLIDER_RECT.centery), button=1)

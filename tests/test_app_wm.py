@@ -248,3 +248,29 @@ def test_chart_labels_are_clear_of_data_in_a_real_window(big_screen, on):
             assert not r.colliderect(plot)
             cells = px[r.left : r.right, r.top : r.bottom]
             assert blends(cells, panels.BG, [panels.INK]).all(), (name, r)
+
+
+# -- item 15: `evapcool bench` measures a real window when a display is there ------------------
+
+
+def test_bench_measures_frames_in_a_real_window(small_screen, monkeypatch):
+    from evapcool.bench import applet as bench
+
+    pygame.display.quit()
+    monkeypatch.setenv("DISPLAY", small_screen.display)
+    monkeypatch.setenv("SDL_VIDEODRIVER", "dummy")
+    assert not bench.display_available()  # a forced dummy driver is no display
+    monkeypatch.delenv("SDL_VIDEODRIVER")
+    assert bench.display_available()
+    drivers = []
+    real = bench._time_frames
+
+    def spy(app, pygame_, frames, window, out):
+        drivers.append(pygame.display.get_driver())
+        real(app, pygame_, frames, window, out)
+
+    monkeypatch.setattr(bench, "_time_frames", spy)
+    t = bench.measure(15, 1, window=True)
+    assert drivers == ["x11"] and len(t["total"]) == 15
+    assert np.all(t["drawing"] > 0) and np.all(t["total"] >= t["drawing"])
+    assert "SDL_VIDEODRIVER" not in __import__("os").environ  # restored as it was

@@ -106,6 +106,7 @@ class Game:
         self.paused = True
         #: Play time (s) at which the win was first seen, None before.
         self.won_at: float | None = None
+        self._won_with: int | None = None
         self.generation += 1
 
     # -- pause and speed -----------------------------------------------------------
@@ -163,6 +164,7 @@ class Game:
         self.sim.advance(frames)
         if self.sim.won and self.won_at is None:
             self.won_at = self.play_time
+            self._won_with = self.sim.n_trapped
             for callback in list(self.on_win):
                 callback(self)
         return frames
@@ -179,8 +181,14 @@ class Game:
 
     @property
     def score(self) -> int | None:
-        """Atoms left in the cup once the gas has condensed; None before."""
-        return self.sim.n_trapped if self.sim.won else None
+        """Atoms in the cup when the gas condensed; None before.
+
+        Fixed at that moment: an atom already on its way over the rim may still leave
+        while the rest settle, but the score shown and the one stored stay the same.
+        """
+        if not self.sim.won:
+            return None
+        return self._won_with if self._won_with is not None else self.sim.n_trapped
 
     @property
     def all_escaped(self) -> bool:
