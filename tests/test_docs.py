@@ -59,7 +59,7 @@ def _runs(info: str) -> bool:
 
 def test_every_block_is_tagged():
     for block in ALL:
-        path, n, info, _ = block
+        info = block[2]
         words = info.split()
         assert words, f"{_id(block)}: tag it (python, sh, text, or sh not-run)"
         assert words[0] in (*RUN, "text"), f"{_id(block)}: unknown language {words[0]!r}"
