@@ -80,3 +80,19 @@ def test_opening_charts_on_a_small_screen_keeps_the_window_on_it(make_app, scree
     key(app, pygame.K_g)
     frames(app)
     assert app.window.size == (640, 672) or screen[1] - 80 < 672
+
+
+def test_a_users_resize_sets_the_scale_charts_then_keep(make_app):
+    app = make_app()  # a 1920 x 1080 screen
+    app.window.win.size = (960, 1008)  # the user drags the corner...
+    pygame.event.post(pygame.event.Event(pygame.WINDOWRESIZED, x=960, y=1008))
+    frames(app)  # ...and the window says so
+    assert app.preferred_scale == pytest.approx(1.5)
+    key(app, pygame.K_e)
+    lay = app.layout
+    assert lay.arrangement == "beside"
+    assert lay.scale == pytest.approx(min(1.5, 1000 / 672), abs=0.01)  # as big as still fits
+    key(app, pygame.K_e)
+    assert app.layout.scale == pytest.approx(min(1.5, 1000 / 672), abs=0.01)
+    # Our own resizes do not count as the user's choice.
+    assert app.preferred_scale == pytest.approx(1.5)

@@ -19,8 +19,8 @@ from evapcool.physics.simulation import AUTO_FAST_MIN_ATOMS, Simulation
 
 #: Shown under the bar while the fast engine is readied (docs/benchmarks.md, README).
 COMPILE_NOTE = (
-    "The first start on a machine compiles the fast engine: about half a minute "
-    "(more on a busy machine). Later starts take about a second."
+    "The first start on a machine compiles the fast engine: about 40 s of computing, "
+    "longer on a busy machine. Later starts take about a second."
 )
 
 _fast_ready = False
