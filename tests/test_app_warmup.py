@@ -33,9 +33,9 @@ def _watch(monkeypatch) -> list[tuple[float, str, float | None]]:
     seen = []
     real = App.draw_progress
 
-    def spy(self, builder):
-        bar = real(self, builder)
-        seen.append((_filled(self, bar), builder.what, builder.fraction))
+    def spy(self, what, fraction, elapsed):
+        bar = real(self, what, fraction, elapsed)
+        seen.append((_filled(self, bar), what, fraction))
         return bar
 
     monkeypatch.setattr(App, "draw_progress", spy)
@@ -77,10 +77,10 @@ def test_without_prepare_the_bar_moves_and_says_it_compiles(monkeypatch, tmp_pat
     frames: list[np.ndarray] = []
     real_draw = App.draw_progress
 
-    def spy(self, builder):
-        bar = real_draw(self, builder)
+    def spy(self, what, fraction, elapsed):
+        bar = real_draw(self, what, fraction, elapsed)
         px = pygame.surfarray.array3d(self.window.surface)[bar.left : bar.right, bar.centery]
-        frames.append((np.all(px == np.array(MERCURY), axis=-1), builder.what, builder.fraction))
+        frames.append((np.all(px == np.array(MERCURY), axis=-1), what, fraction))
         return bar
 
     monkeypatch.setattr(App, "draw_progress", spy)
@@ -96,10 +96,10 @@ def test_closing_the_window_while_it_compiles_ends_the_start(monkeypatch, tmp_pa
     fake_fast_engine(monkeypatch, steps=20, seconds=0.1)
     real = App.draw_progress
 
-    def close_soon(self, builder):
-        if builder.elapsed > 0.3:
+    def close_soon(self, what, fraction, elapsed):
+        if elapsed > 0.3:
             pygame.event.post(pygame.event.Event(pygame.QUIT))
-        return real(self, builder)
+        return real(self, what, fraction, elapsed)
 
     monkeypatch.setattr(App, "draw_progress", close_soon)
     t0 = time.monotonic()

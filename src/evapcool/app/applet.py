@@ -296,18 +296,18 @@ class App:
             if not said and self.log is not None and builder.elapsed > SLOW_BUILD_NOTICE_S:
                 self.log(f"{builder.what}... {warmup.COMPILE_NOTE}")
                 said = True
-            self.draw_progress(builder)
+            what, fraction = builder.state
+            self.draw_progress(what, fraction, builder.elapsed)
             self.clock.tick(30)
         return builder.result()
 
-    def draw_progress(self, builder: warmup.SimulationBuilder) -> pygame.Rect:
+    def draw_progress(self, what: str, fraction: float | None, elapsed: float) -> pygame.Rect:
+        """The progress screen (its bar's rectangle in window pixels)."""
         lay = arrange(self.window.size, 0)
         surface = self.window.surface
         surface.fill((0, 0, 0))
         pen = Pen(surface, lay.scale, lay.scene.topleft)
-        bar = draw_progress(
-            pen, builder.what, builder.fraction, builder.elapsed, warmup.COMPILE_NOTE
-        )
+        bar = draw_progress(pen, what, fraction, elapsed, warmup.COMPILE_NOTE)
         self.window.flip()
         return bar
 

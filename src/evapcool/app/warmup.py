@@ -43,13 +43,13 @@ def needs_warmup(config: GameConfig) -> bool:
 
 
 class SimulationBuilder:
-    """make_simulation(config) in a daemon thread; read `what`, `fraction`, `done`."""
+    """make_simulation(config) in a daemon thread; read `state`, `elapsed`, `done`."""
 
     def __init__(self, config: GameConfig) -> None:
         self.config = config
-        self.what = "Starting"
-        #: Steps done / all steps when the warm-up reports them, else None.
-        self.fraction: float | None = None
+        #: (what is happening, steps done / all steps or None if unknown), replaced whole
+        #: by the worker so the window reads a consistent pair.
+        self.state: tuple[str, float | None] = ("Starting", None)
         self._sim: Simulation | None = None
         self._error: BaseException | None = None
         self._thread = threading.Thread(target=self._work, name="evapcool-warmup", daemon=True)
@@ -81,17 +81,27 @@ class SimulationBuilder:
         assert self._sim is not None
         return self._sim
 
+    @property
+    def what(self) -> str:
+        return self.state[0]
+
+    @property
+    def fraction(self) -> float | None:
+        return self.state[1]
+
+    def _say(self, what: str) -> None:
+        self.state = (what, self.state[1])
+
     def _progress(self, done: int, total: int, what: str) -> None:
         # One more step follows the warm-up: placing the atoms.
-        self.fraction = done / (total + 1) if total > 0 else None
-        self.what = what
+        self.state = (what, done / (total + 1) if total > 0 else None)
 
     def _work(self) -> None:
         global _fast_ready
         try:
             compiles_here = False
             if needs_warmup(self.config):
-                self.what = "Loading the fast engine (Numba)"
+                self._say("Loading the fast engine (Numba)")
                 from evapcool.physics import fast
 
                 prepare = getattr(fast, "prepare", None)
@@ -99,9 +109,9 @@ class SimulationBuilder:
                     prepare(self._progress)
                 else:  # making the simulation compiles what it needs
                     compiles_here = True
-                    self.what = "Compiling the fast engine"
+                    self._say("Compiling the fast engine")
             if not compiles_here:
-                self.what = f"Placing {self.config.n_atoms} atoms in the cup"
+                self._say(f"Placing {self.config.n_atoms} atoms in the cup")
             self._sim = make_simulation(self.config)
             if self._sim.engine == "fast":
                 _fast_ready = True
