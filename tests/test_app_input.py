@@ -62,13 +62,19 @@ class FakeControls:
         self.calls.append(("name", event.type))
         return self.name_results.pop(0) if self.name_results else None
 
+    def clear(self):
+        self.calls.append(("clear_table",))
+
     def __getattr__(self, name):
         return lambda *args, **kw: self.calls.append((name, *args))
 
 
 def machine() -> tuple[InputMachine, FakeControls]:
+    """A machine whose controls, scores and settings are one recording stand-in."""
     c = FakeControls()
     m = InputMachine(
+        c,
+        c,
         c,
         [
             Binding((pygame.K_r,), "R", "restart", lambda ctl: ctl.restart(), ends_drag=True),

@@ -19,7 +19,8 @@ from dataclasses import replace
 import pygame
 
 from evapcool.app import warmup
-from evapcool.app.charts import CHART_BUTTON_RECT, ChartColumn, chart_button_looks
+from evapcool.app.charts import ChartColumn
+from evapcool.app.controls import SceneControls
 from evapcool.app.input import Binding, InputMachine, Mode
 from evapcool.app.layout import Layout, arrange, window_size_for
 from evapcool.app.notices import NOTICE_SECONDS, Notices
@@ -31,19 +32,15 @@ from evapcool.app.window import Window
 from evapcool.game.rules import HEIGHT_MAX, HEIGHT_MIN, MAX_WALL_STEP, Game, GameConfig
 from evapcool.game.settings import Settings
 from evapcool.physics.simulation import FPS, Simulation
-from evapcool.view.icons import button_looks, window_icon
+from evapcool.view.icons import window_icon
 from evapcool.view.pen import Pen
 from evapcool.view.scene import (
-    KNOB_RADIUS,
-    PAUSE_RECT,
-    RESTART_RECT,
     SCENE_SIZE,
-    SLIDER_RECT,
     UNDER_MESSAGE,
     Scene,
     draw_progress,
 )
-from evapcool.view.widgets import Button, Pointer, Slider, ToggleButton
+from evapcool.view.widgets import Pointer
 
 TITLE = "Evaporation cooling"
 #: Display frame rate we aim for; physics time follows the wall clock regardless.
@@ -176,20 +173,11 @@ class App:
         self.scores = Scoreboard(scores_path(data_dir), self.notify)
         self.options = SettingsEditor(settings_path(config_dir), self.notify, settings, overrides)
         self.charts = ChartColumn()
+        self.input = InputMachine(self, self.scores, self.options, default_bindings())
         self.scene = Scene()
         self.stats = FrameStats()
-        self.input = InputMachine(self, default_bindings())
-        self.pause_button = ToggleButton(
-            PAUSE_RECT,
-            lambda size: button_looks("play", size),
-            lambda size: button_looks("pause", size),
-            is_on=True,
-        )
-        self.restart_button = Button(RESTART_RECT, lambda size: button_looks("restart", size))
-        self.chart_button = Button(CHART_BUTTON_RECT, chart_button_looks)
-        self.slider = Slider(
-            SLIDER_RECT, HEIGHT_MIN, HEIGHT_MAX, 400.0, knob_radius=KNOB_RADIUS, label="Trap height"
-        )
+        self.controls = SceneControls()
+        self.slider = self.controls.slider
 
         self.window = Window(TITLE, SCENE_SIZE, window_icon(64), screen)
         #: The scene's scale the player wants (1, or what they resized the window to).
@@ -350,16 +338,7 @@ class App:
         lay = self.layout
         if not lay.scene.collidepoint(pos):
             return None
-        xy = lay.to_scene(pos)
-        for name, widget in (
-            ("slider", self.slider),
-            ("pause", self.pause_button),
-            ("restart", self.restart_button),
-            ("chart", self.chart_button),
-        ):
-            if widget.hit(xy):
-                return name
-        return None
+        return self.controls.target_at(lay.to_scene(pos))
 
     def slider_press(self, pos: tuple[float, float]) -> bool:
         self.slider.enabled = not self.game.won
@@ -377,21 +356,6 @@ class App:
 
     def toggle_pause(self) -> None:
         self.game.toggle_pause()
-
-    def clear_table(self) -> None:
-        self.scores.clear()
-
-    def open_settings(self) -> None:
-        self.options.open()
-
-    def settings_key(self, key: int) -> None:
-        self.options.key(key)
-
-    def close_settings(self, save: bool) -> None:
-        self.options.close(save)
-
-    def name_event(self, event: pygame.event.Event) -> str | None:
-        return self.scores.name_event(event, self.game.score or 0, self.game.won_at or 0.0)
 
     def _on_win(self, game: Game) -> None:
         if self.scores.win(game.score or 0, game.won_at or 0.0):
@@ -474,12 +438,7 @@ class App:
         mouse = Pointer(lay.to_scene(pointer) if pointer else None, self.input.button_down)
         if self.input.mode in (Mode.NAME, Mode.SETTINGS, Mode.CONFIRM_CLEAR):
             mouse = Pointer()  # modal: the buttons do not answer, so do not light up
-        self.pause_button.set_state(self.game.paused)
-        self.slider.enabled = not self.game.won
-        if not self.slider.sliding:
-            self.slider.set_value(self.game.trap_height)
-        for widget in (self.pause_button, self.restart_button, self.slider, self.chart_button):
-            widget.draw(pen, mouse)
+        self.controls.draw(pen, mouse, self.game)
 
     def _draw_overlay(self, pen: Pen) -> None:
         game, overlay = self.game, self.overlay

@@ -7,7 +7,8 @@ are handled one at a time, in order, so nothing is lost or mixed between frames:
 press, a drag and a release in one frame are three steps.
 
 The machine knows nothing of windows or drawing: it calls a `Controls` object (the app)
-for hit tests and actions, so it is tested with a stand-in.
+for hit tests and actions, the `Scores` (name box, table) and the `SettingsScreen`, so it
+is tested with stand-ins.
 """
 
 from __future__ import annotations
@@ -52,17 +53,27 @@ class Controls(Protocol):
     def toggle_pause(self) -> None: ...
     def restart(self) -> None: ...
     def toggle_chart(self, name: str) -> None: ...
-    def next_player(self) -> bool: ...
-    def clear_table(self) -> None: ...
-    def open_settings(self) -> None: ...
-    def settings_key(self, key: int) -> None: ...
-    def close_settings(self, save: bool) -> None: ...
-    def name_event(self, event: pygame.event.Event) -> str | None: ...
-    def toggle_fullscreen(self) -> None: ...
     def leave(self) -> None:
         """Esc with nothing open: leave full screen, else quit."""
 
     def quit(self) -> None: ...
+
+
+class Scores(Protocol):
+    """The name box and the high-score table (app.scoring.Scoreboard)."""
+
+    def name_event(self, event: pygame.event.Event) -> str | None:
+        """A key or typed text for the name box: 'submit', 'cancel' or other."""
+
+    def clear(self) -> None: ...
+
+
+class SettingsScreen(Protocol):
+    """The settings screen (app.options.SettingsEditor)."""
+
+    def open(self) -> None: ...
+    def key(self, key: int) -> None: ...
+    def close(self, save: bool) -> None: ...
 
 
 @dataclass(frozen=True)
@@ -86,8 +97,16 @@ class Binding:
 class InputMachine:
     """Feeds events to the current mode; `mode`, `overlay` and `pointer` say where it is."""
 
-    def __init__(self, controls: Controls, bindings: Iterable[Binding] = ()) -> None:
+    def __init__(
+        self,
+        controls: Controls,
+        scores: Scores,
+        settings: SettingsScreen,
+        bindings: Iterable[Binding] = (),
+    ) -> None:
         self.controls = controls
+        self.scores = scores
+        self.settings = settings
         self.mode = Mode.PLAY
         self._after_drag = Mode.PLAY
         #: The mouse: position in window pixels (None before it is seen) and left button.
@@ -193,7 +212,7 @@ class InputMachine:
             self._settings(event.key)
         elif mode is Mode.CONFIRM_CLEAR:
             if event.key == pygame.K_y:
-                self.controls.clear_table()
+                self.scores.clear()
                 self.mode = Mode.TABLE
             elif event.key in (pygame.K_n, pygame.K_ESCAPE):
                 self.mode = Mode.TABLE
@@ -217,7 +236,7 @@ class InputMachine:
                     self.controls.leave()
             elif target is Mode.SETTINGS:
                 self.set_mode(Mode.SETTINGS)
-                self.controls.open_settings()
+                self.settings.open()
             elif target is Mode.CONFIRM_CLEAR:
                 self.set_mode(target)
             else:  # help or table: a second press closes it
@@ -228,15 +247,15 @@ class InputMachine:
     def _settings(self, key: int) -> None:
         if key in (*SUBMIT_KEYS, pygame.K_o):
             self.mode = Mode.PLAY
-            self.controls.close_settings(save=True)
+            self.settings.close(save=True)
         elif key == pygame.K_ESCAPE:
             self.mode = Mode.PLAY
-            self.controls.close_settings(save=False)
+            self.settings.close(save=False)
         else:
-            self.controls.settings_key(key)
+            self.settings.key(key)
 
     def _name(self, event: pygame.event.Event) -> None:
-        result = self.controls.name_event(event)
+        result = self.scores.name_event(event)
         if result == "submit":
             self.mode = Mode.TABLE
         elif result == "cancel":

@@ -30,6 +30,8 @@ class Scoreboard:
         self.stored_rank: int | None = None
         #: The round is over (stored or skipped): Enter starts the next player's.
         self.ready_for_next = False
+        #: The win being entered: (atoms, seconds).
+        self._win = (0, 0.0)
 
     def _pass_on_notices(self) -> None:
         for text in self.table.take_notices():
@@ -42,6 +44,7 @@ class Scoreboard:
 
     def win(self, score: int, seconds: float) -> bool:
         """The gas condensed: True if the score makes the table (the name box opens)."""
+        self._win = (score, seconds)
         if self.table.qualifies(score, seconds):
             self.name_box = TextInput(max_length=NAME_MAX)
             pygame.key.start_text_input()  # the IME / on-screen keyboard, if any
@@ -55,15 +58,15 @@ class Scoreboard:
             self.name_box = None
             pygame.key.stop_text_input()
 
-    def name_event(self, event: pygame.event.Event, score: int, seconds: float) -> str | None:
-        """A key or typed text for the name box; SUBMIT stores, CANCEL skips."""
+    def name_event(self, event: pygame.event.Event) -> str | None:
+        """A key or typed text for the name box; SUBMIT stores the win, CANCEL skips it."""
         box = self.name_box
         if box is None:
             return None
         result = box.handle_event(event)
         if result == SUBMIT:
             self.close_name_box()
-            self.stored_rank = self.table.add(box.value or "", score, seconds)
+            self.stored_rank = self.table.add(box.value or "", *self._win)
             self._pass_on_notices()
             self.ready_for_next = True
         elif result == CANCEL:
