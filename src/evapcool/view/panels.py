@@ -422,7 +422,9 @@ class EnergyPanel(_Panel):
             v = 0.0
             while v <= e_max * (1 + 1e-9):
                 x = round(plot.x + plot.w * v / e_max)
-                pygame.draw.line(surf, INK, (x, plot.bottom), (x, plot.bottom + lay.px(5)), 2)
+                pygame.draw.line(
+                    surf, INK, (x, plot.bottom), (x, plot.bottom + lay.px(5)), lay.px(2)
+                )
                 _blit_text(surf, _tick_text(v), lay.small, INK, midtop=(x, plot.bottom + lay.px(6)))
                 v += step
         _draw_frame(surf, lay)
