@@ -1,0 +1,164 @@
+"""`FastEngine`: the Python face of the compiled engine, a drop-in for ReferenceEngine."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from evapcool.physics.fast import calendar, driver, grid, warmup
+from evapcool.physics.fast.lookahead import DEEP_MIN_ATOMS
+from evapcool.physics.fast.tables import (
+    LOG_LINE,
+    PLAN,
+    QUEUED,
+    RUN,
+    STATE,
+    Tables,
+    aligned,
+)
+from evapcool.physics.world import World
+
+#: Lines of the event log buffer (it is emptied into the World when full).
+LOG_CAPACITY = 1 << 16
+#: Upkeep (driver.maintain) every this many events per atom.
+UPKEEP_EVENTS_PER_ATOM = 8
+
+
+def make_tables(world: World) -> Tables:
+    """Empty tables for the World's atoms, with the fixed parameters set."""
+    n = len(world.radius)
+    x0, y0, cell, nx, ny = grid.geometry(world)
+    ring = calendar.ring_size(n)
+    tb = Tables(
+        state=aligned(n, STATE),
+        queued=aligned(n, QUEUED),
+        plan=aligned(n, PLAN),
+        heap_row=np.zeros(n, dtype=np.int64),
+        heap_t=np.full(n, math.inf),
+        bins=np.full(ring + 2, -1, dtype=np.int64),
+        cells=np.full(nx * ny + n, -1, dtype=np.int32),
+        run=np.zeros(1, dtype=RUN),
+        rows=np.arange(n, dtype=np.int64),
+        tc_table=np.zeros(n + 1),
+        log=np.zeros(LOG_CAPACITY if world.record_events else 1, dtype=LOG_LINE),
+        spare_state=aligned(n, STATE),
+        spare_queued=aligned(n, QUEUED),
+        spare_plan=aligned(n, PLAN),
+        new_row=np.zeros(n, dtype=np.int64),
+    )
+    tb.state["radius"] = world.radius
+    tb.state["atom"] = np.arange(n)
+    tb.plan["atom"] = np.arange(n)
+    tb.queued["mass"] = world.mass
+    every = UPKEEP_EVENTS_PER_ATOM * n
+    fixed = {
+        "gravity": world.gravity, "curvature": world.curvature,
+        "grid_x0": x0, "grid_y0": y0, "cell": cell, "nx": nx, "ny": ny,
+        "x_left": world.x_left, "x_right": world.x_right, "y_bottom": world.y_bottom,
+        "knife": world.knife, "record": world.record_events,
+        "maintain_every": every, "since_maintain": every,  # upkeep at the first event
+        "deep": n >= DEEP_MIN_ATOMS, "n_bins": ring,
+    }  # fmt: skip
+    for name, value in fixed.items():
+        tb.run[name] = value
+    return tb
+
+
+class FastEngine:
+    """Event-driven hard disks in the cup: Numba, cells, one pending event per atom."""
+
+    name = "fast"
+
+    def __init__(self, world: World) -> None:
+        # The first engine of a process compiles (or loads) what its first frame needs,
+        # with progress on the terminal if that takes long.
+        warmup.run((*warmup.FIRST_FRAME, *(("knife",) if world.knife else ())), None)
+        self.w = world
+        self.tb = make_tables(world)
+        self._tc_key: tuple[float, float, bool] | None = None
+        self._update_tc_table()
+        driver.start(self._scalars(), self._arrays(), *self.tb)
+
+    # -- World <-> engine -----------------------------------------------------------
+    def _scalars(self) -> tuple:
+        """The World's scalars in the order driver._pull takes them."""
+        w = self.w
+        return (
+            w.time, w.energy_sum, w.rim_half_width, w.trap_height, bool(w.won), w.n_trapped,
+            w.pair_count, w.wall_count,
+        )  # fmt: skip
+
+    def _arrays(self) -> tuple:
+        w = self.w
+        return w.pos, w.vel, w.t_atom, w.status, w.counter
+
+    def _update_tc_table(self) -> None:
+        w = self.w
+        key = (w.tc0, w.tc_exponent, w.win_rule)
+        if key != self._tc_key:
+            # Tc(N) for every N, by the World's own expression (same float pow).
+            self.tb.tc_table[:] = [w.win_threshold_of(m) for m in range(w.n_initial + 1)]
+            self._tc_key = key
+
+    def _take(self, result: tuple) -> int:
+        """Store what driver._push returned in the World; returns the status."""
+        status, n_log, time, energy_sum, won, n_trapped, pairs, walls = result
+        w = self.w
+        w.time = time
+        w.energy_sum = energy_sum
+        w.won = won
+        w.n_trapped = n_trapped
+        w.pair_count = pairs
+        w.wall_count = walls
+        if n_log:
+            w.log.extend(tuple(line) for line in self.tb.log[:n_log].tolist())
+        return status
+
+    # -- public -------------------------------------------------------------------
+    def advance_to(self, t_end: float) -> None:
+        """Process every event with time <= t_end in time order, then set the clock."""
+        self._update_tc_table()
+        arrays = self._arrays()
+        while True:
+            result = driver.run_until(float(t_end), self._scalars(), arrays, *self.tb)
+            status = self._take(result)
+            if status == driver.DONE:
+                return
+            if status == driver.UPKEEP:
+                driver.maintain(*self.tb)
+
+    def set_trap_height(self, height: float) -> None:
+        """New rim height; with the knife rule, atoms above m g H go at once."""
+        w = self.w
+        w.trap_height = height
+        if not w.knife:
+            return
+        n = len(w.radius)
+        if w.record_events and len(self.tb.log) < n + driver.LOG_ROOM:
+            self.tb = self.tb._replace(log=np.zeros(n + driver.LOG_ROOM, dtype=LOG_LINE))
+        self._update_tc_table()
+        self._take(driver.knife_now(self._scalars(), self._arrays(), *self.tb))
+
+    # -- diagnostics --------------------------------------------------------------
+    @property
+    def crossing_count(self) -> int:
+        """Cell-crossing events processed so far."""
+        return int(self.tb.run["crossings"][0])
+
+    @property
+    def stale_count(self) -> int:
+        """Pair events found stale (partner changed) and re-predicted so far."""
+        return int(self.tb.run["stale"][0])
+
+    @property
+    def grid_shape(self) -> tuple[int, int, float]:
+        """(columns, rows, cell edge in px) of the cell grid."""
+        run = self.tb.run[0]
+        return int(run["nx"]), int(run["ny"]), float(run["cell"])
+
+    def grid_errors(self) -> int:
+        """Trapped atoms filed more than one cell away from where they are now (0 if sound)."""
+        if self.w.won:
+            return 0
+        return int(driver.grid_errors(float(self.w.time), *self.tb))
