@@ -21,7 +21,7 @@ from evapcool.physics.fast.events import (
     pair_event,
     wall_event,
 )
-from evapcool.physics.fast.grid import cell_of, link
+from evapcool.physics.fast.grid import cell_at, link
 from evapcool.physics.fast.jit import K, entry, hot, part
 from evapcool.physics.fast.lookahead import after_event, ask_bin, before_event
 from evapcool.physics.fast.predict import predict, predict_crossing, predict_real, set_key
@@ -159,8 +159,7 @@ def setup(tb):
             dt = now - s.t
             x = K.flight_x(s.x, s.vx, dt)
             y = K.flight_y(s.y, s.vy, 0.5 * run.gravity, dt)
-            cx = cell_of(x, run.grid_x0, run.cell, run.nx)
-            cy = cell_of(y, run.grid_y0, run.cell, run.ny)
+            cx, cy = cell_at(x, y, run)
             link(i, cx, cy, tb)
     # Every finite key in the heap for now (bin width inf), the bins set after.
     refile_all(now, INF, tb)
@@ -342,8 +341,9 @@ def grid_errors(now, *tables):
         dt = now - s.t
         x = K.flight_x(s.x, s.vx, dt)
         y = K.flight_y(s.y, s.vy, 0.5 * run.gravity, dt)
-        cx = cell_of(x, run.grid_x0, run.cell, run.nx)
-        cy = cell_of(y, run.grid_y0, run.cell, run.ny)
-        if abs(cx - p.cell_x) > 1 or abs(cy - p.cell_y) > 1:
+        cx, cy = cell_at(x, y, run)
+        off_row = abs(cy - p.cell_y) > 1
+        off_column = cy < run.ny and p.cell_y < run.ny and abs(cx - p.cell_x) > 1
+        if off_row or off_column:
             bad += 1
     return bad

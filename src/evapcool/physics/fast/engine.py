@@ -17,7 +17,7 @@ from evapcool.physics.fast.tables import (
     Tables,
     aligned,
 )
-from evapcool.physics.world import World
+from evapcool.physics.world import TRAPPED, World
 
 #: Lines of the event log buffer (it is emptied into the World when full).
 LOG_CAPACITY = 1 << 16
@@ -25,10 +25,9 @@ LOG_CAPACITY = 1 << 16
 UPKEEP_EVENTS_PER_ATOM = 8
 
 
-def make_tables(world: World) -> Tables:
-    """Empty tables for the World's atoms, with the fixed parameters set."""
+def make_tables(world: World, cells: grid.Grid) -> Tables:
+    """Empty tables for the World's atoms on this grid, with the fixed parameters set."""
     n = len(world.radius)
-    x0, y0, cell, nx, ny = grid.geometry(world)
     ring = calendar.ring_size(n)
     tb = Tables(
         state=aligned(n, STATE),
@@ -37,7 +36,7 @@ def make_tables(world: World) -> Tables:
         heap_row=np.zeros(n, dtype=np.int64),
         heap_t=np.full(n, math.inf),
         bins=np.full(ring + 2, -1, dtype=np.int64),
-        cells=np.full(nx * ny + n, -1, dtype=np.int32),
+        cells=np.full(cells.nx * cells.ny + 1 + n, -1, dtype=np.int32),
         run=np.zeros(1, dtype=RUN),
         rows=np.arange(n, dtype=np.int64),
         tc_table=np.zeros(n + 1),
@@ -54,7 +53,8 @@ def make_tables(world: World) -> Tables:
     every = UPKEEP_EVENTS_PER_ATOM * n
     fixed = {
         "gravity": world.gravity, "curvature": world.curvature,
-        "grid_x0": x0, "grid_y0": y0, "cell": cell, "nx": nx, "ny": ny,
+        "grid_x0": cells.x0, "grid_y0": cells.y0, "cell": cells.cell,
+        "nx": cells.nx, "ny": cells.ny,
         "x_left": world.x_left, "x_right": world.x_right, "y_bottom": world.y_bottom,
         "knife": world.knife, "record": world.record_events,
         "maintain_every": every, "since_maintain": every,  # upkeep at the first event
@@ -75,8 +75,18 @@ class FastEngine:
         # with progress on the terminal if that takes long.
         warmup.run((*warmup.FIRST_FRAME, *(("knife",) if world.knife else ())), None)
         self.w = world
-        self.tb = make_tables(world)
+        self.grid = grid.geometry(world, world.trap_height)
         self._tc_key: tuple[float, float, bool] | None = None
+        self._start()
+
+    def _start(self) -> None:
+        """New tables on self.grid, set up from the World's state."""
+        old = getattr(self, "tb", None)
+        self.tb = make_tables(self.w, self.grid)
+        if old is not None:  # the counts go on
+            for name in ("crossings", "stale"):
+                self.tb.run[name] = old.run[name]
+        self._tc_key = None
         self._update_tc_table()
         driver.start(self._scalars(), self._arrays(), *self.tb)
 
@@ -132,6 +142,10 @@ class FastEngine:
         """New rim height; with the knife rule, atoms above m g H go at once."""
         w = self.w
         w.trap_height = height
+        new = grid.regrid_for(w, self.grid, height)
+        if new is not None:  # the rim rose above the grid (or left it far too big)
+            self.grid = new
+            self._start()
         if not w.knife:
             return
         n = len(w.radius)
@@ -153,9 +167,14 @@ class FastEngine:
 
     @property
     def grid_shape(self) -> tuple[int, int, float]:
-        """(columns, rows, cell edge in px) of the cell grid."""
-        run = self.tb.run[0]
-        return int(run["nx"]), int(run["ny"]), float(run["cell"])
+        """(columns, rows, cell edge in px) of the cell grid (the attic not counted)."""
+        return self.grid.nx, self.grid.ny, self.grid.cell
+
+    @property
+    def off_grid_count(self) -> int:
+        """Trapped atoms in the attic now (above the grid, off it)."""
+        plan = self.tb.plan
+        return int(np.count_nonzero((plan["cell_y"] == self.grid.ny) & (plan["status"] == TRAPPED)))
 
     def grid_errors(self) -> int:
         """Trapped atoms filed more than one cell away from where they are now (0 if sound)."""

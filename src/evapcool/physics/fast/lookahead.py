@@ -14,7 +14,7 @@ import math
 
 import numpy as np
 
-from evapcool.physics.fast.grid import neighbours
+from evapcool.physics.fast.grid import cell_index, neighbours
 from evapcool.physics.fast.jit import hot, part, prefetch
 from evapcool.physics.fast.tables import KIND_CROSS_X, KIND_CROSS_Y, KIND_PAIR, RANK_CROSS
 from evapcool.physics.world import TRAPPED
@@ -45,10 +45,11 @@ def ask_bin(tb):
 
 @hot
 def _coming_cells(j, tb):
-    """The block of cells row j's next event will scan: (x0, x1, y0, y1), empty if x0 > x1.
+    """The block of cells row j's next event will scan: (x0, x1, y0, y1), empty if y0 > y1.
 
     A crossing scans the row or column beyond its new cell; other events the 3 x 3
     block around it (a pair's partner scans around its own cell, not included).
+    Nothing for atoms off the grid or in the attic.
     """
     run = tb.run[0]
     p = tb.plan[j]
@@ -56,23 +57,24 @@ def _coming_cells(j, tb):
     if p.rank == RANK_CROSS:
         if p.cross_axis == KIND_CROSS_X:
             x0 = 2 * p.cross_to - p.cell_x
-            x1 = x0 if 0 <= x0 < run.nx else x0 - 1
+            x1 = x0
+            if not 0 <= x0 < run.nx:
+                y1 = y0 - 1
         else:
             y0 = 2 * p.cross_to - p.cell_y
-            y1 = y0 if 0 <= y0 < run.ny else y0 - 1
-    if p.status != TRAPPED:
-        x1 = x0 - 1
+            y1 = y0 if 0 <= y0 <= run.ny else y0 - 1
+    if p.status != TRAPPED or p.cell_y == run.ny:
+        y1 = y0 - 1
     return x0, x1, y0, y1
 
 
 @part
 def _ask_heads(j, tb):
     """Ask for the lines of cell heads row j's next event will read."""
-    nx = tb.run[0].nx
-    x0, x1, y0, y1 = _coming_cells(j, tb)
-    if x0 <= x1:
-        for cy in range(y0, y1 + 1):
-            prefetch(tb.cells, cy * nx + x0)
+    run = tb.run[0]
+    x0, _, y0, y1 = _coming_cells(j, tb)
+    for cy in range(y0, y1 + 1):
+        prefetch(tb.cells, cell_index(x0, cy, run))
 
 
 @part
@@ -82,12 +84,11 @@ def _ask_firsts(j, tb):
     Most cells hold one atom or none, so the first is most of a scan's misses. No
     branch on empty cells: row 0 is asked for instead, harmlessly.
     """
-    nx = tb.run[0].nx
+    run = tb.run[0]
     x0, x1, y0, y1 = _coming_cells(j, tb)
-    if x0 <= x1:
-        for cy in range(y0, y1 + 1):
-            for cx in range(x0, x1 + 1):
-                prefetch(tb.state, max(tb.cells[cy * nx + cx], 0))
+    for cy in range(y0, y1 + 1):
+        for c in range(cell_index(x0, cy, run), cell_index(x1, cy, run) + 1):
+            prefetch(tb.state, max(tb.cells[c], 0))
 
 
 @part
@@ -114,10 +115,10 @@ def _ask_heads_of(i, tb):
     """Ask for the heads of the 3 x 3 block around trapped row i (one line per cell row)."""
     run = tb.run[0]
     p = tb.plan[i]
-    if p.status == TRAPPED:
+    if p.status == TRAPPED and p.cell_y < run.ny:
         x0, _, y0, y1 = neighbours(np.int64(p.cell_x), np.int64(p.cell_y), run)
         for cy in range(y0, y1 + 1):
-            prefetch(tb.cells, cy * run.nx + x0)
+            prefetch(tb.cells, cell_index(x0, cy, run))
 
 
 @hot
