@@ -342,8 +342,6 @@ def grid_errors(now, *tables):
         x = K.flight_x(s.x, s.vx, dt)
         y = K.flight_y(s.y, s.vy, 0.5 * run.gravity, dt)
         cx, cy = cell_at(x, y, run)
-        off_row = abs(cy - p.cell_y) > 1
-        off_column = cy < run.ny and p.cell_y < run.ny and abs(cx - p.cell_x) > 1
-        if off_row or off_column:
+        if abs(cx - p.cell_x) > 1 or abs(cy - p.cell_y) > 1:
             bad += 1
     return bad

@@ -36,7 +36,7 @@ def make_tables(world: World, cells: grid.Grid) -> Tables:
         heap_row=np.zeros(n, dtype=np.int64),
         heap_t=np.full(n, math.inf),
         bins=np.full(ring + 2, -1, dtype=np.int64),
-        cells=np.full(cells.nx * cells.ny + 1 + n, -1, dtype=np.int32),
+        cells=np.full(cells.nx * cells.ny + n, -1, dtype=np.int32),
         run=np.zeros(1, dtype=RUN),
         rows=np.arange(n, dtype=np.int64),
         tc_table=np.zeros(n + 1),
@@ -167,14 +167,16 @@ class FastEngine:
 
     @property
     def grid_shape(self) -> tuple[int, int, float]:
-        """(columns, rows, cell edge in px) of the cell grid (the attic not counted)."""
+        """(columns, rows, cell edge in px) of the cell grid (the attic is its top row)."""
         return self.grid.nx, self.grid.ny, self.grid.cell
 
     @property
     def off_grid_count(self) -> int:
-        """Trapped atoms in the attic now (above the grid, off it)."""
-        plan = self.tb.plan
-        return int(np.count_nonzero((plan["cell_y"] == self.grid.ny) & (plan["status"] == TRAPPED)))
+        """Trapped atoms above the grid's top now (flying in the attic)."""
+        w = self.w
+        trapped = np.flatnonzero(w.status == TRAPPED)
+        pos, _ = w.state_at(trapped, w.time)
+        return int(np.count_nonzero(pos[:, 1] > self.grid.top))
 
     def grid_errors(self) -> int:
         """Trapped atoms filed more than one cell away from where they are now (0 if sound)."""

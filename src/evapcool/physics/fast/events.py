@@ -14,7 +14,7 @@ import math
 
 import numpy as np
 
-from evapcool.physics.fast.grid import cell_of, link, neighbours, unlink
+from evapcool.physics.fast.grid import link, neighbours, unlink
 from evapcool.physics.fast.jit import K, entry, hot, part
 from evapcool.physics.fast.predict import predict_crossing, predict_solo, scan, set_key
 from evapcool.physics.fast.tables import KIND_CROSS_X
@@ -200,11 +200,9 @@ def exit_event(i, te, tb):
 def crossing_event(i, te, tb):
     """Row i enters the next cell at te: refile it and scan the cells that came in reach.
 
-    Only the cells beyond the new cell need scanning (Smallenburg 2022): pairs with
-    the other neighbours are already held by i or by the partner. Into the attic, the
-    whole top row comes in reach; out of it, the row below the top row, around the
-    column the atom is over then. Changes no stored state; after the condensation
-    the grid is no longer kept.
+    Only the row or column of cells beyond the new cell needs scanning (Smallenburg
+    2022): pairs with the other neighbours are already held by i or by the partner.
+    Changes no stored state; after the condensation the grid is no longer kept.
     """
     run = tb.run[0]
     run.crossings += 1
@@ -214,24 +212,17 @@ def crossing_event(i, te, tb):
     cx = np.int64(p.cell_x)
     cy = np.int64(p.cell_y)
     to = np.int64(p.cross_to)
-    ny = run.ny
     unlink(i, tb)
     if p.cross_axis == KIND_CROSS_X:
         link(i, to, cy, tb)
         beyond = 2 * to - cx
-        if 0 <= beyond < run.nx:  # (the attic was a neighbour already)
-            scan(i, beyond, beyond, max(cy - 1, 0), min(cy + 1, ny - 1), tb)
-        return
-    tb.queued[i].arc_cross_t = te
-    if to == ny:  # up into the attic
-        link(i, np.int64(0), to, tb)
-        scan(i, np.int64(0), run.nx - 1, to - 1, to - 1, tb)
-        return
-    if cy == ny:  # down out of the attic
-        s = tb.state[i]
-        cx = cell_of(K.flight_x(s.x, s.vx, te - s.t), run.grid_x0, run.cell, run.nx)
-    link(i, cx, to, tb)
-    beyond = 2 * to - cy
-    if 0 <= beyond <= ny:
-        x0, x1, _, _ = neighbours(cx, to, run)
-        scan(i, x0, x1, beyond, beyond, tb)
+        _, _, y0, y1 = neighbours(beyond, cy, run)
+        if 0 <= beyond < run.nx:
+            scan(i, beyond, beyond, y0, y1, tb)
+    else:
+        link(i, cx, to, tb)
+        tb.queued[i].arc_cross_t = te
+        beyond = 2 * to - cy
+        x0, x1, _, _ = neighbours(cx, beyond, run)
+        if 0 <= beyond < run.ny:
+            scan(i, x0, x1, beyond, beyond, tb)

@@ -8,17 +8,16 @@ no stored state.
 The grid covers the region trapped atoms can reach: the cup below the rim (issue
 13). Its size depends on the atom count, the diameter, the trap and the window,
 never on the atoms' energies, and is at most MAX_CELLS_PER_ATOM cells per atom
-(bigger cells if the cup would need more), so memory stays bounded and one hot atom
+(wider cells if the cup would need more), so memory stays bounded and hot atoms
 cannot make the cells wide. Trapped atoms above the rim (flying high, about to
-escape) are kept out of the grid, in the attic: one cell above the top row, next to
-every top-row cell and itself. Its few atoms meet each other and the top row, so
-their events stay exact; the bulk never scans them. The side and bottom edge cells
-reach to infinity (clamped), which only round-off can use.
+escape) are kept out of the grid proper, in the attic: its top row, whose cells
+reach up to infinity. There they meet each other and the atoms just below, so their
+events stay exact, while the bulk never scans them. The other edge cells reach to
+infinity too (only round-off can use that).
 
-Cell c of row cy and column cx is c = cy * nx + cx; the attic is row ny, cell
-nx * ny (its column is 0). tb.cells[c] is the first row filed in cell c (-1 if
-none), tb.cells[n_cells + i] the next row in row i's cell. A row's cell and its
-previous row in the cell are in its PLAN record.
+Cell c of row cy and column cx is c = cy * nx + cx. tb.cells[c] is the first row
+filed in cell c (-1 if none), tb.cells[n_cells + i] the next row in row i's cell. A
+row's cell and its previous row in the cell are in its PLAN record.
 """
 
 from __future__ import annotations
@@ -55,8 +54,8 @@ class Grid(NamedTuple):
 
     @property
     def top(self) -> float:
-        """The attic's floor: trapped centres above it are off the grid."""
-        return self.y0 + self.ny * self.cell
+        """The attic's floor: trapped centres above it fly in the attic (the top row)."""
+        return self.y0 + (self.ny - 1) * self.cell
 
 
 def reach(world: World, height: float) -> float:
@@ -77,7 +76,7 @@ def geometry(world: World, height: float) -> Grid:
         y_top = top + ROWS_ABOVE_RIM * cell
         half_w = math.sqrt(max(y_top, 0.0) / a) + cell
         nx = max(1, math.ceil(2.0 * half_w / cell))
-        ny = max(1, math.ceil((y_top + 0.5 * cell) / cell))
+        ny = max(1, math.ceil((y_top + 0.5 * cell) / cell)) + 1  # + the attic
         if nx * ny <= budget:
             return Grid(-0.5 * nx * cell, -0.5 * cell, cell, nx, ny, top)
         cell *= 1.01 * math.sqrt(nx * ny / budget)  # too many: wider cells
@@ -108,34 +107,24 @@ def cell_of(u, u0, cs, n):
 
 @hot
 def cell_at(x, y, run):
-    """(column, row) of the cell of a trapped centre at (x, y): row ny is the attic."""
-    cy = cell_of(y, run.grid_y0, run.cell, run.ny + 1)
-    if cy == run.ny:
-        return 0, cy
-    return cell_of(x, run.grid_x0, run.cell, run.nx), cy
+    """(column, row) of the cell of a trapped centre at (x, y)."""
+    return cell_of(x, run.grid_x0, run.cell, run.nx), cell_of(y, run.grid_y0, run.cell, run.ny)
 
 
 @hot
 def cell_index(cx, cy, run):
-    """Index of cell (cx, cy) in tb.cells (the attic's column does not matter)."""
-    if cy == run.ny:
-        return run.ny * run.nx
+    """Index of cell (cx, cy) in tb.cells."""
     return cy * run.nx + cx
 
 
 @hot
 def neighbours(cx, cy, run):
-    """The block of cells around cell (cx, cy): (x0, x1, y0, y1), clipped to the grid.
-
-    Row ny of a block is the attic (one cell). The attic's block is the whole top row
-    and itself.
-    """
-    if cy == run.ny:
-        return 0, run.nx - 1, max(cy - 1, 0), cy
+    """The block of cells around cell (cx, cy): (x0, x1, y0, y1), clipped to the grid."""
     x0 = cx - 1 if cx > 0 else 0
     x1 = cx + 1 if cx < run.nx - 1 else run.nx - 1
     y0 = cy - 1 if cy > 0 else 0
-    return x0, x1, y0, cy + 1
+    y1 = cy + 1 if cy < run.ny - 1 else run.ny - 1
+    return x0, x1, y0, y1
 
 
 @hot

@@ -49,7 +49,7 @@ def _coming_cells(j, tb):
 
     A crossing scans the row or column beyond its new cell; other events the 3 x 3
     block around it (a pair's partner scans around its own cell, not included).
-    Nothing for atoms off the grid or in the attic.
+    Nothing for atoms off the grid.
     """
     run = tb.run[0]
     p = tb.plan[j]
@@ -62,8 +62,8 @@ def _coming_cells(j, tb):
                 y1 = y0 - 1
         else:
             y0 = 2 * p.cross_to - p.cell_y
-            y1 = y0 if 0 <= y0 <= run.ny else y0 - 1
-    if p.status != TRAPPED or p.cell_y == run.ny:
+            y1 = y0 if 0 <= y0 < run.ny else y0 - 1
+    if p.status != TRAPPED:
         y1 = y0 - 1
     return x0, x1, y0, y1
 
@@ -115,7 +115,7 @@ def _ask_heads_of(i, tb):
     """Ask for the heads of the 3 x 3 block around trapped row i (one line per cell row)."""
     run = tb.run[0]
     p = tb.plan[i]
-    if p.status == TRAPPED and p.cell_y < run.ny:
+    if p.status == TRAPPED:
         x0, _, y0, y1 = neighbours(np.int64(p.cell_x), np.int64(p.cell_y), run)
         for cy in range(y0, y1 + 1):
             prefetch(tb.cells, cell_index(x0, cy, run))

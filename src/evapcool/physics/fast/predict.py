@@ -34,7 +34,7 @@ INF = math.inf
 
 @hot
 def scan(i, x0, x1, y0, y1, tb):
-    """Pairs of trapped row i with the atoms of cells [x0, x1] x [y0, y1] (row ny: the attic).
+    """Pairs of trapped row i with the atoms of cells [x0, x1] x [y0, y1].
 
     Contact times are seed Eqs. (15)-(19) (kernels.pair_contact_time); an earlier pair
     replaces i's real event. On a tie the solo event stays and pairs go in (lower,
@@ -51,7 +51,7 @@ def scan(i, x0, x1, y0, y1, tb):
     best_hi = plan.real_b
     best = -1
     for cy in range(y0, y1 + 1):
-        for c in range(cell_index(x0, cy, run), cell_index(x1, cy, run) + 1):  # attic: one
+        for c in range(cell_index(x0, cy, run), cell_index(x1, cy, run) + 1):
             j = tb.cells[c]
             while j >= 0:
                 if j != i:
@@ -123,8 +123,8 @@ def predict_real(i, tb):
 def _crossing_x(s, cx, run):
     """(time, column entered) of the next crossing of a column edge; (inf, 0) if none.
 
-    A straight line to the next edge in the direction of vx; the edge columns reach
-    to infinity.
+    A straight line to the next edge in the direction of vx; the edge columns have no
+    outer edge.
     """
     if s.vx > 0.0 and cx < run.nx - 1:
         return s.t + ((run.grid_x0 + (cx + 1) * run.cell) - s.x) / s.vx, cx + 1
@@ -140,12 +140,11 @@ def _crossing_y(s, cy, taken, run):
     Up through the top edge (the first root, if the arc really passes it: a grazing
     arc with equal roots stays below), else down through the bottom edge; roots at or
     before `taken`, the arc's last y crossing, are ones already taken. Roots in the
-    cancellation-free form. The top row's top edge leads into the attic (row ny);
-    the attic has only its floor; row 0 reaches down to infinity.
+    cancellation-free form. The top row (the attic) has no top edge, row 0 no bottom.
     """
     g = run.gravity
     vy = s.vy
-    if vy > 0.0 and cy < run.ny:
+    if vy > 0.0 and cy < run.ny - 1:
         d = (run.grid_y0 + (cy + 1) * run.cell) - s.y
         disc = vy * vy - 2.0 * g * d
         if disc > 0.0:
@@ -173,10 +172,7 @@ def _crossing_y(s, cy, taken, run):
 
 @hot
 def predict_crossing(i, tb):
-    """Row i's next cell crossing (none unless trapped and the game is on); x first on a tie.
-
-    The attic is one cell: only its floor can be crossed.
-    """
+    """Row i's next cell crossing (none unless trapped and the game is on); x first on a tie."""
     run = tb.run[0]
     plan = tb.plan[i]
     t = INF
@@ -184,10 +180,9 @@ def predict_crossing(i, tb):
     to = 0
     if plan.status == TRAPPED and run.won == 0:
         s = tb.state[i]
-        if plan.cell_y < run.ny:
-            t, to = _crossing_x(s, plan.cell_x, run)
-            if t < INF:
-                axis = KIND_CROSS_X
+        t, to = _crossing_x(s, plan.cell_x, run)
+        if t < INF:
+            axis = KIND_CROSS_X
         ty, to_y = _crossing_y(s, plan.cell_y, tb.queued[i].arc_cross_t, run)
         if ty < t:
             t = ty

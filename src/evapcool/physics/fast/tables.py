@@ -159,7 +159,7 @@ Tables = namedtuple(
         "heap_row",  # the heap: rows ...
         "heap_t",  # ... and their key times
         "bins",  # first row of each list: n_bins ring lists, overflow, no event
-        "cells",  # first row of each cell (row-major, then the attic), then the next
+        "cells",  # first row of each cell (row-major: grid.py), then the next
         # row in the same cell for every row (the pair scan walks this array only)
         "run",  # RUN, one record
         "rows",  # rows[k]: the row of World atom k
