@@ -27,9 +27,11 @@ from numba import njit
 from evapcool.physics import kernels
 
 _FAST = Path(__file__).resolve().parent
+#: Modules of the package with no compiled code (editing them needs no recompile).
+PYTHON_ONLY = ("__init__.py", "engine.py", "warmup.py")
 #: Every source the compiled engine is built from.
 SOURCES = (
-    *sorted(_FAST.glob("*.py")),
+    *sorted(p for p in _FAST.glob("*.py") if p.name not in PYTHON_ONLY),
     _FAST.parent / "kernels.py",
     _FAST.parent / "world.py",
 )

@@ -75,8 +75,6 @@ def _reachable(entries: Iterable[str]) -> set:
     Follows the global names (and K.<kernel>) each function's code refers to, through
     the pieces Numba splices in (jit.part).
     """
-    from numba.core.dispatcher import Dispatcher
-
     from evapcool.physics.fast import driver, jit
 
     compiled = set(jit.REGISTRY)
@@ -91,7 +89,7 @@ def _reachable(entries: Iterable[str]) -> set:
         names = _names(fn.__code__)
         spaces = [fn.__globals__, *(vars(v) for v in fn.__globals__.values() if v is jit.K)]
         for space in spaces:
-            todo.extend(v for n, v in space.items() if n in names and isinstance(v, Dispatcher))
+            todo.extend(v for n, v in space.items() if n in names and hasattr(v, "py_func"))
     return seen & compiled
 
 
@@ -160,7 +158,11 @@ def run(steps: Iterable[str], progress: Progress | None) -> None:
     global _busy
     with _lock:
         todo = [s for s in steps if s not in _done]
-        if not todo or _busy:
+        if _busy:
+            return
+        if not todo:  # all done before: say so (a progress bar can close)
+            if progress is not None:
+                progress(1, 1, "ready")
             return
         _busy = True
         try:
