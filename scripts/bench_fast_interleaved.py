@@ -43,8 +43,23 @@ dt = time.process_time() - t
 print(json.dumps({"collisions": sim.collision_count - c0, "seconds": dt}))
 """
 
-#: atoms -> frames per run (about a second of work each at 1-1.5 M collisions/s).
-SIZES = {1_000: 300, 10_000: 30, 100_000: 3}
+# The classic start (49 atoms, R = 12, H = 450): median wall time of advance(1) per frame.
+CLASSIC = """
+import json, statistics, sys, time
+from evapcool import Simulation
+sim = Simulation(n_atoms=49, radius=12.0, seed=1, trap_height=450.0, engine="fast")
+sim.advance(1.0)
+times = []
+for _ in range(int(sys.argv[1])):
+    t = time.perf_counter()
+    sim.advance(1.0)
+    times.append(time.perf_counter() - t)
+print(json.dumps({"ms": statistics.median(times) * 1e3}))
+"""
+
+#: atoms -> frames per run (about a second of work each at 1-1.5 M collisions/s; 49:
+#: the classic start, frames whose median time is taken).
+SIZES = {1_000: 300, 10_000: 30, 100_000: 3, 49: 900}
 
 
 def _tree(spec: str, repo: Path, tmp: Path, label: str) -> tuple[Path, str]:
@@ -65,8 +80,10 @@ def _tree(spec: str, repo: Path, tmp: Path, label: str) -> tuple[Path, str]:
 
 
 def _run(tree: Path, cache: Path, n: int, frames: int) -> dict[str, float]:
+    """One run of RUN (or of CLASSIC for n = 49) in a fresh process."""
     env = dict(os.environ, PYTHONPATH=str(tree / "src"), NUMBA_CACHE_DIR=str(cache))
-    out = subprocess.run([sys.executable, "-c", RUN, str(n), str(frames)], env=env,
+    args = [CLASSIC, str(frames)] if n == 49 else [RUN, str(n), str(frames)]
+    out = subprocess.run([sys.executable, "-c", *args], env=env,
                          capture_output=True, text=True, check=True).stdout  # fmt: skip
     return json.loads(out.strip().splitlines()[-1])
 
@@ -76,7 +93,8 @@ def main() -> int:
     p.add_argument("--old", default="main", help="git revision or directory (default: main)")
     p.add_argument("--new", default=".", help="git revision or directory (default: .)")
     p.add_argument("--runs", type=int, default=5, help="runs of each version per size")
-    p.add_argument("--sizes", default="1000,10000,100000", help="atom counts, comma-separated")
+    p.add_argument("--sizes", default="1000,10000,100000,49",
+                   help="atom counts, comma-separated (49: the classic frame time)")  # fmt: skip
     args = p.parse_args()
     sizes = [int(s) for s in args.sizes.split(",")]
     repo = Path(__file__).resolve().parents[1]
@@ -99,11 +117,20 @@ def main() -> int:
                 for label in order:
                     tree, cache, _ = sides[label]
                     r = _run(tree, cache, n, SIZES.get(n, max(2, 300_000 // n)))
-                    rates.setdefault((label, n), []).append(r["collisions"] / r["seconds"])
+                    value = r["ms"] if n == 49 else r["collisions"] / r["seconds"]
+                    rates.setdefault((label, n), []).append(value)
             print(f"  round {k + 1}/{args.runs} done", file=sys.stderr, flush=True)
         print(f"collisions per CPU second, median of {args.runs} interleaved runs each:")
         print(f"{'atoms':>8} {'old':>12} {'new':>12} {'new/old':>8}   runs old | new (M)")
         for n in sizes:
+            if n == 49:
+                old = statistics.median(rates["old", n])
+                new = statistics.median(rates["new", n])
+                each = " ".join(f"{x:.4f}" for x in rates["old", n])
+                each += " | " + " ".join(f"{x:.4f}" for x in rates["new", n])
+                print(f"classic 49 atoms, ms physics per frame: old {old:.4f}, new {new:.4f}, "
+                      f"new/old {new / old:.3f}   runs {each}")  # fmt: skip
+                continue
             old = statistics.median(rates["old", n])
             new = statistics.median(rates["new", n])
             each = " ".join(f"{x / 1e6:.3f}" for x in rates["old", n])
