@@ -19,6 +19,7 @@ pytest.importorskip("numba")
 from evapcool.physics.fast import calendar
 from evapcool.physics.fast.jit import entry
 from evapcool.physics.fast.tables import (
+    HEAP_ENTRY,
     LOG_LINE,
     PLAN,
     QUEUED,
@@ -42,7 +43,7 @@ def _pop(tb):
     if tb.run[0].heap_size == 0 and not calendar.next_bin(tb):
         return -1
     calendar.walk_ahead(True, tb)  # a prefetch: must not disturb anything
-    return tb.heap_row[0]
+    return tb.heap[0].row
 
 
 class Queue:
@@ -53,18 +54,12 @@ class Queue:
             state=aligned(n, STATE),
             queued=aligned(n, QUEUED),
             plan=aligned(n, PLAN),
-            heap_row=np.zeros(n, dtype=np.int64),
-            heap_t=np.full(n, math.inf),
+            heap=np.zeros(n, dtype=HEAP_ENTRY),
             bins=np.full(ring + 2, -1, dtype=np.int64),
             cells=np.full(n + 1, -1, dtype=np.int32),
             run=np.zeros(1, dtype=RUN),
-            rows=np.arange(n, dtype=np.int64),
             tc_table=np.zeros(n + 1),
             log=np.zeros(1, dtype=LOG_LINE),
-            spare_state=aligned(n, STATE),
-            spare_queued=aligned(n, QUEUED),
-            spare_plan=aligned(n, PLAN),
-            new_row=np.zeros(n, dtype=np.int64),
         )
         self.tb.run["n_bins"] = ring
         self.tb.queued["key_t"] = math.inf

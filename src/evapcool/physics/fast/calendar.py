@@ -57,8 +57,8 @@ def comes_before(a, t_a, b, t_b, tb):
 @hot
 def _put(p, i, t, tb):
     """Row i with key time t at heap place p."""
-    tb.heap_row[p] = i
-    tb.heap_t[p] = t
+    tb.heap[p].row = i
+    tb.heap[p].t = t
     tb.queued[i].heap_pos = p
 
 
@@ -67,8 +67,8 @@ def _sift_up(p, i, t, tb):
     """The place, at or above p, where row i (key time t) belongs; parents moved down."""
     while p > 0:
         up = (p - 1) >> 2
-        j = tb.heap_row[up]
-        tj = tb.heap_t[up]
+        j = tb.heap[up].row
+        tj = tb.heap[up].t
         if not comes_before(i, t, j, tj, tb):
             break
         _put(p, j, tj, tb)
@@ -86,11 +86,11 @@ def _sift_down(p, i, t, tb):
             break
         end = c + 4 if c + 4 <= n else n
         for d in range(c + 1, end):
-            if comes_before(tb.heap_row[d], tb.heap_t[d], tb.heap_row[c], tb.heap_t[c], tb):
+            if comes_before(tb.heap[d].row, tb.heap[d].t, tb.heap[c].row, tb.heap[c].t, tb):
                 c = d
-        if not comes_before(tb.heap_row[c], tb.heap_t[c], i, t, tb):
+        if not comes_before(tb.heap[c].row, tb.heap[c].t, i, t, tb):
             break
-        _put(p, tb.heap_row[c], tb.heap_t[c], tb)
+        _put(p, tb.heap[c].row, tb.heap[c].t, tb)
         p = c
     return p
 
@@ -98,8 +98,8 @@ def _sift_down(p, i, t, tb):
 @hot
 def sift(p, tb):
     """Move the entry at heap place p up or down to its place (children 4p+1..4p+4)."""
-    i = tb.heap_row[p]
-    t = tb.heap_t[p]
+    i = tb.heap[p].row
+    t = tb.heap[p].t
     p = _sift_up(p, i, t, tb)
     p = _sift_down(p, i, t, tb)
     _put(p, i, t, tb)
@@ -110,8 +110,8 @@ def heap_push(i, t, tb):
     run = tb.run[0]
     p = run.heap_size
     run.heap_size = p + 1
-    tb.heap_row[p] = i
-    tb.heap_t[p] = t
+    tb.heap[p].row = i
+    tb.heap[p].t = t
     sift(p, tb)
 
 
@@ -175,8 +175,8 @@ def file_atom(i, t, tb):
                 list_remove(i, tb)
             p = run.heap_size
             run.heap_size = p + 1
-            tb.heap_row[p] = i
-        tb.heap_t[p] = t
+            tb.heap[p].row = i
+        tb.heap[p].t = t
     else:
         lst = _list_of(t, q, run)
         if p < 0 and rec.bin == lst:  # lists are unordered: nothing to do
@@ -192,8 +192,8 @@ def file_atom(i, t, tb):
         run.heap_size = last
         if p == last:
             return
-        tb.heap_row[p] = tb.heap_row[last]
-        tb.heap_t[p] = tb.heap_t[last]
+        tb.heap[p].row = tb.heap[last].row
+        tb.heap[p].t = tb.heap[last].t
     sift(p, tb)  # one call site: every inlined copy costs compile time
 
 

@@ -110,8 +110,8 @@ def advance(t_end, tb):
             if not next_bin(tb):
                 return DONE  # no atom has an event
             ask_bin(tb)
-        i = tb.heap_row[0]
-        te = tb.heap_t[0]
+        i = tb.heap[0].row
+        te = tb.heap[0].t
         kind = _event_kind(i, tb)
         if not te <= t_end or kind == KIND_NONE:  # (a key with no event cannot happen)
             return DONE
@@ -169,51 +169,51 @@ def setup(tb):
 
 
 @part
-def _cell_order(tb):
+def _cell_order(sp, rows, tb):
     """new_row[row]: rows in cell order (row-major), the atoms off the grid last.
 
     Returns how many rows are in cells (they come first).
     """
     n = tb.state.shape[0]
     n_cells = tb.cells.shape[0] - n
-    tb.new_row[:] = -1
+    sp.new_row[:] = -1
     k = 0
     for c in range(n_cells):
         j = tb.cells[c]
         while j >= 0:
-            tb.new_row[j] = k
+            sp.new_row[j] = k
             k += 1
             j = tb.cells[n_cells + j]
     linked = k
     for w in range(n):
-        j = tb.rows[w]
-        if tb.new_row[j] < 0:
-            tb.new_row[j] = k
+        j = rows[w]
+        if sp.new_row[j] < 0:
+            sp.new_row[j] = k
             k += 1
     return linked
 
 
 @part
-def _move_rows(tb):
+def _move_rows(sp, rows, tb):
     """Every row j to row new_row[j], in all three tables; references relabelled."""
     n = tb.state.shape[0]
     for j in range(n):
-        tb.spare_state[j] = tb.state[j]
-        tb.spare_queued[j] = tb.queued[j]
-        tb.spare_plan[j] = tb.plan[j]
+        sp.state[j] = tb.state[j]
+        sp.queued[j] = tb.queued[j]
+        sp.plan[j] = tb.plan[j]
     for j in range(n):
-        r = tb.new_row[j]
-        tb.state[r] = tb.spare_state[j]
-        tb.queued[r] = tb.spare_queued[j]
-        tb.plan[r] = tb.spare_plan[j]
+        r = sp.new_row[j]
+        tb.state[r] = sp.state[j]
+        tb.queued[r] = sp.queued[j]
+        tb.plan[r] = sp.plan[j]
     for i in range(n):
-        tb.plan[i].partner = tb.new_row[tb.plan[i].partner]
+        tb.plan[i].partner = sp.new_row[tb.plan[i].partner]
     for w in range(n):
-        tb.rows[w] = tb.new_row[tb.rows[w]]
+        rows[w] = sp.new_row[rows[w]]
 
 
 @entry
-def maintain(*tables):
+def maintain(spares, rows, *tables):
     """Renumber the rows in cell order and refile the queue with a fresh bin width.
 
     Atoms of neighbouring cells then sit next to each other in memory, so the pair
@@ -224,8 +224,8 @@ def maintain(*tables):
     """
     tb = Tables(*tables)
     now = tb.run[0].time
-    linked = _cell_order(tb)
-    _move_rows(tb)
+    linked = _cell_order(spares, rows, tb)
+    _move_rows(spares, rows, tb)
     tb.cells[:] = -1
     for i in range(tb.state.shape[0]):
         tb.plan[i].cell_prev = -1
@@ -236,10 +236,10 @@ def maintain(*tables):
 
 
 @part
-def knife_all(tb):
+def knife_all(rows, tb):
     """The knife at the clock time, in ascending World index."""
-    for w in range(tb.rows.shape[0]):
-        i = tb.rows[w]
+    for w in range(rows.shape[0]):
+        i = rows[w]
         if tb.plan[i].status == TRAPPED:
             knife(i, tb.run[0].time, tb)
 
@@ -247,9 +247,10 @@ def knife_all(tb):
 # -- World <-> tables -----------------------------------------------------------------
 @part
 def _pull(world_scalars, world_arrays, tb):
-    """The World's state -> tables (see FastEngine for the order of the scalars)."""
+    """The World's state -> tables (FastEngine._scalars and _arrays give the order; the
+    arrays end with rows, the row of each World atom)."""
     time, energy_sum, x_rim, trap_height, won, n_trapped, pairs, walls = world_scalars
-    pos, vel, t_atom, status, counter = world_arrays
+    pos, vel, t_atom, status, counter, rows = world_arrays
     run = tb.run[0]
     run.time = time
     run.energy_sum = energy_sum
@@ -259,8 +260,8 @@ def _pull(world_scalars, world_arrays, tb):
     run.n_trapped = n_trapped
     run.pairs = pairs
     run.walls = walls
-    for w in range(tb.rows.shape[0]):
-        i = tb.rows[w]
+    for w in range(rows.shape[0]):
+        i = rows[w]
         s = tb.state[i]
         s.x = pos[w, 0]
         s.y = pos[w, 1]
@@ -274,9 +275,9 @@ def _pull(world_scalars, world_arrays, tb):
 @part
 def _push(status_code, world_arrays, tb):
     """Tables -> the World's arrays; returns what goes back to Python (see FastEngine)."""
-    pos, vel, t_atom, status, counter = world_arrays
-    for w in range(tb.rows.shape[0]):
-        i = tb.rows[w]
+    pos, vel, t_atom, status, counter, rows = world_arrays
+    for w in range(rows.shape[0]):
+        i = rows[w]
         s = tb.state[i]
         pos[w, 0] = s.x
         pos[w, 1] = s.y
@@ -323,7 +324,7 @@ def knife_now(world_scalars, world_arrays, *tables):
     """Take the World's state, apply the knife to every trapped atom, give the state back."""
     tb = Tables(*tables)
     _pull(world_scalars, world_arrays, tb)
-    knife_all(tb)
+    knife_all(world_arrays[5], tb)
     return _push(DONE, world_arrays, tb)
 
 

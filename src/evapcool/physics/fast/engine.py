@@ -2,18 +2,18 @@
 
 from __future__ import annotations
 
-import math
-
 import numpy as np
 
 from evapcool.physics.fast import calendar, driver, grid, warmup
 from evapcool.physics.fast.lookahead import DEEP_MIN_ATOMS
 from evapcool.physics.fast.tables import (
+    HEAP_ENTRY,
     LOG_LINE,
     PLAN,
     QUEUED,
     RUN,
     STATE,
+    Spares,
     Tables,
     aligned,
 )
@@ -33,18 +33,12 @@ def make_tables(world: World, cells: grid.Grid) -> Tables:
         state=aligned(n, STATE),
         queued=aligned(n, QUEUED),
         plan=aligned(n, PLAN),
-        heap_row=np.zeros(n, dtype=np.int64),
-        heap_t=np.full(n, math.inf),
+        heap=np.zeros(n, dtype=HEAP_ENTRY),
         bins=np.full(ring + 2, -1, dtype=np.int64),
         cells=np.full(cells.nx * cells.ny + n, -1, dtype=np.int32),
         run=np.zeros(1, dtype=RUN),
-        rows=np.arange(n, dtype=np.int64),
         tc_table=np.zeros(n + 1),
         log=np.zeros(LOG_CAPACITY if world.record_events else 1, dtype=LOG_LINE),
-        spare_state=aligned(n, STATE),
-        spare_queued=aligned(n, QUEUED),
-        spare_plan=aligned(n, PLAN),
-        new_row=np.zeros(n, dtype=np.int64),
     )
     tb.state["radius"] = world.radius
     tb.state["atom"] = np.arange(n)
@@ -75,6 +69,7 @@ class FastEngine:
         # with progress on the terminal if that takes long.
         warmup.run((*warmup.FIRST_FRAME, *(("knife",) if world.knife else ())), None)
         self.w = world
+        self.spares: Spares | None = None
         self.grid = grid.geometry(world, world.trap_height)
         self._tc_key: tuple[float, float, bool] | None = None
         self._start()
@@ -83,6 +78,7 @@ class FastEngine:
         """New tables on self.grid, set up from the World's state."""
         old = getattr(self, "tb", None)
         self.tb = make_tables(self.w, self.grid)
+        self.rows = np.arange(len(self.w.radius), dtype=np.int64)  # World atom k is in row rows[k]
         if old is not None:  # the counts go on
             for name in ("crossings", "stale"):
                 self.tb.run[name] = old.run[name]
@@ -100,8 +96,9 @@ class FastEngine:
         )  # fmt: skip
 
     def _arrays(self) -> tuple:
+        """The World's arrays, then rows (the row of each World atom), for driver._pull."""
         w = self.w
-        return w.pos, w.vel, w.t_atom, w.status, w.counter
+        return w.pos, w.vel, w.t_atom, w.status, w.counter, self.rows
 
     def _update_tc_table(self) -> None:
         w = self.w
@@ -125,6 +122,14 @@ class FastEngine:
             w.log.extend(tuple(line) for line in self.tb.log[:n_log].tolist())
         return status
 
+    def _spares(self) -> Spares:
+        n = len(self.tb.state)
+        if self.spares is None or len(self.spares.state) != n:
+            self.spares = Spares(
+                aligned(n, STATE), aligned(n, QUEUED), aligned(n, PLAN), np.zeros(n, np.int64)
+            )
+        return self.spares
+
     # -- public -------------------------------------------------------------------
     def advance_to(self, t_end: float) -> None:
         """Process every event with time <= t_end in time order, then set the clock."""
@@ -136,7 +141,7 @@ class FastEngine:
             if status == driver.DONE:
                 return
             if status == driver.UPKEEP:
-                driver.maintain(*self.tb)
+                driver.maintain(self._spares(), self.rows, *self.tb)
 
     def set_trap_height(self, height: float) -> None:
         """New rim height; with the knife rule, atoms above m g H go at once."""

@@ -39,8 +39,8 @@ def ask_atom(j, tb):
 def ask_bin(tb):
     """A new bin's atoms are the next few events: start loading their records."""
     for p in range(tb.run[0].heap_size):
-        prefetch(tb.plan, tb.heap_row[p])
-        prefetch(tb.state, tb.heap_row[p])
+        prefetch(tb.plan, tb.heap[p].row)
+        prefetch(tb.state, tb.heap[p].row)
 
 
 @hot
@@ -100,13 +100,13 @@ def _after_next(c, n, tb):
     best = -1
     t = INF
     for d in range(1, min(5, n)):
-        if d != c and tb.heap_t[d] < t:
+        if d != c and tb.heap[d].t < t:
             best = d
-            t = tb.heap_t[d]
+            t = tb.heap[d].t
     for d in range(4 * c + 1, min(4 * c + 5, n)):
-        if tb.heap_t[d] < t:
+        if tb.heap[d].t < t:
             best = d
-            t = tb.heap_t[d]
+            t = tb.heap[d].t
     return best
 
 
@@ -130,14 +130,14 @@ def before_event(i, kind, tb):
     if n > 1:
         c = np.int64(1)
         for d in range(2, min(5, n)):
-            if tb.heap_t[d] < tb.heap_t[c]:
+            if tb.heap[d].t < tb.heap[c].t:
                 c = d
-        nxt = tb.heap_row[c]
+        nxt = tb.heap[c].row
         ask_atom(nxt, tb)
         if run.deep != 0 and n > 2:
             after = _after_next(c, n, tb)
             if after >= 0:
-                _ask_heads(tb.heap_row[after], tb)
+                _ask_heads(tb.heap[after].row, tb)
     if kind == KIND_PAIR:  # the partner's records, while the counts are compared
         ask_atom(np.int64(tb.plan[i].partner), tb)
     _ask_heads_of(i, tb)

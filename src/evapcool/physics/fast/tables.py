@@ -146,6 +146,9 @@ RUN = _record(
     ]
 )
 
+#: An entry of the calendar's heap: a row filed under key time t.
+HEAP_ENTRY = np.dtype([("t", "f8"), ("row", "i8")])
+
 #: One line of the event log: (world.EV_* kind, atom, other atom or -1, time).
 LOG_LINE = np.dtype([("kind", "i8"), ("a", "i8"), ("b", "i8"), ("t", "f8")])
 
@@ -156,21 +159,19 @@ Tables = namedtuple(
         "state",  # STATE per row
         "queued",  # QUEUED per row
         "plan",  # PLAN per row
-        "heap_row",  # the heap: rows ...
-        "heap_t",  # ... and their key times
+        "heap",  # HEAP_ENTRY: the event calendar's heap
         "bins",  # first row of each list: n_bins ring lists, overflow, no event
         "cells",  # first row of each cell (row-major: grid.py), then the next
         # row in the same cell for every row (the pair scan walks this array only)
         "run",  # RUN, one record
-        "rows",  # rows[k]: the row of World atom k
         "tc_table",  # critical temperature for every atom count, seed Eq. (46)
         "log",  # LOG_LINE buffer
-        "spare_state",  # scratch copies of the tables for maintain()
-        "spare_queued",
-        "spare_plan",
-        "new_row",
     ],
 )
+
+#: Scratch tables for driver.maintain (renumbering the rows), passed to it alone: every
+#: array in Tables is one more argument in every call the compiler has to process.
+Spares = namedtuple("Spares", ["state", "queued", "plan", "new_row"])
 
 
 def aligned(n: int, dtype: np.dtype) -> np.ndarray:
