@@ -125,12 +125,9 @@ def test_same_events_random_systems(
     _assert_same(ref, fast)
 
 
-def test_atoms_far_above_the_grid_still_collide(monkeypatch: pytest.MonkeyPatch) -> None:
-    # Two trapped atoms thrown far above the nominal grid (here sized for the slow
-    # atoms only) meet there, in the clamped top row, and bounce apart.
-    from evapcool.physics import fast as fast_module
-
-    monkeypatch.setattr(fast_module, "BOX_PERCENTILE", 0.0)
+def test_atoms_far_above_the_grid_still_collide() -> None:
+    # Two trapped atoms thrown far above the rim (H = 60) fly in the attic, the grid's
+    # top row, meet there and bounce apart, exactly as in the reference engine.
     pos = [(-30.0, 100.0), (30.0, 100.0), (0.0, 5.0), (10.0, 5.0), (-10.0, 5.0)]
     vel = [(1.0, 20.0), (-1.0, 20.0), (0.5, 0.0), (-0.5, 0.0), (0.1, 0.0)]
     sims = [
@@ -140,7 +137,7 @@ def test_atoms_far_above_the_grid_still_collide(monkeypatch: pytest.MonkeyPatch)
             positions=pos,
             velocities=vel,
             engine=e,
-            trap_height=math.inf,
+            trap_height=60.0,
             record_events=True,
         )
         for e in ("reference", "fast")
@@ -148,10 +145,56 @@ def test_atoms_far_above_the_grid_still_collide(monkeypatch: pytest.MonkeyPatch)
     for sim in sims:
         sim.advance(80.0)
     ref, fast = sims
-    _nx, ny, cs = fast._engine.grid_shape
-    assert ny * cs < 100.0  # the meeting point, about 600 px up, is far above the box
+    assert fast._engine.grid.top < 100.0  # the meeting point, about 600 px up, is far above
     assert ("pair", 0, 1) in {e[:3] for e in ref.event_log}
     _assert_same(ref, fast)
+
+
+def test_raising_the_rim_rebuilds_the_grid_with_the_same_events() -> None:
+    ref, fast = _pair_run(50, 3, 700, changes={150: 120.0, 300: 350.0}, radius=6.0,
+                          trap_height=60.0)  # fmt: skip
+    assert fast._engine.grid.reach >= 350.0
+    _assert_same(ref, fast)
+
+
+def test_hot_atoms_do_not_widen_the_cells() -> None:
+    """Issue 13: the grid depends on the atoms' size and the trap, never on their energies."""
+    cold = Simulation(n_atoms=2000, radius=2.0, seed=4, trap_height=450.0, engine="fast")
+    vel = cold._world.vel.copy()
+    vel[::20] *= 30.0  # 5 % of the atoms 900 times hotter
+    hot = Simulation(
+        n_atoms=2000, radius=2.0, positions=cold._world.pos, velocities=vel,
+        trap_height=450.0, engine="fast",
+    )  # fmt: skip
+    assert hot._engine.grid_shape == cold._engine.grid_shape
+    assert hot._engine.grid_shape[2] == pytest.approx(1.1 * 2 * 2.0)
+    hot.advance(5.0)
+    assert hot._engine.off_grid_count > 0  # some of them fly in the attic ...
+    assert hot._engine.grid_errors() == 0  # ... filed where they are
+
+
+@settings(max_examples=200, deadline=None)
+@given(
+    n=st.integers(1, 300_000),
+    radius=st.floats(1e-3, 30.0),
+    height=st.one_of(st.floats(1.0, 1e6), st.just(math.inf)),
+    curvature=st.floats(1e-5, 1.0),
+    width=st.integers(160, 100_000),
+)
+def test_grid_memory_is_bounded(n, radius, height, curvature, width) -> None:
+    """At most 16 cells per atom (or 4096) for any input; cells at least a contact wide."""
+    from types import SimpleNamespace
+
+    from evapcool.physics.fast import grid
+
+    world = SimpleNamespace(
+        radius=np.array([radius]), curvature=curvature, x_left=-0.4 * width,
+        x_right=0.6 * width,
+    )  # fmt: skip
+    g = grid.geometry(world, height)
+    assert g.nx * g.ny <= max(grid.MAX_CELLS_PER_ATOM * n, grid.MIN_CELLS)
+    assert g.cell >= 2.0 * radius
+    assert g.top >= min(height, grid.reach(world, height)) + g.cell  # the rim is inside
 
 
 def _min_gap(pos: np.ndarray, radius: float) -> float:
@@ -192,3 +235,86 @@ def test_ten_thousand_atoms_sound() -> None:
     # The running sum over trapped atoms agrees with a fresh one.
     trapped = w.energies()[w.status == TRAPPED]
     assert w.energy_sum == pytest.approx(float(np.sum(trapped)), rel=1e-9)
+
+
+# -- cell crossings cannot stall (issue 17) ----------------------------------------------
+A = 0.01
+G = 10.0 / 30.0
+CELL = 1.1 * 2 * 12.0
+
+
+def _edges_through(monkeypatch: pytest.MonkeyPatch, x: float, y: float) -> None:
+    """Make the grid of the next engines have a column edge at x and a row edge at y."""
+    from evapcool.physics.fast import grid
+
+    def geometry(world, height):
+        nx, ny = 40, 30
+        return grid.Grid(x - 20 * CELL, y - 5 * CELL, CELL, nx, ny, 450.0)
+
+    monkeypatch.setattr(grid, "geometry", geometry)
+
+
+def _one_atom(engine: str, x: float, y: float, vx: float, vy: float) -> Simulation:
+    return Simulation(
+        n_atoms=1, radius=12.0, positions=[[x, y]], velocities=[[vx, vy]], engine=engine,
+        trap_height=450.0, record_events=True,
+    )  # fmt: skip
+
+
+def _events_per_frame(sim: Simulation, frames: int) -> list[int]:
+    eng = sim._engine
+    counts = []
+    for _ in range(frames):
+        before = sim.wall_collision_count + eng.crossing_count
+        sim.advance(1.0)
+        counts.append(sim.wall_collision_count + eng.crossing_count - before)
+        assert eng.grid_errors() == 0
+    return counts
+
+
+def _bound(sim: Simulation) -> float:
+    """Most wall bounces plus crossings a lone atom can have in a frame.
+
+    A hop lasts at least v_min / (g/2 + a v^2) (test_stalls.py), an arc crosses a row
+    edge at most twice, and the atom travels at most v_max px in a frame."""
+    v2 = 2.0 * sim.total_energy()
+    hops = 2.0 + (0.5 * G + A * v2) / 1e-3
+    return hops * 3 + 2 * math.sqrt(v2) / CELL + 4
+
+
+@pytest.mark.parametrize(
+    ("x", "y", "vx", "vy"),
+    [
+        (0.0, 0.0, 0.0, 0.0),  # at rest in the vertex, on a column and a row edge
+        (0.0, 1e-300, 0.0, 0.0),
+        (50.0, 25.0, 0.0, 0.0),  # at rest on the slope, on both edges: rolls
+        (0.0, 40.0, 0.0, 0.0),  # dropped along a column edge
+        (0.0, 40.0, 0.0, 3.0),  # thrown up along it
+        (-30.0, 40.0, 2.0, 0.0),  # at the top of its arc on a row edge, moving along it
+        (20.0, 4.0, 1e-9, 0.0),  # hopping on the wall across a row edge
+    ],
+)
+def test_atom_on_cell_edges_advances_with_bounded_events(monkeypatch, x, y, vx, vy) -> None:
+    _edges_through(monkeypatch, x, y)
+    ref = _one_atom("reference", x, y, vx, vy)
+    fast = _one_atom("fast", x, y, vx, vy)
+    counts = _events_per_frame(fast, 30)
+    ref.advance(30.0)
+    assert max(counts) <= _bound(fast)
+    assert fast.event_log == ref.event_log  # the crossings changed nothing
+
+
+@settings(max_examples=30, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(
+    x=st.floats(-150.0, 150.0),
+    lift=st.sampled_from([0.0, 1e-300, 1e-12, 1e-6, 5.0]),
+    speed=st.one_of(st.just(0.0), st.floats(0.0, 1e-3), st.floats(0.0, 6.0)),
+    angle=st.sampled_from([0.0, 0.5 * math.pi, math.pi, 1.5 * math.pi, 0.3]),
+)
+def test_any_state_on_cell_edges_advances_with_bounded_events(x, lift, speed, angle) -> None:
+    with pytest.MonkeyPatch.context() as mp:
+        y = A * x * x + lift
+        _edges_through(mp, x, y)
+        sim = _one_atom("fast", x, y, speed * math.cos(angle), speed * math.sin(angle))
+        counts = _events_per_frame(sim, 3)
+        assert max(counts) <= _bound(sim)

@@ -1,39 +1,52 @@
 """Bench section 'fast': the fast engine's throughput, scaling, frame time and start-up.
 
-Figures (issue 4): collisions and events per second at 10 000 atoms; a scaling
-table at constant packing (radius = sqrt(10 000 / N)); the classic 49-atom
-start's physics time per frame; the time to the first frame in a fresh
-process with the compiled cache warm; and where the fast engine overtakes the
-reference engine (for AUTO_FAST_MIN_ATOMS). Compilation is warmed up first.
-Rates use process CPU time: the machine is shared, wall time is noisier.
+Figures (issues 4, 13 and 17): collisions and events per second at 10 000 atoms; a
+scaling table at constant packing (radius = sqrt(10 000 / N)); the same gas with 1 %
+of its atoms 100 times hotter (issue 13: cells must not widen for them); the classic
+49-atom start's physics time per frame; the first start with an empty compile cache
+and later starts with a warm one, in fresh processes; and where the fast engine
+overtakes the reference engine (for AUTO_FAST_MIN_ATOMS). Compilation is warmed up
+first. Rates use process CPU time: the machine is shared, wall time is noisier.
 """
 
 from __future__ import annotations
 
 import argparse
 import math
+import os
 import statistics
 import subprocess
 import sys
+import tempfile
 import time
+
+import numpy as np
 
 from evapcool import Simulation
 
 #: Runs of each size in the scaling table (interleaved; the median is quoted).
 SCALING_REPEATS = 3
+#: The outlier gas (issue 13): this many of the 10 000 atoms get their velocities
+#: multiplied by HOT_SPEED, i.e. this many times the kinetic energy (temperature).
+HOT_ATOMS = 100
+HOT_SPEED = 10.0
 
-_STARTUP_CODE = (
-    "import time; t0 = time.perf_counter()\n"
+_FIRST_FRAME_CODE = (
+    "import time; t0 = time.perf_counter(); c0 = time.process_time()\n"
     "from evapcool import Simulation\n"
     "s = Simulation.classic(seed=1, engine={engine!r}); s.advance(1.0)\n"
-    "print(time.perf_counter() - t0)\n"
+    "print(time.perf_counter() - t0, time.process_time() - c0)\n"
+)
+_PREPARE_CODE = (
+    "import time; t0 = time.perf_counter(); c0 = time.process_time()\n"
+    "from evapcool.physics import fast\n"
+    "fast.prepare(lambda done, total, what: None)\n"
+    "print(time.perf_counter() - t0, time.process_time() - c0)\n"
 )
 
 
-def throughput(n: int, frames: int, seed: int = 1) -> dict[str, float]:
+def _rate(sim: Simulation, frames: int) -> dict[str, float]:
     """Collisions and events per CPU second over `frames` frames after a 1-frame warm-up."""
-    radius = math.sqrt(10_000 / n)
-    sim = Simulation(n_atoms=n, radius=radius, seed=seed, trap_height=450.0, engine="fast")
     sim.advance(1.0)
     eng = sim._engine
     c0, x0, s0 = sim.collision_count, eng.crossing_count, eng.stale_count
@@ -42,9 +55,29 @@ def throughput(n: int, frames: int, seed: int = 1) -> dict[str, float]:
     dt = time.process_time() - t
     coll = sim.collision_count - c0
     events = coll + (eng.crossing_count - x0) + (eng.stale_count - s0)
-    return {"n": n, "radius": radius, "frames": frames, "seconds": dt,
-            "collisions": coll, "events": events, "coll_per_s": coll / dt,
-            "events_per_s": events / dt, "per_frame_ms": dt / frames * 1e3}  # fmt: skip
+    return {"frames": frames, "seconds": dt, "collisions": coll, "events": events,
+            "coll_per_s": coll / dt, "events_per_s": events / dt,
+            "per_frame_ms": dt / frames * 1e3}  # fmt: skip
+
+
+def throughput(n: int, frames: int, seed: int = 1) -> dict[str, float]:
+    """_rate of n atoms at constant packing (radius sqrt(10 000 / n)), H = 450."""
+    radius = math.sqrt(10_000 / n)
+    sim = Simulation(n_atoms=n, radius=radius, seed=seed, trap_height=450.0, engine="fast")
+    return {"n": n, "radius": radius, **_rate(sim, frames)}
+
+
+def outlier_gas(hot: bool, seed: int = 1) -> Simulation:
+    """10 000 atoms of radius 1 at H = 450; with hot=True, HOT_ATOMS of them HOT_SPEED
+    times faster (chosen at random, seed 7), everything else the same."""
+    base = Simulation(n_atoms=10_000, radius=1.0, seed=seed, trap_height=450.0, engine="fast")
+    pos, vel = base._world.pos.copy(), base._world.vel.copy()
+    if hot:
+        vel[np.random.default_rng(7).choice(10_000, HOT_ATOMS, replace=False)] *= HOT_SPEED
+    return Simulation(
+        n_atoms=10_000, radius=1.0, positions=pos, velocities=vel, trap_height=450.0,
+        engine="fast",
+    )  # fmt: skip
 
 
 def frame_median_ms(engine: str, n: int, frames: int, radius: float = 12.0) -> float:
@@ -59,36 +92,36 @@ def frame_median_ms(engine: str, n: int, frames: int, radius: float = 12.0) -> f
     return statistics.median(times) * 1e3
 
 
+def _fresh_process(code: str, cache_dir: str | None = None) -> tuple[float, float]:
+    """(wall, CPU) seconds the code prints, run in a fresh Python process."""
+    env = dict(os.environ)
+    if cache_dir is not None:
+        env["NUMBA_CACHE_DIR"] = cache_dir
+    out = subprocess.run(
+        [sys.executable, "-c", code], capture_output=True, text=True, check=True, env=env
+    ).stdout
+    wall, cpu = out.strip().splitlines()[-1].split()
+    return float(wall), float(cpu)
+
+
 def startup_seconds(engine: str, repeats: int) -> tuple[float, float]:
     """(process wall time, in-process time) to the first frame, median over fresh processes."""
-    code = _STARTUP_CODE.format(engine=engine)
     walls, inner = [], []
     for _ in range(repeats):
         t = time.perf_counter()
-        out = subprocess.run(
-            [sys.executable, "-c", code], capture_output=True, text=True, check=True
-        ).stdout
+        inside, _ = _fresh_process(_FIRST_FRAME_CODE.format(engine=engine))
         walls.append(time.perf_counter() - t)
-        inner.append(float(out.strip().splitlines()[-1]))
+        inner.append(inside)
     return statistics.median(walls), statistics.median(inner)
 
 
-def run(args: argparse.Namespace) -> None:
-    """Print the fast engine's figures."""
-    quick = bool(getattr(args, "quick", False))
-    # Warm-up: compile (or load from the cache) every compiled function.
-    Simulation(n_atoms=50, radius=3.0, seed=0, engine="fast", escape="knife").advance(2.0)
+def cold_start_seconds(code: str) -> tuple[float, float]:
+    """(wall, CPU) seconds of `code` in a fresh process with an empty compile cache."""
+    with tempfile.TemporaryDirectory(prefix="evapcool-cold-") as cache:
+        return _fresh_process(code, cache)
 
-    frames = 10 if quick else 30
-    r = throughput(10_000, frames)
-    print("[fast] Simulation(n_atoms=10000, radius=1.0, seed=1, trap_height=450, engine='fast')")
-    print(
-        f"  {r['collisions']:,} collisions in frames 1-{frames + 1}: "
-        f"{r['coll_per_s']:,.0f} collisions/s (atom-atom + wall), "
-        f"{r['events_per_s']:,.0f} events/s (with cell crossings and stale pops), "
-        f"{r['per_frame_ms']:.1f} ms per frame"
-    )
 
+def _print_scaling(frames: int, quick: bool) -> None:
     sizes = (1_000, 10_000) if quick else (1_000, 10_000, 100_000)
     repeats = 1 if quick else SCALING_REPEATS
     # Interleaved repeats, medians: a burst of load on the shared machine then spoils
@@ -119,17 +152,68 @@ def run(args: argparse.Namespace) -> None:
         )
     print(f"  max / min collisions/s across the table (medians): {max(rates) / min(rates):.2f}")
 
-    nf = 300 if quick else 900
-    med = frame_median_ms("fast", 49, nf)
-    print(f"  classic start (49 atoms, R = 12, H = 450): median {med:.4f} ms physics per frame")
 
+def _print_outliers(frames: int, quick: bool) -> None:
+    repeats = 1 if quick else SCALING_REPEATS
+    runs: dict[bool, list[float]] = {False: [], True: []}
+    for _ in range(repeats):
+        for hot in (False, True):
+            runs[hot].append(_rate(outlier_gas(hot), frames)["coll_per_s"])
+    base = statistics.median(runs[False])
+    hot = statistics.median(runs[True])
+    print(
+        f"  outliers: the 10 000-atom gas with {HOT_ATOMS} atoms {HOT_SPEED**2:.0f} times hotter, "
+        f"frames 1-{frames + 1}, median of {repeats}:"
+    )
+    print(
+        f"    {hot:,.0f} collisions/s against {base:,.0f} without them: "
+        f"ratio {hot / base:.2f} (target >= 0.70)"
+    )
+
+
+def _print_startup(quick: bool) -> None:
     reps = 2 if quick else 5
     for engine in ("fast", "reference"):
         wall, inner = startup_seconds(engine, reps)
         print(
-            f"  start-up to first frame, fresh process, engine={engine}: {wall:.2f} s "
+            f"  start-up to first frame, fresh process, warm cache, engine={engine}: {wall:.2f} s "
             f"(of which {inner:.2f} s import + build + first frame)"
         )
+    wall, cpu = cold_start_seconds(_FIRST_FRAME_CODE.format(engine="fast"))
+    print(
+        f"  first start, empty compile cache (import + compile + first frame): {wall:.1f} s "
+        f"({cpu:.1f} s CPU; target < 15 s)"
+    )
+    wall, cpu = cold_start_seconds(_PREPARE_CODE)
+    print(
+        f"  fast.prepare(), empty compile cache (everything the engine can need): {wall:.1f} s "
+        f"({cpu:.1f} s CPU)"
+    )
+
+
+def run(args: argparse.Namespace) -> None:
+    """Print the fast engine's figures."""
+    quick = bool(getattr(args, "quick", False))
+    from evapcool.physics import fast
+
+    fast.prepare(lambda done, total, what: None)  # compile (or load from the cache)
+
+    frames = 10 if quick else 30
+    r = throughput(10_000, frames)
+    print("[fast] Simulation(n_atoms=10000, radius=1.0, seed=1, trap_height=450, engine='fast')")
+    print(
+        f"  {r['collisions']:,} collisions in frames 1-{frames + 1}: "
+        f"{r['coll_per_s']:,.0f} collisions/s (atom-atom + wall), "
+        f"{r['events_per_s']:,.0f} events/s (with cell crossings and stale pops), "
+        f"{r['per_frame_ms']:.1f} ms per frame"
+    )
+    _print_scaling(frames, quick)
+    _print_outliers(frames, quick)
+
+    nf = 300 if quick else 900
+    med = frame_median_ms("fast", 49, nf)
+    print(f"  classic start (49 atoms, R = 12, H = 450): median {med:.4f} ms physics per frame")
+    _print_startup(quick)
 
     print("  fast vs reference, median ms per frame (cup start, H = 450, R = 12 scaled):")
     counts = (25, 49, 100, 200) if quick else (25, 49, 75, 100, 150, 200, 300)
