@@ -287,4 +287,6 @@ def check_writable(path: str | os.PathLike[str], name: str) -> None:
         os.unlink(probe)
     except OSError as exc:
         reason = exc.strerror.lower() if exc.strerror else type(exc).__name__
-        raise ValueError(f"{name} cannot be written in that folder ({reason}) {where}") from None
+        raise ValueError(
+            f"{name} cannot be written: {folder} takes no new file ({reason}) {where}"
+        ) from None

@@ -142,8 +142,9 @@ EVERY = Range(1, FRAMES_MAX, integer=True)
 #: Records kept in memory as Python lists (about 0.4 KB each) and written as text
 #: (about 0.2 KB each): 10^5 records stay far below 1 GB with every copy made.
 RECORDS_MAX = 100_000
-#: Seconds between checkpoint writes of --out (each rewrites the whole file); inf: none.
-CHECKPOINT_SECONDS = Range(1.0, math.inf, "s", inf_ok=True)
+#: Seconds between checkpoint writes of --out; 0: at every record, inf: never. Each
+#: rewrites the whole file, so 0 costs O(records^2) bytes: for tests and short runs.
+CHECKPOINT_SECONDS = Range(0.0, math.inf, "s", inf_ok=True)
 #: kT of a thermal start: thermal speeds sqrt(kT / m) up to 100 px/frame (tails under
 #: VELOCITY_MAX for 10^6 atoms); at 1e-3 the cloud is 3e-3 px tall.
 START_KT = Range(1e-3, 1e4, "mass px^2/frame^2")

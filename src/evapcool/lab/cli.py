@@ -6,7 +6,8 @@ import argparse
 import sys
 from typing import NoReturn
 
-from evapcool.argtypes import choice, positive, whole
+from evapcool import limits
+from evapcool.argtypes import choice, output_file, ranged
 from evapcool.lab.experiment import ESCAPES, START_HELP, TC_LAWS, LabConfig, run_experiment
 from evapcool.lab.io import COLUMNS, read_result, to_csv_text
 from evapcool.lab.schedule import SCHEDULE_HELP
@@ -36,18 +37,44 @@ def build_parser() -> argparse.ArgumentParser:
             "time series (CSV/JSON) and a figure out. See doc/lab.md."
         ),
     )
-    p.add_argument("--atoms", type=whole(1), help=f"number of atoms (default {d.atoms})")
-    p.add_argument("--radius", type=positive, help=f"atom radius, px (default {d.radius:g})")
-    p.add_argument("--curvature", type=positive, help=f"cup curvature a, 1/px ({d.curvature:g})")
-    p.add_argument("--gravity", type=positive, help="g, px/frame^2 (default 10/30)")
-    p.add_argument("--seed", type=whole(0), help="random seed (default: drawn, recorded)")
+    p.add_argument(
+        "--atoms",
+        type=ranged(limits.N_ATOMS),
+        help=f"number of atoms, {limits.N_ATOMS.span()}, at most "
+        f"{limits.REFERENCE_MAX_ATOMS} with --engine reference (default {d.atoms})",
+    )
+    p.add_argument(
+        "--radius",
+        type=ranged(limits.RADIUS),
+        help=f"atom radius, {limits.RADIUS.span()} (default {d.radius:g})",
+    )
+    p.add_argument(
+        "--curvature",
+        type=ranged(limits.CURVATURE),
+        help=f"cup curvature a, {limits.CURVATURE.span()} (default {d.curvature:g})",
+    )
+    p.add_argument(
+        "--gravity",
+        type=ranged(limits.GRAVITY),
+        help=f"g, {limits.GRAVITY.span()} (default 10/30)",
+    )
+    p.add_argument(
+        "--seed",
+        type=ranged(limits.SEED),
+        help=f"random seed, {limits.SEED.span()} (default: drawn, recorded)",
+    )
     p.add_argument("--engine", type=choice(ENGINES), help="physics engine (default auto)")
-    p.add_argument("--frames", type=whole(1), help=f"run length ({d.frames} frames)")
+    p.add_argument(
+        "--frames",
+        type=ranged(limits.FRAMES),
+        help=f"run length, {limits.FRAMES.span()} frames (default {d.frames})",
+    )
     p.add_argument(
         "--every",
-        type=whole(1),
+        type=ranged(limits.EVERY),
         metavar="K",
-        help=f"record every K frames (default {d.every})",
+        help=f"record every K frames (default {d.every}); "
+        f"at most {limits.RECORDS_MAX} records in a run",
     )
     p.add_argument(
         "--escape",
@@ -75,8 +102,18 @@ def build_parser() -> argparse.ArgumentParser:
         metavar="FILE",
         help="repeat the run recorded in FILE (other options override)",
     )
-    p.add_argument("--out", metavar="FILE", help="results, .csv or .json (default: CSV on stdout)")
-    p.add_argument("--plot", metavar="FILE.png", help="save the four-panel figure")
+    p.add_argument(
+        "--out",
+        metavar="FILE",
+        type=output_file((".csv", ".json")),
+        help="results, .csv or .json (default: CSV on stdout); checked before the run",
+    )
+    p.add_argument(
+        "--plot",
+        metavar="FILE.png",
+        type=output_file((".png",)),
+        help="save the four-panel figure; checked before the run",
+    )
     return p
 
 
@@ -90,6 +127,8 @@ _OPTION_OF = {"n_atoms": "atoms", "trap_height": "schedule"}
 
 def _option_message(message: str) -> str:
     """'tc_law must be ...' -> '--tc-law must be ...' so the line names the CLI option."""
+    if message.startswith("n_atoms:") and "do not fit" in message:
+        return "--atoms, --radius and --curvature" + message[len("n_atoms") :]  # a joint limit
     head, sep, rest = message.partition(" ")
     word = head.rstrip(":")
     word = _OPTION_OF.get(word, word)
@@ -99,6 +138,17 @@ def _option_message(message: str) -> str:
     return message
 
 
+def _from_file(path: str) -> dict:
+    """The parameters recorded in a lab result file; ValueError or OSError saying why not."""
+    params = read_result(path)[0].get("parameters")
+    if not isinstance(params, dict):
+        raise ValueError("it records no parameters")
+    unknown = sorted(str(k) for k in params if k not in LabConfig.__dataclass_fields__)
+    if unknown:
+        raise ValueError(f"unknown parameter {limits.shown(unknown[0])}")
+    return params
+
+
 def main(argv: list[str] | None = None) -> int:
     """Entry point of `evapcool lab`; returns the exit status (2 on bad input)."""
     try:
@@ -106,19 +156,28 @@ def main(argv: list[str] | None = None) -> int:
     except _UsageError as exc:
         return _fail(str(exc))
     params: dict = {}
+    from_file: dict = {}
     if args.from_file is not None:
         try:
-            params.update(read_result(args.from_file)[0]["parameters"])
-        except (OSError, ValueError, KeyError, TypeError) as exc:
-            return _fail(f"--from must name a lab result file (.csv or .json): {exc}")
+            from_file = _from_file(args.from_file)
+        except (OSError, ValueError) as exc:
+            why = exc.strerror or exc if isinstance(exc, OSError) else exc
+            return _fail(f"--from must name a lab result file (.csv or .json): {why}")
+        params.update(from_file)
+    given = set()
     for name in LabConfig.__dataclass_fields__:
         value = getattr(args, name, None)
         if value is not None:
             params[name] = value
+            given.add(name)
     try:
         result = run_experiment(out=args.out, plot=args.plot, progress=None, **params)
     except ValueError as exc:
-        return _fail(_option_message(str(exc)))
+        message = str(exc)
+        name = message.split(" ", 1)[0].rstrip(":")
+        if name in from_file and name not in given:
+            return _fail(f"--from {args.from_file}: {message}")
+        return _fail(_option_message(message))
     except OSError as exc:
         return _fail(f"could not write output: {exc}")
     if args.out is None:

@@ -74,8 +74,8 @@ def cell_centres(n: int, radius: float, curvature: float, y_top: float) -> np.nd
         yc = y0 + k * spacing
         if yc + cell > y_top:
             raise ValueError(
-                f"n_atoms: {n} atoms of radius {radius:g} do not fit in the cup below "
-                f"the window top (at most {found} fit)"
+                f"n_atoms: {n} atoms of radius {radius:g} do not fit in the cup "
+                f"(curvature {curvature:g}) below the window top (at most {found} fit)"
             )
         m = int(math.sqrt(yc / curvature) / spacing) + 1
         xs = _row(yc, n - found, m, spacing, jitter, curvature)
