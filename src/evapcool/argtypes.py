@@ -14,6 +14,11 @@ from evapcool.fileio import check_writable
 from evapcool.limits import Range
 
 
+def one_line(message: str) -> str:
+    """message with line breaks and other control characters escaped: one line on stderr."""
+    return "".join(ch if ch.isprintable() or ch == " " else repr(ch)[1:-1] for ch in message)
+
+
 def ranged(rng: Range) -> Callable[[str], float]:
     """A number (a whole number if rng.integer) within rng."""
 
@@ -26,6 +31,7 @@ def ranged(rng: Range) -> Callable[[str], float]:
             raise argparse.ArgumentTypeError(f"must be {rng.allowed()} (got {text!r})")
         return value
 
+    parse.range = rng  # type: ignore[attr-defined]  # for tests that fuzz the options
     return parse
 
 
@@ -85,4 +91,5 @@ def output_file(suffixes: Sequence[str]) -> Callable[[str], Path]:
             raise argparse.ArgumentTypeError(str(exc).removeprefix("it ")) from None
         return path
 
+    parse.suffixes = tuple(suffixes)  # type: ignore[attr-defined]
     return parse

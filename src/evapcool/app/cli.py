@@ -10,7 +10,7 @@ from pathlib import Path
 
 from evapcool import limits
 from evapcool.app.storage import settings_path
-from evapcool.argtypes import output_file, ranged
+from evapcool.argtypes import one_line, output_file, ranged
 from evapcool.game.rules import Game, GameConfig
 from evapcool.game.settings import (
     TC_LAWS,
@@ -36,7 +36,7 @@ _OPTION_OF = {
 
 class _Parser(argparse.ArgumentParser):
     def error(self, message: str) -> None:  # one line and exit 2, never a usage dump
-        print(f"{PROG}: {message}", file=sys.stderr)
+        print(f"{PROG}: {one_line(message)}", file=sys.stderr)
         raise SystemExit(2)
 
 
@@ -190,7 +190,7 @@ def main(argv: list[str] | None = None) -> int:
         )
         game = _build_game(config)
     except ValueError as exc:
-        print(f"{PROG}: {_user_message(exc)}", file=sys.stderr)
+        print(f"{PROG}: {one_line(_user_message(exc))}", file=sys.stderr)
         return 2
 
     os.environ.setdefault("PYGAME_HIDE_SUPPORT_PROMPT", "1")
@@ -225,7 +225,10 @@ def main(argv: list[str] | None = None) -> int:
                 try:
                     app.screenshot(args.screenshot)
                 except OSError as exc:
-                    print(f"{PROG}: cannot write {str(args.screenshot)!r}: {exc}", file=sys.stderr)
+                    print(
+                        f"{PROG}: cannot write {str(args.screenshot)!r}: {one_line(str(exc))}",
+                        file=sys.stderr,
+                    )
                     return 1
     except KeyboardInterrupt:
         return 130

@@ -7,7 +7,7 @@ import sys
 from typing import NoReturn
 
 from evapcool import limits
-from evapcool.argtypes import choice, output_file, ranged
+from evapcool.argtypes import choice, one_line, output_file, ranged
 from evapcool.lab.experiment import ESCAPES, START_HELP, TC_LAWS, LabConfig, run_experiment
 from evapcool.lab.io import COLUMNS, read_result, to_csv_text
 from evapcool.lab.schedule import SCHEDULE_HELP
@@ -118,7 +118,7 @@ def build_parser() -> argparse.ArgumentParser:
 
 
 def _fail(message: str) -> int:
-    print(f"evapcool lab: error: {message}", file=sys.stderr)
+    print(f"evapcool lab: error: {one_line(message)}", file=sys.stderr)
     return EXIT_USAGE
 
 

@@ -191,15 +191,21 @@ def _make_simulation(cfg: LabConfig, schedule: Schedule) -> Simulation:
     pos = vel = None
     if kt is not None:
         rng = np.random.default_rng(cfg.seed)
-        pos, vel = thermal_cloud(
-            cfg.atoms,
-            cfg.radius,
-            kt,
-            mass=MASS,
-            gravity=cfg.gravity,
-            curvature=cfg.curvature,
-            rng=rng,
-        )
+        try:
+            pos, vel = thermal_cloud(
+                cfg.atoms,
+                cfg.radius,
+                kt,
+                mass=MASS,
+                gravity=cfg.gravity,
+                curvature=cfg.curvature,
+                rng=rng,
+            )
+        except ValueError:
+            raise ValueError(
+                f"start: a thermal cloud at kT {kt:g} is too dense for {cfg.atoms} atoms of "
+                f"radius {cfg.radius:g} (a larger kT, fewer or smaller atoms fit)"
+            ) from None
     h0 = schedule.fixed_height(0.0) if schedule.kind == "ramp" else math.inf
     return Simulation(
         n_atoms=cfg.atoms,
