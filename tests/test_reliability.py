@@ -155,7 +155,9 @@ def test_applet_bad_input_exits_2_before_its_frames(
 ) -> None:
     monkeypatch.chdir(tmp_path)
     (tmp_path / "shots.png").mkdir()
-    monkeypatch.setattr(app_cli, "_build_game", _never)
+    from evapcool.app import applet
+
+    monkeypatch.setattr(applet, "App", _never)  # the window and its frames never come
     with pytest.raises(SystemExit) as stop:
         app_cli.main(["--frames", "3", "--config-dir", str(tmp_path / "cfg"), *argv])
     assert stop.value.code == 2

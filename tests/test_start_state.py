@@ -11,7 +11,8 @@ from hypothesis.extra import numpy as hnp
 from evapcool import Simulation
 from evapcool.limits import CONTACT_TOLERANCE, POSITION_MAX, VELOCITY_MAX
 from evapcool.physics.loading import load_cup
-from evapcool.physics.validation import first_outside, first_overlap
+from evapcool.physics.validation import check_world, first_outside, first_overlap
+from evapcool.physics.world import ESCAPED, World
 
 A = 0.01
 
@@ -125,3 +126,34 @@ def test_wide_radius_mixtures_use_levels() -> None:
     d = np.hypot(*(small - pos[-1]).T)
     first_small = int(np.flatnonzero(d < 500.02 * (1 - CONTACT_TOLERANCE))[0])
     assert first_overlap(pos, radii) == (first_small, 20_000)
+
+
+def _world(pos, **overrides) -> World:
+    n = len(pos)
+    fields = dict(
+        pos=np.array(pos, dtype=float),
+        vel=np.zeros((n, 2)),
+        radius=np.full(n, 5.0),
+        mass=np.ones(n),
+        curvature=A,
+        gravity=1 / 3,
+        trap_height=400.0,
+        x_left=-300.0,
+        x_right=300.0,
+        y_bottom=-100.0,
+    )
+    return World(**{**fields, **overrides})
+
+
+def test_a_world_from_elsewhere_gets_the_same_checks() -> None:
+    # For states read from files: ranges, and the trapped atoms now, named by their index.
+    w = _world([(0, 100), (200, 50), (3, 100)])
+    w.status[1] = ESCAPED  # an escaped atom may be anywhere
+    with pytest.raises(ValueError, match="atoms 0 and 2 are"):
+        check_world(w)
+    w.status[2] = ESCAPED
+    check_world(w)
+    with pytest.raises(ValueError, match=r"^gravity"):
+        check_world(_world([(0, 100)], gravity=1e300))
+    with pytest.raises(ValueError, match=r"^mass .* atom 1 has"):
+        check_world(_world([(0, 100), (50, 100)], mass=np.array([1.0, 1e308])))

@@ -11,7 +11,9 @@ from __future__ import annotations
 
 import numpy as np
 
+from evapcool import limits
 from evapcool.limits import CONTACT_TOLERANCE, POSITION_MAX, VELOCITY_MAX
+from evapcool.physics.world import TRAPPED, World
 
 #: Candidate pairs examined at once (memory: about 100 bytes each).
 _CHUNK = 1 << 20
@@ -104,38 +106,68 @@ def first_outside(pos: np.ndarray, curvature: float, tol: float = CONTACT_TOLERA
     return int(idx[0]) if idx.size else None
 
 
-def check_start(pos: np.ndarray, vel: np.ndarray, radii: np.ndarray, curvature: float) -> None:
+def check_start(
+    pos: np.ndarray,
+    vel: np.ndarray,
+    radii: np.ndarray,
+    curvature: float,
+    ids: np.ndarray | None = None,
+) -> None:
     """ValueError naming the first offending atoms of a starting state, else None.
 
-    pos, vel: finite (N, 2) arrays (trap coordinates); radii: (N,).
+    pos, vel: finite (N, 2) arrays (trap coordinates); radii: (N,); ids: the atoms'
+    numbers in messages (default 0..N-1, e.g. the trapped atoms' indices in a saved run).
     """
+    ids = np.arange(len(radii)) if ids is None else np.asarray(ids)
     far = np.flatnonzero(np.abs(pos).max(axis=1) > POSITION_MAX)
     if far.size:
         i = int(far[0])
         raise ValueError(
             f"positions must be within {POSITION_MAX:g} px of the cup's lowest point "
-            f"(atom {i} is at ({pos[i, 0]:g}, {pos[i, 1]:g}))"
+            f"(atom {ids[i]} is at ({pos[i, 0]:g}, {pos[i, 1]:g}))"
         )
     fast = np.flatnonzero(np.hypot(vel[:, 0], vel[:, 1]) > VELOCITY_MAX)
     if fast.size:
         i = int(fast[0])
         raise ValueError(
             f"velocities must be at most {VELOCITY_MAX:g} px/frame in speed "
-            f"(atom {i} has ({vel[i, 0]:g}, {vel[i, 1]:g}))"
+            f"(atom {ids[i]} has ({vel[i, 0]:g}, {vel[i, 1]:g}))"
         )
     out = first_outside(pos, curvature)
     if out is not None:
         x, y = pos[out]
         raise ValueError(
             f"positions must be centres inside the cup or on its wall, y >= a x^2 "
-            f"(atom {out} at ({x:g}, {y:g}) is below the wall y = {curvature * x * x:g})"
+            f"(atom {ids[out]} at ({x:g}, {y:g}) is below the wall y = {curvature * x * x:g})"
         )
     pair = first_overlap(pos, radii)
     if pair is not None:
         i, j = pair
         d = float(np.hypot(*(pos[i] - pos[j])))
+        a, b = int(ids[i]), int(ids[j])
         raise ValueError(
             f"positions must not overlap: every pair at least r_i + r_j apart "
-            f"(atoms {i} and {j} are {d:.6g} px apart, r_{i} + r_{j} = "
+            f"(atoms {a} and {b} are {d:.6g} px apart, r_{a} + r_{b} = "
             f"{radii[i] + radii[j]:.6g} px)"
         )
+
+
+def check_world(world: World) -> None:
+    """The checks of `Simulation` for a World built another way (a state read from a file):
+    every parameter within its range (limits.py) and the trapped atoms' state as a start."""
+    w = world
+    limits.N_ATOMS.check("n_atoms", len(w.radius))
+    limits.CURVATURE.check("curvature", w.curvature)
+    limits.GRAVITY.check("gravity", w.gravity)
+    limits.TRAP_HEIGHT.check("trap_height", w.trap_height)
+    limits.TC_EXPONENT.check("tc_exponent", w.tc_exponent)
+    for name, values, rng in (("radius", w.radius, limits.RADIUS), ("mass", w.mass, limits.MASS)):
+        bad = np.flatnonzero(~((values >= rng.low) & (values <= rng.high)))
+        if bad.size:
+            i = int(bad[0])
+            raise ValueError(f"{name} must be {rng.allowed()} (atom {i} has {values[i]!r})")
+    trapped = np.flatnonzero(w.status == TRAPPED)
+    pos, vel = w.state_at(trapped, w.time)
+    if not (np.all(np.isfinite(pos)) and np.all(np.isfinite(vel))):
+        raise ValueError("positions and velocities must be finite")
+    check_start(pos, vel, w.radius[trapped], w.curvature, ids=trapped)
