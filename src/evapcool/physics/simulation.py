@@ -85,7 +85,7 @@ def _per_atom(name: str, value: object, n: int, rng: Range) -> np.ndarray:
     bad = np.flatnonzero((arr < rng.low) | (arr > rng.high))
     if bad.size:
         i = int(bad[0])
-        raise ValueError(f"{name} must be {allowed} (atom {i} has {arr[i]!r})")
+        raise ValueError(f"{name} must be {allowed} (atom {i} has {float(arr[i])!r})")
     return arr
 
 

@@ -165,7 +165,7 @@ def check_world(world: World) -> None:
         bad = np.flatnonzero(~((values >= rng.low) & (values <= rng.high)))
         if bad.size:
             i = int(bad[0])
-            raise ValueError(f"{name} must be {rng.allowed()} (atom {i} has {values[i]!r})")
+            raise ValueError(f"{name} must be {rng.allowed()} (atom {i} has {float(values[i])!r})")
     trapped = np.flatnonzero(w.status == TRAPPED)
     pos, vel = w.state_at(trapped, w.time)
     if not (np.all(np.isfinite(pos)) and np.all(np.isfinite(vel))):
