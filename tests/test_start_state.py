@@ -155,5 +155,5 @@ def test_a_world_from_elsewhere_gets_the_same_checks() -> None:
     check_world(w)
     with pytest.raises(ValueError, match=r"^gravity"):
         check_world(_world([(0, 100)], gravity=1e300))
-    with pytest.raises(ValueError, match=r"^mass .*atom 1 has 1e\+308"):
+    with pytest.raises(ValueError, match=r"^mass .*atom 1 has 2000.0"):
         check_world(_world([(0, 100), (50, 100)], mass=np.array([1.0, 2e3])))
