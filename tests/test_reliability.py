@@ -300,3 +300,35 @@ def test_the_largest_starts_below_100000_atoms_stay_under_1_gb() -> None:
     )
     assert out.returncode == 0, out.stderr
     assert int(out.stdout) * 1024 < 1e9
+
+
+# -- bounded work of the lab's thermal start ----------------------------------------------------
+def _thermal_cloud_all_pairs(n, radius, kt, gravity, curvature, rng, max_tries=1000):
+    """The thermal start's positions as first written: every try against every placed atom."""
+    lam = kt / gravity
+    pos = np.empty((n, 2))
+    for i in range(n):
+        for _ in range(max_tries):
+            y = rng.gamma(1.5, lam)
+            x = rng.uniform(-1.0, 1.0) * math.sqrt(y / curvature)
+            d = pos[:i] - (x, y)
+            if i == 0 or np.min(d[:, 0] ** 2 + d[:, 1] ** 2) > (2.0 * radius) ** 2 * 1.0001:
+                pos[i] = (x, y)
+                break
+        else:
+            return None
+    return pos
+
+
+@pytest.mark.parametrize(
+    ("n", "radius", "kt"), [(49, 12.0, 20.0), (400, 3.0, 5.0), (300, 12.0, 1.0), (60, 0.01, 1e-3)]
+)
+def test_thermal_start_is_the_same_cloud_in_linear_time(n, radius, kt) -> None:
+    from evapcool.lab.theory import thermal_cloud
+
+    expected = _thermal_cloud_all_pairs(n, radius, kt, 1 / 3, 0.01, np.random.default_rng(7))
+    try:
+        got, _ = thermal_cloud(n, radius, kt, rng=np.random.default_rng(7))
+    except ValueError:
+        got = None
+    assert (got is None and expected is None) or np.array_equal(got, expected)
