@@ -234,3 +234,23 @@ def test_a_held_lock_times_out(tmp_path) -> None:
         pass
     with locked(path):  # released again
         pass
+
+
+def test_the_lock_serialises_threads_of_one_process(tmp_path) -> None:
+    import threading
+
+    path = tmp_path / "count.txt"
+
+    def add() -> None:
+        for _ in range(50):
+            with locked(path):
+                n = int(path.read_text()) if path.exists() else 0
+                time.sleep(0.0005)  # widen the window a lost update needs
+                atomic_write_text(path, str(n + 1))
+
+    threads = [threading.Thread(target=add) for _ in range(4)]
+    for t in threads:
+        t.start()
+    for t in threads:
+        t.join()
+    assert path.read_text() == "200"

@@ -17,6 +17,7 @@ import os
 import stat
 import sys
 import tempfile
+import threading
 import time
 from collections.abc import Iterator
 from pathlib import Path
@@ -95,6 +96,12 @@ def lock_path(path: str | os.PathLike[str]) -> Path:
     return p.with_name(f".{p.name}.lock")
 
 
+#: One thread lock per lock file: where the OS lock is per process (POSIX record locks,
+#: which Linux uses for flock on NFS), threads of one process still take turns.
+_THREAD_LOCKS: dict[str, threading.Lock] = {}
+_THREAD_LOCKS_GUARD = threading.Lock()
+
+
 @contextlib.contextmanager
 def locked(path: str | os.PathLike[str], timeout: float = LOCK_TIMEOUT) -> Iterator[None]:
     """Hold an exclusive OS lock on path's lock file (other processes and threads wait).
@@ -103,9 +110,22 @@ def locked(path: str | os.PathLike[str], timeout: float = LOCK_TIMEOUT) -> Itera
     timeout seconds; OSError if the folder cannot hold the lock file.
     """
     lp = lock_path(path)
+    with _THREAD_LOCKS_GUARD:
+        mine = _THREAD_LOCKS.setdefault(os.path.abspath(lp), threading.Lock())
+    deadline = time.monotonic() + timeout
+    if not mine.acquire(timeout=max(timeout, 0.0)):
+        raise LockTimeoutError(f"{path} is locked by another thread ({timeout:g} s)")
+    try:
+        with _os_lock(lp, path, deadline, timeout):
+            yield
+    finally:
+        mine.release()
+
+
+@contextlib.contextmanager
+def _os_lock(lp: Path, path: object, deadline: float, timeout: float) -> Iterator[None]:
     fd = os.open(lp, os.O_RDWR | os.O_CREAT | getattr(os, "O_NOFOLLOW", 0), 0o666)
     try:
-        deadline = time.monotonic() + timeout
         pause = 0.001
         while not _try_lock(fd):
             if time.monotonic() > deadline:
