@@ -332,3 +332,10 @@ def test_thermal_start_is_the_same_cloud_in_linear_time(n, radius, kt) -> None:
     except ValueError:
         got = None
     assert (got is None and expected is None) or np.array_equal(got, expected)
+
+
+def test_a_ramp_has_at_most_1000_points(monkeypatch) -> None:
+    monkeypatch.setattr(experiment, "_make_simulation", _never)
+    ramp = ",".join(f"{400 - i * 0.1:g}@{i}" for i in range(1001))
+    with pytest.raises(ValueError, match=r"^schedule must have at most 1000 points"):
+        run_experiment(schedule=ramp, frames=3)

@@ -148,9 +148,7 @@ CHECKPOINT_SECONDS = Range(0.0, math.inf, "s", inf_ok=True)
 #: kT of a thermal start: thermal speeds sqrt(kT / m) up to 100 px/frame (tails under
 #: VELOCITY_MAX for 10^6 atoms); at 1e-3 the cloud is 3e-3 px tall.
 START_KT = Range(1e-3, 1e4, "mass px^2/frame^2")
-#: eta = m g H / kT of a constant-truncation schedule.
-ETA = Range(0.0, 1000.0, low_open=True)
-#: Points of a ramp schedule (each frame interpolates over them).
+#: Points of a ramp schedule: each frame looks its height up among them.
 SCHEDULE_POINTS_MAX = 1000
 
 # -- the applet (evapcool, its settings screen and file) ----------------------------------

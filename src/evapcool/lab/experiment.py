@@ -95,7 +95,11 @@ class LabConfig:
             )
         _choice("escape", self.escape, ESCAPES)
         _choice("tc_law", self.tc_law, TC_LAWS)
-        parse_schedule(self.schedule)
+        if len(parse_schedule(self.schedule).points) > limits.SCHEDULE_POINTS_MAX:
+            raise ValueError(
+                f"schedule must have at most {limits.SCHEDULE_POINTS_MAX} points "
+                f"(got {limits.shown(self.schedule)})"
+            )
         parse_start(self.start)
         if not isinstance(self.stop_at_win, bool):
             raise ValueError(

@@ -93,10 +93,9 @@ def _window(value: object) -> tuple[int, int]:
     allowed = f"two whole numbers (width, height), each {limits.WINDOW_SIDE.span()}"
     if not isinstance(value, (tuple, list)) or len(value) != 2:
         raise _bad("window", allowed, value)
+    side = limits.WINDOW_SIDE
     try:
-        return limits.WINDOW_SIDE.check("window", value[0]), limits.WINDOW_SIDE.check(
-            "window", value[1]
-        )
+        return side.check("window", value[0]), side.check("window", value[1])
     except ValueError:
         raise _bad("window", allowed, value) from None
 
