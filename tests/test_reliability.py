@@ -9,6 +9,7 @@ from __future__ import annotations
 import json
 import math
 import os
+import stat
 import subprocess
 import sys
 import threading
@@ -235,6 +236,9 @@ def test_a_fifo_named_highscores_json_does_not_block_the_start(tmp_path) -> None
     os.mkfifo(path)
     table = _finishes(HighScoreTable, path)
     assert table.entries == [] and "not a regular file" in table.take_notices()[0]
+    assert _finishes(table.add, "Ada", 5, 1.0) == 1  # kept for the session...
+    assert any("could not be saved" in n for n in table.take_notices())
+    assert stat.S_ISFIFO(os.stat(path).st_mode)  # ...and the FIFO is left alone
 
 
 FROM_CASES = {

@@ -187,6 +187,9 @@ def _writer_alive(path: str) -> bool:
 def atomic_write_bytes(path: str | os.PathLike[str], data: bytes) -> None:
     """Write data to path so readers see the old file or the new one, never a torn one."""
     target = Path(path)
+    with contextlib.suppress(FileNotFoundError):
+        if not stat.S_ISREG(os.stat(target).st_mode):  # a FIFO, a device, a folder: leave it
+            raise NotRegularFileError(errno.EINVAL, "not a regular file", str(target))
     remove_stale_temporaries(target)
     fd, tmp = tempfile.mkstemp(
         prefix=_tmp_prefix(target), suffix=_TMP_SUFFIX, dir=target.parent or None
