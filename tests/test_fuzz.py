@@ -219,13 +219,17 @@ PATHS = [
     "out.csv", "out.json", "plot.png", "shot.png", "out.txt", "", "outdir", "taken.csv",
     "fifo.csv", "/dev/null", "/proc/version.csv", "/proc/x.png", "x" * 300 + ".csv",
     "y" * 300 + ".png", "missing/r.csv", "outdir/r.json", "outdir/p.png", ".csv", "-",
-    "été.csv", "outdir/../r.csv",
+    "été.csv", "outdir/../r.csv", "z" * 300 + "/r.csv", "afile/r.csv", "afile/r.png",
 ]  # fmt: skip
 FROMS = [
     "good.json", "good.csv", "list.json", "deep.json", "short.csv", "binary.json",
     "fifo.json", "dirx.json", "missing.json", "empty.csv", "badparams.json", "afile",
+    "v" * 300 + "/r.json", "afile/r.json", "/dev/null.json",
 ]  # fmt: skip
-DIRS = ["cfg-good", "cfg-deep", "cfg-fifo", "data-deep", "afile", "missing-dir", "/proc", "outdir"]
+DIRS = [
+    *("cfg-good", "cfg-deep", "cfg-fifo", "data-deep", "afile", "missing-dir", "/proc"),
+    *("outdir", "w" * 300, "afile/sub", "/dev/null"),
+]
 SCHEDULES = st.one_of(
     st.sampled_from(
         [

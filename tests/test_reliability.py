@@ -121,6 +121,8 @@ LAB_CASES = [
     pytest.param(["--out", "/proc/version.csv"], "--out", marks=LINUX),
     pytest.param(["--plot", "/proc/version.png"], "--plot", marks=LINUX),
     (["--out", "existing.csv"], "--out"),  # a directory of that name, made below
+    (["--out", "d" * 300 + "/r.csv"], "--out"),  # a folder name too long (found by the fuzz)
+    (["--out", "existing.csv/sub/r.csv"], "--out"),
     (["--engine", "reference", "--atoms", "6000", "--radius", "0.5"], "--atoms"),
     (["--frames", "100000000", "--every", "1"], "--every"),
 ]
@@ -142,6 +144,7 @@ APPLET_CASES = [
     pytest.param(["--screenshot", "/proc/version.png"], "--screenshot", marks=LINUX),
     (["--screenshot", "shots.png"], "--screenshot"),  # a directory of that name
     (["--screenshot", "missing/x.png"], "--screenshot"),
+    (["--screenshot", "d" * 300 + "/x.png"], "--screenshot"),
     (["--radius", "1e308"], "--radius"),
     (["--radius", "0.5"], "--radius"),
     (["--atoms", "1000000000000"], "--atoms"),
@@ -343,3 +346,11 @@ def test_a_ramp_has_at_most_1000_points(monkeypatch) -> None:
     ramp = ",".join(f"{400 - i * 0.1:g}@{i}" for i in range(1001))
     with pytest.raises(ValueError, match=r"^schedule must have at most 1000 points"):
         run_experiment(schedule=ramp, frames=3)
+
+
+def test_a_data_folder_name_too_long_is_a_notice_not_a_crash(tmp_path, monkeypatch, capsys):
+    # Found by the fuzz: Path.exists() raised ENAMETOOLONG in storage.folder_problem.
+    monkeypatch.chdir(tmp_path)
+    long = "w" * 300
+    code = app_cli.main(["--frames", "1", "--data-dir", long, "--config-dir", long])
+    assert code == 0 and "Traceback" not in capsys.readouterr().err

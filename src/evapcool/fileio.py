@@ -292,14 +292,10 @@ def check_writable(path: str | os.PathLike[str], name: str) -> None:
         raise ValueError(f"{name} must name a file {where}")
     if len(p.name.encode("utf-8", "surrogateescape")) > _name_max(folder):
         raise ValueError(f"{name} must be a file name of at most {_name_max(folder)} bytes {where}")
-    if not folder.is_dir():
+    folder_info = _stat(folder, name, where)
+    if folder_info is None or not stat.S_ISDIR(folder_info.st_mode):
         raise ValueError(f"{name} must be in an existing folder {where}")
-    try:
-        info = os.stat(p)
-    except FileNotFoundError:
-        info = None
-    except OSError as exc:
-        raise ValueError(f"{name} cannot be written: {exc.strerror or exc} {where}") from None
+    info = _stat(p, name, where)
     if info is not None and stat.S_ISDIR(info.st_mode):
         raise ValueError(f"{name} must be a file path, not a directory {where}")
     if info is not None and not stat.S_ISREG(info.st_mode):
@@ -313,3 +309,17 @@ def check_writable(path: str | os.PathLike[str], name: str) -> None:
         raise ValueError(
             f"{name} cannot be written: {folder} takes no new file ({reason}) {where}"
         ) from None
+
+
+def _stat(path: Path, name: str, where: str) -> os.stat_result | None:
+    """os.stat(path), None if nothing is there; ValueError for a path the system refuses
+    (a folder name too long, a file where a folder should be, no permission)."""
+    try:
+        return os.stat(path)
+    except FileNotFoundError:
+        return None
+    except OSError as exc:
+        if exc.errno == errno.ENOTDIR:
+            return None
+        reason = exc.strerror.lower() if exc.strerror else type(exc).__name__
+        raise ValueError(f"{name} cannot be written there ({reason}) {where}") from None
