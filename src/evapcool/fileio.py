@@ -288,7 +288,7 @@ def check_writable(path: str | os.PathLike[str], name: str) -> None:
     p = Path(path)
     where = f"(got {str(p)!r})"
     folder = p.parent if str(p.parent) else Path(".")
-    if not p.name:
+    if not p.name or "\x00" in str(p):
         raise ValueError(f"{name} must name a file {where}")
     if len(p.name.encode("utf-8", "surrogateescape")) > _name_max(folder):
         raise ValueError(f"{name} must be a file name of at most {_name_max(folder)} bytes {where}")
