@@ -354,3 +354,13 @@ def test_a_data_folder_name_too_long_is_a_notice_not_a_crash(tmp_path, monkeypat
     long = "w" * 300
     code = app_cli.main(["--frames", "1", "--data-dir", long, "--config-dir", long])
     assert code == 0 and "Traceback" not in capsys.readouterr().err
+
+
+def test_a_fast_atom_grazing_the_wall_is_refused_above_the_speed_cap() -> None:
+    # Found by the fuzz: at 650 px/frame one atom sliding from the vertex took the reference
+    # engine minutes for a third of a frame (its hops leave at v_min, ~ v / v_min a slide).
+    with pytest.raises(ValueError, match=r"^velocities must be at most 100 px/frame"):
+        Simulation(1, positions=[(0.0, 0.0)], velocities=[(650.0, 0.0)])
+    sim = Simulation(1, positions=[(0.0, 0.0)], velocities=[(100.0, 0.0)], trap_height=math.inf)
+    sim.advance(1.0)
+    assert 0 < sim.wall_collision_count < 2.6e5  # (1 + pi/2) v / v_min, bounded

@@ -99,8 +99,8 @@ class Range:
 N_ATOMS = Range(1, 1_000_000, integer=True)
 #: The reference engine keeps an N x N table of pair times: 8 N^2 bytes, 200 MB here.
 REFERENCE_MAX_ATOMS = 5000
-#: Atom radius. At 0.01 px the round-off of a position (1e-16 of it, 1e-6 px even at
-#: POSITION_MAX) stays below 1e-4 of a radius, so contacts stay exact enough; at 1000 px
+#: Atom radius. At 0.01 px the round-off of a position (1e-16 of it, 1.5e-8 px even at
+#: POSITION_MAX) stays below 2e-6 of a radius, so contacts stay exact enough; at 1000 px
 #: one atom is wider than the largest window (the loader then says none fit).
 RADIUS = Range(0.01, 1000.0, "px")
 #: Mass in atom masses: a mass ratio of at most 10^6, so after equipartition the
@@ -108,7 +108,7 @@ RADIUS = Range(0.01, 1000.0, "px")
 MASS = Range(1e-3, 1e3, "atom masses")
 #: g. A resting atom hops off the wall g / (2 v_min) times a frame (v_min =
 #: world.WALL_MIN_NORMAL_SPEED = 1e-3 px/frame; 167 at the applet's 1/3): 5000 at the top.
-#: Below, an atom of speed VELOCITY_MAX rises V^2 / 2g = 5e8 px, inside POSITION_MAX.
+#: At the bottom an atom of speed VELOCITY_MAX rises V^2 / 2g = 5e6 px, inside POSITION_MAX.
 GRAVITY = Range(1e-3, 10.0, "px/frame^2")
 #: a of the cup y = a x^2. At 1e-5 the cup is 6300 px wide at the default rim, ten
 #: windows; at 10 the vertex is 0.05 px round (only the smallest atoms fit at the bottom).
@@ -119,11 +119,14 @@ CURVATURE = Range(1e-5, 10.0, "1/px")
 TRAP_HEIGHT = Range(0.0, math.inf, "px", low_open=True, inf_ok=True)
 #: p in Tc(N) = Tc0 (N / N0)^p; N <= N0, so no p overflows.
 TC_EXPONENT = Range(0.0, 10.0, low_open=True)
-#: Speed of a given atom, px/frame (the applet's start: 3 to 8). An atom sliding along
-#: the wall hops about (1 + pi/2) v / v_min times a slide: 2.6e6 at the top.
-VELOCITY_MAX = 1000.0
-#: |x| and y of a given centre, px: V^2 / 2g of the fastest atom at the weakest g is 5e8.
-POSITION_MAX = 1e10
+#: Speed of a given atom, px/frame (the applet's start: 3 to 8; its window in 7 frames at
+#: 100). An atom that grazes the wall hops along it, each hop leaving at v_min, about
+#: (1 + pi/2) v / v_min times a slide up and back (kernels.bounce_wall): 2.6e5 events at
+#: 100 px/frame, a second of the fast engine, about half a minute of the reference one.
+VELOCITY_MAX = 100.0
+#: |x| and y of a given centre, px: twenty times the 5e6 px the fastest atom rises at the
+#: weakest g; a position's round-off there is 1.5e-8 px.
+POSITION_MAX = 1e8
 #: Window sides, px: at 8192 the loader's top rows start at 72 px/frame, under VELOCITY_MAX.
 WINDOW_SIDE = Range(160, 8192, "px", integer=True)
 #: Random seed (numpy's SeedSequence takes any whole number >= 0; 64 bits are plenty).
@@ -146,9 +149,10 @@ RECORDS_MAX = 100_000
 #: Seconds between checkpoint writes of --out; 0: at every record, inf: never. Each
 #: rewrites the whole file, so 0 costs O(records^2) bytes: for tests and short runs.
 CHECKPOINT_SECONDS = Range(0.0, math.inf, "s", inf_ok=True)
-#: kT of a thermal start: thermal speeds sqrt(kT / m) up to 100 px/frame (tails under
-#: VELOCITY_MAX for 10^6 atoms); at 1e-3 the cloud is 3e-3 px tall.
-START_KT = Range(1e-3, 1e4, "mass px^2/frame^2")
+#: kT of a thermal start (the applet's gas: about 20): the fastest of 10^6 atoms goes
+#: about 5.3 sqrt(kT / m), 84 px/frame at the top, under VELOCITY_MAX, so the state a run
+#: saves stays a valid start; at 1e-3 the cloud is 3e-3 px tall.
+START_KT = Range(1e-3, 250.0, "mass px^2/frame^2")
 #: Points of a ramp schedule: each frame looks its height up among them.
 SCHEDULE_POINTS_MAX = 1000
 
