@@ -81,7 +81,11 @@ def build_parser() -> argparse.ArgumentParser:
         type=choice(ESCAPES),
         help="rim: fly over the rim (the game); knife: E > m g H removed at once",
     )
-    p.add_argument("--schedule", help=f"trap height H(t): {SCHEDULE_HELP} (default {d.schedule})")
+    p.add_argument(
+        "--schedule",
+        help=f"trap height H(t): {SCHEDULE_HELP}, at most {limits.SCHEDULE_POINTS_MAX} points "
+        f"(default {d.schedule})",
+    )
     p.add_argument(
         "--tc-law",
         dest="tc_law",
