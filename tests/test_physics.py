@@ -67,8 +67,8 @@ def test_glancing_collision_unequal_masses(engine: str) -> None:
     assert sim.total_energy() == pytest.approx(e0, rel=1e-14)
 
 
-#: Closer than 24 px by round-off only: a start may touch this closely (limits.CONTACT_TOLERANCE).
-TOUCHING = 12.0 - 1e-9
+#: Exactly touching (24 px apart): a valid start, "at least r_i + r_j apart".
+TOUCHING = 12.0
 
 
 def test_touching_approaching_pair_collides_at_once_and_does_not_stick(engine: str) -> None:
@@ -373,7 +373,7 @@ def test_bad_input_names_the_parameter(kwargs: dict, name: str) -> None:
 
 def test_positions_must_start_inside_the_cup() -> None:
     with pytest.raises(ValueError, match=r"positions .*atom 0"):
-        Simulation(1, positions=[(0.0, -1e-6)], velocities=[(0.0, 0.0)])
+        Simulation(1, positions=[(0.0, -1e-9)], velocities=[(0.0, 0.0)])
     with pytest.raises(ValueError, match=r"positions .*atom 1 "):
         Simulation(2, positions=[(0.0, 300.0), (100.0, 50.0)], velocities=[(0, 0), (0, 0)])
     # On the wall is inside (the lead's change of issue 13).

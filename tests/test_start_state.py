@@ -9,7 +9,7 @@ from hypothesis import strategies as st
 from hypothesis.extra import numpy as hnp
 
 from evapcool import Simulation
-from evapcool.limits import CONTACT_TOLERANCE, POSITION_MAX, VELOCITY_MAX
+from evapcool.limits import POSITION_MAX, VELOCITY_MAX
 from evapcool.physics.loading import load_cup
 from evapcool.physics.validation import check_world, first_outside, first_overlap
 from evapcool.physics.world import ESCAPED, World
@@ -20,7 +20,7 @@ A = 0.01
 def brute_first_overlap(pos: np.ndarray, radii: np.ndarray) -> tuple[int, int] | None:
     d = pos[:, None, :] - pos[None, :, :]
     d2 = d[..., 0] ** 2 + d[..., 1] ** 2
-    sigma = (radii[:, None] + radii[None, :]) * (1.0 - CONTACT_TOLERANCE)
+    sigma = radii[:, None] + radii[None, :]
     close = np.triu(d2 < sigma * sigma, k=1)
     pairs = np.argwhere(close)
     return (int(pairs[0, 0]), int(pairs[0, 1])) if len(pairs) else None
@@ -124,7 +124,7 @@ def test_wide_radius_mixtures_use_levels() -> None:
     assert first_overlap(pos, radii) is None
     pos[-1] = (0.0, 4600.0)  # now it reaches the row of small atoms
     d = np.hypot(*(small - pos[-1]).T)
-    first_small = int(np.flatnonzero(d < 500.02 * (1 - CONTACT_TOLERANCE))[0])
+    first_small = int(np.flatnonzero(d < 500.02)[0])
     assert first_overlap(pos, radii) == (first_small, 20_000)
 
 
@@ -157,3 +157,20 @@ def test_a_world_from_elsewhere_gets_the_same_checks() -> None:
         check_world(_world([(0, 100)], gravity=1e300))
     with pytest.raises(ValueError, match=r"^mass .*atom 1 has 2000.0"):
         check_world(_world([(0, 100), (50, 100)], mass=np.array([1.0, 2e3])))
+
+
+def test_a_state_from_a_file_gets_the_same_ranges_and_check() -> None:
+    from evapcool.physics.state import check_placement, from_state
+
+    atoms = {"x": [0.0], "y": [100.0], "vx": [0.0], "vy": [0.0]}
+    with pytest.raises(ValueError, match=r"^gravity must be a number from"):
+        from_state({"gravity": 1e300, "atoms": atoms})
+    with pytest.raises(ValueError, match=r"^velocities must be at most"):
+        from_state({"atoms": {**atoms, "vx": [500.0]}})
+    # A column of atoms (one x): the grid finds the first overlap; a sweep along x was O(N^2).
+    n = 50_000
+    y = 10.0 + 2.0 * np.arange(n)
+    y[-1] = y[-2] + 1.5
+    ones = np.ones(n)
+    with pytest.raises(ValueError, match=f"atoms {n - 2} and {n - 1} overlap"):
+        check_placement("state.atoms", np.zeros(n), y, ones, ones > 0, A, 1e-9)

@@ -1,4 +1,4 @@
-"""The `evapcool` command: play (default), `lab` or `bench`."""
+"""The `evapcool` command: play (default), `lab`, `bench` or `web`."""
 
 from __future__ import annotations
 
@@ -6,7 +6,7 @@ import importlib
 import sys
 
 #: Subcommands and the module whose main(argv) runs them.
-SUBCOMMANDS = {"lab": "evapcool.lab.cli", "bench": "evapcool.bench"}
+SUBCOMMANDS = {"lab": "evapcool.lab.cli", "bench": "evapcool.bench", "web": "evapcool.web"}
 
 
 def main(argv: list[str] | None = None) -> int:

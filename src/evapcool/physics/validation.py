@@ -51,9 +51,7 @@ def _closer(pos: np.ndarray, radii: np.ndarray, i: np.ndarray, j: np.ndarray, to
     return (i != j) & (d[:, 0] * d[:, 0] + d[:, 1] * d[:, 1] < sigma * sigma)
 
 
-def first_overlap(
-    pos: np.ndarray, radii: np.ndarray, tol: float = CONTACT_TOLERANCE
-) -> tuple[int, int] | None:
+def first_overlap(pos: np.ndarray, radii: np.ndarray, tol: float = 0.0) -> tuple[int, int] | None:
     """The first pair (i < j, least i, then least j) closer than (r_i + r_j)(1 - tol), or None."""
     n = len(radii)
     if n < 2:
@@ -98,7 +96,7 @@ def first_overlap(
     return best
 
 
-def first_outside(pos: np.ndarray, curvature: float, tol: float = CONTACT_TOLERANCE) -> int | None:
+def first_outside(pos: np.ndarray, curvature: float, tol: float = 0.0) -> int | None:
     """The first centre below the wall y = a x^2 (on it is inside), or None."""
     x, y = pos[:, 0], pos[:, 1]
     below = y - curvature * x * x < -tol * np.maximum(np.abs(y), 1.0)
@@ -106,20 +104,10 @@ def first_outside(pos: np.ndarray, curvature: float, tol: float = CONTACT_TOLERA
     return int(idx[0]) if idx.size else None
 
 
-def check_start(
-    pos: np.ndarray,
-    vel: np.ndarray,
-    radii: np.ndarray,
-    curvature: float,
-    ids: np.ndarray | None = None,
-) -> None:
-    """ValueError naming the first offending atoms of a starting state, else None.
-
-    pos, vel: finite (N, 2) arrays (trap coordinates); radii: (N,); ids: the atoms'
-    numbers in messages (default 0..N-1, e.g. the trapped atoms' indices in a saved run).
-    """
-    ids = np.arange(len(radii)) if ids is None else np.asarray(ids)
-    far = np.flatnonzero(np.abs(pos).max(axis=1) > POSITION_MAX)
+def check_bounds(pos: np.ndarray, vel: np.ndarray, ids: np.ndarray | None = None) -> None:
+    """ValueError naming the first atom farther than POSITION_MAX or faster than VELOCITY_MAX."""
+    ids = np.arange(len(pos)) if ids is None else np.asarray(ids)
+    far = np.flatnonzero(np.abs(pos).max(axis=1, initial=0.0) > POSITION_MAX)
     if far.size:
         i = int(far[0])
         raise ValueError(
@@ -133,14 +121,33 @@ def check_start(
             f"velocities must be at most {VELOCITY_MAX:g} px/frame in speed "
             f"(atom {ids[i]} has ({vel[i, 0]:g}, {vel[i, 1]:g}))"
         )
-    out = first_outside(pos, curvature)
+
+
+def check_start(
+    pos: np.ndarray,
+    vel: np.ndarray,
+    radii: np.ndarray,
+    curvature: float,
+    ids: np.ndarray | None = None,
+    tol: float = 0.0,
+) -> None:
+    """ValueError naming the first offending atoms of a starting state, else None.
+
+    pos, vel: finite (N, 2) arrays (trap coordinates); radii: (N,); ids: the atoms'
+    numbers in messages (default 0..N-1, e.g. the trapped atoms' indices in a saved run);
+    tol: relative round-off allowed (0 for a new start: exactly y >= a x^2 and
+    |r_i - r_j| >= r_i + r_j; CONTACT_TOLERANCE for a state saved mid-run).
+    """
+    ids = np.arange(len(radii)) if ids is None else np.asarray(ids)
+    check_bounds(pos, vel, ids)
+    out = first_outside(pos, curvature, tol)
     if out is not None:
         x, y = pos[out]
         raise ValueError(
             f"positions must be centres inside the cup or on its wall, y >= a x^2 "
             f"(atom {ids[out]} at ({x:g}, {y:g}) is below the wall y = {curvature * x * x:g})"
         )
-    pair = first_overlap(pos, radii)
+    pair = first_overlap(pos, radii, tol)
     if pair is not None:
         i, j = pair
         d = float(np.hypot(*(pos[i] - pos[j])))
@@ -152,9 +159,10 @@ def check_start(
         )
 
 
-def check_world(world: World) -> None:
+def check_world(world: World, *, placement: bool = True) -> None:
     """The checks of `Simulation` for a World built another way (a state read from a file):
-    every parameter within its range (limits.py) and the trapped atoms' state as a start."""
+    every parameter within its range (limits.py), the trapped atoms within reach and speed,
+    and (placement) as a start up to CONTACT_TOLERANCE: no overlap, centres in the cup."""
     w = world
     limits.N_ATOMS.check("n_atoms", len(w.radius))
     limits.CURVATURE.check("curvature", w.curvature)
@@ -170,4 +178,7 @@ def check_world(world: World) -> None:
     pos, vel = w.state_at(trapped, w.time)
     if not (np.all(np.isfinite(pos)) and np.all(np.isfinite(vel))):
         raise ValueError("positions and velocities must be finite")
-    check_start(pos, vel, w.radius[trapped], w.curvature, ids=trapped)
+    if placement:
+        check_start(pos, vel, w.radius[trapped], w.curvature, trapped, CONTACT_TOLERANCE)
+    else:
+        check_bounds(pos, vel, trapped)
