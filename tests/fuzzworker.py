@@ -92,6 +92,18 @@ def run_sim(kwargs: dict, dt: object) -> dict:
     return {"ok": True, "finite": finite, "events": sim.collision_count, "n": sim.n_atoms}
 
 
+def run_state(state: object, dt: object) -> dict:
+    from evapcool import Simulation
+
+    try:
+        sim = Simulation.from_state(state)
+        sim.advance(dt)
+    except (ValueError, TypeError) as exc:
+        return {"error": type(exc).__name__, "message": str(exc)}
+    finite = _finite(sim.positions, sim.velocities, sim.temperature, sim.total_energy())
+    return {"ok": True, "finite": finite, "events": sim.collision_count}
+
+
 def run_lab(kwargs: dict) -> dict:
     from evapcool.lab.experiment import run_experiment
 
@@ -111,6 +123,8 @@ def run_case(case: dict) -> dict:
         return run_sim(case["kwargs"], case["dt"])
     if kind == "lab":
         return run_lab(case["kwargs"])
+    if kind == "state":
+        return run_state(case["state"], case["dt"])
     raise ValueError(f"unknown case kind {kind!r}")
 
 

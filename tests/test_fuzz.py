@@ -483,3 +483,72 @@ def test_fuzz_run_experiment(worker: Worker, kwargs: dict) -> None:
     kwargs.setdefault("frames", 3)  # not the default 1800: keep valid runs short
     answer = worker.run({"kind": "lab", "kwargs": kwargs})
     _check_api(kwargs, answer, [*LAB_ANY, *LabConfig.__dataclass_fields__, "n_atoms"])
+
+
+# -- states read from files (Simulation.from_state) ---------------------------------------------
+def _saved_state() -> dict:
+    from evapcool import Simulation
+
+    sim = Simulation(6, radius=10.0, seed=3, trap_height=math.inf)
+    sim.advance(40.0)  # mid-run: atoms at their own times, some touching after collisions
+    return sim.to_state()
+
+
+SAVED = _saved_state()
+STATE_FIELDS = {
+    "time": _param(limits.DT),
+    "trap_height": _param(limits.TRAP_HEIGHT),
+    "curvature": _param(limits.CURVATURE),
+    "gravity": _param(limits.GRAVITY),
+    "tc_exponent": _param(limits.TC_EXPONENT),
+    "window": st.one_of(st.lists(numbers(limits.WINDOW_SIDE), min_size=2, max_size=2), ANY),
+    "escape": st.one_of(st.sampled_from(["rim", "knife"]), ANY),
+    "win": st.one_of(st.booleans(), ANY),
+    "won": st.one_of(st.booleans(), ANY),
+}
+ATOM_FIELDS = {
+    "x": st.floats(-300, 300),
+    "y": st.floats(-1, 600),
+    "vx": numbers(limits.Range(-limits.VELOCITY_MAX, limits.VELOCITY_MAX)),
+    "vy": numbers(limits.Range(-limits.VELOCITY_MAX, limits.VELOCITY_MAX)),
+    "radius": numbers(limits.RADIUS),
+    "mass": numbers(limits.MASS),
+    "t": st.floats(-1e3, 40.0),
+}
+
+
+@st.composite
+def states_json(draw) -> object:
+    """A saved state with some fields or one atom's values changed, or garbage."""
+    state = json.loads(json.dumps(SAVED))
+    few = st.integers(0, 3).flatmap(lambda k: st.just(k) if k < 2 else st.integers(0, k))
+    for key in draw(st.lists(st.sampled_from(sorted(STATE_FIELDS)), max_size=draw(few))):
+        state[key] = draw(STATE_FIELDS[key])
+    for key in draw(st.lists(st.sampled_from(sorted(ATOM_FIELDS)), max_size=draw(few))):
+        i = draw(st.integers(0, len(state["atoms"]["x"]) - 1))
+        state["atoms"][key][i] = draw(st.one_of(ATOM_FIELDS[key], ATOM_FIELDS[key], ANY))
+    sums = draw(st.sampled_from(["keep", "drop", "drop", "junk"]))  # dropped: recomputed
+    if sums != "keep":
+        for key in ("energy_sum", "initial_temperature"):
+            if sums == "drop":
+                state.pop(key, None)
+            else:
+                state[key] = draw(ANY)
+    if draw(st.integers(0, 9)) == 0:
+        cut = json.dumps(state, default=str)[: draw(st.integers(0, 200))]
+        return draw(st.one_of(ANY, st.just(cut)))
+    return state
+
+
+@FUZZ
+@given(states_json(), DT)
+def test_fuzz_state_from_a_file(worker: Worker, state: object, dt: object) -> None:
+    answer = worker.run({"kind": "state", "state": state, "dt": dt})
+    event("refused" if "error" in answer else "ran")
+    if "error" in answer:
+        assert answer["error"] in ("ValueError", "TypeError"), answer
+        message = answer["message"]
+        known = [*STATE_FIELDS, *ATOM_FIELDS, "state", "positions", "velocities", "dt", "n_atoms"]
+        assert _named(message, known) or message.startswith("state"), f"{state!r}: {message}"
+    else:
+        assert answer["finite"], f"non-finite result: {state!r}"
