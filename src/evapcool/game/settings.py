@@ -25,13 +25,15 @@ from evapcool.fileio import (
     set_aside,
     warn,
 )
-from evapcool.physics.loading import cell_centres
+from evapcool.physics.loading import capacity
 from evapcool.physics.simulation import (
     ATOM_RADIUS,
+    BORDER_TOP,
     CURVATURE,
     N_ATOMS,
     TC_EXPONENT_CUP,
     TC_EXPONENT_SEED,
+    TRAP_HEIGHT,
     WINDOW,
     cup_vertex,
 )
@@ -80,33 +82,29 @@ FIELD_NAMES = tuple(f.name for f in fields(Settings))
 
 @lru_cache(maxsize=64)
 def cup_capacity(radius: float) -> int:
-    """How many atoms of this radius the initial loading fits in the classic window.
+    """How many atoms of this radius start wholly inside the cup, below its rim.
 
-    Bisects on the loader itself, so it agrees exactly with `Simulation` raising.
+    The rim starts at TRAP_HEIGHT, below the play area's top border, so every atom of
+    such a start is trapped and in view (`loading.capacity`, the loader's own rows).
     """
-    y_top = cup_vertex(WINDOW)[1] - radius  # screen y of the trap origin
-
-    def fits(n: int) -> bool:
-        try:
-            cell_centres(n, radius, CURVATURE, y_top)
-        except ValueError:
-            return False
-        return True
-
-    lo, hi = 0, 1
-    while fits(hi):
-        lo, hi = hi, hi * 2
-        if hi > 1_000_000:  # cannot happen for RADIUS_MIN; a guard, not a limit
-            return lo
-    while hi - lo > 1:
-        mid = (lo + hi) // 2
-        lo, hi = (mid, hi) if fits(mid) else (lo, mid)
-    return lo
+    play_top = cup_vertex(WINDOW)[1] - radius - BORDER_TOP  # trap y of the border's edge
+    return capacity(radius, CURVATURE, min(TRAP_HEIGHT, play_top))
 
 
 def max_atoms(radius: float) -> int:
-    """Largest allowed atom count for this radius."""
+    """Largest atom count the settings allow for this radius: all trapped, all in view."""
     return min(ATOMS_MAX, cup_capacity(float(radius)))
+
+
+@lru_cache(maxsize=64)
+def window_capacity(radius: float) -> int:
+    """How many atoms of this radius the loading fits below the window's top (`Simulation`)."""
+    return capacity(radius, CURVATURE, cup_vertex(WINDOW)[1] - radius)
+
+
+def command_line_max_atoms(radius: float) -> int:
+    """Largest --atoms for this radius: what the loading fits (some may start above the rim)."""
+    return min(ATOMS_MAX, window_capacity(float(radius)))
 
 
 # -- validation -------------------------------------------------------------------
@@ -114,14 +112,15 @@ def _check_radius(value: object) -> float:
     return limits.APPLET_RADIUS.check("radius", value)
 
 
-def _check_n_atoms(value: object, radius: float) -> int:
-    top = max_atoms(radius)
+def _check_n_atoms(value: object, radius: float, cap=max_atoms) -> int:
+    top = cap(radius)
     if isinstance(value, float) and value.is_integer():
         value = int(value)  # 49.0 from a hand-edited file is fine; 49.5 is not
     if isinstance(value, bool) or not isinstance(value, numbers.Integral) or not 1 <= value <= top:
+        where = "below the rim" if cap is max_atoms else "below the window's top"
         raise ValueError(
-            f"n_atoms must be a whole number from 1 to {top} for radius {radius:g} "
-            f"(got {limits.shown(value)})"
+            f"n_atoms must be a whole number from 1 to {top} for radius {radius:g}, "
+            f"what fits {where} (got {limits.shown(value)})"
         )
     return int(value)
 
@@ -132,11 +131,15 @@ def _check_choice(name: str, value: object, allowed: tuple[str, ...]) -> str:
     return value
 
 
-def validate(settings: Settings) -> Settings:
-    """The same settings with canonical types; ValueError naming the first bad field."""
+def validate(settings: Settings, cap=max_atoms) -> Settings:
+    """The same settings with canonical types; ValueError naming the first bad field.
+
+    cap(radius): the most atoms allowed, by default the settings screen's (all below the
+    rim); the command line allows what the loading fits (command_line_max_atoms).
+    """
     radius = _check_radius(settings.radius)
     return Settings(
-        n_atoms=_check_n_atoms(settings.n_atoms, radius),
+        n_atoms=_check_n_atoms(settings.n_atoms, radius, cap),
         radius=radius,
         tc_law=_check_choice("tc_law", settings.tc_law, tuple(TC_LAWS)),
         escape=_check_choice("escape", settings.escape, ESCAPE_RULES),
@@ -177,7 +180,8 @@ def with_overrides(settings: Settings, **overrides: object) -> Settings:
     bad = [k for k in given if k not in FIELD_NAMES]
     if bad:
         raise ValueError(f"unknown setting {bad[0]!r}; known: {', '.join(FIELD_NAMES)}")
-    return validate(replace(settings, **given))
+    # The same radius range as the screen; atoms up to what the loading fits (issue 4).
+    return validate(replace(settings, **given), cap=command_line_max_atoms)
 
 
 def step(settings: Settings, name: str, direction: int) -> Settings:
