@@ -11,6 +11,14 @@ import importlib.util
 import os
 
 import pytest
+from hypothesis import settings
+
+# A long local fuzz run (tests/test_fuzz.py): --hypothesis-profile=fuzz, cases per test
+# from $EVAPCOOL_FUZZ_EXAMPLES (default 5000). CI loads Hypothesis's own 'ci' profile
+# (CI=true: derandomized), under which the fuzz runs a few cases per test.
+settings.register_profile(
+    "fuzz", max_examples=int(os.environ.get("EVAPCOOL_FUZZ_EXAMPLES", "5000")), deadline=None
+)
 
 os.environ.setdefault("SDL_VIDEODRIVER", "dummy")
 os.environ.setdefault("SDL_AUDIODRIVER", "dummy")

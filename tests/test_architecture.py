@@ -11,11 +11,13 @@ SRC = Path(__file__).resolve().parents[1] / "src" / "evapcool"
 
 # Which evapcool subpackages each layer may import (besides itself).
 ALLOWED = {
-    "physics": set(),
-    "game": {"physics", "fileio"},
-    "view": {"physics", "game", "fileio"},
-    "lab": {"physics", "fileio", "argtypes"},
+    "physics": {"limits"},
+    "game": {"physics", "fileio", "limits"},
+    "view": {"physics", "game", "fileio", "limits"},
+    "lab": {"physics", "fileio", "argtypes", "limits"},
 }
+#: Top-level modules below physics (or beside it): what each may import from evapcool.
+BASE_MODULES = {"limits": set(), "fileio": {"limits"}, "argtypes": {"limits", "fileio"}}
 FORBIDDEN_MODULES = {"physics": {"pygame"}, "game": {"pygame"}, "lab": {"pygame"}}
 
 
@@ -42,3 +44,11 @@ def test_layer_imports_point_one_way(layer: str) -> None:
             if top == "evapcool" and "." in name:
                 sub = name.split(".")[1]
                 assert sub == layer or sub in ALLOWED[layer], f"{f.name} imports {name}"
+
+
+@pytest.mark.parametrize("module", sorted(BASE_MODULES))
+def test_base_modules_import_only_what_is_below_them(module: str) -> None:
+    for name in _imports(SRC / f"{module}.py"):
+        if name.split(".")[0] == "evapcool":
+            sub = name.split(".")[1] if "." in name else ""
+            assert sub in BASE_MODULES[module], f"{module}.py imports {name}"

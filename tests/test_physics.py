@@ -67,9 +67,12 @@ def test_glancing_collision_unequal_masses(engine: str) -> None:
     assert sim.total_energy() == pytest.approx(e0, rel=1e-14)
 
 
-def test_overlapping_pair_does_not_stick(engine: str) -> None:
-    # Overlapping by 6 px and approaching: one collision at once, then they part for good.
-    sim = make(engine, [(-9, 300), (9, 300)], [(1, 0), (-1, 0)])
+#: Exactly touching (24 px apart): a valid start, "at least r_i + r_j apart".
+TOUCHING = 12.0
+
+
+def test_touching_approaching_pair_collides_at_once_and_does_not_stick(engine: str) -> None:
+    sim = make(engine, [(-TOUCHING, 300), (TOUCHING, 300)], [(1, 0), (-1, 0)])
     sim.advance(0.0)
     sim.advance(40.0)
     pair_events = [e for e in sim.event_log if e[0] == "pair"]
@@ -79,8 +82,8 @@ def test_overlapping_pair_does_not_stick(engine: str) -> None:
     assert abs(p[1, 0] - p[0, 0]) > 24.0
 
 
-def test_overlapping_receding_pair_is_ignored(engine: str) -> None:
-    sim = make(engine, [(-9, 300), (9, 300)], [(-1, 0), (1, 0)])
+def test_touching_receding_pair_is_ignored(engine: str) -> None:
+    sim = make(engine, [(-TOUCHING, 300), (TOUCHING, 300)], [(-1, 0), (1, 0)])
     sim.advance(20.0)
     assert sim.pair_collision_count == 0
     v = sim.velocities
@@ -369,12 +372,12 @@ def test_bad_input_names_the_parameter(kwargs: dict, name: str) -> None:
 
 
 def test_positions_must_start_inside_the_cup() -> None:
-    with pytest.raises(ValueError, match="positions"):
+    with pytest.raises(ValueError, match=r"positions .*atom 0"):
         Simulation(1, positions=[(0.0, -1e-9)], velocities=[(0.0, 0.0)])
-    # on the wall is in the cup: a disk resting on the bottom
+    with pytest.raises(ValueError, match=r"positions .*atom 1 "):
+        Simulation(2, positions=[(0.0, 300.0), (100.0, 50.0)], velocities=[(0, 0), (0, 0)])
+    # On the wall is inside (the lead's change of issue 13).
     assert Simulation(1, positions=[(0.0, 0.0)], velocities=[(0.0, 0.0)]).n_trapped == 1
-    with pytest.raises(ValueError, match="positions"):
-        Simulation(1, positions=[(100.0, 50.0)], velocities=[(0.0, 0.0)])
 
 
 def test_bad_advance_and_height() -> None:

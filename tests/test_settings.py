@@ -133,14 +133,16 @@ def test_bad_overrides_raise_value_error_naming_the_parameter(
         with_overrides(DEFAULTS, **overrides)
 
 
-def test_command_line_overrides_are_not_bound_by_the_overlay_ranges() -> None:
-    # Issue 4: `evapcool --atoms 10000 --radius 1` must play; whether atoms fit is the
-    # physics' call (Simulation raises ValueError naming n_atoms).
+def test_command_line_overrides_share_the_settings_ranges() -> None:
+    # Issue 4: `evapcool --atoms 10000 --radius 1` must play; issue 14.13: the command
+    # line, its help and the settings screen share one range per parameter.
     run = with_overrides(DEFAULTS, n_atoms=10_000, radius=1.0)
     assert (run.n_atoms, run.radius) == (10_000, 1.0)
-    too_many = with_overrides(DEFAULTS, n_atoms=94)  # 93 atoms of radius 12 fit, not 94
-    with pytest.raises(ValueError, match="n_atoms"):
-        Simulation(**too_many.simulation_kwargs())
+    Simulation(**run.simulation_kwargs(), seed=1)  # type: ignore[arg-type]
+    with pytest.raises(ValueError, match=r"n_atoms .* 1 to 93 for radius 12"):
+        with_overrides(DEFAULTS, n_atoms=94)  # 93 atoms of radius 12 fit, not 94
+    with pytest.raises(ValueError, match="radius must be a number from 1 to 20 px"):
+        with_overrides(DEFAULTS, radius=0.5)
 
 
 @pytest.mark.parametrize("radius", [3.0, 12.0, 16.0, 20.0])

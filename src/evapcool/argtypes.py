@@ -1,10 +1,38 @@
-"""Command-line value types shared by `evapcool` and `evapcool lab`: one clear line on error."""
+"""Command-line value types shared by the `evapcool` commands: one clear line on error.
+
+Ranges come from `evapcool.limits`, so the help text, the check and the Python API agree.
+"""
 
 from __future__ import annotations
 
 import argparse
 import math
 from collections.abc import Callable, Sequence
+from pathlib import Path
+
+from evapcool.fileio import check_writable
+from evapcool.limits import Range
+
+
+def one_line(message: str) -> str:
+    """message with line breaks and other control characters escaped: one line on stderr."""
+    return "".join(ch if ch.isprintable() or ch == " " else repr(ch)[1:-1] for ch in message)
+
+
+def ranged(rng: Range) -> Callable[[str], float]:
+    """A number (a whole number if rng.integer) within rng."""
+
+    def parse(text: str) -> float:
+        try:
+            value: float = int(text) if rng.integer else float(text)
+        except (ValueError, OverflowError):
+            value = math.nan
+        if not rng.contains(value):
+            raise argparse.ArgumentTypeError(f"must be {rng.allowed()} (got {text!r})")
+        return value
+
+    parse.range = rng  # type: ignore[attr-defined]  # for tests that fuzz the options
+    return parse
 
 
 def whole(low: int) -> Callable[[str], int]:
@@ -41,4 +69,27 @@ def choice(options: Sequence[str]) -> Callable[[str], str]:
             raise argparse.ArgumentTypeError(f"must be one of {', '.join(options)} (got {text!r})")
         return text
 
+    return parse
+
+
+def output_file(suffixes: Sequence[str]) -> Callable[[str], Path]:
+    """A file the program can write, ending in one of suffixes, checked before any run.
+
+    The folder must exist and take a new file (tried with a probe that is removed at
+    once); the name must fit the file system; a directory or device there is refused.
+    """
+
+    def parse(text: str) -> Path:
+        path = Path(text)
+        if path.suffix.lower() not in suffixes:
+            raise argparse.ArgumentTypeError(
+                f"must be a file name ending in {' or '.join(suffixes)} (got {text!r})"
+            )
+        try:
+            check_writable(path, "it")
+        except ValueError as exc:
+            raise argparse.ArgumentTypeError(str(exc).removeprefix("it ")) from None
+        return path
+
+    parse.suffixes = tuple(suffixes)  # type: ignore[attr-defined]
     return parse

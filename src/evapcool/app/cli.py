@@ -7,12 +7,11 @@ import os
 import sys
 from pathlib import Path
 
+from evapcool import limits
 from evapcool.app.storage import settings_path
-from evapcool.argtypes import positive, whole
-from evapcool.game.rules import SPEED_MAX, SPEED_MIN, GameConfig, check_speed
+from evapcool.argtypes import one_line, output_file, ranged
+from evapcool.game.rules import GameConfig
 from evapcool.game.settings import (
-    RADIUS_MAX,
-    RADIUS_MIN,
     TC_LAWS,
     load_settings,
     max_atoms,
@@ -36,26 +35,8 @@ _OPTION_OF = {
 
 class _Parser(argparse.ArgumentParser):
     def error(self, message: str) -> None:  # one line and exit 2, never a usage dump
-        print(f"{PROG}: {message}", file=sys.stderr)
+        print(f"{PROG}: {one_line(message)}", file=sys.stderr)
         raise SystemExit(2)
-
-
-def _speed(text: str) -> float:
-    try:
-        return check_speed(float(text))
-    except ValueError:
-        raise argparse.ArgumentTypeError(
-            f"must be a number from {SPEED_MIN:g} to {SPEED_MAX:g} (got {text!r})"
-        ) from None
-
-
-def _png_path(text: str) -> Path:
-    path = Path(text)
-    if path.suffix.lower() != ".png":
-        raise argparse.ArgumentTypeError(f"must be a file name ending in .png (got {text!r})")
-    if not path.parent.is_dir():
-        raise argparse.ArgumentTypeError(f"folder {str(path.parent)!r} does not exist")
-    return path
 
 
 def build_parser() -> argparse.ArgumentParser:
@@ -67,14 +48,19 @@ def build_parser() -> argparse.ArgumentParser:
     # Atoms, radius, Tc law and escape rule default to the saved settings (key O in
     # the applet); given here they apply to this run only and are not saved.
     p.add_argument(
-        "--atoms", type=whole(1), default=None, metavar="N", help="atoms (saved setting; 49)"
+        "--atoms",
+        type=ranged(limits.APPLET_ATOMS),
+        default=None,
+        metavar="N",
+        help=f"atoms, {limits.APPLET_ATOMS.span()} and as many as fit below the window's top "
+        "at the radius (saved setting; 49; the settings screen keeps all below the rim)",
     )
     p.add_argument(
         "--radius",
-        type=positive,
+        type=ranged(limits.APPLET_RADIUS),
         default=None,
         metavar="R",
-        help=f"atom radius, {RADIUS_MIN:g} to {RADIUS_MAX:g} px (saved setting; 12)",
+        help=f"atom radius, {limits.APPLET_RADIUS.span()} (saved setting; 12)",
     )
     p.add_argument(
         "--tc-law",
@@ -89,25 +75,34 @@ def build_parser() -> argparse.ArgumentParser:
         help="atoms leave over the rim, or by the energy knife (saved setting; rim)",
     )
     p.add_argument(
-        "--seed", type=whole(0), default=None, metavar="S", help="random seed (default: random)"
+        "--seed",
+        type=ranged(limits.SEED),
+        default=None,
+        metavar="S",
+        help=f"random seed, {limits.SEED.span()} (default: random)",
     )
     p.add_argument(
         "--speed",
-        type=_speed,
+        type=ranged(limits.APPLET_SPEED),
         default=1.0,
         metavar="X",
-        help=f"simulation speed, {SPEED_MIN:g} to {SPEED_MAX:g} (default 1)",
+        help=f"simulation speed, {limits.APPLET_SPEED.span()} (default 1)",
     )
     p.add_argument("--fullscreen", action="store_true", help="start in full screen")
     p.add_argument(
         "--frames",
-        type=whole(0),
+        type=ranged(limits.APPLET_FRAMES),
         default=None,
         metavar="N",
-        help="play N frames without waiting for the clock (1 physics frame x speed each), exit",
+        help="play N frames without waiting for the clock (1 physics frame x speed each), "
+        f"then exit; {limits.APPLET_FRAMES.span()}",
     )
     p.add_argument(
-        "--screenshot", type=_png_path, default=None, metavar="PATH", help="with --frames: save PNG"
+        "--screenshot",
+        type=output_file((".png",)),
+        default=None,
+        metavar="PATH",
+        help="with --frames: save the window as PNG (the path is checked before the run)",
     )
     p.add_argument(
         "--data-dir",
@@ -161,7 +156,7 @@ def main(argv: list[str] | None = None) -> int:
         "tc_law": args.tc_law,
         "escape": args.escape,
     }
-    if args.atoms is None and args.radius is not None and RADIUS_MIN <= args.radius <= RADIUS_MAX:
+    if args.atoms is None and args.radius is not None:
         # Bigger atoms than saved: the saved count may not fit; take what does.
         overrides["n_atoms"] = min(saved.n_atoms, max_atoms(args.radius))
     try:
@@ -177,7 +172,7 @@ def main(argv: list[str] | None = None) -> int:
         # Whether the atoms fit is the loader's call: asked now, before a window opens.
         cell_centres(run.n_atoms, run.radius, CURVATURE, cup_vertex(WINDOW)[1] - run.radius)
     except ValueError as exc:
-        print(f"{PROG}: {_user_message(exc)}", file=sys.stderr)
+        print(f"{PROG}: {one_line(_user_message(exc))}", file=sys.stderr)
         return 2
     if args.frames is None and (why := _no_display()):
         print(
@@ -209,7 +204,7 @@ def main(argv: list[str] | None = None) -> int:
     except StartCancelledError:
         return 0
     except ValueError as exc:
-        print(f"{PROG}: {_user_message(exc)}", file=sys.stderr)
+        print(f"{PROG}: {one_line(_user_message(exc))}", file=sys.stderr)
         return 2
     except pygame.error as exc:
         print(
@@ -227,7 +222,10 @@ def main(argv: list[str] | None = None) -> int:
                 try:
                     app.screenshot(args.screenshot)
                 except OSError as exc:
-                    print(f"{PROG}: cannot write {str(args.screenshot)!r}: {exc}", file=sys.stderr)
+                    print(
+                        f"{PROG}: cannot write {str(args.screenshot)!r}: {one_line(str(exc))}",
+                        file=sys.stderr,
+                    )
                     return 1
     except KeyboardInterrupt:
         return 130

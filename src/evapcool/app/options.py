@@ -60,9 +60,10 @@ class SettingsEditor:
         draft = self.draft
         if not save or draft == self.settings:
             return
-        self.settings = draft
+        previous, self.settings = self.settings, draft
         self.overrides = {}  # a choice made here beats the command line for the rest of the run
-        problems = save_settings(draft, self.path)
+        # Only the fields changed here go over the file: another window's choices stay.
+        problems = save_settings(draft, self.path, base=previous)
         for text in problems:
             self.notify(text)
         if not problems:

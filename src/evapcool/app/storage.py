@@ -44,6 +44,12 @@ def folder_problem(path: Path) -> str | None:
     way, or a folder we may not write to. Saving still reports anything else.
     """
     for parent in (path.parent, *path.parent.parents):
+        try:
+            os.stat(parent)
+        except FileNotFoundError:
+            continue
+        except OSError as exc:  # a name too long, a file in the way, ...
+            return f"{parent} cannot be used ({exc.strerror or exc})"
         if parent.exists():
             if not parent.is_dir():
                 return f"{parent} is a file, not a folder"

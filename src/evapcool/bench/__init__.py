@@ -11,6 +11,8 @@ import argparse
 import importlib
 import sys
 
+from evapcool.argtypes import one_line
+
 #: section name -> module (each has run(args)).
 SECTIONS = {
     "physics": "evapcool.bench.physics",
@@ -21,7 +23,7 @@ SECTIONS = {
 
 class _Parser(argparse.ArgumentParser):
     def error(self, message: str) -> None:  # one line, exit 2
-        print(f"evapcool bench: {message}", file=sys.stderr)
+        print(f"evapcool bench: {one_line(message)}", file=sys.stderr)
         raise SystemExit(2)
 
 

@@ -2,7 +2,10 @@
 
 No pygame here: the applet shows `entries` and `notices`; this module only
 keeps the table sound. Problems with the file (corrupt, unreadable, folder
-read-only) never raise: they become notice strings and the game goes on.
+read-only, not a regular file) never raise: they become notice strings (also
+on stderr when a file is set aside) and the game goes on. Several processes may
+share the file (two windows, a shared home folder): every write takes the file's
+lock, re-reads the table and merges this session's new results into it.
 """
 
 from __future__ import annotations
@@ -15,7 +18,15 @@ from dataclasses import asdict, dataclass
 from datetime import datetime
 from pathlib import Path
 
-from evapcool.fileio import atomic_write_text, set_aside
+from evapcool.fileio import (
+    NotRegularFileError,
+    atomic_write_text,
+    locked,
+    read_user_text,
+    set_aside,
+    warn,
+)
+from evapcool.limits import USER_FILE_MAX_BYTES
 
 APP_NAME = "evapcool"
 FILE_NAME = "highscores.json"
@@ -100,6 +111,8 @@ class HighScoreTable:
     def __init__(self, path: str | os.PathLike[str] | None = None) -> None:
         self.path = Path(path) if path is not None else default_path()
         self._entries: list[Entry] = []
+        #: Results of this session not yet written (the folder refused them so far).
+        self._unsaved: list[Entry] = []
         self.notices: list[str] = []
         self.load()
 
@@ -111,46 +124,62 @@ class HighScoreTable:
 
     def load(self) -> None:
         """(Re)read the file. Missing: empty table. Corrupt: set aside, empty table, notice."""
-        self._entries = []
+        rows = self._read()
+        if rows is not None:  # unreadable: keep the table this session knows
+            self._entries = sorted_entries([*rows, *self._unsaved])
+
+    def _read(self) -> list[Entry] | None:
+        """The rows on disk ([] if none or set aside); None if the file cannot be read."""
         try:
-            text = self.path.read_text(encoding="utf-8")
+            text = read_user_text(self.path, USER_FILE_MAX_BYTES)
         except (FileNotFoundError, NotADirectoryError):
-            return  # no table yet; if the folder is unusable, saving will say so
-        except (OSError, UnicodeDecodeError) as exc:
-            if isinstance(exc, UnicodeDecodeError):
-                self._set_aside(f"not valid UTF-8 ({exc.reason})")
-            else:
-                self.notices.append(
-                    f"High scores could not be read from {self.path} ({_reason(exc)}); "
-                    "starting an empty table."
-                )
-            return
+            return []  # no table yet; if the folder is unusable, saving will say so
+        except NotRegularFileError:
+            self.notices.append(
+                f"High scores: {self.path} is not a regular file (a pipe or a device?); "
+                "it is left alone and the table lasts this session only."
+            )
+            return None
+        except OSError as exc:
+            self.notices.append(
+                f"High scores could not be read from {self.path} ({_reason(exc)}); "
+                "starting an empty table."
+            )
+            return None
+        except ValueError as exc:  # not UTF-8, or far too large for a score table
+            self._set_aside(getattr(exc, "reason", None) or str(exc))
+            return []
         try:
             data = json.loads(text)
             if not isinstance(data, dict) or not isinstance(data.get("entries"), list):
                 raise ValueError("no 'entries' list")
-            rows = [_entry_from_json(row) for row in data["entries"]]
-        except ValueError as exc:  # json.JSONDecodeError is a ValueError
-            self._set_aside(str(exc))
-            return
-        self._entries = sorted_entries(rows)
+            return [_entry_from_json(row) for row in data["entries"]]
+        except (ValueError, RecursionError) as exc:  # JSONDecodeError is a ValueError
+            self._set_aside("nested too deeply" if isinstance(exc, RecursionError) else str(exc))
+            return []
 
     def _set_aside(self, why: str) -> None:
         try:
             moved = set_aside(self.path)
         except OSError as exc:
-            self.notices.append(
+            text = (
                 f"The high-score file {self.path} is damaged ({why}) and could not be "
                 f"renamed ({_reason(exc)}); starting an empty table."
             )
-            return
-        self.notices.append(
-            f"The high-score file was damaged ({why}); it was kept as {moved.name} "
-            "and a new table was started."
-        )
+        else:
+            text = (
+                f"The high-score file was damaged ({why}); it was kept as {moved.name} "
+                "and a new table was started."
+            )
+        self.notices.append(text)
+        warn(text)
 
     def qualifies(self, score: int, seconds: float) -> bool:
-        """Would this result enter the table (so it is worth asking for a name)?"""
+        """Would this result enter the table (so it is worth asking for a name)?
+
+        Re-reads the file first: another window may have filled the table meanwhile.
+        """
+        self.load()
         if len(self._entries) < MAX_ENTRIES:
             return True
         probe = Entry("", int(score), float(seconds), "9999-12-31 23:59:59")
@@ -167,7 +196,9 @@ class HighScoreTable:
     ) -> int | None:
         """Store a result; returns its 1-based rank, or None if it did not make the top 10.
 
-        The table in memory is updated even if saving fails (a notice says so).
+        Under the file's lock the table is re-read and the result merged into it, so
+        results stored by other processes meanwhile are kept. The table in memory is
+        updated even if saving fails (a notice says so).
         ValueError for a negative or non-integer score or a bad time.
         """
         if isinstance(score, bool) or not isinstance(score, numbers.Integral) or score < 0:
@@ -187,31 +218,50 @@ class HighScoreTable:
             seconds=round(float(seconds), 2),
             date=when.strftime(DATE_FORMAT),
         )
-        table = sorted_entries([*self._entries, entry])
-        rank = next((i + 1 for i, e in enumerate(table) if e is entry), None)
-        if rank is not None:
-            self._entries = table
-            self.save()
+        self._unsaved.append(entry)
+        self._write(merge=True)
+        rank = next((i + 1 for i, e in enumerate(self._entries) if e is entry), None)
+        if rank is None:
+            self._unsaved = [e for e in self._unsaved if e is not entry]
         return rank
 
     def reset(self) -> bool:
         """Empty the table and save (the UI asks for confirmation first)."""
         self._entries = []
-        return self.save()
+        self._unsaved = []
+        return self._write(merge=False)
 
     def save(self) -> bool:
-        """Write the table atomically; False (and a notice) if the folder is not writable."""
-        payload = {"version": FORMAT_VERSION, "entries": [asdict(e) for e in self._entries]}
+        """Write the table (merged with the file's) atomically; False and a notice on failure."""
+        return self._write(merge=True)
+
+    def _write(self, merge: bool) -> bool:
         try:
             self.path.parent.mkdir(parents=True, exist_ok=True)
-            atomic_write_text(self.path, json.dumps(payload, indent=2, ensure_ascii=False) + "\n")
+            with locked(self.path):
+                if merge:
+                    on_disk = self._read()
+                    base = self._known_rows() if on_disk is None else on_disk
+                    self._entries = sorted_entries([*base, *self._unsaved])
+                payload = {
+                    "version": FORMAT_VERSION,
+                    "entries": [asdict(e) for e in self._entries],
+                }
+                text = json.dumps(payload, indent=2, ensure_ascii=False) + "\n"
+                atomic_write_text(self.path, text)
         except OSError as exc:
+            self._entries = sorted_entries([*self._known_rows(), *self._unsaved])
             self.notices.append(
                 f"High scores could not be saved to {self.path.parent} ({_reason(exc)}); "
                 "they are kept for this session only."
             )
             return False
+        self._unsaved = []
         return True
+
+    def _known_rows(self) -> list[Entry]:
+        """The rows in memory that came from the file (not this session's unsaved ones)."""
+        return [e for e in self._entries if not any(e is u for u in self._unsaved)]
 
 
 def _reason(exc: BaseException) -> str:

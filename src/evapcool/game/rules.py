@@ -6,11 +6,10 @@ directly. Time is physics frames (1/30 s) unless a name says seconds.
 
 from __future__ import annotations
 
-import math
-import numbers
 from collections.abc import Callable
 from dataclasses import dataclass
 
+from evapcool.limits import APPLET_SPEED
 from evapcool.physics.simulation import (
     ATOM_RADIUS,
     FPS,
@@ -24,9 +23,9 @@ from evapcool.physics.simulation import (
 HEIGHT_MIN = 25.0
 HEIGHT_MAX = 450.0
 HEIGHT_START = TRAP_HEIGHT
-#: Simulation speed multipliers: +/- double or halve within these.
-SPEED_MIN = 0.25
-SPEED_MAX = 4.0
+#: Simulation speed multipliers: +/- double or halve within these (limits.APPLET_SPEED).
+SPEED_MIN = APPLET_SPEED.low
+SPEED_MAX = APPLET_SPEED.high
 #: One wall-clock step never advances more than this many seconds of play: when frames
 #: fall behind (a loaded machine, thousands of atoms) the game slows down instead of
 #: taking ever larger steps, each costlier than the last; a stall (window dragged,
@@ -51,11 +50,7 @@ class GameConfig:
 
 def check_speed(speed: object) -> float:
     """The speed as a float, or ValueError naming the allowed range."""
-    if isinstance(speed, numbers.Real) and not isinstance(speed, bool):
-        s = float(speed)
-        if math.isfinite(s) and SPEED_MIN <= s <= SPEED_MAX:
-            return s
-    raise ValueError(f"speed must be a number from {SPEED_MIN:g} to {SPEED_MAX:g} (got {speed!r})")
+    return APPLET_SPEED.check("speed", speed)
 
 
 def make_simulation(config: GameConfig) -> Simulation:

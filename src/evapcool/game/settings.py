@@ -1,21 +1,30 @@
 """Game settings saved as JSON in the user config folder (platformdirs).
 
 No pygame here. Loading never raises: a bad value falls back to its default
-and a corrupt file is set aside, each with a notice string for the UI.
-Command-line flags go through `with_overrides`, which validates but never saves.
+and a corrupt file is set aside, each with a notice string for the UI (and on
+stderr). Command-line flags go through `with_overrides`, which validates against
+the same ranges as the settings screen (limits.APPLET_*) but never saves. Saving
+takes the file's lock and re-reads it, so two windows do not undo each other's choices.
 """
 
 from __future__ import annotations
 
 import json
-import math
 import numbers
 import os
 from dataclasses import asdict, dataclass, fields, replace
 from functools import lru_cache
 from pathlib import Path
 
-from evapcool.fileio import atomic_write_text, set_aside
+from evapcool import limits
+from evapcool.fileio import (
+    NotRegularFileError,
+    atomic_write_text,
+    locked,
+    read_user_text,
+    set_aside,
+    warn,
+)
 from evapcool.physics.loading import capacity
 from evapcool.physics.simulation import (
     ATOM_RADIUS,
@@ -36,11 +45,12 @@ FORMAT_VERSION = 1
 
 #: Tc law name -> exponent p in Tc(N) = Tc0 (N / N0)^p.
 TC_LAWS: dict[str, float] = {"seed": TC_EXPONENT_SEED, "cup": TC_EXPONENT_CUP}
-#: Below 3 px an atom is a speck on a projector; above 20 px fewer than 49 fit.
-RADIUS_MIN = 3.0
-RADIUS_MAX = 20.0
-#: Hard cap whatever the radius: beyond this the frame loop cannot keep 30 fps.
-ATOMS_MAX = 2000
+#: The applet's ranges (limits.APPLET_RADIUS, limits.APPLET_ATOMS): the settings screen,
+#: the settings file and the command line all use them.
+RADIUS_MIN = limits.APPLET_RADIUS.low
+RADIUS_MAX = limits.APPLET_RADIUS.high
+#: Hard cap whatever the radius; max_atoms also caps by what fits in the cup.
+ATOMS_MAX = int(limits.APPLET_ATOMS.high)
 
 
 @dataclass(frozen=True)
@@ -82,57 +92,54 @@ def cup_capacity(radius: float) -> int:
 
 
 def max_atoms(radius: float) -> int:
-    """Largest allowed atom count for this radius."""
+    """Largest atom count the settings allow for this radius: all trapped, all in view."""
     return min(ATOMS_MAX, cup_capacity(float(radius)))
 
 
+@lru_cache(maxsize=64)
+def window_capacity(radius: float) -> int:
+    """How many atoms of this radius the loading fits below the window's top (`Simulation`)."""
+    return capacity(radius, CURVATURE, cup_vertex(WINDOW)[1] - radius)
+
+
+def command_line_max_atoms(radius: float) -> int:
+    """Largest --atoms for this radius: what the loading fits (some may start above the rim)."""
+    return min(ATOMS_MAX, window_capacity(float(radius)))
+
+
 # -- validation -------------------------------------------------------------------
-def _check_radius(value: object, *, ranged: bool = True) -> float:
-    allowed = (
-        f"a number from {RADIUS_MIN:g} to {RADIUS_MAX:g} px" if ranged else "a positive number"
-    )
-    if isinstance(value, bool) or not isinstance(value, numbers.Real):
-        raise ValueError(f"radius must be {allowed} (got {value!r})")
-    v = float(value)
-    ok = RADIUS_MIN <= v <= RADIUS_MAX if ranged else v > 0.0
-    if not (math.isfinite(v) and ok):
-        raise ValueError(f"radius must be {allowed} (got {value!r})")
-    return v
+def _check_radius(value: object) -> float:
+    return limits.APPLET_RADIUS.check("radius", value)
 
 
-def _check_n_atoms(value: object, radius: float, *, ranged: bool = True) -> int:
-    top = max_atoms(radius) if ranged else None
-    msg = (
-        f"n_atoms must be a whole number from 1 to {top} for radius {radius:g}"
-        if ranged
-        else "n_atoms must be a whole number >= 1"
-    )
-    if isinstance(value, bool) or not isinstance(value, numbers.Integral):
-        # 49.0 from a hand-edited file is fine; 49.5 is not.
-        if isinstance(value, float) and value.is_integer():
-            value = int(value)
-        else:
-            raise ValueError(f"{msg} (got {value!r})")
-    if int(value) < 1 or (top is not None and int(value) > top):
-        raise ValueError(f"{msg} (got {value!r})")
+def _check_n_atoms(value: object, radius: float, cap=max_atoms) -> int:
+    top = cap(radius)
+    if isinstance(value, float) and value.is_integer():
+        value = int(value)  # 49.0 from a hand-edited file is fine; 49.5 is not
+    if isinstance(value, bool) or not isinstance(value, numbers.Integral) or not 1 <= value <= top:
+        where = "below the rim" if cap is max_atoms else "below the window's top"
+        raise ValueError(
+            f"n_atoms must be a whole number from 1 to {top} for radius {radius:g}, "
+            f"what fits {where} (got {limits.shown(value)})"
+        )
     return int(value)
 
 
 def _check_choice(name: str, value: object, allowed: tuple[str, ...]) -> str:
     if not isinstance(value, str) or value not in allowed:
-        raise ValueError(f"{name} must be one of {', '.join(allowed)} (got {value!r})")
+        raise ValueError(f"{name} must be one of {', '.join(allowed)} (got {limits.shown(value)})")
     return value
 
 
-def validate(settings: Settings, *, ranged: bool = True) -> Settings:
+def validate(settings: Settings, cap=max_atoms) -> Settings:
     """The same settings with canonical types; ValueError naming the first bad field.
 
-    ranged=False (command-line values) asks only what the physics needs; whether the
-    atoms fit is then left to `Simulation`, which says so in one line.
+    cap(radius): the most atoms allowed, by default the settings screen's (all below the
+    rim); the command line allows what the loading fits (command_line_max_atoms).
     """
-    radius = _check_radius(settings.radius, ranged=ranged)
+    radius = _check_radius(settings.radius)
     return Settings(
-        n_atoms=_check_n_atoms(settings.n_atoms, radius, ranged=ranged),
+        n_atoms=_check_n_atoms(settings.n_atoms, radius, cap),
         radius=radius,
         tc_law=_check_choice("tc_law", settings.tc_law, tuple(TC_LAWS)),
         escape=_check_choice("escape", settings.escape, ESCAPE_RULES),
@@ -173,8 +180,8 @@ def with_overrides(settings: Settings, **overrides: object) -> Settings:
     bad = [k for k in given if k not in FIELD_NAMES]
     if bad:
         raise ValueError(f"unknown setting {bad[0]!r}; known: {', '.join(FIELD_NAMES)}")
-    # The overlay's ranges are for the overlay; a physicist may ask for 10 000 tiny atoms.
-    return validate(replace(settings, **given), ranged=False)
+    # The same radius range as the screen; atoms up to what the loading fits (issue 4).
+    return validate(replace(settings, **given), cap=command_line_max_atoms)
 
 
 def step(settings: Settings, name: str, direction: int) -> Settings:
@@ -222,39 +229,83 @@ def default_path() -> Path:
 def load_settings(path: str | os.PathLike[str] | None = None) -> tuple[Settings, list[str]]:
     """Saved settings (defaults if none) and notices about anything that was wrong."""
     p = Path(path) if path is not None else default_path()
+    data, notices = _read_file(p)
+    if data is None:
+        return DEFAULTS, notices
+    s, more = from_mapping(data)
+    return s, notices + more
+
+
+def _read_file(p: Path) -> tuple[dict[str, object] | None, list[str]]:
+    """The file's object, or None (missing, unreadable or set aside) with the notices."""
     try:
-        text = p.read_text(encoding="utf-8")
+        text = read_user_text(p, limits.USER_FILE_MAX_BYTES)
     except (FileNotFoundError, NotADirectoryError):
-        return DEFAULTS, []
+        return None, []
+    except NotRegularFileError:
+        return None, [f"Settings: {p} is not a regular file (a pipe or a device?); using defaults."]
     except OSError as exc:
-        return DEFAULTS, [f"Settings could not be read from {p} ({exc}); using defaults."]
-    except UnicodeDecodeError:
-        return DEFAULTS, [_set_aside(p, "not valid UTF-8")]
+        return None, [f"Settings could not be read from {p} ({exc}); using defaults."]
+    except ValueError as exc:  # not UTF-8, or far too large for a settings file
+        return None, [_set_aside(p, getattr(exc, "reason", None) or str(exc))]
     try:
         data = json.loads(text)
+    except RecursionError:
+        return None, [_set_aside(p, "not valid JSON: nested too deeply")]
     except ValueError as exc:
-        return DEFAULTS, [_set_aside(p, f"not valid JSON: {exc}")]
+        return None, [_set_aside(p, f"not valid JSON: {exc}")]
     if not isinstance(data, dict):
-        return DEFAULTS, [_set_aside(p, "not a JSON object")]
-    return from_mapping(data)
+        return None, [_set_aside(p, "not a JSON object")]
+    return data, []
 
 
 def _set_aside(path: Path, why: str) -> str:
     try:
         moved = set_aside(path)
     except OSError as exc:
-        return f"The settings file {path} is damaged ({why}); using defaults ({exc})."
-    return f"The settings file was damaged ({why}); it was kept as {moved.name}; using defaults."
+        text = f"The settings file {path} is damaged ({why}); using defaults ({exc})."
+    else:
+        text = (
+            f"The settings file was damaged ({why}); it was kept as {moved.name}; using defaults."
+        )
+    warn(text)
+    return text
 
 
-def save_settings(settings: Settings, path: str | os.PathLike[str] | None = None) -> list[str]:
-    """Validate and write atomically; returns notices (empty on success). Never raises OSError."""
+def save_settings(
+    settings: Settings,
+    path: str | os.PathLike[str] | None = None,
+    base: Settings | None = None,
+) -> list[str]:
+    """Validate and write atomically; returns notices (empty on success). Never raises OSError.
+
+    base: the settings this session read or last saved. Given, only the fields that
+    differ from it are written over the file's current ones, so choices another window
+    saved meanwhile stay; without it every field is written.
+    """
     s = validate(settings)
     p = Path(path) if path is not None else default_path()
-    payload = {"version": FORMAT_VERSION, **asdict(s)}
     try:
         p.parent.mkdir(parents=True, exist_ok=True)
-        atomic_write_text(p, json.dumps(payload, indent=2) + "\n")
+        with locked(p):
+            if base is not None:
+                s = _merged(s, base, p)
+            payload = {"version": FORMAT_VERSION, **asdict(s)}
+            atomic_write_text(p, json.dumps(payload, indent=2) + "\n")
     except OSError as exc:
         return [f"Settings could not be saved to {p.parent} ({exc}); they apply to this session."]
     return []
+
+
+def _merged(mine: Settings, base: Settings, p: Path) -> Settings:
+    """The file's settings with the fields this session changed (mine != base) on top."""
+    data, _ = _read_file(p)
+    if data is None:
+        return mine
+    theirs, _ = from_mapping(data)
+    changed = {f: getattr(mine, f) for f in FIELD_NAMES if getattr(mine, f) != getattr(base, f)}
+    merged = replace(theirs, **changed)
+    try:
+        return validate(merged)
+    except ValueError:  # their atom count does not fit my new radius, or the like
+        return mine

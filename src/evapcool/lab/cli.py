@@ -8,7 +8,8 @@ from typing import NoReturn
 
 import numpy as np
 
-from evapcool.argtypes import choice, positive, whole
+from evapcool import limits
+from evapcool.argtypes import choice, one_line, output_file, ranged
 from evapcool.lab.experiment import ESCAPES, START_HELP, TC_LAWS, LabConfig, run_experiment
 from evapcool.lab.io import COLUMNS, read_result, to_csv_text
 from evapcool.lab.schedule import SCHEDULE_HELP
@@ -39,25 +40,55 @@ def build_parser() -> argparse.ArgumentParser:
             "time series (CSV/JSON) and a figure out. See doc/lab.md."
         ),
     )
-    p.add_argument("--atoms", type=whole(1), help=f"number of atoms (default {d.atoms})")
-    p.add_argument("--radius", type=positive, help=f"atom radius, px (default {d.radius:g})")
-    p.add_argument("--curvature", type=positive, help=f"cup curvature a, 1/px ({d.curvature:g})")
-    p.add_argument("--gravity", type=positive, help="g, px/frame^2 (default 10/30)")
-    p.add_argument("--seed", type=whole(0), help="random seed (default: drawn, recorded)")
+    p.add_argument(
+        "--atoms",
+        type=ranged(limits.N_ATOMS),
+        help=f"number of atoms, {limits.N_ATOMS.span()}, at most "
+        f"{limits.REFERENCE_MAX_ATOMS} with --engine reference (default {d.atoms})",
+    )
+    p.add_argument(
+        "--radius",
+        type=ranged(limits.RADIUS),
+        help=f"atom radius, {limits.RADIUS.span()} (default {d.radius:g})",
+    )
+    p.add_argument(
+        "--curvature",
+        type=ranged(limits.CURVATURE),
+        help=f"cup curvature a, {limits.CURVATURE.span()} (default {d.curvature:g})",
+    )
+    p.add_argument(
+        "--gravity",
+        type=ranged(limits.GRAVITY),
+        help=f"g, {limits.GRAVITY.span()} (default 10/30)",
+    )
+    p.add_argument(
+        "--seed",
+        type=ranged(limits.SEED),
+        help=f"random seed, {limits.SEED.span()} (default: drawn, recorded)",
+    )
     p.add_argument("--engine", type=choice(ENGINES), help="physics engine (default auto)")
-    p.add_argument("--frames", type=whole(1), help=f"run length ({d.frames} frames)")
+    p.add_argument(
+        "--frames",
+        type=ranged(limits.FRAMES),
+        help=f"run length, {limits.FRAMES.span()} frames (default {d.frames})",
+    )
     p.add_argument(
         "--every",
-        type=whole(1),
+        type=ranged(limits.EVERY),
         metavar="K",
-        help=f"record every K frames (default {d.every})",
+        help=f"record every K frames (default {d.every}); "
+        f"at most {limits.RECORDS_MAX} records in a run",
     )
     p.add_argument(
         "--escape",
         type=choice(ESCAPES),
         help="rim: fly over the rim (the game); knife: E > m g H removed at once",
     )
-    p.add_argument("--schedule", help=f"trap height H(t): {SCHEDULE_HELP} (default {d.schedule})")
+    p.add_argument(
+        "--schedule",
+        help=f"trap height H(t): {SCHEDULE_HELP}, at most {limits.SCHEDULE_POINTS_MAX} points "
+        f"(default {d.schedule})",
+    )
     p.add_argument(
         "--tc-law",
         dest="tc_law",
@@ -85,8 +116,18 @@ def build_parser() -> argparse.ArgumentParser:
         metavar="FILE",
         help="repeat the run recorded in FILE (other options override)",
     )
-    p.add_argument("--out", metavar="FILE", help="results, .csv or .json (default: CSV on stdout)")
-    p.add_argument("--plot", metavar="FILE.png", help="save the four-panel figure")
+    p.add_argument(
+        "--out",
+        metavar="FILE",
+        type=output_file((".csv", ".json")),
+        help="results, .csv or .json (default: CSV on stdout); checked before the run",
+    )
+    p.add_argument(
+        "--plot",
+        metavar="FILE.png",
+        type=output_file((".png",)),
+        help="save the four-panel figure; checked before the run",
+    )
     p.add_argument(
         "--theory",
         action="store_true",
@@ -97,7 +138,7 @@ def build_parser() -> argparse.ArgumentParser:
 
 
 def _fail(message: str) -> int:
-    print(f"evapcool lab: error: {message}", file=sys.stderr)
+    print(f"evapcool lab: error: {one_line(message)}", file=sys.stderr)
     return EXIT_USAGE
 
 
@@ -106,6 +147,8 @@ _OPTION_OF = {"n_atoms": "atoms", "trap_height": "schedule"}
 
 def _option_message(message: str) -> str:
     """'tc_law must be ...' -> '--tc-law must be ...' so the line names the CLI option."""
+    if message.startswith("n_atoms:") and "do not fit" in message:
+        return "--atoms, --radius and --curvature" + message[len("n_atoms") :]  # a joint limit
     head, sep, rest = message.partition(" ")
     word = head.rstrip(":")
     word = _OPTION_OF.get(word, word)
@@ -115,6 +158,17 @@ def _option_message(message: str) -> str:
     return message
 
 
+def _from_file(path: str) -> dict:
+    """The parameters recorded in a lab result file; ValueError or OSError saying why not."""
+    params = read_result(path)[0].get("parameters")
+    if not isinstance(params, dict):
+        raise ValueError("it records no parameters")
+    unknown = sorted(str(k) for k in params if k not in LabConfig.__dataclass_fields__)
+    if unknown:
+        raise ValueError(f"unknown parameter {limits.shown(unknown[0])}")
+    return params
+
+
 def main(argv: list[str] | None = None) -> int:
     """Entry point of `evapcool lab`; returns the exit status (2 on bad input)."""
     try:
@@ -122,20 +176,29 @@ def main(argv: list[str] | None = None) -> int:
     except _UsageError as exc:
         return _fail(str(exc))
     params: dict = {}
+    from_file: dict = {}
     if args.from_file is not None:
         try:
-            params.update(read_result(args.from_file)[0]["parameters"])
-        except (OSError, ValueError, KeyError, TypeError) as exc:
-            return _fail(f"--from must name a lab result file (.csv or .json): {exc}")
+            from_file = _from_file(args.from_file)
+        except (OSError, ValueError) as exc:
+            why = exc.strerror or exc if isinstance(exc, OSError) else exc
+            return _fail(f"--from must name a lab result file (.csv or .json): {why}")
+        params.update(from_file)
+    given = set()
     for name in LabConfig.__dataclass_fields__:
         value = getattr(args, name, None)
         if value is not None:
             params[name] = value
+            given.add(name)
     plot = None if args.theory else args.plot  # with --theory the figure waits for the model
     try:
         result = run_experiment(out=args.out, plot=plot, progress=None, **params)
     except ValueError as exc:
-        return _fail(_option_message(str(exc)))
+        message = str(exc)
+        name = message.split(" ", 1)[0].rstrip(":")
+        if name in from_file and name not in given:
+            return _fail(f"--from {args.from_file}: {message}")
+        return _fail(_option_message(message))
     except OSError as exc:
         return _fail(f"could not write output: {exc}")
     if args.out is None:
@@ -176,7 +239,7 @@ def _theory(result, args) -> int:
     try:
         report = result.theory()
     except ValueError as exc:
-        print(f"evapcool lab: error: --theory: {exc}", file=sys.stderr)
+        print(f"evapcool lab: error: --theory: {one_line(str(exc))}", file=sys.stderr)
         if args.plot:
             result.plot(args.plot)
         return EXIT_NO_THEORY

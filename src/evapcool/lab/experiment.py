@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 import math
-import numbers
 import os
 import time
 from collections.abc import Callable
@@ -12,10 +11,11 @@ from pathlib import Path
 
 import numpy as np
 
+from evapcool import limits
+from evapcool.fileio import check_writable
 from evapcool.lab.io import (
     COLUMNS,
     as_arrays,
-    check_writable,
     output_format,
     read_result,
     write_result,
@@ -37,22 +37,15 @@ from evapcool.physics.simulation import (
 TC_LAWS = {"seed": TC_EXPONENT_SEED, "cup": TC_EXPONENT_CUP}
 ESCAPES = ("rim", "knife")
 MASS = 1.0
-START_HELP = "'cup' (the game's loading) or 'thermal=KT' (a thermal cloud at kT > 0)"
+START_HELP = (
+    f"'cup' (the game's loading) or 'thermal=KT' (a thermal cloud at kT {limits.START_KT.span()})"
+)
 
 
-def _whole(name: str, value: object, low: int) -> int:
-    if isinstance(value, bool) or not isinstance(value, numbers.Integral) or value < low:
-        raise ValueError(f"{name} must be a whole number >= {low} (got {value!r})")
-    return int(value)
-
-
-def _positive(name: str, value: object) -> float:
-    if isinstance(value, bool) or not isinstance(value, numbers.Real):
-        raise ValueError(f"{name} must be a positive finite number (got {value!r})")
-    v = float(value)
-    if not (math.isfinite(v) and v > 0.0):
-        raise ValueError(f"{name} must be a positive finite number (got {value!r})")
-    return v
+def _choice(name: str, value: object, options: tuple[str, ...] | dict) -> str:
+    if not isinstance(value, str) or value not in options:
+        raise ValueError(f"{name} must be one of {', '.join(options)} (got {limits.shown(value)})")
+    return value
 
 
 def parse_start(text: str) -> float | None:
@@ -64,9 +57,9 @@ def parse_start(text: str) -> float | None:
             kt = float(text[len("thermal=") :])
         except ValueError:
             kt = math.nan
-        if math.isfinite(kt) and kt > 0.0:
+        if limits.START_KT.contains(kt):
             return kt
-    raise ValueError(f"start must be {START_HELP} (got {text!r})")
+    raise ValueError(f"start must be {START_HELP} (got {limits.shown(text)})")
 
 
 @dataclass(frozen=True)
@@ -94,28 +87,43 @@ class LabConfig:
         if seed is None:
             # Draw a seed now so that the file records it and the run can be repeated.
             seed = int(np.random.SeedSequence().entropy % (2**32))
-        seed = _whole("seed", seed, 0)
-        if self.engine not in ENGINES:
-            raise ValueError(f"engine must be one of {', '.join(ENGINES)} (got {self.engine!r})")
-        if self.escape not in ESCAPES:
-            raise ValueError(f"escape must be rim or knife (got {self.escape!r})")
-        if self.tc_law not in TC_LAWS:
-            raise ValueError(f"tc_law must be seed (2/3) or cup (2/5) (got {self.tc_law!r})")
-        parse_schedule(self.schedule)
+        atoms = limits.N_ATOMS.check("atoms", self.atoms)
+        _choice("engine", self.engine, ENGINES)
+        if self.engine == "reference" and atoms > limits.REFERENCE_MAX_ATOMS:
+            raise ValueError(
+                f"atoms must be at most {limits.REFERENCE_MAX_ATOMS} with engine reference "
+                f"(got {atoms}); use engine fast or auto"
+            )
+        _choice("escape", self.escape, ESCAPES)
+        _choice("tc_law", self.tc_law, TC_LAWS)
+        if len(parse_schedule(self.schedule).points) > limits.SCHEDULE_POINTS_MAX:
+            raise ValueError(
+                f"schedule must have at most {limits.SCHEDULE_POINTS_MAX} points "
+                f"(got {limits.shown(self.schedule)})"
+            )
         parse_start(self.start)
         if not isinstance(self.stop_at_win, bool):
-            raise ValueError(f"stop_at_win must be True or False (got {self.stop_at_win!r})")
+            raise ValueError(
+                f"stop_at_win must be True or False (got {limits.shown(self.stop_at_win)})"
+            )
         if not isinstance(self.win, bool):
-            raise ValueError(f"win must be True or False (got {self.win!r})")
+            raise ValueError(f"win must be True or False (got {limits.shown(self.win)})")
+        frames = limits.FRAMES.check("frames", self.frames)
+        every = limits.EVERY.check("every", self.every)
+        if frames // every + 2 > limits.RECORDS_MAX:
+            raise ValueError(
+                f"every must be at least {frames // (limits.RECORDS_MAX - 2) + 1} for "
+                f"{frames} frames: a run keeps at most {limits.RECORDS_MAX} records (got {every})"
+            )
         return LabConfig(
-            atoms=_whole("atoms", self.atoms, 1),
-            radius=_positive("radius", self.radius),
-            curvature=_positive("curvature", self.curvature),
-            gravity=_positive("gravity", self.gravity),
-            seed=seed,
+            atoms=atoms,
+            radius=limits.RADIUS.check("radius", self.radius),
+            curvature=limits.CURVATURE.check("curvature", self.curvature),
+            gravity=limits.GRAVITY.check("gravity", self.gravity),
+            seed=limits.SEED.check("seed", seed),
             engine=self.engine,
-            frames=_whole("frames", self.frames, 1),
-            every=_whole("every", self.every, 1),
+            frames=frames,
+            every=every,
             escape=self.escape,
             schedule=self.schedule.strip(),
             tc_law=self.tc_law,
@@ -240,15 +248,21 @@ def _make_simulation(cfg: LabConfig, schedule: Schedule) -> Simulation:
     pos = vel = None
     if kt is not None:
         rng = np.random.default_rng(cfg.seed)
-        pos, vel = thermal_cloud(
-            cfg.atoms,
-            cfg.radius,
-            kt,
-            mass=MASS,
-            gravity=cfg.gravity,
-            curvature=cfg.curvature,
-            rng=rng,
-        )
+        try:
+            pos, vel = thermal_cloud(
+                cfg.atoms,
+                cfg.radius,
+                kt,
+                mass=MASS,
+                gravity=cfg.gravity,
+                curvature=cfg.curvature,
+                rng=rng,
+            )
+        except ValueError:
+            raise ValueError(
+                f"start: a thermal cloud at kT {kt:g} is too dense for {cfg.atoms} atoms of "
+                f"radius {cfg.radius:g} (a larger kT, fewer or smaller atoms fit)"
+            ) from None
     h0 = schedule.fixed_height(0.0) if schedule.kind == "ramp" else math.inf
     return Simulation(
         n_atoms=cfg.atoms,
@@ -265,6 +279,25 @@ def _make_simulation(cfg: LabConfig, schedule: Schedule) -> Simulation:
         positions=pos,
         velocities=vel,
     )
+
+
+def _check_run_options(out, plot, progress, checkpoint_seconds, on_record) -> None:
+    """ValueError naming the first bad one of run_experiment's own keywords."""
+    for name, path in (("out", out), ("plot", plot)):
+        if path is not None and not isinstance(path, (str, os.PathLike)):
+            raise ValueError(f"{name} must be a file path or None (got {limits.shown(path)})")
+    if out is not None:
+        output_format(out)
+        check_writable(out, "out")
+    if plot is not None:
+        if Path(plot).suffix.lower() != ".png":
+            raise ValueError(f"plot must be a file name ending in .png (got {str(plot)!r})")
+        check_writable(plot, "plot")
+    if progress is not None and not isinstance(progress, bool):
+        raise ValueError(f"progress must be True, False or None (got {limits.shown(progress)})")
+    limits.CHECKPOINT_SECONDS.check("checkpoint_seconds", checkpoint_seconds)
+    if on_record is not None and not callable(on_record):
+        raise ValueError(f"on_record must be a function or None (got {limits.shown(on_record)})")
 
 
 def run_experiment(
@@ -294,13 +327,7 @@ def run_experiment(
         )
     cfg = LabConfig(**params).validated()  # type: ignore[arg-type]
     schedule = parse_schedule(cfg.schedule)
-    if out is not None:
-        output_format(out)
-        check_writable(out, "out")
-    if plot is not None:
-        if Path(plot).suffix.lower() != ".png":
-            raise ValueError(f"plot must be a file name ending in .png (got {str(plot)!r})")
-        check_writable(plot, "plot")
+    _check_run_options(out, plot, progress, checkpoint_seconds, on_record)
     sim = _make_simulation(cfg, schedule)
 
     from evapcool import __version__

@@ -9,7 +9,8 @@ from pathlib import Path
 
 import numpy as np
 
-from evapcool.fileio import atomic_write_text
+from evapcool.fileio import atomic_write_text, check_writable, read_user_text
+from evapcool.limits import LAB_FILE_MAX_BYTES
 
 #: Output columns, one row per record (doc/lab.md explains each).
 COLUMNS = (
@@ -54,18 +55,6 @@ def output_format(path: str | os.PathLike[str]) -> str:
     return suffix
 
 
-def check_writable(path: str | os.PathLike[str], name: str) -> None:
-    """ValueError unless a file can be created at path (checked before a long run)."""
-    p = Path(path)
-    parent = p.parent if str(p.parent) else Path(".")
-    if p.is_dir():
-        raise ValueError(f"{name} must be a writable file path, not a directory (got {str(p)!r})")
-    if not parent.is_dir():
-        raise ValueError(f"{name} must be in an existing directory (got {str(p)!r})")
-    if not os.access(parent, os.W_OK | os.X_OK) or (p.exists() and not os.access(p, os.W_OK)):
-        raise ValueError(f"{name} must be a writable file path (got {str(p)!r})")
-
-
 def _encode(value: object) -> object:
     """JSON-safe copy: non-finite floats become the strings 'inf', '-inf', 'nan'."""
     if isinstance(value, float) and not math.isfinite(value):
@@ -101,6 +90,36 @@ def as_arrays(columns: dict[str, list]) -> dict[str, np.ndarray]:
         name: np.asarray(columns[name], dtype=np.int64 if name in INT_COLUMNS else np.float64)
         for name in COLUMNS
     }
+
+
+def _checked_arrays(columns: object) -> dict[str, np.ndarray]:
+    """as_arrays of a file's columns: ValueError unless every column is there, as numbers
+    of one length (ints where INT_COLUMNS says so)."""
+    if not isinstance(columns, dict):
+        raise ValueError("'columns' is not an object")
+    missing = [c for c in COLUMNS if not isinstance(columns.get(c), list)]
+    if missing:
+        raise ValueError(f"column {missing[0]!r} is missing")
+    for c in INT_COLUMNS:
+        if not all(isinstance(v, int) and not isinstance(v, bool) for v in columns[c]):
+            raise ValueError(f"column {c!r} holds something other than whole numbers")
+    try:
+        arrays = as_arrays(columns)
+    except (TypeError, ValueError, OverflowError):
+        raise ValueError("a column holds something other than numbers") from None
+    if len({len(a) for a in arrays.values()}) != 1 or any(a.ndim != 1 for a in arrays.values()):
+        raise ValueError("the columns differ in length")
+    return arrays
+
+
+def _energies(value: object) -> np.ndarray:
+    try:
+        arr = np.asarray(value, dtype=np.float64)
+    except (TypeError, ValueError, OverflowError):
+        arr = np.empty((0, 0))
+    if arr.ndim != 1:
+        raise ValueError("'final_energies' is not a list of numbers")
+    return arr
 
 
 def to_csv_text(metadata: dict, columns: dict[str, np.ndarray], energies: np.ndarray) -> str:
@@ -142,35 +161,65 @@ def write_result(
 
 
 def read_result(path: str | os.PathLike[str]) -> tuple[dict, dict[str, np.ndarray], np.ndarray]:
-    """Read a file written by write_result: (metadata, columns, final energies)."""
-    fmt = output_format(path)
-    text = Path(path).read_text(encoding="utf-8")
-    if fmt == ".json":
-        doc = _decode(json.loads(text))
-        energies = np.asarray(doc.get("final_energies", []), dtype=np.float64)
-        return doc["metadata"], as_arrays(doc["columns"]), energies
+    """Read a file written by write_result: (metadata, columns, final energies).
+
+    OSError if it cannot be read (a FIFO or device is refused without waiting);
+    ValueError, saying what is wrong, for anything that is not such a file.
+    """
+    if Path(path).suffix.lower() not in FORMATS:
+        raise ValueError(f"{str(path)!r} does not end in .csv or .json")
+    text = read_user_text(path, LAB_FILE_MAX_BYTES)  # a UnicodeDecodeError is a ValueError
+    try:
+        if Path(path).suffix.lower() == ".json":
+            return _parse_json(text)
+        return _parse_csv(text)
+    except RecursionError:
+        raise ValueError("nested too deeply") from None
+
+
+def _parse_json(text: str) -> tuple[dict, dict[str, np.ndarray], np.ndarray]:
+    doc = _decode(json.loads(text))
+    if not isinstance(doc, dict):
+        raise ValueError("not a JSON object")
+    metadata = doc.get("metadata")
+    if not isinstance(metadata, dict):
+        raise ValueError("no 'metadata' object")
+    return metadata, _checked_arrays(doc.get("columns")), _energies(doc.get("final_energies", []))
+
+
+def _parse_csv(text: str) -> tuple[dict, dict[str, np.ndarray], np.ndarray]:
     metadata: dict = {}
     energies = np.empty(0)
     rows: list[list[str]] = []
     header: list[str] | None = None
-    for line in text.splitlines():
+    for number, line in enumerate(text.splitlines(), start=1):
         if line.startswith("#"):
             key, sep, value = line[1:].strip().partition(": ")
             if not sep:
                 continue
             if key == "final_energies":
-                energies = np.asarray(_decode(json.loads(value)), dtype=np.float64)
+                energies = _energies(_decode(json.loads(value)))
             else:
                 metadata[key] = _decode(json.loads(value))
         elif header is None:
             header = line.split(",")
+            if tuple(header) != COLUMNS:
+                raise ValueError("not an evapcool lab CSV file (unexpected header)")
         elif line:
-            rows.append(line.split(","))
-    if header is None or tuple(header) != COLUMNS:
-        raise ValueError(f"{path}: not an evapcool lab CSV file (unexpected header)")
-    columns = {name: [r[i] for r in rows] for i, name in enumerate(header)}
-    parsed = {
-        c: [int(v) for v in columns[c]] if c in INT_COLUMNS else [float(v) for v in columns[c]]
-        for c in COLUMNS
-    }
-    return metadata, as_arrays(parsed), energies
+            row = line.split(",")
+            if len(row) != len(COLUMNS):
+                raise ValueError(f"line {number} has {len(row)} fields, not {len(COLUMNS)}")
+            rows.append(row)
+    if header is None:
+        raise ValueError("not an evapcool lab CSV file (no header)")
+    try:
+        parsed = {
+            c: [int(r[i]) if c in INT_COLUMNS else float(r[i]) for r in rows]
+            for i, c in enumerate(COLUMNS)
+        }
+    except ValueError:
+        raise ValueError("a row holds something other than numbers") from None
+    return metadata, _checked_arrays(parsed), energies
+
+
+__all__ = ["COLUMNS", "check_writable", "output_format", "read_result", "write_result"]

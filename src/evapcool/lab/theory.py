@@ -521,6 +521,17 @@ def mean_energy_above(eta: float) -> float:
     return float(upper / q)
 
 
+def _room(grid: dict, xs: list, ys: list, cx: int, cy: int, x: float, y: float, limit: float):
+    """True if no placed centre in the 3 x 3 cells around (cx, cy) is within sqrt(limit)."""
+    for dx in (-1, 0, 1):
+        for dy in (-1, 0, 1):
+            for j in grid.get((cx + dx, cy + dy), ()):
+                ex, ey = xs[j] - x, ys[j] - y
+                if ex * ex + ey * ey <= limit:
+                    return False
+    return True
+
+
 def thermal_cloud(
     n_atoms: int,
     radius: float,
@@ -543,14 +554,23 @@ def thermal_cloud(
     lam = kt / (mass * gravity)
     pos = np.empty((n_atoms, 2))
     sigma2 = (2.0 * radius) ** 2
+    limit = sigma2 * 1.0001
+    # Atoms closer than sqrt(limit) share a cell or neighbour one: each try is O(1), not O(i).
+    cell = 2.0 * radius * 1.0001
+    grid: dict[tuple[int, int], list[int]] = {}
+    xs: list[float] = []
+    ys: list[float] = []
     for i in range(n_atoms):
         for _ in range(max_tries):
             # The y-marginal of the profile is Gamma(3/2, lam); x is uniform across the cup.
             y = rng.gamma(1.5, lam)
             x = rng.uniform(-1.0, 1.0) * math.sqrt(y / curvature)
-            d = pos[:i] - (x, y)
-            if i == 0 or np.min(d[:, 0] ** 2 + d[:, 1] ** 2) > sigma2 * 1.0001:
+            cx, cy = math.floor(x / cell), math.floor(y / cell)
+            if _room(grid, xs, ys, cx, cy, x, y, limit):
                 pos[i] = (x, y)
+                xs.append(float(pos[i, 0]))
+                ys.append(float(pos[i, 1]))
+                grid.setdefault((cx, cy), []).append(i)
                 break
         else:
             raise ValueError(f"n_atoms: {n_atoms} disks of radius {radius:g} are too dense")

@@ -5,13 +5,15 @@ Pure model: NumPy (and Numba through the fast engine), never pygame.
 
 from __future__ import annotations
 
-import math
 import numbers
 from collections.abc import Sequence
 
 import numpy as np
 
+from evapcool import limits
+from evapcool.limits import Range, shown
 from evapcool.physics.loading import load_cup
+from evapcool.physics.validation import check_start, check_world
 from evapcool.physics.world import (
     ESCAPE_RULES,
     ESCAPED,
@@ -45,26 +47,73 @@ def cup_vertex(window: tuple[int, int]) -> tuple[float, float]:
 
 
 def _bad(name: str, allowed: str, value: object) -> ValueError:
-    return ValueError(f"{name} must be {allowed} (got {value!r})")
+    return ValueError(f"{name} must be {allowed} (got {shown(value)})")
 
 
-def _positive(name: str, value: object, *, allow_inf: bool = False) -> float:
-    if isinstance(value, bool) or not isinstance(value, numbers.Real):
-        raise _bad(name, "a positive number", value)
-    v = float(value)
-    if math.isnan(v) or v <= 0.0 or (math.isinf(v) and not allow_inf):
-        kind = "a positive number" + (" (inf allowed)" if allow_inf else ", finite")
-        raise _bad(name, kind, value)
-    return v
+def _flag(name: str, value: object) -> bool:
+    """A real bool: "no" or 0 is not False here (issue 18)."""
+    if not isinstance(value, (bool, np.bool_)):
+        raise _bad(name, "True or False", value)
+    return bool(value)
 
 
-def _per_atom(name: str, value: object, n: int) -> np.ndarray:
+def _choice(name: str, value: object, options: tuple[str, ...]) -> str:
+    if not isinstance(value, str) or value not in options:
+        raise _bad(name, "one of " + ", ".join(options), value)
+    return value
+
+
+def _floats(name: str, value: object, shape: tuple[int, ...], allowed: str) -> np.ndarray:
+    """value as a new float array of this shape; ValueError naming name otherwise."""
+    try:
+        arr = np.array(value, dtype=float)
+    except (TypeError, ValueError, OverflowError):
+        raise _bad(name, allowed, value) from None
+    if arr.shape != shape or not np.all(np.isfinite(arr)):
+        raise _bad(name, allowed, value)
+    return arr
+
+
+def _per_atom(name: str, value: object, n: int, rng: Range) -> np.ndarray:
+    """One number for every atom, or n of them, each within rng."""
     if isinstance(value, numbers.Real) and not isinstance(value, bool):
-        return np.full(n, _positive(name, value))
-    arr = np.asarray(value, dtype=float)
-    if arr.shape != (n,) or not np.all(np.isfinite(arr)) or np.any(arr <= 0.0):
-        raise _bad(name, f"a positive finite number or {n} of them", value)
-    return arr.copy()
+        return np.full(n, rng.check(name, value))
+    allowed = f"{rng.allowed()}, or {n} such numbers"
+    if isinstance(value, (str, bytes, bool)):
+        raise _bad(name, allowed, value)
+    arr = _floats(name, value, (n,), allowed)
+    bad = np.flatnonzero((arr < rng.low) | (arr > rng.high))
+    if bad.size:
+        i = int(bad[0])
+        raise ValueError(f"{name} must be {allowed} (atom {i} has {float(arr[i])!r})")
+    return arr
+
+
+def _window(value: object) -> tuple[int, int]:
+    allowed = f"two whole numbers (width, height), each {limits.WINDOW_SIDE.span()}"
+    if not isinstance(value, (tuple, list)) or len(value) != 2:
+        raise _bad("window", allowed, value)
+    side = limits.WINDOW_SIDE
+    try:
+        return side.check("window", value[0]), side.check("window", value[1])
+    except ValueError:
+        raise _bad("window", allowed, value) from None
+
+
+def _check_engine_size(engine: str, n: int) -> None:
+    """The reference engine's N x N table must stay small (limits.REFERENCE_MAX_ATOMS)."""
+    if n <= limits.REFERENCE_MAX_ATOMS:
+        return
+    if engine == "reference":
+        raise ValueError(
+            f"n_atoms must be at most {limits.REFERENCE_MAX_ATOMS} with engine='reference' "
+            f"(its pair table grows as N^2; got {n}); use engine='fast' or 'auto'"
+        )
+    if engine == "auto" and not _fast_available():
+        raise ValueError(
+            f"n_atoms must be at most {limits.REFERENCE_MAX_ATOMS} without numba "
+            f"(got {n}); install numba for the fast engine"
+        )
 
 
 class Simulation:
@@ -93,40 +142,27 @@ class Simulation:
         positions: np.ndarray | None = None,
         velocities: np.ndarray | None = None,
     ) -> None:
-        if isinstance(n_atoms, bool) or not isinstance(n_atoms, numbers.Integral) or n_atoms < 1:
-            raise _bad("n_atoms", "a whole number >= 1", n_atoms)
-        n = int(n_atoms)
-        radii = _per_atom("radius", radius, n)
-        masses = _per_atom("mass", mass, n)
-        a = _positive("curvature", curvature)
-        g = _positive("gravity", gravity)
-        height = _positive("trap_height", trap_height, allow_inf=True)
-        tc_p = _positive("tc_exponent", tc_exponent)
-        if (
-            not isinstance(window, (tuple, list))
-            or len(window) != 2
-            or not all(isinstance(s, numbers.Integral) and not isinstance(s, bool) for s in window)
-            or window[0] < BORDER_LEFT + BORDER_RIGHT + 16
-            or window[1] < BORDER_TOP + BORDER_BOTTOM + 16
-        ):
-            raise _bad(
-                "window", "two whole numbers (width, height) of at least 160 x 160 px", window
-            )
-        if seed is not None and (
-            isinstance(seed, bool) or not isinstance(seed, numbers.Integral) or seed < 0
-        ):
-            raise _bad("seed", "a whole number >= 0 or None", seed)
-        if not isinstance(win, bool):
-            raise _bad("win", "True or False", win)
-        if engine not in ENGINES:
-            raise _bad("engine", "one of " + ", ".join(ENGINES), engine)
-        if escape not in ESCAPE_RULES:
-            raise _bad("escape", "one of " + ", ".join(ESCAPE_RULES), escape)
+        # Every check comes before anything is allocated per atom (issue 18).
+        n = limits.N_ATOMS.check("n_atoms", n_atoms)
+        a = limits.CURVATURE.check("curvature", curvature)
+        g = limits.GRAVITY.check("gravity", gravity)
+        height = limits.TRAP_HEIGHT.check("trap_height", trap_height)
+        tc_p = limits.TC_EXPONENT.check("tc_exponent", tc_exponent)
+        window = _window(window)
+        if seed is not None:
+            seed = limits.SEED.check("seed", seed)
+        win = _flag("win", win)
+        record_events = _flag("record_events", record_events)
+        engine = _choice("engine", engine, ENGINES)
+        escape = _choice("escape", escape, ESCAPE_RULES)
+        _check_engine_size(engine, n)
+        radii = _per_atom("radius", radius, n, limits.RADIUS)
+        masses = _per_atom("mass", mass, n, limits.MASS)
 
         r_ref = float(radii[0])
-        vx_screen, vy_screen = cup_vertex((int(window[0]), int(window[1])))
+        vx_screen, vy_screen = cup_vertex(window)
         origin_sy = vy_screen - r_ref  # screen y of the trap origin
-        self.window = (int(window[0]), int(window[1]))
+        self.window = window
         self.screen_origin = (vx_screen, origin_sy)
         self.seed = seed
         self.rng = np.random.default_rng(seed)
@@ -135,19 +171,13 @@ class Simulation:
             if not np.all(radii == r_ref):
                 raise _bad("radius", "one number unless positions are given", radius)
             pos, vel = load_cup(n, r_ref, a, origin_sy, self.rng)
+        elif positions is None or velocities is None:
+            missing = "positions" if positions is None else "velocities"
+            raise ValueError(f"{missing} must be given together with the other (got None)")
         else:
-            pos = np.array(positions, dtype=float)
-            vel = np.array(velocities, dtype=float)
-            for name, arr in (("positions", pos), ("velocities", vel)):
-                if arr.shape != (n, 2) or not np.all(np.isfinite(arr)):
-                    raise _bad(name, f"a finite array of shape ({n}, 2)", arr.shape)
-            # A centre below the wall is outside the cup; one on it touches the wall.
-            outside = np.flatnonzero(pos[:, 1] < a * pos[:, 0] * pos[:, 0])
-            if outside.size:
-                raise _bad(
-                    "positions", "centres inside the cup or on its wall, y >= a x^2",
-                    pos[outside[0]],
-                )  # fmt: skip
+            pos = _floats("positions", positions, (n, 2), f"a finite array of shape ({n}, 2)")
+            vel = _floats("velocities", velocities, (n, 2), f"a finite array of shape ({n}, 2)")
+            check_start(pos, vel, radii, a)
 
         self._world = World(
             pos=pos,
@@ -162,7 +192,7 @@ class Simulation:
             y_bottom=origin_sy - self.window[1],
             tc_exponent=tc_p,
             escape_rule=escape,
-            record_events=bool(record_events),
+            record_events=record_events,
             win_rule=win,
         )
         self._engine = self._make_engine(engine, n)
@@ -177,12 +207,18 @@ class Simulation:
     def from_world(
         cls, world: World, window: tuple[int, int] = WINDOW, engine: str = "auto"
     ) -> Simulation:
-        """A simulation around a ready, validated World (physics/state.py restores states so)."""
-        if engine not in ENGINES:
-            raise _bad("engine", "one of " + ", ".join(ENGINES), engine)
+        """A simulation around a ready, validated World (physics/state.py restores states so).
+
+        The parameters are checked against the same ranges as a new Simulation's (the
+        placement of the atoms is the caller's check, with its round-off tolerance).
+        """
+        engine = _choice("engine", engine, ENGINES)
+        window = _window(window)
+        check_world(world, placement=False)
+        _check_engine_size(engine, len(world.radius))
         sim = cls.__new__(cls)
         vx_screen, vy_screen = cup_vertex(window)
-        sim.window = (int(window[0]), int(window[1]))
+        sim.window = window
         sim.screen_origin = (vx_screen, vy_screen - float(world.radius[0]))
         sim.seed = None
         sim.rng = np.random.default_rng()
@@ -218,11 +254,7 @@ class Simulation:
     # -- time -----------------------------------------------------------------
     def advance(self, dt: float) -> None:
         """Advance the simulation by dt frames, processing every event exactly."""
-        if isinstance(dt, bool) or not isinstance(dt, numbers.Real):
-            raise _bad("dt", "a number of frames >= 0", dt)
-        dt = float(dt)
-        if not math.isfinite(dt) or dt < 0.0:
-            raise _bad("dt", "a finite number of frames >= 0", dt)
+        dt = limits.DT.check("dt", dt)
         self._engine.advance_to(self._world.time + dt)
 
     @property
@@ -243,7 +275,7 @@ class Simulation:
 
     @trap_height.setter
     def trap_height(self, value: float) -> None:
-        self._engine.set_trap_height(_positive("trap_height", value, allow_inf=True))
+        self._engine.set_trap_height(limits.TRAP_HEIGHT.check("trap_height", value))
 
     @property
     def rim_half_width(self) -> float:

@@ -26,6 +26,7 @@ from evapcool.physics.simulation import (
     Simulation,
     cup_vertex,
 )
+from evapcool.physics.validation import first_overlap
 from evapcool.physics.world import ESCAPE_RULES, TRAPPED, World
 
 STATE_FORMAT = "evapcool-state"
@@ -279,22 +280,9 @@ def check_placement(
     idx = np.flatnonzero(trapped)
     if not overlaps or idx.size < 2:
         return
-    # Sweep along x: only atoms closer than the largest contact distance in x can overlap.
-    order = idx[np.lexsort((idx, x[idx]))]
-    reach = 2.0 * float(np.max(radius[idx]))
-    xs = x[order]
-    best: tuple[int, int] | None = None
-    for shift in range(1, len(order)):
-        near = np.flatnonzero(xs[shift:] - xs[:-shift] <= reach)
-        if near.size == 0:
-            break
-        i = order[near]
-        j = order[near + shift]
-        lim = (radius[i] + radius[j]) * (1.0 - tol)
-        hit = np.flatnonzero((x[j] - x[i]) ** 2 + (y[j] - y[i]) ** 2 < lim * lim)
-        for k in hit:
-            pair = (int(min(i[k], j[k])), int(max(i[k], j[k])))
-            best = pair if best is None or pair < best else best
+    # A grid, linear in N (validation.first_overlap); a sweep along x was O(N^2) for a column.
+    pair = first_overlap(np.column_stack((x[idx], y[idx])), radius[idx], tol)
+    best = None if pair is None else (int(idx[pair[0]]), int(idx[pair[1]]))
     if best is not None:
         i, j = best
         d = math.hypot(x[j] - x[i], y[j] - y[i])
