@@ -14,7 +14,7 @@ ALLOWED = {
     "physics": set(),
     "game": {"physics", "fileio"},
     "view": {"physics", "game", "fileio"},
-    "lab": {"physics", "fileio", "argtypes"},
+    "lab": {"physics", "game", "fileio", "argtypes"},
 }
 FORBIDDEN_MODULES = {"physics": {"pygame"}, "game": {"pygame"}, "lab": {"pygame"}}
 

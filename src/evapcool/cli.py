@@ -1,4 +1,4 @@
-"""The `evapcool` command: play (default), `lab` or `bench`."""
+"""The `evapcool` command: play (default), `lab`, `sweep`, `optimize` or `bench`."""
 
 from __future__ import annotations
 
@@ -6,7 +6,12 @@ import importlib
 import sys
 
 #: Subcommands and the module whose main(argv) runs them.
-SUBCOMMANDS = {"lab": "evapcool.lab.cli", "bench": "evapcool.bench"}
+SUBCOMMANDS = {
+    "lab": "evapcool.lab.cli",
+    "bench": "evapcool.bench",
+    "sweep": "evapcool.lab.sweep_cli",
+    "optimize": "evapcool.optimize.cli",
+}
 
 
 def main(argv: list[str] | None = None) -> int:

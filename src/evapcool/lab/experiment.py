@@ -290,7 +290,7 @@ def run_experiment(
     bar = Progress(cfg.frames, enabled=progress)
     last_write = time.monotonic()
     try:
-        if schedule.kind == "eta":
+        if schedule.kind != "ramp":
             schedule.apply(sim, 0.0)
         record(0)
         for frame in range(1, cfg.frames + 1):
