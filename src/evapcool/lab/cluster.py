@@ -25,8 +25,8 @@ from dataclasses import dataclass
 INSTALL_HINT = "pip install 'evapcool[cluster]'"
 #: What each command needs from the extra (import names).
 NEEDS = {
-    "sweep": ("dask", "distributed", "pandas", "pyarrow"),
-    "optimize": ("optuna", "dask", "distributed", "pandas"),
+    "sweep": ("dask", "distributed", "pandas", "pyarrow", "tqdm"),
+    "optimize": ("optuna", "dask", "distributed", "pandas", "tqdm"),
 }
 if sys.version_info < (3, 11):
     NEEDS["sweep"] = (*NEEDS["sweep"], "tomli")
@@ -156,7 +156,7 @@ def connect(
             n_workers=n,
             threads_per_worker=1,
             processes=True,
-            dashboard_address=None,
+            dashboard_address=":0",  # a free port: never a clash with another cluster
             silence_logs=level,
         )
         client = Client(cluster)
