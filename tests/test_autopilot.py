@@ -3,6 +3,7 @@ against the lab, and the demo that ships with the package."""
 
 from __future__ import annotations
 
+import itertools
 import json
 import math
 
@@ -65,7 +66,7 @@ def test_ramp_is_linear_between_points_and_clamped_to_the_slider(points, frame):
     ramp = Ramp(tuple(pts))
     h = ramp.height_at(frame)
     assert HEIGHT_MIN <= h <= HEIGHT_MAX
-    inside = [(a, b) for a, b in zip(pts, pts[1:], strict=False) if a[0] <= frame <= b[0]]
+    inside = [(a, b) for a, b in itertools.pairwise(pts) if a[0] <= frame <= b[0]]
     if inside:
         (f0, h0), (f1, h1) = inside[0]
         expect = h0 + (h1 - h0) * (frame - f0) / (f1 - f0)

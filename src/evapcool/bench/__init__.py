@@ -16,6 +16,7 @@ SECTIONS = {
     "physics": "evapcool.bench.physics",
     "fast": "evapcool.bench.fast",
     "applet": "evapcool.bench.applet",
+    "cluster": "evapcool.bench.cluster",
 }
 
 

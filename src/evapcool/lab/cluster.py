@@ -17,7 +17,9 @@ import importlib.util
 import logging
 import os
 import platform
+import signal
 import sys
+import threading
 import time
 from collections.abc import Callable, Iterator, Sequence
 from dataclasses import dataclass
@@ -162,18 +164,33 @@ def connect(
         client = Client(cluster)
         description = f"local cluster, {n} worker{'s' if n != 1 else ''}"
     else:
-        client = Client(scheduler, timeout="20s")
+        client = Client(scheduler, timeout="10s")
         description = f"scheduler {scheduler}"
     try:
         client.register_plugin(_warm_plugin())
         engine = Engine(client, description)
-        if scheduler is not None and workers:
-            client.wait_for_workers(workers, timeout=120)
+        if scheduler is not None:
+            _check_versions(engine)
         yield engine
     finally:
         client.close()
         if cluster is not None:
             cluster.close()
+
+
+class VersionMismatchError(RuntimeError):
+    """Workers run another evapcool than this process: results would not be repeatable."""
+
+
+def _check_versions(engine: Engine) -> None:
+    from evapcool import __version__
+
+    found = engine.versions()
+    if found - {__version__}:
+        raise VersionMismatchError(
+            f"workers run evapcool {', '.join(sorted(found))} and this is {__version__}: "
+            "install the same version everywhere"
+        )
 
 
 @dataclass(frozen=True)
@@ -183,31 +200,71 @@ class TaskError:
     message: str
 
 
+class StopRequest:
+    """Ctrl-C and SIGTERM ask for a stop, checked between safe points (never mid-write).
+
+    The first signal only sets the flag; run_tasks then cancels what is left and raises
+    KeyboardInterrupt from a safe point. A second Ctrl-C raises at once.
+    """
+
+    def __init__(self) -> None:
+        self.requested = False
+        self._old: dict = {}
+
+    def __call__(self) -> bool:
+        return self.requested
+
+    def _handle(self, signum, frame) -> None:
+        if self.requested:
+            raise KeyboardInterrupt
+        self.requested = True
+
+    def __enter__(self) -> StopRequest:
+        if threading.current_thread() is threading.main_thread():
+            for sig in (signal.SIGINT, signal.SIGTERM):
+                self._old[sig] = signal.getsignal(sig)
+                signal.signal(sig, self._handle)
+        return self
+
+    def __exit__(self, *exc: object) -> None:
+        for sig, handler in self._old.items():
+            signal.signal(sig, handler)
+        self._old.clear()
+
+
 def run_tasks(
     engine: Engine,
     function: Callable,
     arguments: Sequence[tuple],
     on_result: Callable[[int, object], None],
+    stop: Callable[[], bool] | None = None,
 ) -> None:
     """Run function(*arguments[i]) for every i as Dask tasks; on_result(i, value) as each ends.
 
     A task whose worker is lost is re-run by Dask on another worker; one that still cannot
-    run (or raises) reports a TaskError instead of a value. Ctrl-C cancels what is left.
+    run (or raises) reports a TaskError instead of a value. When stop() turns true (or on
+    Ctrl-C), what is left is cancelled and KeyboardInterrupt raised.
     """
     from dask.distributed import as_completed
 
     client = engine.client
     futures = [client.submit(function, *args, pure=False) for args in arguments]
     index = {f.key: i for i, f in enumerate(futures)}
+    done = as_completed(futures)
     try:
-        for future in as_completed(futures):
-            i = index[future.key]
-            try:
-                value = future.result()
-            except Exception as exc:  # the worker died too often, or the task raised
-                value = TaskError(f"{type(exc).__name__}: {exc}".strip())
-            on_result(i, value)
-            future.release()
+        while not done.is_empty():
+            if stop is not None and stop():
+                raise KeyboardInterrupt
+            if not done.has_ready():
+                time.sleep(0.05)
+                continue
+            for future in done.next_batch(block=False):
+                try:
+                    value = future.result()
+                except Exception as exc:  # the worker died too often, or the task raised
+                    value = TaskError(f"{type(exc).__name__}: {exc}".strip())
+                on_result(index[future.key], value)
+                future.release()
     except BaseException:
         client.cancel(futures)
         raise

@@ -9,7 +9,12 @@ from pathlib import Path
 from typing import NoReturn
 
 from evapcool.argtypes import whole
-from evapcool.lab.cluster import MissingExtraError, check_scheduler, require_extra
+from evapcool.lab.cluster import (
+    MissingExtraError,
+    VersionMismatchError,
+    check_scheduler,
+    require_extra,
+)
 
 PROG = "evapcool sweep"
 EXIT_USAGE = 2
@@ -112,6 +117,8 @@ def main(argv: list[str] | None = None) -> int:
     except KeyboardInterrupt:
         log(f"interrupted; finished runs are in {out}; run the same command to go on")
         return EXIT_INTERRUPTED
+    except (OSError, TimeoutError, VersionMismatchError) as exc:
+        return _fail(f"--scheduler {args.scheduler}: {exc}" if args.scheduler else str(exc))
     elapsed = time.monotonic() - start
     failed = result.failed
     log(

@@ -165,9 +165,7 @@ def expand(spec: Mapping) -> list[dict]:
         raise SpecError("sweep.seeds is missing: give seeds = [1, 2] or { from = 1, to = 20 }")
     bad = sorted(set(params) - set(PARAMETERS))
     if bad:
-        raise SpecError(
-            f"parameters.{bad[0]}: unknown parameter; allowed: {', '.join(PARAMETERS)}"
-        )
+        raise SpecError(f"parameters.{bad[0]}: unknown parameter; allowed: {', '.join(PARAMETERS)}")
     if "eta" in params and "schedule" in params:
         raise SpecError("parameters.eta: give eta or schedule, not both (eta = 6 means eta=6)")
     seeds = _seeds(head["seeds"])
@@ -469,18 +467,23 @@ def sweep(
     runs, todo = plan(spec, out)
     target = check_out(out) if out is not None else None
     notices: list[str] = []
-    if target is not None:
-        target.mkdir(parents=True, exist_ok=True)
-        if isinstance(spec, Mapping):
-            atomic_write_text(target / "spec.json", json.dumps(spec, indent=2, default=repr))
-        else:
-            atomic_write_bytes(target / SPEC_FILE, Path(spec).read_bytes())
     writer = _Writer(target)
+
+    def start() -> None:  # once the cluster is there: nothing is written before
+        if target is not None:
+            target.mkdir(parents=True, exist_ok=True)
+            if isinstance(spec, Mapping):
+                atomic_write_text(target / "spec.json", json.dumps(spec, indent=2, default=repr))
+            else:
+                atomic_write_bytes(target / SPEC_FILE, Path(spec).read_bytes())
+
+    if not todo:
+        start()
     try:
         if todo:
-            _execute(todo, writer, scheduler, workers, progress, on_run, log)
+            _execute(todo, writer, scheduler, workers, progress, on_run, log, start)
     finally:  # also on Ctrl-C: what finished is merged into the tables
-        if target is not None:
+        if target is not None and target.is_dir():
             writer.flush()
             all_runs, all_records = _consolidate(target, csv, notices)
     if target is not None:
@@ -506,12 +509,14 @@ def sweep(
     )
 
 
-def _execute(todo, writer: _Writer, scheduler, workers, progress, on_run, log) -> None:
-    from evapcool.lab.cluster import TaskError, connect, run_tasks
+def _execute(todo, writer: _Writer, scheduler, workers, progress, on_run, log, start) -> None:
+    from evapcool.lab.cluster import StopRequest, TaskError, connect, run_tasks
 
-    bar = _bar(len(todo), progress)
+    bar = None
     try:
-        with connect(scheduler, workers) as engine:
+        with StopRequest() as stop, connect(scheduler, workers) as engine:
+            start()
+            bar = _bar(len(todo), progress)
             if log is not None:
                 log(f"{len(todo)} runs on {engine.description}")
 
@@ -529,9 +534,10 @@ def _execute(todo, writer: _Writer, scheduler, workers, progress, on_run, log) -
                 if writer.failed:
                     bar.set_postfix_str(f"{writer.failed} failed", refresh=False)
 
-            run_tasks(engine, run_one, [(p,) for p in todo], got)
+            run_tasks(engine, run_one, [(p,) for p in todo], got, stop=stop)
     finally:
-        bar.close()
+        if bar is not None:
+            bar.close()
         writer.flush()
 
 

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import argparse
+import contextlib
 import sys
 import time
 from pathlib import Path
@@ -268,11 +269,7 @@ def main(argv: list[str] | None = None) -> int:
     except ValueError as exc:
         msg = str(exc)
         return _fail(msg if msg.startswith("--") else _option_message(msg))
-    if study is None:
-        from evapcool.optimize.study import create_study
-
-        study = create_study(problem, storage, args.study_name)
-    return _run(args, study, problem, out)
+    return _run(args, study, problem, storage, out)
 
 
 def _option_message(message: str) -> str:
@@ -281,17 +278,23 @@ def _option_message(message: str) -> str:
     return f"--{name}{head[len(head.rstrip(':')) :]}{sep}{rest}"
 
 
-def _run(args, study, problem: Problem, out: Path) -> int:
-    from evapcool.lab.cluster import connect
+def _run(args, study, problem: Problem, storage: str, out: Path) -> int:
+    from evapcool.lab.cluster import VersionMismatchError, connect
     from evapcool.optimize import report
-    from evapcool.optimize.study import Search, best_so_far
+    from evapcool.optimize.study import Search, best_so_far, create_study
 
     def log(text: str) -> None:
         print(f"{PROG}: {text}", file=sys.stderr)
 
     start = time.monotonic()
     interrupted = False
-    with connect(args.scheduler, args.workers) as engine:
+    with contextlib.ExitStack() as stack:
+        try:
+            engine = stack.enter_context(connect(args.scheduler, args.workers))
+        except (OSError, TimeoutError, VersionMismatchError) as exc:
+            return _fail(f"--scheduler {args.scheduler}: {exc}" if args.scheduler else str(exc))
+        if study is None:  # made only now: a failed start leaves no file behind
+            study = create_study(problem, storage, args.study_name)
         log(f"{engine.description}; study {args.study_name!r}, {len(study.trials)} trials so far")
         search = Search(study, problem, engine)
         bar = _bar(args.trials)
@@ -327,6 +330,11 @@ def _run(args, study, problem: Problem, out: Path) -> int:
         except ValueError as exc:
             log(str(exc))
             return 1
+        except KeyboardInterrupt:
+            where = args.resume or args.study or DEFAULT_STUDY
+            log(f"interrupted in the validation; the trials are stored: --resume {where} "
+                "--trials 0 reports again")  # fmt: skip
+            return EXIT_INTERRUPTED
         summary = report.write_outputs(out, study, problem, best, base, info, run_info)
     _print_summary(summary, out)
     return 0

@@ -10,7 +10,6 @@ the same trials whatever the number of workers and wherever the games run.
 from __future__ import annotations
 
 import math
-import signal
 import sys
 import time
 from collections.abc import Callable
@@ -18,7 +17,7 @@ from dataclasses import asdict, dataclass, fields
 from pathlib import Path
 
 from evapcool.game.autopilot import GameSetup
-from evapcool.lab.cluster import Engine, TaskError, run_tasks
+from evapcool.lab.cluster import Engine, StopRequest, TaskError, run_tasks
 from evapcool.optimize.evaluate import Summary, chunks, play_seeds
 from evapcool.optimize.families import DEFAULT_KNOTS, FAMILIES, build, params_of, suggest
 from evapcool.physics.simulation import ATOM_RADIUS, N_ATOMS, TC_EXPONENT_CUP, TC_EXPONENT_SEED
@@ -212,6 +211,7 @@ class _Pending:
     chunks_left: int
     cpu: float = 0.0
     error: str | None = None
+    told: bool = False
 
 
 class Search:
@@ -271,50 +271,52 @@ class Search:
     ) -> None:
         """Run up to n_trials trials (fewer if timeout seconds pass); Ctrl-C keeps all told.
 
-        Trials asked but unfinished at an interrupt are failed and queued again, so a later
-        `--resume` plays them first.
+        Ctrl-C (or SIGTERM) stops at a safe point: trials asked but unfinished are failed
+        and queued again, so a later `--resume` plays them first; KeyboardInterrupt follows.
         """
         p = self.problem
         start = time.monotonic()
         seed_chunks = chunks(p.search_seeds, p.chunk)
         done = 0
-        previous = signal.getsignal(signal.SIGTERM)
-        if previous in (signal.SIG_DFL, None):  # a polite kill is a Ctrl-C: keep what is done
-            signal.signal(signal.SIGTERM, _interrupt)
-        try:
-            while done < n_trials and (timeout is None or time.monotonic() - start < timeout):
-                k = min(p.batch, n_trials - done)
-                batch = self._ask(k)
-                done += k
-                if not batch:
-                    continue
-                args = [(b.strategy, c, p.budget, p.setup) for b in batch for c in seed_chunks]
-                owner = [b for b in batch for _ in seed_chunks]
+        pending: list[_Pending] = []
+        with StopRequest() as stop:
+            try:
+                while done < n_trials and (timeout is None or time.monotonic() - start < timeout):
+                    if stop():
+                        raise KeyboardInterrupt
+                    k = min(p.batch, n_trials - done)
+                    pending = self._ask(k)
+                    done += k
+                    if not pending:
+                        continue
+                    args = [
+                        (b.strategy, c, p.budget, p.setup) for b in pending for c in seed_chunks
+                    ]
+                    owner = [b for b in pending for _ in seed_chunks]
 
-                def got(i: int, value: object, owner=owner) -> None:
-                    pend = owner[i]
-                    if isinstance(value, TaskError):
-                        pend.error = value.message
-                    else:
-                        rows, cpu = value
-                        pend.rows.extend(rows)
-                        pend.cpu += cpu
-                        self.games += len(rows)
-                        self.cpu_seconds += cpu
-                    pend.chunks_left -= 1
-                    if pend.chunks_left == 0:
-                        self._tell(pend)
-                        if on_trial is not None:
-                            on_trial(self)
+                    def got(i: int, value: object, owner=owner) -> None:
+                        self._collect(owner[i], value, on_trial)
 
-                try:
-                    run_tasks(self.engine, play_seeds, args, got)
-                except KeyboardInterrupt:
-                    self._requeue([b for b in batch if b.chunks_left > 0])
-                    raise
-        finally:
-            if previous in (signal.SIG_DFL, None):
-                signal.signal(signal.SIGTERM, signal.SIG_DFL)
+                    run_tasks(self.engine, play_seeds, args, got, stop=stop)
+            except KeyboardInterrupt:
+                self._requeue([b for b in pending if not b.told])
+                raise
+
+    def _collect(self, pend: _Pending, value: object, on_trial) -> None:
+        if isinstance(value, TaskError):
+            pend.error = value.message
+        else:
+            rows, cpu = value
+            pend.rows.extend(rows)
+            pend.cpu += cpu
+            self.games += len(rows)
+            self.cpu_seconds += cpu
+        pend.chunks_left -= 1
+        if pend.chunks_left == 0:
+            self._tell(pend)
+            pend.told = True
+            if on_trial is not None:
+                on_trial(self)
 
     def _requeue(self, unfinished: list[_Pending]) -> None:
         import optuna
@@ -322,10 +324,6 @@ class Search:
         for pend in unfinished:
             self.study.tell(pend.trial, state=optuna.trial.TrialState.FAIL)
             self.study.enqueue_trial(dict(pend.trial.params), skip_if_exists=False)
-
-
-def _interrupt(signum, frame) -> None:
-    raise KeyboardInterrupt
 
 
 def completed_trials(study) -> list:
