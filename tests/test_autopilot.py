@@ -271,3 +271,78 @@ def test_lab_accepts_demo_and_strategy_files(tmp_path):
     assert res.trap_height[0] == pytest.approx(3 * 0.4 * res.temperature[0] / G)
     with pytest.raises(ValueError, match="schedule"):
         run_experiment(schedule=str(tmp_path / "missing.json"), frames=10)
+
+
+# -- the autopilot in a game ------------------------------------------------------------------
+
+
+def _game(seed=2):
+    from evapcool.game.rules import Game, GameConfig
+
+    return Game(GameConfig(seed=seed, engine="fast"))
+
+
+def test_autopilot_sets_the_start_while_paused_and_flies_once_playing():
+    game = _game()
+    pilot = autopilot.Autopilot(parse_strategy("300@0,100@600"), name="test")
+    assert pilot.steer(game) == 300.0 and not pilot.flew
+    game.paused = False
+    for _ in range(150):
+        game.run_frames(1)
+        pilot.steer(game)
+    assert pilot.flew and game.trap_height == pytest.approx(300 - 200 * 150 / 600)
+    assert pilot.label == "Autopilot (test)"
+
+
+def test_autopilot_plays_the_same_game_as_the_headless_player():
+    """Frame by frame in a Game, the autopilot's game is the optimizer's game."""
+    text = "feedback:eta0=6,eta1=4.5,beta=0.5"
+    game = _game(seed=9)
+    pilot = autopilot.Autopilot(parse_strategy(text))
+    pilot.steer(game)
+    game.paused = False
+    while not game.won and game.sim.time < 1800:
+        game.run_frames(1)
+        pilot.steer(game)
+    o = play(parse_strategy(text), seed=9)
+    assert o.won_frame == (round(game.sim.time) if game.won else None)
+    assert o.score == (game.score or 0)
+
+
+def test_touching_the_controls_takes_over_and_the_key_gives_it_back():
+    game = _game()
+    pilot = autopilot.Autopilot(parse_strategy("400@0,100@300"))
+    game.paused = False
+    pilot.steer(game)
+    game.run_frames(30)
+    pilot.steer(game)
+    pilot.take_over()
+    game.set_trap_height(420.0)
+    game.run_frames(30)
+    assert pilot.steer(game) is None and game.trap_height == 420.0
+    assert pilot.toggle() is True
+    h = pilot.steer(game)
+    assert h == pytest.approx(400 - 300 * 60 / 300)  # the ramp's clock went on
+    game.paused = True
+    game.set_trap_height(350.0)
+    assert pilot.steer(game) is None and game.trap_height == 350.0  # paused: hands off
+
+
+def test_restart_starts_the_strategy_over():
+    game = _game()
+    pilot = autopilot.Autopilot(parse_strategy("creep:h0=420,v0=1,v1=1"))
+    game.paused = False
+    pilot.steer(game)
+    game.run_frames(50)
+    pilot.steer(game)
+    assert game.trap_height < 420
+    game.restart()
+    pilot.new_game()
+    assert not pilot.flew
+    assert pilot.steer(game) == 420.0
+
+
+def test_autopilot_load_names_it():
+    assert autopilot.Autopilot.load("demo").label == "Autopilot (demo)"
+    with pytest.raises(ValueError, match="strategy must be"):
+        autopilot.Autopilot.load("backwards")

@@ -491,3 +491,76 @@ def play(
         if sim.n_trapped == 0:
             break
     return Outcome(seed, 0, None, sim.n_trapped, sim.temperature)
+
+
+# -- the autopilot in a game ------------------------------------------------------------------
+
+
+class Autopilot:
+    """Plays a strategy in a `Game`: moves the trap each frame until the player takes over.
+
+    The applet calls `steer(game)` after each advance; touching the slider (or its keys)
+    calls `take_over()`. `engage()` hands control back (from the current time on: a ramp
+    continues where its clock is, a policy reads the gas as it is). `flew` says whether
+    the autopilot moved the trap in this game: its score is then an autopilot score.
+    """
+
+    def __init__(self, strategy: Strategy, name: str = DEMO) -> None:
+        self.strategy = strategy
+        self.name = name
+        self.engaged = True
+        self.flew = False
+        self._control: Controller | None = None
+
+    @classmethod
+    def load(cls, spec: str | os.PathLike[str]) -> Autopilot:
+        """From 'demo', a strategy file or strategy text (ValueError naming what is allowed)."""
+        strategy = load_strategy(spec)
+        text = str(spec).strip()
+        if text.lower() == DEMO:
+            name = DEMO
+        elif Path(text).is_file():
+            name = Path(text).stem
+        else:
+            name = "custom"
+        return cls(strategy, name=name)
+
+    def new_game(self) -> None:
+        """A restart: the strategy starts over, and the autopilot flies again if engaged."""
+        self._control = None
+        self.flew = False
+
+    def engage(self) -> None:
+        self.engaged = True
+        self._control = None
+
+    def take_over(self) -> None:
+        """The player touched the controls: hands off until engaged again."""
+        self.engaged = False
+
+    def toggle(self) -> bool:
+        if self.engaged:
+            self.take_over()
+        else:
+            self.engage()
+        return self.engaged
+
+    def steer(self, game) -> float | None:
+        """Set the game's trap for its current frame; the height set, or None if hands off.
+
+        Nothing moves while paused (the player may still be choosing the start) or after
+        the win (the game freezes the slider then).
+        """
+        running = game.sim.time > 0.0
+        if not self.engaged or game.won or game.sim.n_trapped == 0 or (game.paused and running):
+            return None
+        if self._control is None:
+            self._control = self.strategy.controller()
+        game.set_trap_height(self._control(read(game.sim)))
+        self.flew = self.flew or running  # setting the start alone makes no autopilot game
+        return game.trap_height
+
+    @property
+    def label(self) -> str:
+        """What the high-score table and the screen call it: 'Autopilot (demo)'."""
+        return f"Autopilot ({self.name})"
