@@ -173,7 +173,14 @@ def build_parser() -> argparse.ArgumentParser:
         metavar="N",
         help=f"held-out seeds for the validation ({DEFAULT_VALIDATE}; 0: none)",
     )
-    return p  # fmt: skip
+    metavars = {"study_name": "NAME", "trials": "N", "budget": "FRAMES", "seed_start": "SEED",
+                "families": "NAMES", "knots": "K", "objectives": "score[,time]",
+                "sampler": "NAME", "sampler_seed": "SEED", "batch": "B", "chunk": "C",
+                "atoms": "N", "radius": "R", "escape": "RULE", "tc_law": "LAW",
+                "workers": "N", "finalists": "K"}  # fmt: skip
+    for action in p._actions:
+        action.metavar = metavars.get(action.dest, action.metavar)
+    return p
 
 
 def _fail(message: str) -> int:

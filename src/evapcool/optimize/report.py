@@ -142,14 +142,17 @@ def choose(
         return top[0], base[0], info
     rerank_seeds = list(range(RERANK_START, RERANK_START + validate))
     log(f"re-ranking {len(top)} finalists and {len(base)} linear ramps on {validate} new seeds")
-    sums = evaluate(engine, [c.text for c in top + base], rerank_seeds, problem)
-    for c, s in zip(top + base, sums, strict=True):
-        c.rerank = s
+    texts = list(dict.fromkeys(c.text for c in top + base))  # each strategy once
+    scored = dict(zip(texts, evaluate(engine, texts, rerank_seeds, problem), strict=True))
+    for c in top + base:
+        c.rerank = scored[c.text]
     best = max(top, key=lambda c: (c.rerank.mean, -c.rerank.time_mean))
     baseline = max(base, key=lambda c: (c.rerank.mean, -c.rerank.time_mean))
     holdout = list(range(HOLDOUT_START, HOLDOUT_START + validate))
     log(f"validating on {validate} held-out seeds {holdout[0]}..{holdout[-1]}")
-    best.holdout, baseline.holdout = evaluate(engine, [best.text, baseline.text], holdout, problem)
+    texts = list(dict.fromkeys((best.text, baseline.text)))
+    scored = dict(zip(texts, evaluate(engine, texts, holdout, problem), strict=True))
+    best.holdout, baseline.holdout = scored[best.text], scored[baseline.text]
     info["rerank_seeds"] = [rerank_seeds[0], rerank_seeds[-1]]
     info["holdout_seeds"] = [holdout[0], holdout[-1]]
     return best, baseline, info
