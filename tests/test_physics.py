@@ -370,7 +370,9 @@ def test_bad_input_names_the_parameter(kwargs: dict, name: str) -> None:
 
 def test_positions_must_start_inside_the_cup() -> None:
     with pytest.raises(ValueError, match="positions"):
-        Simulation(1, positions=[(0.0, 0.0)], velocities=[(0.0, 0.0)])
+        Simulation(1, positions=[(0.0, -1e-9)], velocities=[(0.0, 0.0)])
+    # on the wall is in the cup: a disk resting on the bottom
+    assert Simulation(1, positions=[(0.0, 0.0)], velocities=[(0.0, 0.0)]).n_trapped == 1
     with pytest.raises(ValueError, match="positions"):
         Simulation(1, positions=[(100.0, 50.0)], velocities=[(0.0, 0.0)])
 

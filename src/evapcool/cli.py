@@ -1,4 +1,4 @@
-"""The `evapcool` command: play (default), `lab`, `sweep`, `optimize` or `bench`."""
+"""The `evapcool` command: play (default), `lab`, `sweep`, `optimize`, `bench` or `web`."""
 
 from __future__ import annotations
 
@@ -9,6 +9,7 @@ import sys
 SUBCOMMANDS = {
     "lab": "evapcool.lab.cli",
     "bench": "evapcool.bench",
+    "web": "evapcool.web",
     "sweep": "evapcool.lab.sweep_cli",
     "optimize": "evapcool.optimize.cli",
 }

@@ -173,6 +173,37 @@ class Simulation:
         """The original applet's start: 49 atoms of radius 12 in the cup, H = 400."""
         return cls(n_atoms=N_ATOMS, radius=ATOM_RADIUS, seed=seed, **overrides)
 
+    @classmethod
+    def from_world(
+        cls, world: World, window: tuple[int, int] = WINDOW, engine: str = "auto"
+    ) -> Simulation:
+        """A simulation around a ready, validated World (physics/state.py restores states so)."""
+        if engine not in ENGINES:
+            raise _bad("engine", "one of " + ", ".join(ENGINES), engine)
+        sim = cls.__new__(cls)
+        vx_screen, vy_screen = cup_vertex(window)
+        sim.window = (int(window[0]), int(window[1]))
+        sim.screen_origin = (vx_screen, vy_screen - float(world.radius[0]))
+        sim.seed = None
+        sim.rng = np.random.default_rng()
+        sim._world = world
+        sim._engine = sim._make_engine(engine, len(world.radius))
+        sim._engine.set_trap_height(world.trap_height)
+        return sim
+
+    @classmethod
+    def from_state(cls, state: dict | str, engine: str = "auto", **kw: bool) -> Simulation:
+        """Go on exactly from a state (dict or JSON text, doc/state.md); see physics.state."""
+        from evapcool.physics.state import from_state
+
+        return from_state(state, engine=engine, **kw)
+
+    def to_state(self) -> dict:
+        """The state as a JSON-ready dict (doc/state.md), resumable with from_state."""
+        from evapcool.physics.state import to_state
+
+        return to_state(self)
+
     def _make_engine(self, engine: str, n: int):
         if engine == "auto":
             engine = "fast" if n >= AUTO_FAST_MIN_ATOMS and _fast_available() else "reference"

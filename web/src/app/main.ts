@@ -1,0 +1,100 @@
+/** The page's entry: storage, address options, the applet, and `window.evapcool` for scripts. */
+import { makeSimulation } from "../game/engine";
+import { loadSettings } from "../game/settingsStore";
+import { MemoryStore, reason, type KeyValue } from "../game/store";
+import { drawPageIcon } from "../view/icons";
+import { App } from "./app";
+import { exposeApi } from "./api";
+import { parseParams } from "./params";
+
+function storage(notices: string[]): KeyValue {
+  try {
+    const ls = window.localStorage;
+    const probe = "evapcool.probe";
+    ls.setItem(probe, "1");
+    ls.removeItem(probe);
+    return ls;
+  } catch (err) {
+    notices.push(
+      `This browser keeps no data for this page (${reason(err)}); scores and settings last this visit.`,
+    );
+    return new MemoryStore();
+  }
+}
+
+function byId<T extends HTMLElement>(id: string): T {
+  const el = document.getElementById(id);
+  if (!el) throw new Error(`the page lacks #${id}`);
+  return el as T;
+}
+
+async function main(): Promise<void> {
+  const notices: string[] = [];
+  const kv = storage(notices);
+  // Read the saved settings once here only to size address options against them.
+  const [saved] = loadSettings(new ReadOnly(kv));
+  const params = parseParams(location.search, saved);
+  // The inline font must be ready before the first frame measures text.
+  try {
+    await Promise.race([document.fonts.load("700 20px EvapSans"), sleep(500)]);
+  } catch {
+    /* the fallback fonts draw the same text */
+  }
+  const app = new App(
+    {
+      root: byId("app"),
+      canvas: byId<HTMLCanvasElement>("scene"),
+      live: byId("live"),
+      status: byId("status"),
+      nameInput: byId<HTMLInputElement>("name"),
+    },
+    {
+      factory: makeSimulation,
+      storage: kv,
+      overrides: params.overrides,
+      config: { seed: params.seed, speed: params.speed },
+      notices: [...notices, ...params.notices],
+    },
+  );
+  exposeApi(app);
+  setIcon();
+  app.draw();
+  performance.mark("evapcool-first-frame");
+  app.start();
+}
+
+/** The tab's icon, drawn in code (no image file). */
+function setIcon(): void {
+  const c = document.createElement("canvas");
+  c.width = c.height = 64;
+  const ctx = c.getContext("2d");
+  const link = document.querySelector<HTMLLinkElement>('link[rel="icon"]');
+  if (!ctx || !link) return;
+  drawPageIcon(ctx, 64);
+  link.href = c.toDataURL("image/png");
+}
+
+/** Storage seen through a read-only window (loading twice must not set aside twice). */
+class ReadOnly implements KeyValue {
+  constructor(private readonly kv: KeyValue) {}
+  getItem(key: string): string | null {
+    return this.kv.getItem(key);
+  }
+  setItem(): void {
+    throw new Error("read only");
+  }
+  removeItem(): void {
+    throw new Error("read only");
+  }
+}
+
+const sleep = (ms: number) => new Promise((resolve) => setTimeout(resolve, ms));
+
+void main().catch((err: unknown) => {
+  const box = document.getElementById("fatal");
+  if (box) {
+    box.hidden = false;
+    box.textContent = `evapcool could not start: ${(err as Error).message}`;
+  }
+  console.error(err);
+});

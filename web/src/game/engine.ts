@@ -1,0 +1,93 @@
+/** The simulation the game plays: the exact engine of `../physics`, seen as a SimLike. */
+import { Simulation, type AtomSnapshot } from "../physics/index";
+import type { GameConfig } from "./rules";
+import type { AtomArrays, SimLike } from "./sim";
+
+/** The physics' Simulation with snapshots kept between frames (no allocation per frame). */
+export class EngineSim implements SimLike {
+  private trappedSnap: AtomSnapshot | undefined;
+  private escapedSnap: AtomSnapshot | undefined;
+  private temperatureKey = "";
+  private temperatureValue = 0;
+
+  constructor(readonly sim: Simulation) {}
+
+  get time() {
+    return this.sim.time;
+  }
+  get nAtoms() {
+    return this.sim.nAtoms;
+  }
+  get nTrapped() {
+    return this.sim.nTrapped;
+  }
+  get nEscaped() {
+    return this.sim.nEscaped;
+  }
+  get trapHeight() {
+    return this.sim.trapHeight;
+  }
+  set trapHeight(h: number) {
+    this.sim.trapHeight = h;
+  }
+  get rimHalfWidth() {
+    return this.sim.rimHalfWidth;
+  }
+  get curvature() {
+    return this.sim.curvature;
+  }
+  get gravity() {
+    return this.sim.gravity;
+  }
+  /** T sums every trapped atom's energy: asked for several times a frame, computed once. */
+  get temperature() {
+    const s = this.sim;
+    const key = `${s.time}|${s.collisionCount}|${s.nTrapped}|${s.trapHeight}`;
+    if (key !== this.temperatureKey) {
+      this.temperatureKey = key;
+      this.temperatureValue = s.temperature;
+    }
+    return this.temperatureValue;
+  }
+  get initialTemperature() {
+    return this.sim.initialTemperature;
+  }
+  get criticalTemperature() {
+    return this.sim.criticalTemperature;
+  }
+  get tcExponent() {
+    return this.sim.tcExponent;
+  }
+  get won() {
+    return this.sim.won;
+  }
+  get winRule() {
+    return this.sim.winRule;
+  }
+  get collisionCount() {
+    return this.sim.collisionCount;
+  }
+  get screenOrigin() {
+    return this.sim.screenOrigin;
+  }
+  advance(dt: number): void {
+    this.sim.advance(dt);
+  }
+  trapped(): AtomArrays {
+    return (this.trappedSnap = this.sim.atoms("trapped", this.trappedSnap));
+  }
+  escaped(): AtomArrays {
+    return (this.escapedSnap = this.sim.atoms("escaped", this.escapedSnap));
+  }
+}
+
+export function makeSimulation(config: GameConfig): SimLike {
+  const sim = new Simulation({
+    nAtoms: config.nAtoms,
+    radius: config.radius,
+    tcExponent: config.tcExponent,
+    escape: config.escape,
+    ...(config.seed === null ? {} : { seed: config.seed }),
+  });
+  return new EngineSim(sim);
+}

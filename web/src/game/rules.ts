@@ -1,0 +1,219 @@
+/**
+ * The game around a simulation: pause, speed, restart, win, score, play time.
+ * Pure state (no DOM, no canvas); the same rules as Python's `game/rules.py`.
+ *
+ * Time: the physics runs in whole frames of 1/30 s of play (x speed). Trap-height
+ * changes wait for the next frame boundary, so a run depends on what the player did
+ * in which frame, never on the display's rate; between boundaries the exact physics is
+ * advanced to the moment drawn, so motion stays smooth at 60 or 120 Hz.
+ */
+import { FPS, N_ATOMS, ATOM_RADIUS, TC_EXPONENT_SEED, type EscapeRule } from "./constants";
+import type { SimLike } from "./sim";
+
+export const HEIGHT_MIN = 25;
+export const HEIGHT_MAX = 450;
+export const HEIGHT_START = 400;
+export const SPEED_MIN = 0.25;
+export const SPEED_MAX = 4;
+/**
+ * One drawn frame never advances more than this much play (s): when frames fall behind (a
+ * slow device, thousands of atoms) the game slows down instead of taking ever larger steps,
+ * each costlier than the last; a stalled tab does not jump ahead. At 1x: at most 2 physics
+ * frames a drawn frame (the desktop's number).
+ */
+export const MAX_WALL_STEP = 1 / 15;
+
+export interface GameConfig {
+  nAtoms: number;
+  radius: number;
+  seed: number | null;
+  speed: number;
+  tcExponent: number;
+  escape: EscapeRule;
+}
+
+export const DEFAULT_CONFIG: GameConfig = {
+  nAtoms: N_ATOMS,
+  radius: ATOM_RADIUS,
+  seed: null,
+  speed: 1,
+  tcExponent: TC_EXPONENT_SEED,
+  escape: "rim",
+};
+
+export type SimFactory = (config: GameConfig) => SimLike;
+
+/** The speed as a number, or RangeError naming the allowed range. */
+export function checkSpeed(speed: unknown): number {
+  if (typeof speed === "number" && Number.isFinite(speed)) {
+    if (speed >= SPEED_MIN && speed <= SPEED_MAX) return speed;
+  }
+  throw new RangeError(
+    `speed must be a number from ${SPEED_MIN} to ${SPEED_MAX} (got ${String(speed)})`,
+  );
+}
+
+export class Game {
+  config: GameConfig;
+  speed: number;
+  sim!: SimLike;
+  paused = true;
+  /** Play time (s) at which the win was first seen; null before. */
+  wonAt: number | null = null;
+  /** Bumped by every restart so views can drop per-game caches. */
+  generation = 0;
+  readonly onWin: Array<(game: Game) => void> = [];
+  /** A trap height asked for since the last frame boundary (applied there). */
+  private pendingHeight: number | null = null;
+
+  constructor(
+    private readonly factory: SimFactory,
+    config: Partial<GameConfig> = {},
+  ) {
+    this.config = { ...DEFAULT_CONFIG, ...config };
+    this.speed = checkSpeed(this.config.speed);
+    this.restart();
+  }
+
+  /** New atoms, trap at 400, paused; a config the physics rejects throws and changes nothing. */
+  restart(config?: GameConfig): void {
+    const sim = this.factory(config ?? this.config);
+    if (config) this.config = config;
+    sim.trapHeight = HEIGHT_START;
+    this.sim = sim;
+    this.paused = true;
+    this.wonAt = null;
+    this.pendingHeight = null;
+    this.generation += 1;
+  }
+
+  togglePause(): void {
+    this.paused = !this.paused;
+  }
+
+  faster(): void {
+    this.speed = Math.min(SPEED_MAX, this.speed * 2);
+  }
+
+  slower(): void {
+    this.speed = Math.max(SPEED_MIN, this.speed / 2);
+  }
+
+  /** The height the trap has, or will have at the next frame boundary. */
+  get trapHeight(): number {
+    return this.pendingHeight ?? this.sim.trapHeight;
+  }
+
+  /** Ask for a rim height (clamped to the slider's range); frozen once the gas condensed. */
+  setTrapHeight(height: number): boolean {
+    if (this.won || !Number.isFinite(height)) return false;
+    const h = Math.min(HEIGHT_MAX, Math.max(HEIGHT_MIN, height));
+    if (h === this.trapHeight) return false;
+    this.pendingHeight = h;
+    // Paused, or at a frame boundary: nothing is in flight, apply now.
+    if (this.paused || Number.isInteger(this.sim.time)) this.applyPending();
+    return true;
+  }
+
+  nudgeHeight(delta: number): boolean {
+    return this.setTrapHeight(this.trapHeight + delta);
+  }
+
+  private applyPending(): void {
+    if (this.pendingHeight !== null) {
+      this.sim.trapHeight = this.pendingHeight;
+      this.pendingHeight = null;
+    }
+  }
+
+  /** Advance by elapsed wall time x 30 x speed (capped); returns the frames advanced. */
+  update(wallSeconds: number): number {
+    if (this.paused || !(wallSeconds > 0)) return 0;
+    return this.advance(Math.min(wallSeconds, MAX_WALL_STEP) * FPS * this.speed);
+  }
+
+  /** Advance exactly n display frames of 1 physics frame x speed (tests, benchmarks). */
+  runFrames(n = 1): number {
+    if (this.paused) return 0;
+    return this.advance(n * this.speed);
+  }
+
+  /** One physics frame forward, only while paused (frame-by-frame study). */
+  step(): number {
+    if (!this.paused) return 0;
+    return this.advance(1);
+  }
+
+  /** Advance `frames`, stopping at each whole frame to apply input and check the win. */
+  private advance(frames: number): number {
+    const sim = this.sim;
+    const end = sim.time + frames;
+    while (sim.time < end) {
+      const boundary = Math.floor(sim.time) + 1;
+      const target = Math.min(boundary, end);
+      sim.advance(target - sim.time);
+      if (sim.time >= boundary) this.applyPending();
+      this.checkWin();
+    }
+    return frames;
+  }
+
+  private checkWin(): void {
+    if (this.sim.won && this.wonAt === null) {
+      this.wonAt = this.playTime;
+      for (const callback of [...this.onWin]) callback(this);
+    }
+  }
+
+  /** Simulated seconds since the (re)start, independent of the speed setting. */
+  get playTime(): number {
+    return this.sim.time / FPS;
+  }
+
+  get won(): boolean {
+    return this.sim.won;
+  }
+
+  /** Atoms left in the cup once the gas has condensed; null before. */
+  get score(): number | null {
+    return this.sim.won ? this.sim.nTrapped : null;
+  }
+
+  /** Every atom has left the cup: nothing can happen but a restart. */
+  get allEscaped(): boolean {
+    return this.sim.nTrapped === 0 && !this.sim.won;
+  }
+
+  /** Why the gas can no longer condense (say so, offer a restart), or null; `lightest`: mass. */
+  tooFewAtoms(lightest = 1): string | null {
+    const sim = this.sim;
+    if (sim.won || !sim.winRule) return null;
+    const n = sim.nTrapped;
+    return outOfReach(
+      n,
+      sim.temperature * n,
+      sim.criticalTemperature,
+      lightest * sim.gravity * HEIGHT_MIN,
+    );
+  }
+}
+
+/**
+ * Why T < Tc can no longer be reached by n trapped atoms of total energy E, or null (the
+ * desktop's rule). T = E / N changes only when atoms leave, and an atom leaves only with
+ * more than escapeEnergy = m g H_min. Out of reach exactly when no atom is left; when one
+ * atom is left above Tc(1) (alone it never collides); or when T >= Tc(N) and no atom can
+ * ever leave (E <= escapeEnergy).
+ */
+export function outOfReach(
+  n: number,
+  energy: number,
+  criticalTemperature: number,
+  escapeEnergy: number,
+): string | null {
+  if (n <= 0) return "All the atoms escaped.";
+  if (energy / n < criticalTemperature) return null; // condensing now
+  if (n === 1) return "One atom alone cannot cool below Tc.";
+  if (energy <= escapeEnergy) return "No atom can leave any more: T stays above Tc.";
+  return null;
+}

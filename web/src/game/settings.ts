@@ -1,0 +1,201 @@
+/**
+ * Game settings (what Restart applies), validated with the desktop's rules and messages
+ * (Python's `game/settings.py`): one clear message per bad value; a stored value that is
+ * bad falls back to its default with a notice. No DOM here: `store.ts` persists them.
+ */
+import { ATOM_RADIUS, ESCAPE_RULES, N_ATOMS, TC_EXPONENT_CUP, TC_EXPONENT_SEED } from "./constants";
+import type { EscapeRule } from "./constants";
+import { cupCapacity } from "./capacity";
+
+export const FORMAT_VERSION = 1;
+export const TC_LAWS = { seed: TC_EXPONENT_SEED, cup: TC_EXPONENT_CUP } as const;
+export type TcLaw = keyof typeof TC_LAWS;
+const TC_LAW_NAMES = Object.keys(TC_LAWS) as TcLaw[];
+/** The applet's ranges (the desktop's limits.APPLET_RADIUS and APPLET_ATOMS). */
+export const RADIUS_MIN = 1;
+export const RADIUS_MAX = 20;
+/** Hard cap whatever the radius; maxAtoms also caps by what fits in the cup. */
+export const ATOMS_MAX = 20_000;
+
+export interface Settings {
+  nAtoms: number;
+  radius: number;
+  tcLaw: TcLaw;
+  escape: EscapeRule;
+}
+
+export const DEFAULTS: Readonly<Settings> = Object.freeze({
+  nAtoms: N_ATOMS,
+  radius: ATOM_RADIUS,
+  tcLaw: "seed",
+  escape: "rim",
+});
+
+/** Field names as the desktop's settings file spells them, in screen order. */
+export const FIELD_NAMES = ["n_atoms", "radius", "tc_law", "escape"] as const;
+export type FieldName = (typeof FIELD_NAMES)[number];
+
+export function tcExponent(s: Settings): number {
+  return TC_LAWS[s.tcLaw];
+}
+
+/** A value as Python's repr writes it, so messages read the same in both editions. */
+export function pyRepr(value: unknown): string {
+  if (value === null || value === undefined) return "None";
+  if (typeof value === "boolean") return value ? "True" : "False";
+  if (typeof value === "string") return `'${value.replace(/\\/g, "\\\\").replace(/'/g, "\\'")}'`;
+  if (typeof value === "number") {
+    if (Number.isNaN(value)) return "nan";
+    if (!Number.isFinite(value)) return value > 0 ? "inf" : "-inf";
+    return String(value);
+  }
+  if (Array.isArray(value)) return `[${value.map(pyRepr).join(", ")}]`;
+  if (typeof value === "object") {
+    const items = Object.entries(value as Record<string, unknown>);
+    return `{${items.map(([k, v]) => `${pyRepr(k)}: ${pyRepr(v)}`).join(", ")}}`;
+  }
+  return String(value);
+}
+
+/** A number as Python's `:g` formats it (enough for radii and limits). */
+export function fmtG(v: number): string {
+  return String(Number(v.toPrecision(6)));
+}
+
+/** Largest allowed atom count for this radius. */
+export function maxAtoms(radius: number): number {
+  return Math.min(ATOMS_MAX, cupCapacity(radius));
+}
+
+export function checkRadius(value: unknown, ranged = true): number {
+  const allowed = ranged
+    ? `a number from ${fmtG(RADIUS_MIN)} to ${fmtG(RADIUS_MAX)} px`
+    : "a positive number";
+  if (typeof value !== "number" || !Number.isFinite(value)) {
+    throw new RangeError(`radius must be ${allowed} (got ${pyRepr(value)})`);
+  }
+  const ok = ranged ? value >= RADIUS_MIN && value <= RADIUS_MAX : value > 0;
+  if (!ok) throw new RangeError(`radius must be ${allowed} (got ${pyRepr(value)})`);
+  return value;
+}
+
+export function checkNAtoms(value: unknown, radius: number, ranged = true): number {
+  const top = ranged ? maxAtoms(radius) : null;
+  const msg = ranged
+    ? `n_atoms must be a whole number from 1 to ${top} for radius ${fmtG(radius)}`
+    : "n_atoms must be a whole number >= 1";
+  if (typeof value !== "number" || !Number.isInteger(value)) {
+    throw new RangeError(`${msg} (got ${pyRepr(value)})`);
+  }
+  if (value < 1 || (top !== null && value > top)) {
+    throw new RangeError(`${msg} (got ${pyRepr(value)})`);
+  }
+  return value;
+}
+
+function checkChoice<T extends string>(name: string, value: unknown, allowed: readonly T[]): T {
+  if (typeof value !== "string" || !(allowed as readonly string[]).includes(value)) {
+    throw new RangeError(`${name} must be one of ${allowed.join(", ")} (got ${pyRepr(value)})`);
+  }
+  return value as T;
+}
+
+export const checkTcLaw = (v: unknown): TcLaw => checkChoice("tc_law", v, TC_LAW_NAMES);
+export const checkEscape = (v: unknown): EscapeRule => checkChoice("escape", v, ESCAPE_RULES);
+
+/** The same settings checked; RangeError naming the first bad field. ranged=false: URL values. */
+export function validate(s: Settings, ranged = true): Settings {
+  const radius = checkRadius(s.radius, ranged);
+  return {
+    nAtoms: checkNAtoms(s.nAtoms, radius, ranged),
+    radius,
+    tcLaw: checkTcLaw(s.tcLaw),
+    escape: checkEscape(s.escape),
+  };
+}
+
+/** Settings from a parsed stored object: each bad value falls back with one notice. */
+export function fromMapping(data: Record<string, unknown>): [Settings, string[]] {
+  const notices: string[] = [];
+  const known = new Set<string>([...FIELD_NAMES, "version"]);
+  const unknown = Object.keys(data)
+    .filter((k) => !known.has(k))
+    .sort();
+  if (unknown.length) notices.push(`Settings: ignored unknown entries ${unknown.join(", ")}.`);
+  function take<T>(name: FieldName, check: (v: unknown) => T, fallback: T): T {
+    if (!(name in data)) return fallback;
+    try {
+      return check(data[name]);
+    } catch (err) {
+      notices.push(`Settings: ${(err as Error).message}; using the default ${pyRepr(fallback)}.`);
+      return fallback;
+    }
+  }
+  const radius = take("radius", (v) => checkRadius(v), DEFAULTS.radius);
+  const fallbackN = Math.min(DEFAULTS.nAtoms, maxAtoms(radius));
+  const nAtoms = take("n_atoms", (v) => checkNAtoms(v, radius), fallbackN);
+  const tcLaw = take("tc_law", checkTcLaw, DEFAULTS.tcLaw);
+  const escape = take("escape", checkEscape, DEFAULTS.escape);
+  return [{ nAtoms, radius, tcLaw, escape }, notices];
+}
+
+/** The stored form: the desktop's settings.json fields. */
+export function toMapping(s: Settings): Record<string, unknown> {
+  return {
+    version: FORMAT_VERSION,
+    n_atoms: s.nAtoms,
+    radius: s.radius,
+    tc_law: s.tcLaw,
+    escape: s.escape,
+  };
+}
+
+/** The settings screen's -/+ on one field: numbers move and clamp, choices cycle. */
+export function step(s: Settings, name: FieldName, direction: number): Settings {
+  const d = direction > 0 ? 1 : -1;
+  if (name === "n_atoms") {
+    const n = d > 0 ? s.nAtoms : s.nAtoms - 1;
+    const inc = n < 20 ? 1 : n < 100 ? 5 : n < 500 ? 50 : 100;
+    return { ...s, nAtoms: Math.max(1, Math.min(maxAtoms(s.radius), s.nAtoms + d * inc)) };
+  }
+  if (name === "radius") {
+    // Python rounds half to even; radii on screen are whole numbers anyway.
+    const r = Math.max(RADIUS_MIN, Math.min(RADIUS_MAX, roundHalfEven(s.radius) + d));
+    return { ...s, radius: r, nAtoms: Math.min(s.nAtoms, maxAtoms(r)) };
+  }
+  if (name === "tc_law") {
+    const i = TC_LAW_NAMES.indexOf(s.tcLaw);
+    return { ...s, tcLaw: TC_LAW_NAMES[(i + d + TC_LAW_NAMES.length) % TC_LAW_NAMES.length] };
+  }
+  const i = ESCAPE_RULES.indexOf(s.escape);
+  return { ...s, escape: ESCAPE_RULES[(i + d + ESCAPE_RULES.length) % ESCAPE_RULES.length] };
+}
+
+function roundHalfEven(v: number): number {
+  const f = Math.floor(v);
+  const diff = v - f;
+  if (diff > 0.5) return f + 1;
+  if (diff < 0.5) return f;
+  return f % 2 === 0 ? f : f + 1;
+}
+
+/** (label, value) rows for the settings screen. */
+export function describe(s: Settings): Array<[string, string]> {
+  return [
+    ["Number of atoms", `${s.nAtoms}  (1 to ${maxAtoms(s.radius)})`],
+    ["Atom radius", `${fmtG(s.radius)} px`],
+    ["Tc law: Tc ~ N^p, p =", s.tcLaw === "seed" ? "2/3 (original)" : "2/5 (this cup)"],
+    ["Escape rule", s.escape === "rim" ? "fly over the rim" : "energy knife"],
+  ];
+}
+
+export function sameSettings(a: Settings, b: Settings): boolean {
+  return (
+    a.nAtoms === b.nAtoms && a.radius === b.radius && a.tcLaw === b.tcLaw && a.escape === b.escape
+  );
+}
+
+/** A short name for a settings combination: high scores are kept per settings. */
+export function settingsKey(s: Settings): string {
+  return `${s.nAtoms}-r${fmtG(s.radius)}-${s.tcLaw}-${s.escape}`;
+}

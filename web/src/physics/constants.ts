@@ -1,0 +1,59 @@
+/** The original applet's constants (SPEC section 1) and the model's fixed numbers (doc/model.md). */
+
+/** Frames per second of the original; physics time is measured in frames. */
+export const FPS = 30;
+/** g, px / frame^2, pointing down the screen. */
+export const GRAVITY = 10 / 30;
+/** a of the cup y = a x^2, per px. */
+export const CURVATURE = 0.01;
+export const ATOM_RADIUS = 12;
+export const N_ATOMS = 49;
+/** The slider's start, px above the lowest centre position. */
+export const TRAP_HEIGHT = 400;
+/** The original window, px. */
+export const WINDOW: readonly [number, number] = [640, 672];
+export const BORDER_LEFT = 48;
+export const BORDER_RIGHT = 96;
+export const BORDER_TOP = 48;
+export const BORDER_BOTTOM = 96;
+/** px between the drawn cup bottom and the play area's bottom. */
+export const CUP_DROP = 32;
+/** p in Tc(N) = Tc0 (N / N0)^p: the seed's 3D-box law (seed Eq. 46)... */
+export const TC_EXPONENT_SEED = 2 / 3;
+/** ...or the ideal Bose gas with this cup's density of states g(E) ~ E^(3/2) (SPEC 4). */
+export const TC_EXPONENT_CUP = 2 / 5;
+
+/** An elastic bounce leaves the wall at least this fast along the normal, px / frame. */
+export const WALL_MIN_NORMAL_SPEED = 1e-3;
+/** After the win, wall bounces keep 1 - 0.2 of the speed (seed Eq. 34)... */
+export const WIN_DAMPING = 0.2;
+/** ...but only while the speed is at least this, px / frame. */
+export const WIN_DAMPING_MIN_SPEED = 1.0;
+/** A damped bounce leaves the wall at least this fast along the normal, px / frame. */
+export const WIN_NORMAL_SPEED_FLOOR = 0.25;
+
+export type EscapeRule = "rim" | "knife";
+export const ESCAPE_RULES: readonly EscapeRule[] = ["rim", "knife"];
+
+/** Atom lifecycle (SPEC 2.3): trapped -> escaped -> gone. */
+export const TRAPPED = 0;
+export const ESCAPED = 1;
+export const GONE = 2;
+export const STATUS_NAMES = ["trapped", "escaped", "gone"] as const;
+export type StatusName = (typeof STATUS_NAMES)[number];
+
+/** Event kinds of the event log, as in Python's world.EVENT_NAMES. */
+export const EV_PAIR = 0;
+export const EV_WALL = 1;
+export const EV_ESCAPE = 2;
+export const EV_GONE = 3;
+export const EV_KNIFE = 4;
+export const EVENT_NAMES = ["pair", "wall", "escape", "gone", "knife"] as const;
+export type EventName = (typeof EVENT_NAMES)[number];
+
+/** Screen position of the drawn cup's lowest point: (296, 544) in 640 x 672. */
+export function cupVertex(window: readonly [number, number]): [number, number] {
+  const [w, h] = window;
+  const playW = w - BORDER_LEFT - BORDER_RIGHT;
+  return [BORDER_LEFT + playW / 2, h - BORDER_BOTTOM - CUP_DROP];
+}

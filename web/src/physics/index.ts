@@ -1,0 +1,20 @@
+/**
+ * The web edition's physics: the exact event-driven model of doc/model.md, the same events
+ * as the Python engines (held to it by the golden traces in web/test/golden/).
+ */
+export {
+  Simulation,
+  pairwiseSum,
+  type AtomSnapshot,
+  type PhysicsEvent,
+  type Points,
+  type SimulationOptions,
+} from "./simulation";
+export {
+  STATE_FORMAT,
+  STATE_VERSION,
+  parseState,
+  type SimulationState,
+  type StateInput,
+} from "./state";
+export * from "./constants";

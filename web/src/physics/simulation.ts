@@ -1,0 +1,777 @@
+/**
+ * `Simulation`: the public face of the physics, the TypeScript twin of Python's
+ * `evapcool.Simulation` (SPEC section 3) in camelCase.
+ *
+ * Trap coordinates: x right, y up, origin at the lowest point an atom centre can reach;
+ * lengths in px, time in frames (1/30 s), mass in atom masses. Arrays of points are
+ * interleaved: [x0, y0, x1, y1, ...].
+ */
+import {
+  ATOM_RADIUS,
+  CURVATURE,
+  ESCAPE_RULES,
+  ESCAPED,
+  EVENT_NAMES,
+  GRAVITY,
+  N_ATOMS,
+  STATUS_NAMES,
+  TC_EXPONENT_SEED,
+  TRAP_HEIGHT,
+  TRAPPED,
+  WINDOW,
+  cupVertex,
+  type EscapeRule,
+  type EventName,
+} from "./constants";
+import { Engine, type EngineAtoms } from "./engine";
+import { loadCup } from "./loading";
+import { Xoshiro128, randomSeed } from "./rng";
+import {
+  STATE_FORMAT,
+  STATE_VERSION,
+  bad,
+  checkPlacement,
+  checkWindow,
+  parseState,
+  type SimulationState,
+  type StateInput,
+} from "./state";
+
+/** Points as interleaved numbers [x0, y0, x1, y1, ...] or as pairs [[x0, y0], ...]. */
+export type Points = ArrayLike<number> | ReadonlyArray<readonly [number, number]>;
+
+export interface SimulationOptions {
+  /** Atoms at the start (default 49; the number of positions if those are given). */
+  nAtoms?: number;
+  /** Radius, px: one for all, or one per atom (then positions must be given). Default 12. */
+  radius?: number | ArrayLike<number>;
+  /** Mass: one for all or one per atom. Default 1. */
+  mass?: number | ArrayLike<number>;
+  /** a of the cup y = a x^2, per px. Default 0.01. */
+  curvature?: number;
+  /** g, px / frame^2. Default 10/30. */
+  gravity?: number;
+  /** Rim height H, px above the lowest centre position (Infinity allowed). Default 400. */
+  trapHeight?: number;
+  /** Window (width, height), px. Default [640, 672]. */
+  window?: readonly [number, number];
+  /** Seed of the start's generator (a whole number >= 0); a random one if absent. */
+  seed?: number;
+  /** p in Tc(N) = Tc0 (N / N0)^p. Default 2/3 (seed Eq. 46); 2/5 is the cup's Bose gas. */
+  tcExponent?: number;
+  /** "rim" (atoms fly over the rim, default) or "knife" (energy above m g H cut at once). */
+  escape?: EscapeRule;
+  /** The win rule: false keeps the gas a gas below Tc. Default true. */
+  win?: boolean;
+  /** Keep every event in `eventLog` (tests, traces). Default false. */
+  recordEvents?: boolean;
+  /** Starting centres (trap coordinates), instead of the game's rows of cells. */
+  positions?: Points;
+  /** Starting velocities, px / frame, with positions. */
+  velocities?: Points;
+}
+
+/** One processed event: kind, atoms (j = -1 for solo events) and time in frames. */
+export interface PhysicsEvent {
+  kind: EventName;
+  i: number;
+  j: number;
+  time: number;
+}
+
+/** Per-atom columns of trapped or escaped atoms now; `count` rows are valid. */
+export interface AtomSnapshot {
+  count: number;
+  /** The atom's index (stable for the whole run: colours, selection). */
+  index: Int32Array;
+  x: Float64Array;
+  y: Float64Array;
+  vx: Float64Array;
+  vy: Float64Array;
+  radius: Float64Array;
+  mass: Float64Array;
+  /** 1/2 m v^2 + m g y. */
+  energy: Float64Array;
+}
+
+const OPTION_KEYS = new Set([
+  "nAtoms",
+  "radius",
+  "mass",
+  "curvature",
+  "gravity",
+  "trapHeight",
+  "window",
+  "seed",
+  "tcExponent",
+  "escape",
+  "win",
+  "recordEvents",
+  "positions",
+  "velocities",
+]);
+
+/** Mid-run states may have atoms touching or on the wall up to round-off: this much, relative. */
+const STATE_TOLERANCE = 1e-9;
+
+function positive(name: string, v: unknown, fallback: number, allowInf = false): number {
+  if (v === undefined) return fallback;
+  if (typeof v !== "number" || Number.isNaN(v) || v <= 0 || (!allowInf && !Number.isFinite(v)))
+    throw bad(
+      name,
+      allowInf ? "a positive number (Infinity allowed)" : "a positive finite number",
+      v,
+    );
+  return v;
+}
+
+function perAtom(name: string, v: unknown, n: number, fallback: number): Float64Array {
+  if (v === undefined || typeof v === "number")
+    return new Float64Array(n).fill(positive(name, v, fallback));
+  const arr = v as ArrayLike<number>;
+  if (typeof arr !== "object" || arr === null || arr.length !== n)
+    throw bad(name, `a positive finite number or ${n} of them`, v);
+  const out = new Float64Array(n);
+  for (let i = 0; i < n; i++) {
+    const e = arr[i];
+    if (typeof e !== "number" || !Number.isFinite(e) || e <= 0)
+      throw bad(`${name}[${i}]`, "a positive finite number", e);
+    out[i] = e;
+  }
+  return out;
+}
+
+function pointCount(v: Points): number {
+  const first = (v as ArrayLike<unknown>)[0];
+  return typeof first === "object" && first !== null ? v.length : Math.floor(v.length / 2);
+}
+
+/** Points as two columns; RangeError unless exactly n finite points. */
+function points(name: string, v: unknown, n: number): [Float64Array, Float64Array] {
+  const xs = new Float64Array(n);
+  const ys = new Float64Array(n);
+  const arr = v as ArrayLike<unknown>;
+  const allowed = `${n} finite points ([x, y] pairs or ${2 * n} interleaved numbers)`;
+  if (typeof arr !== "object" || arr === null) throw bad(name, allowed, v);
+  const pairs = arr.length > 0 && typeof arr[0] === "object" && arr[0] !== null;
+  if (arr.length !== (pairs ? n : 2 * n)) throw bad(name, allowed, v);
+  for (let i = 0; i < n; i++) {
+    let x: unknown;
+    let y: unknown;
+    if (pairs) {
+      const p = arr[i] as ArrayLike<unknown>;
+      if (typeof p !== "object" || p === null || p.length !== 2)
+        throw bad(`${name}[${i}]`, "an [x, y] pair", p);
+      x = p[0];
+      y = p[1];
+    } else {
+      x = arr[2 * i];
+      y = arr[2 * i + 1];
+    }
+    if (
+      typeof x !== "number" ||
+      typeof y !== "number" ||
+      !Number.isFinite(x) ||
+      !Number.isFinite(y)
+    )
+      throw bad(`${name}[${i}]`, "a point of finite numbers", pairs ? arr[i] : [x, y]);
+    xs[i] = x;
+    ys[i] = y;
+  }
+  return [xs, ys];
+}
+
+/** NumPy's pairwise summation (np.sum of a float64 array), so sums match Python's bits. */
+export function pairwiseSum(a: Float64Array, start: number, n: number): number {
+  if (n < 8) {
+    let res = 0.0;
+    for (let i = 0; i < n; i++) res += a[start + i];
+    return res;
+  }
+  if (n <= 128) {
+    let r0 = a[start];
+    let r1 = a[start + 1];
+    let r2 = a[start + 2];
+    let r3 = a[start + 3];
+    let r4 = a[start + 4];
+    let r5 = a[start + 5];
+    let r6 = a[start + 6];
+    let r7 = a[start + 7];
+    let i = 8;
+    for (; i < n - (n % 8); i += 8) {
+      const b = start + i;
+      r0 += a[b];
+      r1 += a[b + 1];
+      r2 += a[b + 2];
+      r3 += a[b + 3];
+      r4 += a[b + 4];
+      r5 += a[b + 5];
+      r6 += a[b + 6];
+      r7 += a[b + 7];
+    }
+    let res = r0 + r1 + (r2 + r3) + (r4 + r5 + (r6 + r7));
+    for (; i < n; i++) res += a[start + i];
+    return res;
+  }
+  let n2 = Math.floor(n / 2);
+  n2 -= n2 % 8;
+  return pairwiseSum(a, start, n2) + pairwiseSum(a, start + n2, n - n2);
+}
+
+/** Hard disks in a parabolic cup under gravity, advanced event by event, exactly. */
+export class Simulation {
+  private engine!: Engine;
+  private windowSize!: [number, number];
+  private origin!: [number, number];
+  private seedUsed!: number | null;
+  private scratch!: Float64Array;
+
+  constructor(options: SimulationOptions = {}) {
+    if (typeof options !== "object" || options === null) throw bad("options", "an object", options);
+    for (const k of Object.keys(options))
+      if (!OPTION_KEYS.has(k))
+        throw bad("options", `free of unknown names (known: ${[...OPTION_KEYS].join(", ")})`, k);
+    const o = options;
+    const given = o.positions !== undefined || o.velocities !== undefined;
+    if (given && (o.positions === undefined || o.velocities === undefined))
+      throw bad("velocities", "given together with positions", given);
+    let n = o.nAtoms;
+    if (n === undefined) n = o.positions !== undefined ? pointCount(o.positions) : N_ATOMS;
+    if (typeof n !== "number" || !Number.isSafeInteger(n) || n < 1)
+      throw bad("nAtoms", "a whole number >= 1", n);
+    const radius = perAtom("radius", o.radius, n, ATOM_RADIUS);
+    const mass = perAtom("mass", o.mass, n, 1);
+    const a = positive("curvature", o.curvature, CURVATURE);
+    const g = positive("gravity", o.gravity, GRAVITY);
+    const height = positive("trapHeight", o.trapHeight, TRAP_HEIGHT, true);
+    const tcExponent = positive("tcExponent", o.tcExponent, TC_EXPONENT_SEED);
+    const window =
+      o.window === undefined ? [WINDOW[0], WINDOW[1]] : checkWindow("window", o.window);
+    const seed = o.seed;
+    if (seed !== undefined && (typeof seed !== "number" || !Number.isSafeInteger(seed) || seed < 0))
+      throw bad("seed", "a whole number >= 0 (or absent)", seed);
+    const win = o.win ?? true;
+    if (typeof win !== "boolean") throw bad("win", "true or false", win);
+    const record = o.recordEvents ?? false;
+    if (typeof record !== "boolean") throw bad("recordEvents", "true or false", record);
+    const escape = o.escape ?? "rim";
+    if (!ESCAPE_RULES.includes(escape))
+      throw bad("escape", `one of ${ESCAPE_RULES.join(", ")}`, escape);
+
+    const [vxScreen, vyScreen] = cupVertex(window as [number, number]);
+    const originSy = vyScreen - radius[0];
+    let xs: Float64Array;
+    let ys: Float64Array;
+    let vxs: Float64Array;
+    let vys: Float64Array;
+    this.seedUsed = null;
+    if (!given) {
+      for (let i = 1; i < n; i++)
+        if (radius[i] !== radius[0])
+          throw bad("radius", "one number unless positions are given", "per-atom radii");
+      const s = seed ?? randomSeed();
+      this.seedUsed = s;
+      const start = loadCup(n, radius[0], a, originSy, new Xoshiro128(s));
+      [xs, ys] = points("positions", start.positions, n);
+      [vxs, vys] = points("velocities", start.velocities, n);
+    } else {
+      [xs, ys] = points("positions", o.positions, n);
+      [vxs, vys] = points("velocities", o.velocities, n);
+      checkPlacement("positions", xs, ys, radius, () => true, a, 0);
+    }
+    this.init(
+      window as [number, number],
+      {
+        curvature: a,
+        gravity: g,
+        tcExponent,
+        escape,
+        win,
+        trapHeight: height,
+        recordEvents: record,
+      },
+      {
+        x: xs,
+        y: ys,
+        vx: vxs,
+        vy: vys,
+        t: new Float64Array(n),
+        radius,
+        mass,
+        status: new Int8Array(n),
+        time: 0,
+        won: false,
+        pairCount: 0,
+        wallCount: 0,
+      },
+    );
+  }
+
+  private init(
+    window: [number, number],
+    rules: {
+      curvature: number;
+      gravity: number;
+      tcExponent: number;
+      escape: EscapeRule;
+      win: boolean;
+      trapHeight: number;
+      recordEvents: boolean;
+    },
+    atoms: EngineAtoms,
+  ): void {
+    const [vxScreen, vyScreen] = cupVertex(window);
+    const originSy = vyScreen - atoms.radius[0];
+    this.scratch = new Float64Array(4);
+    this.windowSize = [window[0], window[1]];
+    this.origin = [vxScreen, originSy];
+    this.engine = new Engine(
+      {
+        curvature: rules.curvature,
+        gravity: rules.gravity,
+        trapHeight: rules.trapHeight,
+        xLeft: -vxScreen,
+        xRight: window[0] - vxScreen,
+        yBottom: originSy - window[1],
+        tcExponent: rules.tcExponent,
+        knife: rules.escape === "knife",
+        winRule: rules.win,
+        recordEvents: rules.recordEvents,
+      },
+      atoms,
+    );
+    this.engine.setTrapHeight(rules.trapHeight);
+  }
+
+  /** The original applet's start: 49 atoms of radius 12 in the cup, H = 400. */
+  static classic(seed?: number, overrides: SimulationOptions = {}): Simulation {
+    return new Simulation({ nAtoms: N_ATOMS, radius: ATOM_RADIUS, seed, ...overrides });
+  }
+
+  /**
+   * A simulation that goes on exactly from a state (object or JSON text, doc/state.md).
+   * RangeError naming the field if the state is malformed, atoms overlap or lie outside the cup.
+   */
+  static fromState(
+    state: StateInput | SimulationState | string,
+    options: { recordEvents?: boolean } = {},
+  ): Simulation {
+    const p = parseState(state);
+    const record = options.recordEvents ?? false;
+    if (typeof record !== "boolean") throw bad("recordEvents", "true or false", record);
+    const n = p.x.length;
+    // Trapped atoms where they are now: inside the cup, not overlapping (up to round-off).
+    const halfG = 0.5 * p.gravity;
+    const xn = new Float64Array(n);
+    const yn = new Float64Array(n);
+    for (let i = 0; i < n; i++) {
+      const dt = p.time - p.t[i];
+      xn[i] = p.x[i] + p.vx[i] * dt;
+      yn[i] = p.y[i] + p.vy[i] * dt - halfG * dt * dt;
+    }
+    checkPlacement(
+      "state.atoms",
+      xn,
+      yn,
+      p.radius,
+      (i) => p.status[i] === TRAPPED,
+      p.curvature,
+      STATE_TOLERANCE,
+    );
+    const sim = Object.create(Simulation.prototype) as Simulation;
+    sim.seedUsed = null;
+    sim.init(
+      p.window,
+      {
+        curvature: p.curvature,
+        gravity: p.gravity,
+        tcExponent: p.tcExponent,
+        escape: p.escape,
+        win: p.win,
+        trapHeight: p.trapHeight,
+        recordEvents: record,
+      },
+      {
+        x: p.x,
+        y: p.y,
+        vx: p.vx,
+        vy: p.vy,
+        t: p.t,
+        radius: p.radius,
+        mass: p.mass,
+        status: p.status,
+        time: p.time,
+        energySum: p.energySum,
+        initialTemperature: p.initialTemperature,
+        won: p.won,
+        pairCount: p.pairCount,
+        wallCount: p.wallCount,
+      },
+    );
+    if (p.energySum !== undefined) {
+      const e = sim.engine;
+      const sum = e.sequentialEnergySum();
+      let scale = 0;
+      for (let i = 0; i < n; i++) if (p.status[i] === TRAPPED) scale += Math.abs(e.atomEnergy(i));
+      if (!(Math.abs(p.energySum - sum) <= STATE_TOLERANCE * Math.max(1, scale)))
+        throw bad("state.energy_sum", `the trapped atoms' energy sum, ${sum}`, p.energySum);
+    }
+    return sim;
+  }
+
+  /** The state as a JSON-ready object (doc/state.md): exact, resumable with fromState. */
+  toState(): SimulationState {
+    const e = this.engine;
+    const n = e.n;
+    const col = (k: number): number[] => {
+      const out = new Array<number>(n);
+      for (let i = 0; i < n; i++) out[i] = e.storedOf(i, k);
+      return out;
+    };
+    const status = new Array<(typeof STATUS_NAMES)[number]>(n);
+    for (let i = 0; i < n; i++) status[i] = STATUS_NAMES[e.statusOf(i)];
+    return {
+      format: STATE_FORMAT,
+      version: STATE_VERSION,
+      time: e.time,
+      trap_height: Number.isFinite(e.trapHeight) ? e.trapHeight : "inf",
+      curvature: e.a,
+      gravity: e.g,
+      window: [this.windowSize[0], this.windowSize[1]],
+      escape: e.knife ? "knife" : "rim",
+      tc_exponent: e.tcExponent,
+      win: e.winRule,
+      won: e.won,
+      initial_temperature: e.initialTemperature,
+      energy_sum: e.energySum,
+      pair_collisions: e.pairCount,
+      wall_collisions: e.wallCount,
+      atoms: {
+        x: col(0),
+        y: col(1),
+        vx: col(2),
+        vy: col(3),
+        t: col(4),
+        radius: col(5),
+        mass: col(6),
+        status,
+      },
+    };
+  }
+
+  /** JSON.stringify(sim) writes the state. */
+  toJSON(): SimulationState {
+    return this.toState();
+  }
+
+  // -- time ------------------------------------------------------------------------------
+  /** Advance by dt frames, processing every event exactly. */
+  advance(dt: number): void {
+    if (typeof dt !== "number" || !Number.isFinite(dt) || dt < 0)
+      throw bad("dt", "a finite number of frames >= 0", dt);
+    this.engine.advanceTo(this.engine.time + dt);
+  }
+
+  /** Simulation time in frames. */
+  get time(): number {
+    return this.engine.time;
+  }
+
+  // -- the trap --------------------------------------------------------------------------
+  /** Rim height H in px above the lowest centre position. */
+  get trapHeight(): number {
+    return this.engine.trapHeight;
+  }
+
+  set trapHeight(value: number) {
+    this.engine.setTrapHeight(positive("trapHeight", value, NaN, true));
+  }
+
+  /** x_rim = sqrt(H / a): the wall ends at |x| = x_rim. */
+  get rimHalfWidth(): number {
+    return this.engine.xRim;
+  }
+
+  get curvature(): number {
+    return this.engine.a;
+  }
+
+  get gravity(): number {
+    return this.engine.g;
+  }
+
+  /** "rim" (fly over the rim) or "knife" (energy above m g H removed at once). */
+  get escape(): EscapeRule {
+    return this.engine.knife ? "knife" : "rim";
+  }
+
+  /** Python's name for `escape`. */
+  get escapeRule(): EscapeRule {
+    return this.escape;
+  }
+
+  /** The window (width, height) in px this simulation maps to. */
+  get window(): readonly [number, number] {
+    return this.windowSize;
+  }
+
+  /** Screen position of the trap origin: (296, 544 - R) in the original window. */
+  get screenOrigin(): readonly [number, number] {
+    return this.origin;
+  }
+
+  /** The start's seed (drawn at random if none was given); null for a loaded state. */
+  get seed(): number | null {
+    return this.seedUsed;
+  }
+
+  // -- atoms -----------------------------------------------------------------------------
+  /** Atoms at the start (N0), gone ones included. */
+  get nAtoms(): number {
+    return this.engine.n;
+  }
+
+  get nTrapped(): number {
+    return this.engine.nTrapped;
+  }
+
+  /** Atoms that left the trap and are still falling inside the window. */
+  get nEscaped(): number {
+    const e = this.engine;
+    let k = 0;
+    for (let i = 0; i < e.n; i++) if (e.statusOf(i) === ESCAPED) k++;
+    return k;
+  }
+
+  private indices(status: number): Int32Array {
+    const e = this.engine;
+    let k = 0;
+    for (let i = 0; i < e.n; i++) if (e.statusOf(i) === status) k++;
+    const out = new Int32Array(k);
+    k = 0;
+    for (let i = 0; i < e.n; i++) if (e.statusOf(i) === status) out[k++] = i;
+    return out;
+  }
+
+  get trappedIndices(): Int32Array {
+    return this.indices(TRAPPED);
+  }
+
+  get escapedIndices(): Int32Array {
+    return this.indices(ESCAPED);
+  }
+
+  private column(status: number, what: "pos" | "vel" | "radius" | "mass"): Float64Array {
+    const idx = this.indices(status);
+    const e = this.engine;
+    const s = this.scratch;
+    const wide = what === "pos" || what === "vel";
+    const out = new Float64Array(wide ? 2 * idx.length : idx.length);
+    for (let k = 0; k < idx.length; k++) {
+      const i = idx[k];
+      if (what === "radius") out[k] = e.storedOf(i, 5);
+      else if (what === "mass") out[k] = e.storedOf(i, 6);
+      else {
+        e.stateAt(i, e.time, s);
+        out[2 * k] = what === "pos" ? s[0] : s[2];
+        out[2 * k + 1] = what === "pos" ? s[1] : s[3];
+      }
+    }
+    return out;
+  }
+
+  /** Centres of the trapped atoms now, [x0, y0, x1, y1, ...], trap coordinates (y up), px. */
+  get positions(): Float64Array {
+    return this.column(TRAPPED, "pos");
+  }
+
+  /** Velocities of the trapped atoms now, [vx0, vy0, ...], px / frame. */
+  get velocities(): Float64Array {
+    return this.column(TRAPPED, "vel");
+  }
+
+  get radii(): Float64Array {
+    return this.column(TRAPPED, "radius");
+  }
+
+  get masses(): Float64Array {
+    return this.column(TRAPPED, "mass");
+  }
+
+  /** Centres of the atoms falling out of the window, [x0, y0, ...]. */
+  get escapedPositions(): Float64Array {
+    return this.column(ESCAPED, "pos");
+  }
+
+  get escapedVelocities(): Float64Array {
+    return this.column(ESCAPED, "vel");
+  }
+
+  get escapedRadii(): Float64Array {
+    return this.column(ESCAPED, "radius");
+  }
+
+  /**
+   * Trapped (or escaped) atoms now in per-atom columns, written into `out` when it has room
+   * (no allocation per frame for a view that keeps its snapshot).
+   */
+  atoms(which: "trapped" | "escaped" = "trapped", out?: AtomSnapshot): AtomSnapshot {
+    const e = this.engine;
+    const status = which === "trapped" ? TRAPPED : which === "escaped" ? ESCAPED : -1;
+    if (status < 0) throw bad("which", `"trapped" or "escaped"`, which);
+    let snap = out;
+    if (snap === undefined || snap.index.length < e.n) {
+      const n = e.n;
+      snap = {
+        count: 0,
+        index: new Int32Array(n),
+        x: new Float64Array(n),
+        y: new Float64Array(n),
+        vx: new Float64Array(n),
+        vy: new Float64Array(n),
+        radius: new Float64Array(n),
+        mass: new Float64Array(n),
+        energy: new Float64Array(n),
+      };
+    }
+    const s = this.scratch;
+    let k = 0;
+    for (let i = 0; i < e.n; i++) {
+      if (e.statusOf(i) !== status) continue;
+      e.stateAt(i, e.time, s);
+      snap.index[k] = i;
+      snap.x[k] = s[0];
+      snap.y[k] = s[1];
+      snap.vx[k] = s[2];
+      snap.vy[k] = s[3];
+      snap.radius[k] = e.storedOf(i, 5);
+      snap.mass[k] = e.storedOf(i, 6);
+      snap.energy[k] = e.atomEnergy(i);
+      k++;
+    }
+    snap.count = k;
+    return snap;
+  }
+
+  /** Energy 1/2 m v^2 + m g y of each trapped atom. */
+  energies(): Float64Array {
+    const e = this.engine;
+    const out = new Float64Array(e.nTrapped);
+    let k = 0;
+    for (let i = 0; i < e.n; i++) if (e.statusOf(i) === TRAPPED) out[k++] = e.atomEnergy(i);
+    return out;
+  }
+
+  /** Sum of 1/2 m v^2 + m g y over trapped atoms (summed as NumPy does: the same bits). */
+  totalEnergy(): number {
+    const en = this.energies();
+    return pairwiseSum(en, 0, en.length);
+  }
+
+  // -- thermodynamics (seed Eqs. 1 and 46) --------------------------------------------------
+  /** Mean energy per trapped atom, seed Eq. (1); 0 for an empty cup. */
+  get temperature(): number {
+    const n = this.engine.nTrapped;
+    return n > 0 ? this.totalEnergy() / n : 0;
+  }
+
+  get initialTemperature(): number {
+    return this.engine.initialTemperature;
+  }
+
+  /** Tc(N) = Tc0 (N / N0)^p with Tc0 = 0.75 T(0), seed Eq. (46). */
+  get criticalTemperature(): number {
+    return this.engine.criticalTemperatureOf(this.engine.nTrapped);
+  }
+
+  get tcExponent(): number {
+    return this.engine.tcExponent;
+  }
+
+  /** True once T < Tc(N) (latched): the gas has condensed. Never with win: false. */
+  get won(): boolean {
+    return this.engine.won;
+  }
+
+  /** False if the game's win rule is off (win: false). */
+  get winRule(): boolean {
+    return this.engine.winRule;
+  }
+
+  /** Declare the gas condensed now (demonstrations and tests). */
+  forceWin(): void {
+    this.engine.forceWin();
+  }
+
+  // -- counters --------------------------------------------------------------------------
+  get pairCollisionCount(): number {
+    return this.engine.pairCount;
+  }
+
+  get wallCollisionCount(): number {
+    return this.engine.wallCount;
+  }
+
+  get collisionCount(): number {
+    return this.engine.pairCount + this.engine.wallCount;
+  }
+
+  /** Events recorded so far (recordEvents), without building the log. */
+  get eventCount(): number {
+    return this.engine.nLog;
+  }
+
+  /** Recorded event k (0 <= k < eventCount). */
+  eventAt(k: number): PhysicsEvent {
+    if (!Number.isInteger(k) || k < 0 || k >= this.engine.nLog)
+      throw bad("k", `a whole number from 0 to ${this.engine.nLog - 1}`, k);
+    const [kind, i, j, time] = this.engine.logEntry(k);
+    return { kind: EVENT_NAMES[kind], i, j, time };
+  }
+
+  /** Every event so far if recordEvents was set, else []. */
+  get eventLog(): PhysicsEvent[] {
+    const e = this.engine;
+    const out: PhysicsEvent[] = [];
+    for (let k = 0; k < e.nLog; k++) {
+      const [kind, i, j, time] = e.logEntry(k);
+      out.push({ kind: EVENT_NAMES[kind], i, j, time });
+    }
+    return out;
+  }
+
+  /** Engine diagnostics: cell crossings and stale pair events processed, grid shape. */
+  get engineStats(): {
+    crossings: number;
+    stale: number;
+    cells: [number, number];
+    cellSize: number;
+    gridErrors: number;
+  } {
+    const e = this.engine;
+    return {
+      crossings: e.crossingCount,
+      stale: e.staleCount,
+      cells: [e.nx, e.ny],
+      cellSize: e.cs,
+      gridErrors: e.gridErrors(),
+    };
+  }
+
+  // -- for views ---------------------------------------------------------------------------
+  /** Trap coordinates [x0, y0, ...] to window pixels (y down), into out if given. */
+  toScreen(xy: ArrayLike<number>, out?: Float64Array): Float64Array {
+    const [ox, oy] = this.origin;
+    const res = out ?? new Float64Array(xy.length);
+    for (let k = 0; k + 1 < xy.length; k += 2) {
+      res[k] = ox + xy[k];
+      res[k + 1] = oy - xy[k + 1];
+    }
+    return res;
+  }
+
+  /** One point from trap coordinates to window pixels. */
+  toScreenPoint(x: number, y: number): [number, number] {
+    return [this.origin[0] + x, this.origin[1] - y];
+  }
+}

@@ -1,0 +1,369 @@
+/**
+ * The state JSON shared by both editions (doc/state.md; Python: evapcool.physics.state).
+ *
+ * A state is everything the physics needs to go on exactly: each atom's stored state at
+ * its own last-event time (positions move lazily), radius, mass and lifecycle, the clock,
+ * the trap, the rules, and what the win needs (the starting temperature; N0 is the number
+ * of atoms listed, gone ones included, so indices stay those of the run).
+ */
+import {
+  CURVATURE,
+  ESCAPE_RULES,
+  GRAVITY,
+  STATUS_NAMES,
+  TC_EXPONENT_SEED,
+  TRAP_HEIGHT,
+  WINDOW,
+  type EscapeRule,
+  type StatusName,
+} from "./constants";
+
+export const STATE_FORMAT = "evapcool-state";
+export const STATE_VERSION = 1;
+
+/** A state as written: every field present, floats exact (JSON numbers round-trip). */
+export interface SimulationState {
+  format: typeof STATE_FORMAT;
+  version: typeof STATE_VERSION;
+  /** The clock, frames. */
+  time: number;
+  /** Rim height H, px; "inf" for a rim out of reach. */
+  trap_height: number | "inf";
+  curvature: number;
+  gravity: number;
+  /** Window (width, height), px: the screen mapping and the edges where escaped atoms are gone. */
+  window: [number, number];
+  escape: EscapeRule;
+  tc_exponent: number;
+  /** The win rule (false: the gas stays a gas below Tc). */
+  win: boolean;
+  won: boolean;
+  /** T at the start: Tc0 = 0.75 of it (seed Eq. 46). */
+  initial_temperature: number;
+  /** Running sum of the trapped atoms' energies, as the engines keep it (the win uses it). */
+  energy_sum: number;
+  pair_collisions: number;
+  wall_collisions: number;
+  atoms: {
+    /** Stored state of each atom at its own time t (t <= time). */
+    x: number[];
+    y: number[];
+    vx: number[];
+    vy: number[];
+    t: number[];
+    radius: number[];
+    mass: number[];
+    status: StatusName[];
+  };
+}
+
+/** A state as read: only the atoms' x, y, vx, vy are required (defaults in doc/state.md). */
+export interface StateInput {
+  format?: string;
+  version?: number;
+  time?: number;
+  trap_height?: number | "inf";
+  curvature?: number;
+  gravity?: number;
+  window?: readonly number[];
+  escape?: string;
+  tc_exponent?: number;
+  win?: boolean;
+  won?: boolean;
+  initial_temperature?: number;
+  energy_sum?: number;
+  pair_collisions?: number;
+  wall_collisions?: number;
+  atoms: {
+    x: readonly number[];
+    y: readonly number[];
+    vx: readonly number[];
+    vy: readonly number[];
+    t?: readonly number[];
+    radius?: number | readonly number[];
+    mass?: number | readonly number[];
+    status?: readonly string[];
+  };
+}
+
+/** A validated state, every default filled in, per-atom columns as typed arrays. */
+export interface ParsedState {
+  time: number;
+  trapHeight: number;
+  curvature: number;
+  gravity: number;
+  window: [number, number];
+  escape: EscapeRule;
+  tcExponent: number;
+  win: boolean;
+  won: boolean;
+  initialTemperature: number | undefined;
+  energySum: number | undefined;
+  pairCount: number;
+  wallCount: number;
+  x: Float64Array;
+  y: Float64Array;
+  vx: Float64Array;
+  vy: Float64Array;
+  t: Float64Array;
+  radius: Float64Array;
+  mass: Float64Array;
+  /** 0 trapped, 1 escaped, 2 gone. */
+  status: Int8Array;
+}
+
+const STATE_KEYS = new Set([
+  "format",
+  "version",
+  "time",
+  "trap_height",
+  "curvature",
+  "gravity",
+  "window",
+  "escape",
+  "tc_exponent",
+  "win",
+  "won",
+  "initial_temperature",
+  "energy_sum",
+  "pair_collisions",
+  "wall_collisions",
+  "atoms",
+]);
+const ATOM_KEYS = new Set(["x", "y", "vx", "vy", "t", "radius", "mass", "status"]);
+
+/** A RangeError "<name> must be <allowed> (got <value>)", like Python's ValueError. */
+export function bad(name: string, allowed: string, value: unknown): RangeError {
+  return new RangeError(`${name} must be ${allowed} (got ${show(value)})`);
+}
+
+/** A short, readable rendering of a bad value for error messages. */
+export function show(value: unknown): string {
+  if (typeof value === "number") return String(value);
+  if (typeof value === "string") return JSON.stringify(value);
+  if (value === undefined) return "undefined";
+  if (ArrayBuffer.isView(value))
+    return `${value.constructor.name} of length ${(value as Float64Array).length}`;
+  try {
+    const s = JSON.stringify(value);
+    return s.length > 60 ? s.slice(0, 57) + "..." : s;
+  } catch {
+    return String(value);
+  }
+}
+
+function isObject(v: unknown): v is Record<string, unknown> {
+  return typeof v === "object" && v !== null && !Array.isArray(v);
+}
+
+function finite(name: string, v: unknown, fallback: number): number {
+  if (v === undefined) return fallback;
+  if (typeof v !== "number" || !Number.isFinite(v)) throw bad(name, "a finite number", v);
+  return v;
+}
+
+function positive(name: string, v: unknown, fallback: number): number {
+  if (v === undefined) return fallback;
+  if (typeof v !== "number" || !Number.isFinite(v) || v <= 0)
+    throw bad(name, "a positive finite number", v);
+  return v;
+}
+
+function count(name: string, v: unknown): number {
+  if (v === undefined) return 0;
+  if (typeof v !== "number" || !Number.isSafeInteger(v) || v < 0)
+    throw bad(name, "a whole number >= 0", v);
+  return v;
+}
+
+function flag(name: string, v: unknown, fallback: boolean): boolean {
+  if (v === undefined) return fallback;
+  if (typeof v !== "boolean") throw bad(name, "true or false", v);
+  return v;
+}
+
+function column(name: string, v: unknown, n: number): Float64Array {
+  if (!Array.isArray(v) || (n >= 0 && v.length !== n))
+    throw bad(name, n >= 0 ? `an array of ${n} finite numbers` : "an array of finite numbers", v);
+  const out = new Float64Array(v.length);
+  for (let i = 0; i < v.length; i++) {
+    const e: unknown = v[i];
+    if (typeof e !== "number" || !Number.isFinite(e))
+      throw bad(`${name}[${i}]`, "a finite number", e);
+    out[i] = e;
+  }
+  return out;
+}
+
+function perAtom(name: string, v: unknown, n: number, fallback: number): Float64Array {
+  if (v === undefined || typeof v === "number") {
+    const value = positive(name, v, fallback);
+    return new Float64Array(n).fill(value);
+  }
+  const out = column(name, v, n);
+  for (let i = 0; i < n; i++)
+    if (!(out[i] > 0)) throw bad(`${name}[${i}]`, "a positive finite number", out[i]);
+  return out;
+}
+
+/** Validate a window (width, height) of whole pixels, at least 160 x 160. */
+export function checkWindow(name: string, v: unknown): [number, number] {
+  if (
+    !Array.isArray(v) ||
+    v.length !== 2 ||
+    !v.every((s) => typeof s === "number" && Number.isSafeInteger(s) && s >= 160)
+  )
+    throw bad(name, "two whole numbers (width, height) of at least 160 x 160 px", v);
+  return [v[0] as number, v[1] as number];
+}
+
+/** Parse and validate a state (object or JSON text); RangeError naming the field if bad. */
+export function parseState(input: unknown): ParsedState {
+  let s: unknown = input;
+  if (typeof input === "string") {
+    try {
+      s = JSON.parse(input);
+    } catch (e) {
+      throw new RangeError(`state must be JSON text (${(e as Error).message})`);
+    }
+  }
+  if (!isObject(s)) throw bad("state", "an object with an atoms table", s);
+  for (const k of Object.keys(s))
+    if (!STATE_KEYS.has(k)) throw bad("state", `free of unknown fields`, k);
+  if (s.format !== undefined && s.format !== STATE_FORMAT)
+    throw bad("state.format", JSON.stringify(STATE_FORMAT), s.format);
+  if (s.version !== undefined && s.version !== STATE_VERSION)
+    throw bad("state.version", String(STATE_VERSION), s.version);
+  const atoms = s.atoms;
+  if (!isObject(atoms)) throw bad("state.atoms", "an object of per-atom arrays", atoms);
+  for (const k of Object.keys(atoms))
+    if (!ATOM_KEYS.has(k)) throw bad("state.atoms", "free of unknown fields", k);
+  const x = column("state.atoms.x", atoms.x, -1);
+  const n = x.length;
+  if (n < 1) throw bad("state.atoms.x", "an array of at least 1 atom", atoms.x);
+  const y = column("state.atoms.y", atoms.y, n);
+  const vx = column("state.atoms.vx", atoms.vx, n);
+  const vy = column("state.atoms.vy", atoms.vy, n);
+  const time = finite("state.time", s.time, 0);
+  const t =
+    atoms.t === undefined ? new Float64Array(n).fill(time) : column("state.atoms.t", atoms.t, n);
+  for (let i = 0; i < n; i++)
+    if (t[i] > time) throw bad(`state.atoms.t[${i}]`, `at most the clock ${time}`, t[i]);
+  const radius = perAtom("state.atoms.radius", atoms.radius, n, 12);
+  const mass = perAtom("state.atoms.mass", atoms.mass, n, 1);
+  const status = new Int8Array(n);
+  if (atoms.status !== undefined) {
+    if (!Array.isArray(atoms.status) || atoms.status.length !== n)
+      throw bad(
+        "state.atoms.status",
+        `an array of ${n} of "trapped", "escaped", "gone"`,
+        atoms.status,
+      );
+    for (let i = 0; i < n; i++) {
+      const k = STATUS_NAMES.indexOf(atoms.status[i] as StatusName);
+      if (k < 0)
+        throw bad(`state.atoms.status[${i}]`, `"trapped", "escaped" or "gone"`, atoms.status[i]);
+      status[i] = k;
+    }
+  }
+  let trapHeight = TRAP_HEIGHT;
+  if (s.trap_height === "inf") trapHeight = Infinity;
+  else if (s.trap_height !== undefined)
+    trapHeight = positive("state.trap_height", s.trap_height, TRAP_HEIGHT);
+  const escape = s.escape === undefined ? "rim" : s.escape;
+  if (!ESCAPE_RULES.includes(escape as EscapeRule))
+    throw bad("state.escape", `one of ${ESCAPE_RULES.join(", ")}`, escape);
+  const win = flag("state.win", s.win, true);
+  const parsed: ParsedState = {
+    time,
+    trapHeight,
+    curvature: positive("state.curvature", s.curvature, CURVATURE),
+    gravity: positive("state.gravity", s.gravity, GRAVITY),
+    window: s.window === undefined ? [WINDOW[0], WINDOW[1]] : checkWindow("state.window", s.window),
+    escape: escape as EscapeRule,
+    tcExponent: positive("state.tc_exponent", s.tc_exponent, TC_EXPONENT_SEED),
+    win,
+    won: flag("state.won", s.won, false),
+    initialTemperature:
+      s.initial_temperature === undefined
+        ? undefined
+        : finite("state.initial_temperature", s.initial_temperature, 0),
+    energySum: s.energy_sum === undefined ? undefined : finite("state.energy_sum", s.energy_sum, 0),
+    pairCount: count("state.pair_collisions", s.pair_collisions),
+    wallCount: count("state.wall_collisions", s.wall_collisions),
+    x,
+    y,
+    vx,
+    vy,
+    t,
+    radius,
+    mass,
+    status,
+  };
+  return parsed;
+}
+
+/**
+ * Where atoms are at a common time: centres inside the cup (y >= a x^2) and pairs of
+ * trapped atoms at least r_i + r_j apart, within a relative tolerance tol (0 for a fresh
+ * start; a little for a mid-run state, whose atoms touch after collisions up to round-off).
+ * Throws RangeError naming the first offending atoms (least index, then least partner).
+ */
+export function checkPlacement(
+  name: string,
+  x: Float64Array,
+  y: Float64Array,
+  radius: Float64Array,
+  trapped: (i: number) => boolean,
+  curvature: number,
+  tol: number,
+): void {
+  const n = x.length;
+  for (let i = 0; i < n; i++) {
+    if (!trapped(i)) continue;
+    const wall = curvature * x[i] * x[i];
+    if (y[i] < wall - tol * (1 + Math.abs(wall))) {
+      throw new RangeError(
+        `${name}: atom ${i} at (${x[i]}, ${y[i]}) is outside the cup; centres must be inside ` +
+          `it or on its wall, y >= a x^2 (a = ${curvature})`,
+      );
+    }
+  }
+  // Sweep along x: only atoms closer than the largest contact distance in x can overlap.
+  const order: number[] = [];
+  let rMax = 0;
+  for (let i = 0; i < n; i++) {
+    if (!trapped(i)) continue;
+    order.push(i);
+    if (radius[i] > rMax) rMax = radius[i];
+  }
+  order.sort((p, q) => x[p] - x[q] || p - q);
+  let bi = -1;
+  let bj = -1;
+  for (let p = 0; p < order.length; p++) {
+    const i = order[p];
+    for (let q = p + 1; q < order.length; q++) {
+      const j = order[q];
+      const dx = x[j] - x[i];
+      if (dx > 2 * rMax) break;
+      const dy = y[j] - y[i];
+      const sigma = radius[i] + radius[j];
+      const lim = sigma * (1 - tol);
+      if (dx * dx + dy * dy < lim * lim) {
+        const lo = i < j ? i : j;
+        const hi = i < j ? j : i;
+        if (bi < 0 || lo < bi || (lo === bi && hi < bj)) {
+          bi = lo;
+          bj = hi;
+        }
+      }
+    }
+  }
+  if (bi >= 0) {
+    const d = Math.hypot(x[bj] - x[bi], y[bj] - y[bi]);
+    throw new RangeError(
+      `${name}: atoms ${bi} and ${bj} overlap (centres ${d} apart, less than r${bi} + r${bj} = ` +
+        `${radius[bi] + radius[bj]}); atoms must be at least r_i + r_j apart`,
+    );
+  }
+}

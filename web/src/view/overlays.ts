@@ -1,0 +1,234 @@
+/**
+ * Panels over the play area: help, high scores, settings, the name box's frame and the
+ * notices. Each draw returns the tap targets it drew (touch users have no keyboard).
+ */
+import { formatSeconds, type Entry } from "../game/highscores";
+import * as C from "./colors";
+import { PLAY_RECT, rect, type Rect } from "./geometry";
+import { frame, UNDER_MESSAGE } from "./scene";
+import { drawText, textWidth, wrap } from "./text";
+
+export interface Target {
+  rect: Rect;
+  action: string;
+}
+
+function overlay(ctx: CanvasRenderingContext2D, title: string, height: number): Rect {
+  const w = PLAY_RECT.w - 24;
+  const h = Math.min(height, PLAY_RECT.h - 8);
+  const panel = rect(
+    PLAY_RECT.x + (PLAY_RECT.w - w) / 2,
+    PLAY_RECT.y + Math.floor((PLAY_RECT.h - h) / 2),
+    w,
+    h,
+  );
+  frame(ctx, panel);
+  drawText(ctx, title, 34, C.ACCENT, panel.x + panel.w / 2, panel.y + 12, "midtop", true);
+  return panel;
+}
+
+/** A small framed text button (tap target) inside an overlay. */
+function textButton(
+  ctx: CanvasRenderingContext2D,
+  label: string,
+  cx: number,
+  y: number,
+  action: string,
+  out: Target[],
+): void {
+  const w = textWidth(ctx, label, 24) + 28;
+  const r = rect(cx - w / 2, y, w, 34);
+  ctx.fillStyle = C.SELECTED_ROW;
+  ctx.beginPath();
+  ctx.roundRect(r.x, r.y, r.w, r.h, 6);
+  ctx.fill();
+  ctx.strokeStyle = C.ACCENT;
+  ctx.lineWidth = 2;
+  ctx.stroke();
+  drawText(ctx, label, 24, C.TEXT, cx, y + 17, "center", true);
+  out.push({ rect: r, action });
+}
+
+/** Buttons in a row, centred on cx. */
+function buttonRow(
+  ctx: CanvasRenderingContext2D,
+  buttons: Array<[string, string]>,
+  cx: number,
+  y: number,
+  out: Target[],
+): void {
+  const widths = buttons.map(([label]) => textWidth(ctx, label, 24) + 28);
+  const gap = 16;
+  let x = cx - (widths.reduce((a, b) => a + b, 0) + gap * (buttons.length - 1)) / 2;
+  buttons.forEach(([label, action], k) => {
+    textButton(ctx, label, x + widths[k] / 2, y, action, out);
+    x += widths[k] + gap;
+  });
+}
+
+export function drawHelp(
+  ctx: CanvasRenderingContext2D,
+  rows: Array<[string, string]>,
+  footer: string,
+): Target[] {
+  const targets: Target[] = [];
+  const step = Math.max(
+    18,
+    Math.min(27, Math.floor((PLAY_RECT.h - 110) / Math.max(1, rows.length))),
+  );
+  const size = Math.min(24, step - 2);
+  const panel = overlay(ctx, "Controls", 100 + step * rows.length);
+  const col = panel.x + 18 + Math.max(...rows.map(([k]) => textWidth(ctx, k, size))) + 16;
+  rows.forEach(([keys, what], k) => {
+    const y = panel.y + 52 + step * k;
+    drawText(ctx, keys, size, C.ACCENT, panel.x + 18, y, "topleft", true);
+    drawText(ctx, what, size, C.TEXT, col, y, "topleft");
+  });
+  drawText(ctx, footer, 20, C.DIM_TEXT, panel.x + panel.w / 2, panel.y + panel.h - 44, "midtop");
+  targets.push({ rect: panel, action: "close" });
+  return targets;
+}
+
+export function drawTable(
+  ctx: CanvasRenderingContext2D,
+  title: string,
+  entries: Entry[],
+  highlight: number | null,
+  footer: string[],
+  buttons: Array<[string, string]>,
+): Target[] {
+  const targets: Target[] = [];
+  const rows = Math.max(1, entries.length);
+  const panel = overlay(ctx, "High scores", 130 + 30 * (rows + 1 + footer.length) + 44);
+  drawText(ctx, title, 20, C.DIM_TEXT, panel.x + panel.w / 2, panel.y + 48, "midtop");
+  const cols = [panel.x + 16, panel.x + 50, panel.x + 222, panel.x + 292];
+  const y0 = panel.y + 76;
+  ["#", "name", "atoms", "time"].forEach((h, k) =>
+    drawText(ctx, h, 22, C.ACCENT, cols[k], y0, "topleft", true),
+  );
+  drawText(ctx, "date", 22, C.ACCENT, panel.x + panel.w - 16, y0, "topright", true);
+  if (!entries.length) {
+    drawText(ctx, "No scores yet: be the first!", 24, C.TEXT, cols[1], y0 + 32, "topleft");
+  }
+  const nameWidth = cols[2] - cols[1] - 8;
+  entries.forEach((e, k) => {
+    const y = panel.y + 108 + 30 * k;
+    const mine = highlight === k + 1;
+    const color = mine ? C.ACCENT : C.TEXT;
+    const cells = [`${k + 1}`, e.name, `${e.score}`, formatSeconds(e.seconds)];
+    cells.forEach((cell, c) => {
+      ctx.save();
+      if (c === 1) {
+        // A long name is cut at its column rather than running into the score.
+        ctx.beginPath();
+        ctx.rect(cols[1], y - 4, nameWidth, 32);
+        ctx.clip();
+      }
+      drawText(ctx, cell, 24, color, cols[c], y, "topleft", mine);
+      ctx.restore();
+    });
+    drawText(ctx, e.date.slice(0, 10), 22, color, panel.x + panel.w - 16, y + 1, "topright");
+  });
+  let y = panel.y + 108 + 30 * rows + 14;
+  for (const line of footer) {
+    drawText(ctx, line, 24, C.ACCENT, panel.x + panel.w / 2, y, "midtop", true);
+    y += 30;
+  }
+  buttonRow(ctx, buttons, panel.x + panel.w / 2, y + 4, targets);
+  return targets;
+}
+
+export function drawSettings(
+  ctx: CanvasRenderingContext2D,
+  rows: Array<[string, string]>,
+  selected: number,
+  footer: string[],
+): Target[] {
+  const targets: Target[] = [];
+  const panel = overlay(ctx, "Settings", 110 + 40 * rows.length + 28 * footer.length + 48);
+  rows.forEach(([label, value], k) => {
+    const y = panel.y + 60 + 40 * k;
+    const row = rect(panel.x + 8, y - 6, panel.w - 16, 34);
+    if (k === selected) {
+      ctx.fillStyle = C.SELECTED_ROW;
+      ctx.beginPath();
+      ctx.roundRect(row.x, row.y, row.w, row.h, 4);
+      ctx.fill();
+      drawText(ctx, ">", 26, C.ACCENT, panel.x + 14, y, "topleft", true);
+    }
+    drawText(ctx, label, 24, C.TEXT, panel.x + 34, y, "topleft", k === selected);
+    const right = panel.x + panel.w - 16;
+    // "<" and ">" on every row so a finger can change any value directly.
+    drawText(ctx, ">", 24, C.ACCENT, right, y, "topright", true);
+    const vw = drawText(ctx, value, 24, C.ACCENT, right - 26, y, "topright", true);
+    drawText(ctx, "<", 24, C.ACCENT, right - 26 - vw - 10, y, "topright", true);
+    const half = Math.max(40, (vw + 40) / 2);
+    targets.push({ rect: rect(right - 2 * half, row.y, half, row.h), action: `dec:${k}` });
+    targets.push({ rect: rect(right - half, row.y, half + 8, row.h), action: `inc:${k}` });
+    targets.push({ rect: row, action: `row:${k}` });
+  });
+  let y = panel.y + 72 + 40 * rows.length;
+  for (const line of footer) {
+    drawText(ctx, line, 22, C.TEXT, panel.x + panel.w / 2, y, "midtop");
+    y += 28;
+  }
+  buttonRow(
+    ctx,
+    [
+      ["Save", "save"],
+      ["Cancel", "cancel"],
+    ],
+    panel.x + panel.w / 2,
+    y + 6,
+    targets,
+  );
+  return targets;
+}
+
+/** The name box's frame, prompt, length and keys under the score; returns the field. */
+export function drawNameFrame(
+  ctx: CanvasRenderingContext2D,
+  prompt: string,
+  length: number,
+  maxLength: number,
+): Rect {
+  const f = rect(PLAY_RECT.x + 30, UNDER_MESSAGE, PLAY_RECT.w - 60, 136);
+  frame(ctx, f);
+  drawText(ctx, prompt, 26, C.ACCENT, f.x + f.w / 2, f.y + 10, "midtop", true);
+  const field = nameField();
+  const below = field.y + field.h + 8;
+  const full = length >= maxLength;
+  const count = `${length}/${maxLength}`;
+  drawText(
+    ctx,
+    full ? `${count}  (full)` : count,
+    22,
+    full ? C.ACCENT : C.TEXT,
+    field.x + field.w,
+    below,
+    "topright",
+    full,
+  );
+  drawText(ctx, "Enter: store   Esc: skip", 22, C.TEXT, field.x, below, "topleft");
+  return field;
+}
+
+/** Where the name is typed (an input element over the canvas), logical px. */
+export function nameField(): Rect {
+  return rect(PLAY_RECT.x + 50, UNDER_MESSAGE + 40, PLAY_RECT.w - 100, 44);
+}
+
+/** Notices at the bottom of the play area, wrapped; returns their box (or null). */
+export function drawNotices(ctx: CanvasRenderingContext2D, lines: string[]): Rect | null {
+  if (!lines.length) return null;
+  const width = PLAY_RECT.w - 32;
+  const rows = lines.flatMap((line) => wrap(ctx, line, 22, width));
+  const h = 12 + 20 * rows.length;
+  const box = rect(PLAY_RECT.x + 6, PLAY_RECT.y + PLAY_RECT.h - 6 - h, PLAY_RECT.w - 12, h);
+  ctx.fillStyle = C.NOTICE_SHADE;
+  ctx.fillRect(box.x, box.y, box.w, box.h);
+  rows.forEach((row, k) =>
+    drawText(ctx, row, 22, C.TEXT, box.x + 10, box.y + 6 + 20 * k, "topleft"),
+  );
+  return box;
+}

@@ -1,0 +1,82 @@
+/**
+ * Text on the canvas at the desktop's sizes. The desktop uses pygame's bundled bold sans
+ * at size s, which pygame renders at 0.6875 s px; its "bold" is emboldened once more.
+ */
+export const FONT_FAMILY = "EvapSans, 'Liberation Sans', Arial, Helvetica, sans-serif";
+const PYGAME_SCALE = 0.6875;
+
+export type Anchor =
+  | "center"
+  | "midleft"
+  | "midright"
+  | "midtop"
+  | "midbottom"
+  | "topleft"
+  | "topright"
+  | "bottomleft"
+  | "bottomright";
+
+/** Canvas font for a desktop size. */
+export function fontFor(size: number): string {
+  return `700 ${(size * PYGAME_SCALE).toFixed(2)}px ${FONT_FAMILY}`;
+}
+
+/** Draw text anchored at (x, y) like pygame's get_rect(anchor=...); returns its width. */
+export function drawText(
+  ctx: CanvasRenderingContext2D,
+  text: string,
+  size: number,
+  color: string,
+  x: number,
+  y: number,
+  anchor: Anchor = "topleft",
+  bold = false,
+): number {
+  ctx.font = fontFor(size);
+  ctx.fillStyle = color;
+  ctx.textAlign = anchor.endsWith("left") ? "left" : anchor.endsWith("right") ? "right" : "center";
+  ctx.textBaseline =
+    anchor.startsWith("top") || anchor === "midtop"
+      ? "top"
+      : anchor.startsWith("bottom") || anchor === "midbottom"
+        ? "bottom"
+        : "middle";
+  // pygame's line box is a little taller than the em box: shift top/bottom anchors to match.
+  const em = size * PYGAME_SCALE;
+  const dy = ctx.textBaseline === "top" ? em * 0.12 : ctx.textBaseline === "bottom" ? -em * 0.1 : 0;
+  ctx.fillText(text, x, y + dy);
+  if (bold) {
+    ctx.lineWidth = Math.max(0.5, em * 0.045);
+    ctx.strokeStyle = color;
+    ctx.lineJoin = "round";
+    ctx.strokeText(text, x, y + dy);
+  }
+  return ctx.measureText(text).width;
+}
+
+export function textWidth(ctx: CanvasRenderingContext2D, text: string, size: number): number {
+  ctx.font = fontFor(size);
+  return ctx.measureText(text).width;
+}
+
+/** Greedy word wrap to a width (a word wider than that gets its own row). */
+export function wrap(
+  ctx: CanvasRenderingContext2D,
+  text: string,
+  size: number,
+  width: number,
+): string[] {
+  const rows: string[] = [];
+  let row = "";
+  for (const word of text.split(/\s+/).filter(Boolean)) {
+    const candidate = row ? `${row} ${word}` : word;
+    if (row && textWidth(ctx, candidate, size) > width) {
+      rows.push(row);
+      row = word;
+    } else {
+      row = candidate;
+    }
+  }
+  if (row) rows.push(row);
+  return rows.length ? rows : [""];
+}

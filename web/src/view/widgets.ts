@@ -1,0 +1,76 @@
+/** The trap-height slider and the control buttons, drawn from plain state. */
+import * as C from "./colors";
+import { drawButton, type Look, type SymbolName } from "./icons";
+import type { Rect } from "./geometry";
+import { drawText } from "./text";
+
+/** Slider value <-> knob position (the desktop's Slider arithmetic). */
+export class SliderModel {
+  activation = 0;
+  constructor(
+    readonly min: number,
+    readonly max: number,
+    value: number,
+  ) {
+    this.setValue(value);
+  }
+  get value(): number {
+    return this.min + this.activation * (this.max - this.min);
+  }
+  setValue(v: number): void {
+    this.activation = Math.min(1, Math.max(0, (v - this.min) / (this.max - this.min)));
+  }
+  /** The value for a knob at logical x on a bar at r. */
+  valueAt(x: number, r: Rect): number {
+    const a = Math.min(1, Math.max(0, (x - r.x) / r.w));
+    return this.min + a * (this.max - this.min);
+  }
+  knobX(r: Rect): number {
+    return Math.round(r.x + this.activation * r.w);
+  }
+}
+
+export function drawSlider(
+  ctx: CanvasRenderingContext2D,
+  r: Rect,
+  model: SliderModel,
+  knobRadius: number,
+  label: string,
+  hot: boolean,
+  enabled: boolean,
+  labelSize = 24,
+): void {
+  ctx.fillStyle = C.WHITE;
+  ctx.beginPath();
+  ctx.roundRect(r.x, r.y, r.w, r.h, 3);
+  ctx.fill();
+  ctx.strokeStyle = C.BLACK;
+  ctx.lineWidth = 1;
+  ctx.beginPath();
+  ctx.roundRect(r.x + 0.5, r.y + 0.5, r.w - 1, r.h - 1, 3);
+  ctx.stroke();
+  if (label) {
+    // The desktop's slider label is pygame's default font at 24 (no extra weight).
+    drawText(ctx, label, labelSize, C.WHITE, r.x + r.w / 2, r.y + r.h + knobRadius + 4, "midtop");
+  }
+  const cx = model.knobX(r);
+  const cy = r.y + r.h / 2;
+  ctx.fillStyle = !enabled ? "rgb(170,170,170)" : hot ? "rgb(255,245,70)" : C.YELLOW;
+  ctx.beginPath();
+  ctx.arc(cx, cy, knobRadius, 0, 2 * Math.PI);
+  ctx.fill();
+  ctx.strokeStyle = C.BLACK;
+  ctx.lineWidth = 2;
+  ctx.beginPath();
+  ctx.arc(cx, cy, knobRadius - 1, 0, 2 * Math.PI);
+  ctx.stroke();
+}
+
+export function drawControlButton(
+  ctx: CanvasRenderingContext2D,
+  r: Rect,
+  symbol: SymbolName,
+  look: Look,
+): void {
+  drawButton(ctx, r, symbol, look);
+}

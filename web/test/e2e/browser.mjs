@@ -1,0 +1,79 @@
+// Real headless Chromium (Debian's /usr/bin/chromium) driven by playwright-core, and the
+// built single page opened from file://. Shared by the end-to-end tests and the page bench.
+import { mkdtempSync, rmSync } from "node:fs";
+import { tmpdir } from "node:os";
+import { join, resolve } from "node:path";
+import { pathToFileURL } from "node:url";
+import { chromium } from "playwright-core";
+
+export const CHROMIUM = process.env.CHROMIUM ?? "/usr/bin/chromium";
+export const PAGE = resolve(import.meta.dirname, "../../dist/evapcool.html");
+export const PAGE_URL = pathToFileURL(PAGE).href;
+const FLAGS = [
+  "--headless",
+  "--no-sandbox",
+  "--disable-gpu",
+  "--disable-quic",
+  "--no-first-run",
+  "--disable-background-networking",
+  "--disable-component-update",
+  "--disable-sync",
+];
+
+/** A browser with a fresh user data dir; close() removes the dir too. */
+export async function launch() {
+  const dir = mkdtempSync(join(tmpdir(), "evapcool-chromium-"));
+  const context = await chromium.launchPersistentContext(dir, {
+    executablePath: CHROMIUM,
+    headless: true,
+    args: FLAGS,
+    ignoreDefaultArgs: ["--enable-automation"],
+    viewport: null,
+  });
+  return {
+    context,
+    async close() {
+      await context.close();
+      rmSync(dir, { recursive: true, force: true });
+    },
+  };
+}
+
+/**
+ * A new page (own context options) that records console errors, page errors and every
+ * request that is not the page file itself.
+ */
+export async function openPage(
+  browser,
+  {
+    viewport = { width: 800, height: 700 },
+    scale = 1,
+    touch = false,
+    query = "",
+    reducedMotion,
+  } = {},
+) {
+  const page = await browser.context.newPage();
+  await page.setViewportSize(viewport);
+  const cdp = await browser.context.newCDPSession(page);
+  await cdp.send("Emulation.setDeviceMetricsOverride", {
+    width: viewport.width,
+    height: viewport.height,
+    deviceScaleFactor: scale,
+    mobile: touch,
+  });
+  if (touch)
+    await cdp.send("Emulation.setTouchEmulationEnabled", { enabled: true, maxTouchPoints: 5 });
+  if (reducedMotion) await page.emulateMedia({ reducedMotion });
+  const log = { errors: [], requests: [] };
+  page.on("console", (m) => {
+    if (m.type() === "error" || m.type() === "warning") log.errors.push(`${m.type()}: ${m.text()}`);
+  });
+  page.on("pageerror", (e) => log.errors.push(`pageerror: ${e.message}`));
+  page.on("request", (r) => {
+    if (r.url() !== PAGE_URL + query) log.requests.push(r.url());
+  });
+  await page.goto(PAGE_URL + query);
+  await page.waitForFunction(() => window.evapcool !== undefined);
+  return { page, log, cdp };
+}

@@ -1,0 +1,41 @@
+// `npm run screenshots`: the README's pictures of the browser edition into docs/
+// (the classic start, a win, a phone in portrait), from the built page in headless Chromium.
+import { resolve } from "node:path";
+import { launch, openPage } from "./browser.mjs";
+
+const DOCS = resolve(import.meta.dirname, "../../../docs");
+const browser = await launch();
+try {
+  let { page } = await openPage(browser, {
+    viewport: { width: 640, height: 672 },
+    query: "?seed=1",
+  });
+  await page.screenshot({ path: `${DOCS}/web-start.png` });
+  // A ramp that wins: 5 px lower every 25 frames down to 100, then wait for the condensate.
+  await page.keyboard.press("Space");
+  for (let k = 0; k < 200; k++) {
+    const s = await page.evaluate(() => window.evapcool.state());
+    if (s.won) break;
+    if (s.trapHeight > 100) await page.keyboard.press("ArrowDown");
+    await page.evaluate(() => window.evapcool.runFrames(25));
+  }
+  await page.keyboard.type("Marie");
+  await page.evaluate(() => window.evapcool.runFrames(150));
+  await page.screenshot({ path: `${DOCS}/web-win.png` });
+  await page.close();
+  ({ page } = await openPage(browser, {
+    viewport: { width: 390, height: 844 },
+    scale: 2,
+    touch: true,
+    query: "?seed=2",
+  }));
+  await page.evaluate(() => {
+    window.evapcool.app.game.setTrapHeight(250);
+    window.evapcool.runFrames(90);
+  });
+  await page.screenshot({ path: `${DOCS}/web-phone.png` });
+  await page.close();
+} finally {
+  await browser.close();
+}
+console.log(`wrote ${DOCS}/web-start.png, web-win.png, web-phone.png`);

@@ -1,0 +1,356 @@
+import fc from "fast-check";
+import { describe, expect, test } from "vitest";
+import { cupCapacity } from "../../src/game/capacity";
+import {
+  cleanName,
+  formatSeconds,
+  HighScoreTable,
+  MAX_ENTRIES,
+  scoresKey,
+} from "../../src/game/highscores";
+import { Game, HEIGHT_MAX, HEIGHT_MIN, type GameConfig } from "../../src/game/rules";
+import {
+  DEFAULTS,
+  describe as describeSettings,
+  fromMapping,
+  maxAtoms,
+  step,
+  validate,
+} from "../../src/game/settings";
+import { loadSettings, saveSettings, SETTINGS_KEY } from "../../src/game/settingsStore";
+import type { AtomArrays, SimLike } from "../../src/game/sim";
+import { MemoryStore } from "../../src/game/store";
+import { parseParams } from "../../src/app/params";
+
+describe("cup capacity", () => {
+  test("the same counts as the desktop's settings.cup_capacity (every atom below the rim)", () => {
+    // python -c "from evapcool.game.settings import cup_capacity; ..." (desktop branch)
+    const python: Record<number, number> = {
+      1: 9508,
+      2: 2354,
+      3: 1038,
+      4: 578,
+      5: 366,
+      6: 252,
+      7: 181,
+      8: 137,
+      9: 105,
+      10: 88,
+      11: 73,
+      12: 62,
+      13: 49,
+      14: 38,
+      15: 38,
+      16: 29,
+      17: 29,
+      18: 22,
+      19: 22,
+      20: 20,
+    };
+    for (const [r, n] of Object.entries(python)) expect(cupCapacity(Number(r))).toBe(n);
+    expect(cupCapacity(0.5)).toBe(38214);
+    expect(cupCapacity(2.5)).toBe(1498);
+    expect(cupCapacity(7.3)).toBe(158);
+    expect(maxAtoms(3)).toBe(1038);
+    expect(step({ ...DEFAULTS, radius: 1 }, "radius", -1).radius).toBe(1);
+    expect(maxAtoms(1)).toBe(9508);
+    expect(maxAtoms(0.5)).toBe(20000);
+  });
+});
+
+describe("settings", () => {
+  test("one clear message per bad value, as the desktop words it", () => {
+    expect(() => validate({ ...DEFAULTS, radius: 0.5 })).toThrow(
+      "radius must be a number from 1 to 20 px (got 0.5)",
+    );
+    expect(() => validate({ ...DEFAULTS, nAtoms: 63 })).toThrow(
+      "n_atoms must be a whole number from 1 to 62 for radius 12 (got 63)",
+    );
+    expect(() => validate({ ...DEFAULTS, tcLaw: "box" as never })).toThrow(
+      "tc_law must be one of seed, cup (got 'box')",
+    );
+    const [s, notices] = fromMapping({ radius: 30, n_atoms: "many", escape: "knife", colour: 1 });
+    expect(s).toEqual({ nAtoms: 49, radius: 12, tcLaw: "seed", escape: "knife" });
+    expect(notices).toEqual([
+      "Settings: ignored unknown entries colour.",
+      "Settings: radius must be a number from 1 to 20 px (got 30); using the default 12.",
+      "Settings: n_atoms must be a whole number from 1 to 62 for radius 12 (got 'many'); using the default 49.",
+    ]);
+  });
+
+  test("the screen's steps: coarser for big counts, radius clamps the count, choices cycle", () => {
+    expect(step(DEFAULTS, "n_atoms", 1).nAtoms).toBe(54);
+    expect(step({ ...DEFAULTS, nAtoms: 20 }, "n_atoms", -1).nAtoms).toBe(19);
+    expect(step({ ...DEFAULTS, nAtoms: 62 }, "n_atoms", 1).nAtoms).toBe(62);
+    const big = step({ ...DEFAULTS, nAtoms: 62 }, "radius", 2);
+    expect(big).toMatchObject({ radius: 13, nAtoms: 49 });
+    expect(step(DEFAULTS, "tc_law", 1).tcLaw).toBe("cup");
+    expect(step(DEFAULTS, "escape", -1).escape).toBe("knife");
+    expect(describeSettings(DEFAULTS)[0]).toEqual(["Number of atoms", "49  (1 to 62)"]);
+  });
+
+  test("stored settings: corrupt or bad values are set aside and reported once", () => {
+    const kv = new MemoryStore();
+    kv.setItem(SETTINGS_KEY, "{not json");
+    const [s, notes] = loadSettings(kv);
+    expect(s).toEqual(DEFAULTS);
+    expect(notes).toHaveLength(1);
+    expect(notes[0]).toMatch(
+      /damaged \(not valid JSON\); they were kept as "evapcool\.settings\.corrupt-/,
+    );
+    expect([...kv.map.values()]).toEqual(["{not json"]);
+    expect(loadSettings(kv)[1]).toEqual([]);
+    expect(saveSettings(kv, { ...DEFAULTS, nAtoms: 60 }).notices).toEqual([]);
+    expect(loadSettings(kv)[0].nAtoms).toBe(60);
+    expect(() => saveSettings(kv, { ...DEFAULTS, nAtoms: 0 })).toThrow(RangeError);
+  });
+
+  test("two tabs: saving writes only the fields this tab changed", () => {
+    const kv = new MemoryStore();
+    const base = { ...DEFAULTS };
+    saveSettings(kv, { ...base, escape: "knife" }, base); // tab A
+    const { saved } = saveSettings(kv, { ...base, tcLaw: "cup" }, base); // tab B
+    expect(saved).toEqual({ ...DEFAULTS, escape: "knife", tcLaw: "cup" });
+    expect(loadSettings(kv)[0]).toEqual(saved);
+  });
+});
+
+describe("high scores", () => {
+  test("best first; ties to the faster time, then the earlier date; top 10 only", () => {
+    const t = new HighScoreTable(new MemoryStore(), scoresKey("k"));
+    const d = (s: number) => new Date(2024, 0, 1, 12, 0, s);
+    t.add("slow", 30, 50, d(1));
+    t.add("fast", 30, 40, d(2));
+    t.add("late", 30, 40, d(3));
+    t.add("best", 31, 90, d(4));
+    expect(t.entries.map((e) => e.name)).toEqual(["best", "fast", "late", "slow"]);
+    for (let k = 0; k < 8; k++) t.add(`p${k}`, 10, 10, d(5 + k));
+    expect(t.entries).toHaveLength(MAX_ENTRIES);
+    expect(t.qualifies(10, 10)).toBe(false);
+    expect(t.qualifies(10, 9.99)).toBe(true);
+    expect(t.add("last", 1, 1, d(30))).toBeNull();
+    expect(t.add("  ", 99, 1, d(31))).toBe(1);
+    expect(t.entries[0].name).toBe("Anonymous");
+  });
+
+  test("names and times are shown like the desktop's", () => {
+    expect(cleanName("  Ada\t\nLovelace ")).toBe("Ada Lovelace");
+    expect(cleanName("a\u0000b")).toBe("a b");
+    expect(cleanName("字".repeat(20))).toBe("字".repeat(16));
+    expect(cleanName("😀".repeat(17))).toHaveLength(32); // 16 code points, 2 units each
+    expect(formatSeconds(83.25)).toBe("1:23.3");
+    expect(formatSeconds(59.96)).toBe("1:00.0");
+    expect(formatSeconds(0)).toBe("0:00.0");
+  });
+
+  test("a damaged or foreign stored table is set aside, reported once, and the new one saved", () => {
+    const kv = new MemoryStore();
+    const key = scoresKey("49-r12-seed-rim");
+    for (const bad of ["[1,2", '{"version": 2, "entries": []}', '{"entries": [{"name": ""}]}']) {
+      kv.map.clear();
+      kv.setItem(key, bad);
+      const t = new HighScoreTable(kv, key);
+      const notes = t.takeNotices();
+      expect(notes).toHaveLength(1);
+      expect(t.entries).toEqual([]);
+      expect([...kv.map.values()]).toEqual([bad]);
+      expect(new HighScoreTable(kv, key).takeNotices()).toEqual([]);
+      t.add("Bo", 5, 5);
+      expect(new HighScoreTable(kv, key).entries[0].name).toBe("Bo");
+    }
+  });
+
+  test("two tabs: each result is merged into what the other stored meanwhile", () => {
+    const kv = new MemoryStore();
+    const key = scoresKey("k");
+    const a = new HighScoreTable(kv, key);
+    const b = new HighScoreTable(kv, key);
+    expect(a.add("Ann", 20, 10)).toBe(1);
+    expect(b.add("Ben", 30, 10)).toBe(1);
+    expect(b.entries.map((e) => e.name)).toEqual(["Ben", "Ann"]);
+    expect(a.add("Cy", 25, 10)).toBe(2);
+    expect(new HighScoreTable(kv, key).entries.map((e) => e.name)).toEqual(["Ben", "Cy", "Ann"]);
+    b.load();
+    expect(b.entries).toHaveLength(3);
+  });
+
+  test("a browser that refuses to store gives a notice, the table lives on", () => {
+    const kv = new MemoryStore();
+    kv.setItem = () => {
+      throw new DOMException("full", "QuotaExceededError");
+    };
+    const t = new HighScoreTable(kv, scoresKey("x"));
+    expect(t.add("Cy", 3, 3)).toBe(1);
+    expect(t.takeNotices()).toEqual([
+      "High scores could not be saved in this browser (QuotaExceededError); kept for this visit.",
+    ]);
+    expect(t.entries).toHaveLength(1);
+  });
+});
+
+/** A SimLike whose temperature falls with the trap height: enough for the game's rules. */
+class FakeSim implements SimLike {
+  time = 0;
+  nAtoms = 10;
+  nTrapped = 10;
+  nEscaped = 0;
+  trapHeight = 400;
+  rimHalfWidth = 200;
+  curvature = 0.01;
+  gravity = 1 / 3;
+  initialTemperature = 100;
+  criticalTemperature = 75;
+  tcExponent = 2 / 3;
+  won = false;
+  winRule = true;
+  collisionCount = 0;
+  screenOrigin = [296, 532] as const;
+  heights: Array<[number, number]> = [];
+  get temperature() {
+    return this.trapHeight / 4;
+  }
+  advance(dt: number) {
+    this.time += dt;
+    this.heights.push([this.time, this.trapHeight]);
+    if (this.temperature < this.criticalTemperature) this.won = true;
+  }
+  trapped(): AtomArrays {
+    const z = new Float64Array(0);
+    return { x: z, y: z, vx: z, vy: z, radius: z, mass: z, count: 0 };
+  }
+  escaped(): AtomArrays {
+    return this.trapped();
+  }
+}
+
+describe("game rules", () => {
+  const make = () => {
+    const sims: FakeSim[] = [];
+    const game = new Game((c: GameConfig) => {
+      const s = new FakeSim();
+      s.nAtoms = c.nAtoms;
+      sims.push(s);
+      return s;
+    });
+    return { game, sims };
+  };
+
+  test("starts paused at 400; speed doubles and halves within 1/4 to 4", () => {
+    const { game } = make();
+    expect(game.paused).toBe(true);
+    expect(game.trapHeight).toBe(400);
+    expect(game.update(1)).toBe(0);
+    for (let k = 0; k < 5; k++) game.faster();
+    expect(game.speed).toBe(4);
+    for (let k = 0; k < 7; k++) game.slower();
+    expect(game.speed).toBe(0.25);
+  });
+
+  test("the trap is clamped to the slider and moves only at whole frames", () => {
+    const { game, sims } = make();
+    game.setTrapHeight(1000);
+    expect(game.trapHeight).toBe(HEIGHT_MAX);
+    game.setTrapHeight(-5);
+    expect(game.trapHeight).toBe(HEIGHT_MIN);
+    game.setTrapHeight(400);
+    game.paused = false;
+    game.update(0.5 / 30); // half a frame: now between boundaries
+    game.setTrapHeight(380);
+    expect(sims[0].trapHeight).toBe(400);
+    expect(game.trapHeight).toBe(380);
+    game.update(0.25 / 30);
+    expect(sims[0].trapHeight).toBe(400);
+    game.update(0.5 / 30);
+    // The change took effect exactly at frame 1.
+    expect(sims[0].heights.map(([t, h]) => [Number(t.toFixed(9)), h])).toEqual([
+      [0.5, 400],
+      [0.75, 400],
+      [1, 400],
+      [1.25, 380],
+    ]);
+  });
+
+  test("a stall never jumps the game ahead: at most 2 physics frames a drawn frame at 1x", () => {
+    const { game, sims } = make();
+    game.paused = false;
+    game.update(5);
+    expect(sims[0].time).toBeCloseTo(2, 12);
+  });
+
+  test("the win is announced once, with the play time; the trap then freezes", () => {
+    const { game } = make();
+    const wins: number[] = [];
+    game.onWin.push((g) => wins.push(g.wonAt ?? -1));
+    game.paused = false;
+    game.setTrapHeight(280); // T = 70 < Tc = 75
+    game.runFrames(3);
+    game.runFrames(3);
+    expect(wins).toEqual([1 / 30]);
+    expect(game.score).toBe(10);
+    expect(game.setTrapHeight(100)).toBe(false);
+    game.restart();
+    expect(game.score).toBeNull();
+    expect(game.paused).toBe(true);
+  });
+
+  test("step: one frame, only while paused", () => {
+    const { game, sims } = make();
+    expect(game.step()).toBe(1);
+    game.paused = false;
+    expect(game.step()).toBe(0);
+    expect(sims[0].time).toBe(1);
+  });
+});
+
+describe("too few atoms (the desktop's rule)", () => {
+  test("out of reach: none left, one alone above Tc, or none can leave any more", async () => {
+    const { outOfReach } = await import("../../src/game/rules");
+    expect(outOfReach(0, 0, 10, 5)).toBe("All the atoms escaped.");
+    expect(outOfReach(1, 20, 10, 5)).toBe("One atom alone cannot cool below Tc.");
+    expect(outOfReach(1, 5, 10, 5)).toBeNull(); // below Tc: condensing
+    expect(outOfReach(3, 30, 5, 40)).toBe("No atom can leave any more: T stays above Tc.");
+    expect(outOfReach(3, 300, 5, 40)).toBeNull(); // one may leave with nearly all of it
+  });
+
+  test("the game asks it with the lightest atom's escape energy; never after the win", () => {
+    const sims: FakeSim[] = [];
+    const game = new Game(() => {
+      const s = new FakeSim();
+      sims.push(s);
+      return s;
+    });
+    sims[0].nTrapped = 1;
+    expect(game.tooFewAtoms()).toBe("One atom alone cannot cool below Tc.");
+    sims[0].won = true;
+    expect(game.tooFewAtoms()).toBeNull();
+    sims[0].won = false;
+    sims[0].winRule = false;
+    expect(game.tooFewAtoms()).toBeNull();
+  });
+});
+
+describe("address options", () => {
+  test("values for this visit; one message per bad value", () => {
+    const p = parseParams("?atoms=10000&radius=1&seed=3&speed=2", DEFAULTS);
+    expect(p).toEqual({ overrides: { radius: 1, nAtoms: 10000 }, seed: 3, speed: 2, notices: [] });
+    const q = parseParams("?atoms=2.5&speed=8&escape=door&zoom=2", DEFAULTS);
+    expect(q.overrides).toEqual({});
+    expect(q.notices).toEqual([
+      "Address: unknown option zoom; known: atoms, radius, seed, speed, tc-law, escape.",
+      "Address: atoms must be a whole number >= 1 (got 2.5); ignored.",
+      "Address: escape must be one of rim, knife (got 'door'); ignored.",
+      "Address: speed must be a number from 0.25 to 4 (got 8); ignored.",
+    ]);
+    expect(parseParams("?radius=20", DEFAULTS).overrides).toEqual({ radius: 20, nAtoms: 20 });
+  });
+
+  test("any radius and count in range is accepted or named", () => {
+    fc.assert(
+      fc.property(fc.double({ noNaN: false }), fc.integer({ min: -5, max: 200_000 }), (r, n) => {
+        const p = parseParams(`?radius=${r}&atoms=${n}`, DEFAULTS);
+        const ok = Object.keys(p.overrides).length === 2;
+        return ok ? p.notices.length === 0 : p.notices.length >= 1;
+      }),
+    );
+  });
+});
