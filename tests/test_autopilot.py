@@ -197,6 +197,16 @@ def test_deadline_cuts_lower_when_far_from_tc_and_short_of_time():
     assert c(reading(frame=1799, t=50.0, tc=20.0)) == pytest.approx(2 * 0.4 * 50 / G)
 
 
+def test_guarded_follows_its_ramp_until_late_and_far_from_tc():
+    p = {"h0": 400, "h1": 100, "duration": 1000, "eta_cap": 10, "gain": 20, "eta_lo": 2}
+    c = Policy("guarded", p).controller()
+    assert c(reading(frame=500, t=50.0, tc=49.0)) == pytest.approx(250.0)  # the ramp
+    late = c(reading(frame=1700, t=50.0, tc=40.0))  # u = ln(1.25) / (1/18): eta at its floor
+    assert late == pytest.approx(2 * 0.4 * 50 / G)
+    floored = Policy("guarded", {**p, "eta_floor": 5}).controller()
+    assert floored(reading(frame=1700, t=50.0, tc=40.0)) == pytest.approx(5 * 0.4 * 50 / G)
+
+
 def test_win_energy_is_what_one_escape_must_carry_and_rim_escapes_carry_more_than_mgh():
     """Reading.win_energy: removing an atom of that energy puts T on Tc(N - 1); and an atom
     leaving over the rim carries more than m g H, so a cut there makes the next escape win."""

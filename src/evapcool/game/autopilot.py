@@ -279,6 +279,30 @@ def _deadline(p: Mapping[str, float]) -> Controller:
     return rule
 
 
+def _guarded(p: Mapping[str, float]) -> Controller:
+    """A linear ramp with a rescue: when the win is far for the time left, cut lower.
+
+    H = min(ramp(t), eta kT/(m g)) with eta = eta_cap - gain u, at least eta_lo, where
+    u = ln(T/Tc) / (1 - t/budget). Early on (or close to Tc) u is small and the ramp rules;
+    a gas still far from Tc late in the game is evaporated faster so that it still wins.
+    Never below eta_floor kT/(m g): a cut that low takes atoms of less than the mean energy
+    plus Tc's share, and brings the gas no closer to Tc.
+    """
+    ramp = Ramp(((0.0, p["h0"]), (max(p["duration"], 1.0), p["h1"])))
+
+    def rule(r: Reading) -> float:
+        h = ramp.height_at(r.frame)
+        if r.n_trapped == 0 or r.temperature <= 0.0 or r.critical_temperature <= 0.0:
+            return h
+        left = max(1.0 - r.frame / p["budget"], 0.01)
+        u = max(math.log(r.temperature / r.critical_temperature), 0.0) / left
+        eta = max(p["eta_lo"], p["eta_cap"] - p["gain"] * u)
+        unit = r.kt / (r.mass * r.gravity)
+        return clamp_height(max(min(h, eta * unit), p["eta_floor"] * unit))
+
+    return rule
+
+
 POLICIES: dict[str, PolicySpec] = {
     "feedback": PolicySpec(
         defaults={"eta0": 6.0, "eta1": 6.0, "beta": 0.0, "ratchet": 0.0, "budget": 1800.0},
@@ -309,6 +333,20 @@ POLICIES: dict[str, PolicySpec] = {
         },
         build=_deadline,
         doc="eta = eta_hi - gain ln(T/Tc) / (finish - t/budget), within [eta_lo, eta_hi]",
+    ),
+    "guarded": PolicySpec(
+        defaults={
+            "h0": 425.0,
+            "h1": 162.0,
+            "duration": 1788.0,
+            "eta_cap": 12.0,
+            "gain": 10.0,
+            "eta_lo": 2.0,
+            "eta_floor": 0.0,
+            "budget": 1800.0,
+        },
+        build=_guarded,
+        doc="a linear ramp, cut lower (eta_cap - gain ln(T/Tc)/(1 - t/budget)) when late",
     ),
 }
 

@@ -140,6 +140,18 @@ def _suggest_deadline(trial, budget: int, knots: int) -> dict[str, float]:
     }
 
 
+def _suggest_guarded(trial, budget: int, knots: int) -> dict[str, float]:
+    return {
+        "h0": _h(trial, "guarded.h0", 250.0, HEIGHT_MAX),
+        "h1": _h(trial, "guarded.h1", HEIGHT_MIN, 300.0),
+        "duration": trial.suggest_float("guarded.duration", 0.5 * budget, float(budget)),
+        "eta_cap": trial.suggest_float("guarded.eta_cap", 3.0, 20.0),
+        "gain": trial.suggest_float("guarded.gain", 0.0, 40.0),
+        "eta_lo": trial.suggest_float("guarded.eta_lo", 1.0, 8.0),
+        "eta_floor": trial.suggest_float("guarded.eta_floor", 0.0, 5.0),
+    }
+
+
 def _policy(family: str) -> Callable[[Mapping[str, float], int, int], Strategy]:
     def build(p: Mapping[str, float], budget: int, knots: int) -> Strategy:
         # Parameters to 4 decimals: short strategy texts, and the text is what was scored.
@@ -165,6 +177,8 @@ FAMILIES: dict[str, Family] = {
                _suggest_creep, _policy("creep")),
         Family("deadline", True, "eta falls with ln(T/Tc) per time left to a finish time",
                _suggest_deadline, _policy("deadline")),
+        Family("guarded", True, "a linear ramp, cut lower when the win is far for the time left",
+               _suggest_guarded, _policy("guarded")),
     )
 }  # fmt: skip
 FAMILY_HELP = ", ".join(FAMILIES)
