@@ -198,9 +198,9 @@ def test_deadline_cuts_lower_when_far_from_tc_and_short_of_time():
 
 
 def test_guarded_follows_its_ramp_until_late_and_far_from_tc():
-    p = {"h0": 400, "h1": 100, "duration": 1000, "eta_cap": 10, "gain": 20, "eta_lo": 2}
+    p = {"h0": 400, "h1": 300, "duration": 1800, "eta_cap": 10, "gain": 20, "eta_lo": 2}
     c = Policy("guarded", p).controller()
-    assert c(reading(frame=500, t=50.0, tc=49.0)) == pytest.approx(250.0)  # the ramp
+    assert c(reading(frame=900, t=50.0, tc=49.0)) == pytest.approx(350.0)  # the ramp
     late = c(reading(frame=1700, t=50.0, tc=40.0))  # u = ln(1.25) / (1/18): eta at its floor
     assert late == pytest.approx(2 * 0.4 * 50 / G)
     floored = Policy("guarded", {**p, "eta_floor": 5}).controller()
