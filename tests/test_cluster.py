@@ -117,7 +117,7 @@ def test_a_worker_killed_mid_sweep_loses_no_finished_run(tmp_path):
         table = result.runs.set_index("run_id")
         assert all(table.loc[k, "n_final"] == v for k, v in before.items())
         # And every run is the run it would have been anywhere.
-        again = sweep(spec, None, workers=1)
+        again = sweep(spec, None, workers=2)
         a = again.runs.drop(columns=VARYING).sort_values("run_id").reset_index(drop=True)
         b = result.runs.drop(columns=VARYING).sort_values("run_id").reset_index(drop=True)
         pd.testing.assert_frame_equal(a, b)
@@ -236,26 +236,28 @@ def test_an_unreachable_scheduler_is_one_line_and_nothing_written(tmp_path, comm
     assert [p.name for p in tmp_path.iterdir()] == ["s.toml"]
 
 
-def test_resume_keeps_the_problem_and_a_study_is_not_overwritten(tmp_path):
-    r = evapcool("optimize", "--study", "s.db", "--trials", "2", "--workers", "1", *SEARCH,
+def test_resume_keeps_the_problem_and_a_study_is_not_overwritten(cluster, tmp_path):
+    at = ["--scheduler", cluster.address]
+    r = evapcool("optimize", "--study", "s.db", "--trials", "2", *at, *SEARCH,
                  cwd=tmp_path)  # fmt: skip
     assert r.returncode == 0, r.stderr
     r = evapcool("optimize", "--study", "s.db", cwd=tmp_path)
     assert r.returncode == 2 and "--resume" in r.stderr
     r = evapcool("optimize", "--resume", "s.db", "--budget", "900", cwd=tmp_path)
     assert r.returncode == 2 and "--budget" in r.stderr and "600" in r.stderr
-    r = evapcool("optimize", "--resume", "s.db", "--trials", "2", "--workers", "1",
+    r = evapcool("optimize", "--resume", "s.db", "--trials", "2", *at,
                  "--budget", "600", cwd=tmp_path)  # fmt: skip
     assert r.returncode == 0, r.stderr
     assert len(_trials(tmp_path / "s.db")) == 4
 
 
 @pytest.mark.parametrize("sampler", ["cmaes", "nsga2"])
-def test_other_samplers_and_the_time_objective(tmp_path, sampler):
+def test_other_samplers_and_the_time_objective(cluster, tmp_path, sampler):
     objectives = ["--objectives", "score,time"] if sampler == "nsga2" else []
-    r = evapcool("optimize", "--study", "s.db", "--trials", "4", "--workers", "1", "--sampler",
-                 sampler, "--budget", "600", "--seeds", "3", "--chunk", "3", "--validate", "0",
-                 "--family", "power", *objectives, cwd=tmp_path)  # fmt: skip
+    r = evapcool("optimize", "--study", "s.db", "--trials", "4", "--scheduler",
+                 cluster.address, "--sampler", sampler, "--budget", "600", "--seeds", "3",
+                 "--chunk", "3", "--validate", "0", "--family", "power", *objectives,
+                 cwd=tmp_path)  # fmt: skip
     assert r.returncode == 0, r.stderr
     trials = _trials(tmp_path / "s.db")
     assert len(trials) == 4 and all(t[1] == "COMPLETE" for t in trials)

@@ -18,7 +18,7 @@ import pytest
 pd = pytest.importorskip("pandas")
 pytest.importorskip("distributed")
 
-from clusterhelp import evapcool  # noqa: E402
+from clusterhelp import Cluster, evapcool  # noqa: E402
 
 from evapcool.lab import COLUMNS, run_experiment, sweep  # noqa: E402
 from evapcool.lab.sweeps import ENV_COLUMNS, SpecError, expand, run_id  # noqa: E402
@@ -182,6 +182,14 @@ def test_dry_run_counts_and_writes_nothing(tmp_path):
 
 
 @pytest.fixture(scope="module")
+def cluster(tmp_path_factory):
+    """A `dask scheduler` and two workers: quicker than a new local cluster per command."""
+    c = Cluster(tmp_path_factory.mktemp("dask"), workers=2)
+    yield c
+    c.close()
+
+
+@pytest.fixture(scope="module")
 def swept(tmp_path_factory):
     """The SPEC swept once on a local cluster of two workers, into a folder, with CSV too."""
     folder = tmp_path_factory.mktemp("sweep")
@@ -232,14 +240,14 @@ def test_summary_columns_follow_the_records(swept):
         assert row["escape_rate"] == pytest.approx(row["escaped"] / (row["frames_done"] / 30))
 
 
-def test_a_second_sweep_skips_what_is_done_and_adds_the_rest(swept, tmp_path):
+def test_a_second_sweep_skips_what_is_done_and_adds_the_rest(swept, cluster, tmp_path):
     result, folder, _ = swept
     import shutil
 
     out = tmp_path / "out"
     shutil.copytree(folder / "out", out)
     bigger = write(tmp_path, SPEC.replace("to = 3", "to = 4"))
-    again = sweep(bigger, out, workers=1)
+    again = sweep(bigger, out, scheduler=cluster.address)
     assert again.skipped == 12 and again.ran == 4 and len(again.runs) == 16
     assert again.runs["run_id"].is_unique
     old = result.runs.set_index("run_id")
@@ -247,13 +255,13 @@ def test_a_second_sweep_skips_what_is_done_and_adds_the_rest(swept, tmp_path):
     pd.testing.assert_series_equal(new["n_final"], old["n_final"])
 
 
-def test_failed_runs_are_recorded_and_the_others_go_on(tmp_path):
+def test_failed_runs_are_recorded_and_the_others_go_on(cluster, tmp_path):
     spec = write(
         tmp_path,
         "[sweep]\nseeds = [1, 2]\n[parameters]\natoms = [6, 2000]\nradius = 20\nframes = 30\n"
         'engine = "fast"\n',
     )
-    r = evapcool("sweep", str(spec), "--workers", "1", cwd=tmp_path)
+    r = evapcool("sweep", str(spec), "--scheduler", cluster.address, cwd=tmp_path)
     assert r.returncode == 1, r.stderr
     runs = pd.read_parquet(tmp_path / "spec-results" / "runs.parquet")
     assert len(runs) == 4
@@ -264,7 +272,7 @@ def test_failed_runs_are_recorded_and_the_others_go_on(tmp_path):
     assert "2 failed" in r.stderr
 
 
-def test_ctrl_c_keeps_finished_runs_and_the_same_command_goes_on(tmp_path):
+def test_ctrl_c_keeps_finished_runs_and_the_same_command_goes_on(cluster, tmp_path):
     spec = write(
         tmp_path,
         "[sweep]\nseeds = { from = 1, to = 30 }\n[parameters]\natoms = 150\nradius = 4\n"
@@ -286,7 +294,7 @@ def test_ctrl_c_keeps_finished_runs_and_the_same_command_goes_on(tmp_path):
     assert proc.wait(timeout=120) == 130, rest
     first = pd.read_parquet(out / "runs.parquet")
     assert 0 < len(first) < 30 and (first["status"] == "ok").all()
-    r = evapcool("sweep", str(spec), "--workers", "2", cwd=tmp_path)
+    r = evapcool("sweep", str(spec), "--scheduler", cluster.address, cwd=tmp_path)
     assert r.returncode == 0, r.stderr
     assert f"{30 - len(first)} runs in" in r.stderr and f"{len(first)} already done" in r.stderr
     runs = pd.read_parquet(out / "runs.parquet")
