@@ -25,6 +25,7 @@ from clusterhelp import Cluster, evapcool  # noqa: E402
 
 from evapcool.lab import sweep  # noqa: E402
 from evapcool.lab.sweeps import ENV_COLUMNS  # noqa: E402
+from evapcool.optimize.study import result_of  # noqa: E402
 
 VARYING = [*ENV_COLUMNS]  # where and how long: the rest must be identical
 SPEC = """
@@ -58,7 +59,7 @@ def _trials(db) -> list[tuple]:
     study = optuna.load_study(study_name="evapcool", storage=f"sqlite:///{db}")
     return [
         (t.number, t.state.name, tuple(sorted(_params(t).items())), t.values,
-         t.user_attrs.get("scores"))
+         result_of(t).get("scores"))
         for t in sorted(study.trials, key=lambda t: t.number)
     ]  # fmt: skip
 

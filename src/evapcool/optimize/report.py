@@ -24,7 +24,7 @@ from evapcool.game.autopilot import GameSetup, parse_strategy, play, save_strate
 from evapcool.lab.cluster import Engine, TaskError, run_tasks
 from evapcool.optimize.evaluate import Paired, Summary, chunks, play_seeds
 from evapcool.optimize.families import params_of
-from evapcool.optimize.study import Problem, completed_trials
+from evapcool.optimize.study import Problem, completed_trials, result_of
 
 RERANK_START = 2_000_000
 HOLDOUT_START = 1_000_000
@@ -80,11 +80,11 @@ class Choice:
 
 
 def _top(trials: list, k: int) -> list:
-    ranked = sorted(trials, key=lambda t: (-t.user_attrs["score_mean"], t.user_attrs["time_mean"]))
+    ranked = sorted(trials, key=lambda t: (-result_of(t)["score_mean"], result_of(t)["time_mean"]))
     seen: set[str] = set()
     out = []
     for t in ranked:
-        text = t.user_attrs["strategy"]
+        text = result_of(t)["strategy"]
         if text not in seen:
             seen.add(text)
             out.append(t)
@@ -94,7 +94,8 @@ def _top(trials: list, k: int) -> list:
 
 
 def _summary_of_trial(t, budget: int, seeds: list[int]) -> Summary:
-    rows = list(zip(seeds, t.user_attrs["scores"], t.user_attrs["won_frames"], strict=True))
+    a = result_of(t)
+    rows = list(zip(seeds, a["scores"], a["won_frames"], strict=True))
     return Summary.of(rows, budget)
 
 
@@ -104,8 +105,8 @@ def _choices(trials: list, problem: Problem) -> list[Choice]:
         family, _ = params_of(t.params)
         out.append(
             Choice(
-                family=t.user_attrs.get("family", family or problem.families[0]),
-                text=t.user_attrs["strategy"],
+                family=result_of(t).get("family", family or problem.families[0]),
+                text=result_of(t)["strategy"],
                 trial=t.number,
                 search=_summary_of_trial(t, problem.budget, problem.search_seeds),
             )
@@ -130,7 +131,7 @@ def choose(
     if not trials:
         raise ValueError("the study has no finished trials yet")
     top = _choices(_top(trials, finalists), problem)
-    linear = [t for t in trials if t.user_attrs.get("family") == "linear"]
+    linear = [t for t in trials if result_of(t).get("family") == "linear"]
     if baseline is not None:
         base = [Choice("baseline", baseline, None, None)]
     elif linear:
@@ -202,7 +203,7 @@ def comparison(best: Choice, baseline: Choice) -> dict | None:
 def trial_rows(study) -> list[dict]:
     rows = []
     for t in completed_trials(study):
-        a = t.user_attrs
+        a = result_of(t)
         rows.append(
             {
                 "trial": t.number,

@@ -32,6 +32,8 @@ DEFAULT_BATCH = 8
 DEFAULT_CHUNK = 20
 STUDY_NAME = "evapcool"
 PROBLEM_ATTR = "evapcool_problem"
+#: A finished trial's scores, seeds, strategy... (one user attribute).
+RESULT_ATTR = "evapcool"
 
 
 @dataclass(frozen=True)
@@ -236,7 +238,7 @@ class Search:
             try:
                 text = build(family, params, p.budget, p.knots).text
             except ValueError as exc:
-                trial.set_user_attr("error", str(exc))
+                trial.set_user_attr(RESULT_ATTR, {"family": family, "error": str(exc)})
                 self.study.tell(trial, state=optuna.trial.TrialState.FAIL)
                 continue
             n_chunks = len(chunks(p.search_seeds, p.chunk))
@@ -247,18 +249,17 @@ class Search:
         import optuna
 
         t = pend.trial
-        t.set_user_attr("family", pend.family)
-        t.set_user_attr("strategy", pend.strategy)
+        result: dict = {"family": pend.family, "strategy": pend.strategy}
         if pend.error is not None:
-            t.set_user_attr("error", pend.error)
+            result["error"] = pend.error
+            t.set_user_attr(RESULT_ATTR, result)
             self.study.tell(t, state=optuna.trial.TrialState.FAIL)
             return
         s = Summary.of(pend.rows, self.problem.budget)
-        for key, value in (("score_mean", s.mean), ("score_se", s.se), ("time_mean", s.time_mean),
-                           ("time_se", s.time_se), ("no_wins", s.no_wins), ("n", s.n),
-                           ("scores", list(s.scores)), ("won_frames", list(s.won_frames)),
-                           ("cpu_seconds", pend.cpu)):  # fmt: skip
-            t.set_user_attr(key, value)
+        result.update(score_mean=s.mean, score_se=s.se, time_mean=s.time_mean, time_se=s.time_se,
+                      no_wins=s.no_wins, n=s.n, scores=list(s.scores),
+                      won_frames=list(s.won_frames), cpu_seconds=pend.cpu)  # fmt: skip
+        t.set_user_attr(RESULT_ATTR, result)  # one attribute: one write to the storage
         values = [s.mean if o == "score" else s.time_mean for o in self.problem.objectives]
         self.study.tell(t, values if len(values) > 1 else values[0])
         self.told += 1
@@ -333,20 +334,25 @@ def completed_trials(study) -> list:
     return [
         t
         for t in study.get_trials(deepcopy=False, states=(optuna.trial.TrialState.COMPLETE,))
-        if "score_mean" in t.user_attrs
+        if "score_mean" in result_of(t)
     ]
+
+
+def result_of(trial) -> dict:
+    """What `Search` stored about a trial (older studies kept each item apart)."""
+    return trial.user_attrs.get(RESULT_ATTR) or trial.user_attrs
 
 
 def best_so_far(study) -> float:
     trials = completed_trials(study)
-    return max((t.user_attrs["score_mean"] for t in trials), default=math.nan)
+    return max((result_of(t)["score_mean"] for t in trials), default=math.nan)
 
 
 def trial_strategy(trial, problem: Problem):
     """The strategy of a stored trial (rebuilt from its parameters, checked against its text)."""
     family, params = params_of(trial.params)
     strategy = build(family or problem.families[0], params, problem.budget, problem.knots)
-    stored = trial.user_attrs.get("strategy")
+    stored = result_of(trial).get("strategy")
     if stored is not None and stored != strategy.text:
         print(f"evapcool optimize: trial {trial.number} rebuilt differently", file=sys.stderr)
     return family, strategy
