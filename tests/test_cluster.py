@@ -190,16 +190,39 @@ def test_ctrl_c_keeps_finished_trials_and_resume_plays_the_unfinished_first(tmp_
     complete = [t for t in before if t[1] == "COMPLETE"]
     failed = [t for t in before if t[1] == "FAIL"]
     waiting = [t for t in before if t[1] == "WAITING"]
-    assert complete and len(failed) == len(waiting) >= 1
+    # Stopped mid-batch, the unfinished trials are failed and queued again (stopped between
+    # batches, there are none: test_an_interrupted_batch_is_queued_again covers that case).
+    assert complete and len(failed) == len(waiting)
     assert {t[2] for t in failed} == {t[2] for t in waiting}  # queued again, same parameters
-    r = evapcool("optimize", "--resume", "s.db", "--trials", str(len(waiting)), "--validate",
-                 "0", "--workers", "2", cwd=tmp_path)  # fmt: skip
+    more = str(max(len(waiting), 1))
+    r = evapcool("optimize", "--resume", "s.db", "--trials", more, "--validate", "0",
+                 "--workers", "2", cwd=tmp_path)  # fmt: skip
     assert r.returncode == 0, r.stderr
     after = _trials(db)
     assert {t[2] for t in after if t[1] == "COMPLETE"} >= {t[2] for t in waiting}
     assert not [t for t in after if t[1] in ("WAITING", "RUNNING")]
     by_number = {t[0]: t for t in after}
     assert all(by_number[t[0]] == t for t in complete)  # nothing finished was lost or changed
+
+
+def test_an_interrupted_batch_is_queued_again(tmp_path, monkeypatch):
+    """Ctrl-C while a batch is out: the finished trial is kept, the others queued again."""
+    from evapcool.optimize import study as study_mod
+
+    problem = study_mod.Problem(budget=300, seeds=2, batch=3, chunk=2, sampler_seed=1,
+                                families=("linear",))  # fmt: skip
+    study = study_mod.create_study(problem, f"sqlite:///{tmp_path / 's.db'}")
+
+    def first_then_ctrl_c(engine, function, arguments, on_result, stop=None):
+        on_result(0, function(*arguments[0]))  # one trial's only chunk, played here
+        raise KeyboardInterrupt
+
+    monkeypatch.setattr(study_mod, "run_tasks", first_then_ctrl_c)
+    with pytest.raises(KeyboardInterrupt):
+        study_mod.Search(study, problem, engine=None).run(10)
+    trials = _trials(tmp_path / "s.db")
+    assert [t[1] for t in trials] == ["COMPLETE", "FAIL", "FAIL", "WAITING", "WAITING"]
+    assert [t[2] for t in trials[1:3]] == [t[2] for t in trials[3:]]
 
 
 @pytest.mark.parametrize(
