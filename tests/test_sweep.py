@@ -305,3 +305,17 @@ def test_ctrl_c_keeps_finished_runs_and_the_same_command_goes_on(cluster, tmp_pa
 
 def test_env_columns_are_present(swept):
     assert set(ENV_COLUMNS) <= set(swept[0].runs.columns)
+
+
+def test_the_example_spec_is_valid_and_doc_cluster_shows_it(tmp_path):
+    from pathlib import Path
+
+    from evapcool.lab.sweeps import EXAMPLE_SPEC, load_spec
+
+    r = evapcool("sweep", "--example", "ex.toml", cwd=tmp_path)
+    assert r.returncode == 0 and (tmp_path / "ex.toml").read_text() == EXAMPLE_SPEC
+    assert len(expand(load_spec(tmp_path / "ex.toml"))) == 20
+    r = evapcool("sweep", "--example", "ex.toml", cwd=tmp_path)
+    assert r.returncode == 2 and "exists" in r.stderr
+    doc = (Path(__file__).parents[1] / "doc" / "cluster.md").read_text()
+    assert "```text\n" + EXAMPLE_SPEC + "```" in doc

@@ -49,7 +49,12 @@ def build_parser() -> argparse.ArgumentParser:
             "See doc/cluster.md."
         ),
     )
-    p.add_argument("spec", metavar="SPEC.toml", help="the sweep: [sweep] seeds, [parameters]")
+    p.add_argument(
+        "spec", metavar="SPEC.toml", nargs="?", help="the sweep: [sweep] seeds, [parameters]"
+    )
+    p.add_argument(
+        "--example", metavar="FILE", help="write an example spec to FILE (to edit) and exit"
+    )
     p.add_argument(
         "--out",
         metavar="DIR",
@@ -75,6 +80,18 @@ def _fail(message: str) -> int:
     return EXIT_USAGE
 
 
+def _write_example(path: Path, text: str) -> int:
+    from evapcool.fileio import atomic_write_text
+
+    if path.exists():
+        return _fail(f"--example {str(path)!r} exists; give a new file name")
+    if not path.parent.is_dir():
+        return _fail(f"--example: folder {str(path.parent)!r} does not exist")
+    atomic_write_text(path, text)
+    print(f"wrote {path}; run it with: evapcool sweep {path}", file=sys.stderr)
+    return 0
+
+
 def main(argv: list[str] | None = None) -> int:
     """Entry point of `evapcool sweep`; 0 all ran, 1 some runs failed, 2 bad input, 130 Ctrl-C."""
     try:
@@ -86,8 +103,12 @@ def main(argv: list[str] | None = None) -> int:
     except MissingExtraError as exc:
         print(exc, file=sys.stderr)
         return EXIT_USAGE
-    from evapcool.lab.sweeps import check_out, plan, sweep
+    from evapcool.lab.sweeps import EXAMPLE_SPEC, check_out, plan, sweep
 
+    if args.example is not None:
+        return _write_example(Path(args.example), EXAMPLE_SPEC)
+    if args.spec is None:
+        return _fail("give a spec file (SPEC.toml), or --example FILE to write one")
     spec = Path(args.spec)
     out = Path(args.out) if args.out else spec.with_name(spec.stem + "-results")
     try:

@@ -43,6 +43,22 @@ RECORDS_FILE = "records.parquet"
 PARTS_DIR = "parts"
 SPEC_FILE = "spec.toml"
 CHECKPOINT_SECONDS = 10.0
+#: The spec `evapcool sweep --example FILE` writes (doc/cluster.md shows it).
+EXAMPLE_SPEC = """\
+# rim-or-knife.toml: the game's gas, two escape rules, two schedules, five seeds (20 runs)
+[sweep]
+seeds = { from = 1, to = 5 }              # or [1, 2, 3], or 7
+
+[parameters]
+atoms = 49
+escape = ["rim", "knife"]
+schedule = ["425@0,162@1788", "eta=5"]    # or eta = [4, 5, 6]
+frames = 1800
+every = 60
+engine = "fast"
+# radius = { from = 6, to = 12, step = 2 }        a range, both ends included
+# curvature = { from = 0.005, to = 0.02, num = 4 }    evenly spaced (log = true: geometric)
+"""
 #: Summary columns of the runs table besides the parameters (doc/cluster.md explains them).
 RESULT_COLUMNS = (
     "run_id", "status", "error", "completed", "frames_done", "won_frame", "n_initial",
