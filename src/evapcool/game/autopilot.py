@@ -600,5 +600,12 @@ class Autopilot:
 
     @property
     def label(self) -> str:
-        """What the high-score table and the screen call it: 'Autopilot (demo)'."""
+        """What the screen calls it: 'Autopilot (demo)'."""
         return f"Autopilot ({self.name})"
+
+    @property
+    def table_name(self) -> str:
+        """Its name in the (autopilot's own) score table: 'Autopilot demo', cut to fit."""
+        from evapcool.game.highscores import NAME_MAX
+
+        return f"Autopilot {self.name}"[:NAME_MAX]
