@@ -266,6 +266,13 @@ def _settings(app, k):
     assert app.overlay is None and not app.options.path.exists()
 
 
+def _autopilot(app, k):
+    key(app, k)  # the demo takes the trap...
+    assert app.autopilot.engaged and app.autopilot.name == "demo"
+    key(app, k)  # ...and hands it back
+    assert not app.autopilot.engaged
+
+
 KEY_CHECKS = {
     pygame.K_SPACE: _toggle_pause,
     pygame.K_r: _restart,
@@ -291,6 +298,7 @@ KEY_CHECKS = {
     pygame.K_RETURN: _next_player,
     pygame.K_KP_ENTER: _next_player,
     pygame.K_o: _settings,
+    pygame.K_a: _autopilot,
 }
 
 
@@ -307,7 +315,7 @@ def test_every_bound_key_is_checked_and_listed_in_the_help(app):
         assert (b.label, b.help) in rows
     labels = " ".join(label for label, _ in rows)
     names = ("Space", "R", "Left", "Right", "Up", "Down", "S", "+", "-", "F11", "H", "F1")
-    for name in (*names, "E", "G", "T", "O", "Delete", "X", "Enter"):
+    for name in (*names, "E", "G", "T", "O", "Delete", "X", "Enter", "A"):
         assert name in labels
     assert "Esc" in labels and "Mouse" in labels
     # The reset confirmation and the settings keys are spelled out too.

@@ -14,7 +14,7 @@ ALLOWED = {
     "physics": {"limits"},
     "game": {"physics", "fileio", "limits"},
     "view": {"physics", "game", "fileio", "limits"},
-    "lab": {"physics", "fileio", "argtypes", "limits"},
+    "lab": {"physics", "game", "fileio", "argtypes", "limits"},
 }
 #: Top-level modules below physics (or beside it): what each may import from evapcool.
 BASE_MODULES = {"limits": set(), "fileio": {"limits"}, "argtypes": {"limits", "fileio"}}

@@ -1,4 +1,4 @@
-"""The `evapcool` command: play (default), `lab`, `bench` or `web`."""
+"""The `evapcool` command: play (default), `lab`, `sweep`, `optimize`, `bench` or `web`."""
 
 from __future__ import annotations
 
@@ -6,7 +6,13 @@ import importlib
 import sys
 
 #: Subcommands and the module whose main(argv) runs them.
-SUBCOMMANDS = {"lab": "evapcool.lab.cli", "bench": "evapcool.bench", "web": "evapcool.web"}
+SUBCOMMANDS = {
+    "lab": "evapcool.lab.cli",
+    "bench": "evapcool.bench",
+    "web": "evapcool.web",
+    "sweep": "evapcool.lab.sweep_cli",
+    "optimize": "evapcool.optimize.cli",
+}
 
 
 def main(argv: list[str] | None = None) -> int:

@@ -29,6 +29,7 @@ from evapcool.app.scoring import Scoreboard
 from evapcool.app.stats import FrameStats
 from evapcool.app.storage import scores_path, settings_path
 from evapcool.app.window import Window
+from evapcool.game.autopilot import Autopilot
 from evapcool.game.rules import HEIGHT_MAX, HEIGHT_MIN, MAX_WALL_STEP, Game, GameConfig
 from evapcool.game.settings import Settings
 from evapcool.physics.simulation import FPS, Simulation
@@ -69,16 +70,23 @@ def default_bindings() -> list[Binding]:
             (pygame.K_LEFT, pygame.K_DOWN),
             "Left, Down",
             f"lower the trap by {HEIGHT_STEP:g} px",
-            lambda app: app.game.nudge_height(-HEIGHT_STEP),
+            lambda app: app.nudge(-HEIGHT_STEP),
         ),
         Binding(
             (pygame.K_RIGHT, pygame.K_UP),
             "Right, Up",
             f"raise the trap by {HEIGHT_STEP:g} px",
-            lambda app: app.game.nudge_height(HEIGHT_STEP),
+            lambda app: app.nudge(HEIGHT_STEP),
         ),
         Binding(
             (pygame.K_s,), "S", "one frame forward (while paused)", lambda app: app.game.step()
+        ),
+        Binding(
+            (pygame.K_a,),
+            "A",
+            "autopilot on / off (the demo, or --autopilot FILE)",
+            App.toggle_autopilot,
+            more=("...touch the slider or its keys to take over",),
         ),
         Binding(
             (pygame.K_PLUS, pygame.K_EQUALS, pygame.K_KP_PLUS),
@@ -153,6 +161,7 @@ class App:
         notices: Sequence[str] = (),
         screen: tuple[int, int] | None = None,
         log: Callable[[str], None] | None = None,
+        autopilot: Autopilot | None = None,
     ) -> None:
         """game: what to play, or the config to make it from (behind a progress screen
         when the fast engine must be readied first). data_dir / config_dir: where scores
@@ -161,6 +170,7 @@ class App:
         overrides: this run's command-line values on top (never saved); notices: shown
         at start. screen: the desktop size to lay out for (default: the real one).
         log: where a one-line note about a slow start goes (e.g. stderr).
+        autopilot: a strategy that plays by itself (`evapcool --autopilot FILE`; key A).
         """
         pygame.display.init()
         pygame.font.init()
@@ -201,7 +211,36 @@ class App:
             game = Game(game, sim=sim)
         self.game = game
         game.on_win.append(self._on_win)
+        self.autopilot: Autopilot | None = None
+        if autopilot is not None:
+            self.autopilot = autopilot
+            self._say_autopilot()
+            autopilot.steer(game)  # the start height it wants, shown before Space
         self.slider.set_value(game.trap_height)
+
+    # -- the autopilot -------------------------------------------------------------------------
+    def _say_autopilot(self) -> None:
+        self.notify(f"{self.autopilot.label} plays: touch the slider to take over, A to hand back")
+
+    def toggle_autopilot(self) -> None:
+        """Key A: the autopilot takes the slider (the demo if none was given), or hands back."""
+        if self.autopilot is None:
+            self.autopilot = Autopilot.load("demo")
+        elif self.autopilot.toggle() is False:
+            self.notify("You have the trap. A: autopilot again")
+            return
+        self.autopilot.engage()
+        self._say_autopilot()
+
+    def take_over(self) -> None:
+        """The player touched the trap's controls: the autopilot lets go."""
+        if self.autopilot is not None and self.autopilot.engaged:
+            self.autopilot.take_over()
+            self.notify("You have the trap. A: autopilot again")
+
+    def nudge(self, delta: float) -> None:
+        self.take_over()
+        self.game.nudge_height(delta)
 
     # -- extension points ----------------------------------------------------------------
     def bind(self, binding: Binding) -> None:
@@ -319,6 +358,9 @@ class App:
             self.notify(f"Those settings do not work ({exc}); kept the previous ones.")
             self.game.restart()
         self.scores.new_round()
+        if self.autopilot is not None:
+            self.autopilot.new_game()
+            self.autopilot.steer(self.game)
         self.input.reset()
         self.charts.reset()
         self.slider.set_value(self.game.trap_height)
@@ -344,6 +386,7 @@ class App:
         self.slider.enabled = not self.game.won
         if not self.slider.press(self.layout.to_scene(pos)):
             return False
+        self.take_over()
         self.game.set_trap_height(self.slider.value)
         return True
 
@@ -358,6 +401,12 @@ class App:
         self.game.toggle_pause()
 
     def _on_win(self, game: Game) -> None:
+        if self.autopilot is not None and self.autopilot.flew:  # never in the players' table
+            self.scores.autopilot_win(
+                self.autopilot.table_name, game.score or 0, game.won_at or 0.0
+            )
+            self.input.end_drag()
+            return
         if self.scores.win(game.score or 0, game.won_at or 0.0):
             self.input.ask_name()
         else:
@@ -400,6 +449,8 @@ class App:
         Returns the seconds of play it advanced (at 1x; 0 while paused).
         """
         paused = self.game.paused
+        if self.autopilot is not None:
+            self.autopilot.steer(self.game)  # the trap for this frame, from the gas now
         if wall_seconds is None:
             self.game.run_frames(1)
             dt = 1.0 / FPS

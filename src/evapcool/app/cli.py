@@ -90,6 +90,13 @@ def build_parser() -> argparse.ArgumentParser:
     )
     p.add_argument("--fullscreen", action="store_true", help="start in full screen")
     p.add_argument(
+        "--autopilot",
+        default=None,
+        metavar="FILE",
+        help="a strategy plays by itself: demo, a strategy file (evapcool optimize) or a "
+        "schedule like 425@0,162@1788; touch the slider to take over, A hands back",
+    )
+    p.add_argument(
         "--frames",
         type=ranged(limits.APPLET_FRAMES),
         default=None,
@@ -174,6 +181,15 @@ def main(argv: list[str] | None = None) -> int:
     except ValueError as exc:
         print(f"{PROG}: {one_line(_user_message(exc))}", file=sys.stderr)
         return 2
+    pilot = None
+    if args.autopilot is not None:
+        from evapcool.game.autopilot import Autopilot
+
+        try:
+            pilot = Autopilot.load(args.autopilot)
+        except ValueError as exc:
+            print(f"{PROG}: --autopilot: {exc}", file=sys.stderr)
+            return 2
     if args.frames is None and (why := _no_display()):
         print(
             f"{PROG}: cannot play without a window: {why}; to run headless use "
@@ -200,6 +216,7 @@ def main(argv: list[str] | None = None) -> int:
             overrides={k: v for k, v in overrides.items() if v is not None},
             notices=notices,
             log=stderr_log,
+            autopilot=pilot,
         )
     except StartCancelledError:
         return 0

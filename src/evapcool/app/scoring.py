@@ -8,8 +8,10 @@ from pathlib import Path
 import pygame
 
 from evapcool.app.storage import folder_problem
-from evapcool.game.highscores import NAME_MAX, HighScoreTable
+from evapcool.game.highscores import NAME_MAX, HighScoreTable, format_seconds
 from evapcool.view.text_input import CANCEL, SUBMIT, TextInput
+
+AUTOPILOT_FILE = "autopilot-scores.json"
 
 
 class Scoreboard:
@@ -32,6 +34,9 @@ class Scoreboard:
         self.ready_for_next = False
         #: The win being entered: (atoms, seconds).
         self._win = (0, 0.0)
+        #: The autopilot's scores: a table of their own beside the players' (never mixed).
+        self.autopilot_path = Path(self.table.path).with_name(AUTOPILOT_FILE)
+        self._pilots: HighScoreTable | None = None
 
     def _pass_on_notices(self) -> None:
         for text in self.table.take_notices():
@@ -52,6 +57,28 @@ class Scoreboard:
         self.notify(f"Score {score} is not in the top 10 this time. Enter: next player.")
         self.ready_for_next = True
         return False
+
+    @property
+    def pilots(self) -> HighScoreTable:
+        """The autopilot's table (read when first needed)."""
+        if self._pilots is None:
+            self._pilots = HighScoreTable(self.autopilot_path)
+        return self._pilots
+
+    def autopilot_win(self, label: str, score: int, seconds: float) -> None:
+        """An autopilot game's win: kept in the autopilot's table, no name asked."""
+        self.pilots.add(label, score, seconds)
+        for text in self.pilots.take_notices():
+            self.notify(text)
+        self.notify(f"{label}: {score} atoms (kept apart from the players' scores)")
+        self.ready_for_next = True
+
+    def autopilot_lines(self) -> list[str]:
+        """The autopilot's best, marked, for under the players' table (none if it never won)."""
+        if self._pilots is None and not self.autopilot_path.exists():
+            return []
+        best = self.pilots.entries[:1]
+        return [f"{e.name}, not ranked: {e.score} atoms, {format_seconds(e.seconds)}" for e in best]
 
     def close_name_box(self) -> None:
         if self.name_box is not None:
@@ -79,11 +106,14 @@ class Scoreboard:
         self.stored_rank = None
         if self.table.reset():
             self.notify("The high-score table was cleared.")
+        if self._pilots is not None or self.autopilot_path.exists():
+            self.pilots.reset()
         self._pass_on_notices()
 
     def footer(self, confirming: bool) -> list[str]:
+        pilots = self.autopilot_lines()
         if confirming:
-            return ["Clear all scores?  Y: yes   N or Esc: no"]
+            return [*pilots, "Clear all scores?  Y: yes   N or Esc: no"]
         if self.ready_for_next:
-            return ["Enter: next player"]
-        return ["T: close   Delete or X: clear the table"]
+            return [*pilots, "Enter: next player"]
+        return [*pilots, "T: close   Delete or X: clear the table"]

@@ -18,6 +18,7 @@ SECTIONS = {
     "physics": "evapcool.bench.physics",
     "fast": "evapcool.bench.fast",
     "applet": "evapcool.bench.applet",
+    "cluster": "evapcool.bench.cluster",
 }
 
 

@@ -375,7 +375,7 @@ def run_experiment(
     bar = Progress(cfg.frames, enabled=progress)
     last_write = time.monotonic()
     try:
-        if schedule.kind == "eta":
+        if schedule.kind != "ramp":
             schedule.apply(sim, 0.0)
         energy = sim.total_energy()
         ledger.spill(n0 - sim.n_trapped, n0 * sim.initial_temperature - energy)

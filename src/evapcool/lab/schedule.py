@@ -5,14 +5,16 @@ from __future__ import annotations
 import itertools
 import math
 import re
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from functools import cached_property
 
+from evapcool.game import autopilot
 from evapcool.lab.theory import truncated_mean_energy, truncation_height
 
 SCHEDULE_HELP = (
     "a height > 0 like 400 (or inf), a ramp like 400@0,60@1800 "
-    "(heights > 0 at frames >= 0, frames increasing), or eta=6 (eta > 0)"
+    "(heights > 0 at frames >= 0, frames increasing), eta=6 (eta > 0), "
+    "or an autopilot strategy: demo, FILE.json or a policy like feedback:eta0=5"
 )
 
 _NUMBER = r"[+-]?(?:\d+\.?\d*|\.\d+)(?:[eE][+-]?\d+)?"
@@ -26,12 +28,15 @@ def _bad(text: object) -> ValueError:
 
 @dataclass(frozen=True)
 class Schedule:
-    """A trap-height rule: kind 'ramp' (points (frame, H), constant if one) or 'eta'."""
+    """A trap-height rule: kind 'ramp' (points (frame, H), constant if one), 'eta' or
+    'autopilot' (a strategy of game.autopilot, restarted by the call at frame 0)."""
 
     kind: str
     points: tuple[tuple[float, float], ...] = ()
     eta: float = math.nan
     text: str = ""
+    strategy: object = field(default=None, compare=False, repr=False)
+    _controller: list = field(default_factory=list, compare=False, repr=False)
 
     @cached_property
     def mean_energy_per_kt(self) -> float:
@@ -56,6 +61,12 @@ class Schedule:
         if self.kind == "ramp":
             sim.trap_height = self.fixed_height(frame)
             return
+        if self.kind == "autopilot":
+            if frame == 0.0 or not self._controller:
+                self._controller[:] = [self.strategy.controller()]
+            if not sim.won:  # the game's rule: the slider is frozen once the gas condenses
+                sim.trap_height = self._controller[0](autopilot.read(sim))
+            return
         # Constant truncation: H = eta kT / (m g), kT from the mean energy of the law
         # E^(3/2) exp(-E/kT) cut at eta kT (doc/lab.md). With the knife, lowering H removes
         # hot atoms and cools the rest, so repeat until self-consistent.
@@ -75,6 +86,12 @@ def parse_schedule(text: str) -> Schedule:
     if not isinstance(text, str):
         raise _bad(text)
     s = text.strip()
+    if autopilot.is_strategy_name(s):
+        try:
+            strategy = autopilot.load_strategy(s)
+        except ValueError as exc:
+            raise ValueError(f"schedule: {exc}") from None
+        return Schedule("autopilot", text=s, strategy=strategy)
     m = _ETA.match(s)
     if m:
         eta = float(m.group(1))
