@@ -11,10 +11,10 @@ SRC = Path(__file__).resolve().parents[1] / "src" / "evapcool"
 
 # Which evapcool subpackages each layer may import (besides itself).
 ALLOWED = {
-    "physics": set(),
-    "game": {"physics", "fileio"},
-    "view": {"physics", "game", "fileio"},
-    "lab": {"physics", "fileio", "argtypes"},
+    "physics": {"extras"},
+    "game": {"physics", "fileio", "about", "extras"},
+    "view": {"physics", "game", "fileio", "about", "extras"},
+    "lab": {"physics", "fileio", "argtypes", "about", "extras"},
 }
 FORBIDDEN_MODULES = {"physics": {"pygame"}, "game": {"pygame"}, "lab": {"pygame"}}
 

@@ -10,6 +10,9 @@ from __future__ import annotations
 import argparse
 import importlib
 import sys
+import warnings
+
+from evapcool.extras import MissingExtraError, SlowEngineWarning, check, missing_message
 
 #: section name -> module (each has run(args)).
 SECTIONS = {
@@ -43,13 +46,22 @@ def main(argv: list[str] | None = None) -> int:
     p.add_argument("--quick", action="store_true", help="fewer repeats, smaller systems")
     args = p.parse_args(argv)
     names = args.only or list(SECTIONS)
-    if args.engine == "fast" and not args.only:
-        names = ["physics", "fast"]
+    if args.engine == "fast":
+        check("numba", "evapcool bench --engine fast")  # asked for: an error, not a skip
+        if not args.only:
+            names = ["physics", "fast"]
     for name in names:
         try:
             mod = importlib.import_module(SECTIONS[name])
-        except ModuleNotFoundError:
-            print(f"[{name}] not available in this build")
-            continue
-        mod.run(args)
+            with warnings.catch_warnings():
+                # Thousands of atoms on the NumPy engine would take hours: skip instead.
+                warnings.simplefilter("error", SlowEngineWarning)
+                mod.run(args)
+        except (MissingExtraError, SlowEngineWarning) as exc:  # e.g. no numba
+            print(f"[{name}] skipped: {exc}")
+        except ModuleNotFoundError as exc:
+            if exc.name and not exc.name.startswith("evapcool"):
+                print(f"[{name}] skipped: {missing_message(exc.name, 'this section')}")
+            else:
+                print(f"[{name}] not available in this build")
     return 0

@@ -12,6 +12,8 @@ from pathlib import Path
 
 import numpy as np
 
+from evapcool.extras import check
+from evapcool.lab import notebook
 from evapcool.lab.io import (
     COLUMNS,
     as_arrays,
@@ -138,13 +140,16 @@ class LabResult:
     def __len__(self) -> int:
         return len(self.columns["frame"])
 
+    # -- notebooks (lab/notebook.py) ---------------------------------------------
     def __repr__(self) -> str:
-        p = self.parameters
-        return (
-            f"LabResult({len(self)} records, atoms={p.get('atoms')}, "
-            f"schedule={p.get('schedule')!r}, escape={p.get('escape')!r}, "
-            f"completed={self.completed})"
-        )
+        return notebook.summary(self)
+
+    def _repr_html_(self) -> str:
+        return notebook.to_html(self)
+
+    def to_pandas(self):
+        """The records as a pandas DataFrame, metadata in `.attrs` (needs pandas)."""
+        return notebook.to_pandas(self)
 
     @property
     def parameters(self) -> dict:
@@ -168,8 +173,10 @@ class LabResult:
 
     def plot(self, path: str | os.PathLike[str] | None = None):
         """The four-panel figure (doc/lab.md); saved to path if given; returns the Figure."""
+        check("matplotlib", "LabResult.plot")
         from evapcool.lab.plot import plot_result
 
+        notebook.show_figures_inline()
         return plot_result(self, path)
 
 
@@ -243,6 +250,7 @@ def run_experiment(
         output_format(out)
         check_writable(out, "out")
     if plot is not None:
+        check("matplotlib", "plot")
         if Path(plot).suffix.lower() != ".png":
             raise ValueError(f"plot must be a file name ending in .png (got {str(plot)!r})")
         check_writable(plot, "plot")
@@ -260,6 +268,7 @@ def run_experiment(
         "completed": False,
         "frames_done": 0,
         "won_frame": None,
+        **notebook.run_info(sim),
     }
     cols = _new_columns()
     n0 = sim.n_atoms

@@ -7,10 +7,18 @@ from __future__ import annotations
 
 import math
 import numbers
+import warnings
 from collections.abc import Sequence
 
 import numpy as np
 
+from evapcool.extras import (
+    SLOW_REFERENCE_ATOMS,
+    SlowEngineWarning,
+    available,
+    check,
+    slow_engine_message,
+)
 from evapcool.physics.loading import load_cup
 from evapcool.physics.world import (
     ESCAPE_RULES,
@@ -207,13 +215,27 @@ class Simulation:
     def _make_engine(self, engine: str, n: int):
         if engine == "auto":
             engine = "fast" if n >= AUTO_FAST_MIN_ATOMS and _fast_available() else "reference"
+            if engine == "reference" and n >= SLOW_REFERENCE_ATOMS:
+                warnings.warn(slow_engine_message(n), SlowEngineWarning, stacklevel=3)
         if engine == "fast":
+            check("numba", "the fast engine")
             from evapcool.physics.fast import FastEngine
 
             return FastEngine(self._world)
         from evapcool.physics.reference import ReferenceEngine
 
         return ReferenceEngine(self._world)
+
+    def __repr__(self) -> str:
+        """One line for notebooks: atoms, T, Tc, the frame reached and the engine."""
+        n = self.n_trapped
+        tc = f"{self.critical_temperature:.4g}" if n else "-"
+        t = f"{self.temperature:.4g}" if n else "-"
+        won = ", condensed" if self.won else ""
+        return (
+            f"Simulation(atoms {n} of {self.n_atoms}, T {t}, Tc {tc}, "
+            f"frame {self.time:g}, engine {self.engine}{won})"
+        )
 
     # -- time -----------------------------------------------------------------
     def advance(self, dt: float) -> None:
@@ -387,6 +409,4 @@ class Simulation:
 
 
 def _fast_available() -> bool:
-    import importlib.util
-
-    return importlib.util.find_spec("numba") is not None
+    return available("numba")
