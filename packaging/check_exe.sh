@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
-# Build the stand-alone applet with PyInstaller and prove it starts and draws:
-# run it headless for 60 frames, save a screenshot, check the PNG.
+# Build the stand-alone applet with PyInstaller, exactly as the README says (one file,
+# dist/evapcool, dist\evapcool.exe on Windows; PyInstaller's work files in build/), and
+# prove it starts and draws: run it headless for 60 frames, save a screenshot, check it.
 #
 #     bash packaging/check_exe.sh            # PYTHON=... to pick the interpreter
 #
@@ -9,20 +10,21 @@ set -euo pipefail
 
 ROOT="$(cd "$(dirname "$0")/.." && pwd)"
 PY="${PYTHON:-python3}"
-BUILD="${EVAPCOOL_EXE_BUILD:-$ROOT/build/exe}"
+DIST="$ROOT/dist"
+WORK="$ROOT/build/pyinstaller"
 cd "$ROOT"
 
 start=$(date +%s)
 "$PY" -m PyInstaller --noconfirm --log-level WARN \
-    --distpath "$BUILD/dist" --workpath "$BUILD/work" packaging/evapcool.spec
+    --distpath "$DIST" --workpath "$WORK" packaging/evapcool.spec
 build_s=$(( $(date +%s) - start ))
 
-exe="$BUILD/dist/evapcool"
-[ -x "$exe" ] || exe="$BUILD/dist/evapcool.exe"
-[ -x "$exe" ] || { echo "check_exe: no executable in $BUILD/dist" >&2; exit 1; }
+exe="$DIST/evapcool"
+[ -x "$exe" ] || exe="$DIST/evapcool.exe"
+[ -x "$exe" ] || { echo "check_exe: no executable dist/evapcool (the README's path)" >&2; exit 1; }
 size_mb=$(du -m "$exe" | cut -f1)
 
-shot="$BUILD/screenshot.png"
+shot="$WORK/screenshot.png"
 rm -f "$shot"
 start=$(date +%s)
 SDL_VIDEODRIVER=dummy SDL_AUDIODRIVER=dummy timeout 180 \
@@ -46,4 +48,4 @@ if len(data) < 10_000:
 print(f"check_exe: screenshot {width}x{height}, {len(data)} bytes")
 PYEOF
 
-echo "check_exe: OK  build ${build_s} s, executable ${size_mb} MB, 60-frame run ${run_s} s"
+echo "check_exe: OK  dist/$(basename "$exe"): build ${build_s} s, ${size_mb} MB, 60-frame run ${run_s} s"

@@ -1,4 +1,4 @@
-"""Helpers for driving the pygame applet headless in tests: posted events and whole frames.
+"""Helpers for driving the pygame applet in tests: posted events, whole frames, pixels.
 
 Imported by the app test modules as `from apphelp import ...` (pytest puts tests/ on sys.path).
 The fixtures that go with them (`make_app`, `app`, `own_folders`) live in conftest.py.
@@ -6,13 +6,15 @@ The fixtures that go with them (`make_app`, `app`, `own_folders`) live in confte
 
 from __future__ import annotations
 
+import numpy as np
 import pygame
 
 from evapcool.app.applet import App
-from evapcool.view.scene import PLAY_RECT
+from evapcool.view.scene import MESSAGE_Y, PLAY_RECT
 
-#: Where the large "Score: N" text appears in the play area.
-SCORE_BOX = pygame.Rect(PLAY_RECT.left, PLAY_RECT.top + 100, PLAY_RECT.width, 140)
+#: Where "Score: N" and the other big messages appear, at the top of the play area
+#: (below the start hint's line).
+SCORE_BOX = pygame.Rect(PLAY_RECT.left, MESSAGE_Y - 8, PLAY_RECT.width, 70)
 #: The strip at the bottom of the play area where notices show.
 NOTICE_STRIP = pygame.Rect(PLAY_RECT.left, PLAY_RECT.bottom - 90, PLAY_RECT.width, 90)
 
@@ -41,7 +43,7 @@ def key(app: App, k: int, times: int = 1, *, text: str = "") -> None:
 
 
 def click(app: App, xy: tuple[int, int], *, move: bool = True) -> None:
-    """A left click at xy: button down, a frame, button up, a frame.
+    """A left click at xy (window pixels): button down, a frame, button up, a frame.
 
     move: first move the pointer there (a MOUSEMOTION event), as a real mouse would.
     """
@@ -51,3 +53,59 @@ def click(app: App, xy: tuple[int, int], *, move: bool = True) -> None:
     frames(app)
     post(pygame.MOUSEBUTTONUP, pos=xy, button=1)
     frames(app)
+
+
+def pixels(app: App) -> np.ndarray:
+    """The window as an (x, y, rgb) int array."""
+    return pygame.surfarray.array3d(app.window.surface).astype(int)
+
+
+def count(app: App, box: pygame.Rect, test) -> int:
+    """Pixels in box (window pixels) for which test(r, g, b) holds."""
+    px = pixels(app)[box.left : box.right, box.top : box.bottom]
+    return int(np.count_nonzero(test(px[..., 0], px[..., 1], px[..., 2])))
+
+
+def white(r, g, b):
+    return (r >= 250) & (g >= 250) & (b >= 250)
+
+
+def fake_fast_engine(monkeypatch, steps: int = 4, seconds: float = 0.1) -> list:
+    """Make every game look like a first start of the fast engine: a stand-in for
+    `evapcool.physics.fast` whose prepare(progress) takes `steps` steps of `seconds`.
+    Returns the list of (done, total, what) reports it makes."""
+    import sys
+    import time
+    import types
+
+    import evapcool.physics
+    from evapcool.app import warmup
+
+    reports = []
+
+    def prepare(progress=None):
+        for k in range(steps):
+            time.sleep(seconds)
+            reports.append((k + 1, steps, f"compiling part {k + 1}"))
+            if progress is not None:
+                progress(k + 1, steps, f"compiling part {k + 1}")
+
+    fake = types.ModuleType("evapcool.physics.fast")
+    fake.prepare = prepare
+    monkeypatch.setitem(sys.modules, "evapcool.physics.fast", fake)
+    monkeypatch.setattr(evapcool.physics, "fast", fake, raising=False)
+    monkeypatch.setattr(warmup, "_fast_ready", False)
+    monkeypatch.setattr(warmup, "uses_fast_engine", lambda config: True)
+    return reports
+
+
+def blends(px: np.ndarray, background: tuple, inks: list[tuple], tolerance: int = 3) -> np.ndarray:
+    """Which pixels are a blend of the background and one of the inks (antialiased text)."""
+    px = px.astype(float)
+    ok = np.zeros(px.shape[:2], dtype=bool)
+    bg = np.array(background, dtype=float)
+    for ink in inks:
+        d = np.array(ink, dtype=float) - bg
+        t = np.clip(((px - bg) @ d) / max(1.0, d @ d), 0.0, 1.0)
+        ok |= np.abs(px - (bg + t[..., None] * d)).max(axis=-1) <= tolerance
+    return ok

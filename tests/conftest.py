@@ -47,21 +47,27 @@ def own_folders(tmp_path, monkeypatch):
         monkeypatch.setattr(module, "default_path", _no_user_folders)
 
 
+#: The desktop the applet lays itself out for in tests (the dummy driver reports 1024 x 768).
+TEST_SCREEN = (1920, 1080)
+
+
 @pytest.fixture
 def make_app(tmp_path):
-    """make(data_dir=None, **config): an App on Game(GameConfig(seed=1, **config)), with its
-    scores in data_dir (default tmp_path / "data") and settings in tmp_path / "config".
+    """make(data_dir=None, screen=TEST_SCREEN, **config): an App on
+    Game(GameConfig(seed=1, **config)) on a screen of that size, with its scores in
+    data_dir (default tmp_path / "data") and settings in tmp_path / "config".
     Every App made is closed after the test."""
     from evapcool.app.applet import App
     from evapcool.game.rules import Game, GameConfig
 
     apps = []
 
-    def make(data_dir=None, **config) -> App:
+    def make(data_dir=None, screen=TEST_SCREEN, **config) -> App:
         a = App(
             Game(GameConfig(seed=1, **config)),
             data_dir=tmp_path / "data" if data_dir is None else data_dir,
             config_dir=tmp_path / "config",
+            screen=screen,
         )
         apps.append(a)
         return a

@@ -5,11 +5,14 @@ from __future__ import annotations
 import numpy as np
 import pygame
 import pytest
-from apphelp import SCORE_BOX, click, frames, key, post
+from apphelp import SCORE_BOX, click, count, frames, key, pixels, post, white
 
 from evapcool import Simulation
 from evapcool.app.applet import App
-from evapcool.game.rules import HEIGHT_MAX, HEIGHT_MIN, Game, GameConfig
+from evapcool.app.input import Mode
+from evapcool.game import rules
+from evapcool.game.rules import HEIGHT_MAX, HEIGHT_MIN
+from evapcool.view.fonts import text_image
 from evapcool.view.scene import (
     BORDER,
     PAUSE_RECT,
@@ -24,21 +27,8 @@ from evapcool.view.scene import (
 pytestmark = pytest.mark.usefixtures("own_folders")
 
 
-@pytest.fixture
-def app():
-    a = App(Game(GameConfig(seed=1)))
-    yield a
-    a.close()
-
-
-def pixels(app: App) -> np.ndarray:
-    """The window as an (x, y, rgb) array."""
-    return pygame.surfarray.array3d(pygame.display.get_surface())
-
-
-def white_pixels(app: App, box: pygame.Rect) -> int:
-    px = pixels(app)[box.left : box.right, box.top : box.bottom]
-    return int(np.count_nonzero(np.all(px >= 250, axis=-1)))
+def window_size(app: App) -> tuple[int, int]:
+    return app.window.surface.get_size()
 
 
 # -- the window ------------------------------------------------------------------------------
@@ -46,8 +36,8 @@ def white_pixels(app: App, box: pygame.Rect) -> int:
 
 def test_window_is_the_original_layout(app):
     frames(app)
-    assert pygame.display.get_caption()[0] == "Evaporation cooling"
-    assert pygame.display.get_surface().get_size() == (640, 672)
+    assert app.window.win.title == "Evaporation cooling"
+    assert window_size(app) == (640, 672)
     px = pixels(app)
     assert tuple(px[20, 300]) == BORDER  # left border
     assert tuple(px[600, 40]) != (159, 159, 159)
@@ -63,6 +53,16 @@ def test_starts_paused_and_stays_still(app):
     assert app.game.paused
     frames(app, 5)
     assert app.game.sim.time == 0.0
+
+
+def test_a_small_screen_gets_a_smaller_window_with_the_whole_scene(make_app):
+    app = make_app(screen=(1024, 600))  # a netbook: 600 px minus the title and task bars
+    frames(app)
+    w, h = window_size(app)
+    assert h <= 600 - 80 and (w, h) == (round(640 * h / 672), h)
+    scene = app.layout.scene  # all of it, scaled down to the window (rounding: 1 px)
+    assert scene.topleft == (0, 0) and scene.w == w and h - 1 <= scene.h <= h
+    assert tuple(pixels(app)[5, h // 2]) == BORDER and tuple(pixels(app)[w - 5, 5]) == BORDER
 
 
 # -- the mouse -------------------------------------------------------------------------------
@@ -89,6 +89,7 @@ def test_dragging_the_slider_knob_sets_the_trap_height(app):
     post(pygame.MOUSEBUTTONDOWN, pos=(knob_x, y), button=1)
     frames(app)
     assert app.game.sim.trap_height == pytest.approx(400.0, abs=1.0)
+    assert app.input.mode is Mode.DRAG
     post(pygame.MOUSEMOTION, pos=(SLIDER_RECT.left + 68, y), rel=(0, 0), buttons=(1, 0, 0))
     frames(app)
     assert app.game.sim.trap_height == pytest.approx(25 + 0.25 * 425)
@@ -100,8 +101,20 @@ def test_dragging_the_slider_knob_sets_the_trap_height(app):
     post(pygame.MOUSEMOTION, pos=(SLIDER_RECT.left, y), rel=(0, 0), buttons=(0, 0, 0))
     frames(app, 2)
     assert app.game.sim.trap_height == pytest.approx(25 + 0.5 * 425)
+    assert app.input.mode is Mode.PLAY
     # The rim the atoms see moved: x_rim = sqrt(H / a).
     assert app.game.sim.rim_half_width == pytest.approx(np.sqrt(237.5 / 0.01))
+
+
+def test_press_drag_and_release_within_one_frame_are_three_steps(app):
+    y = SLIDER_RECT.centery
+    post(pygame.MOUSEBUTTONDOWN, pos=(SLIDER_RECT.left, y), button=1)
+    post(pygame.MOUSEMOTION, pos=(SLIDER_RECT.left + 68, y), rel=(0, 0), buttons=(1, 0, 0))
+    post(pygame.MOUSEBUTTONUP, pos=(SLIDER_RECT.left + 68, y), button=1)
+    post(pygame.MOUSEMOTION, pos=(SLIDER_RECT.right, y), rel=(0, 0), buttons=(0, 0, 0))
+    frames(app)  # all four in one frame
+    assert app.game.trap_height == pytest.approx(25 + 0.25 * 425)
+    assert app.input.mode is Mode.PLAY and not app.slider.sliding
 
 
 def test_clicking_restart_restores_49_atoms_height_400_paused(app):
@@ -183,27 +196,27 @@ def _speed(factor):
 def _fullscreen(app, k):
     key(app, k)
     assert app.fullscreen
-    assert pygame.display.get_surface().get_flags() & pygame.FULLSCREEN
+    assert window_size(app) == pygame.display.get_desktop_sizes()[0]
     key(app, k)
     assert not app.fullscreen
-    assert pygame.display.get_surface().get_size() == (640, 672)
+    assert window_size(app) == (640, 672)
 
 
 def _help(app, k):
     box = PLAY_RECT.inflate(-40, -200)
     key(app, k)
-    assert app.help_visible
+    assert app.overlay == "help"
     px = pixels(app)[box.left : box.right, box.top : box.bottom]
     dark = np.count_nonzero(np.all(px < 60, axis=-1))
     assert dark > 0.5 * px.shape[0] * px.shape[1]  # the panel covers the play area
     key(app, k)
-    assert not app.help_visible
+    assert app.overlay is None
 
 
 def _escape(app, k):
-    app.help_visible = True
+    key(app, pygame.K_h)
     key(app, k)
-    assert not app.help_visible and app.running
+    assert app.overlay is None and app.running
     app.toggle_fullscreen()
     key(app, k)
     assert not app.fullscreen and app.running  # leaves full screen first
@@ -215,10 +228,10 @@ def _chart(attr):
     def check(app, k):
         key(app, k)
         assert getattr(app.charts, attr)
-        assert pygame.display.get_surface().get_size() == (640 + app.charts.width, 672)
+        assert window_size(app) == (640 + 520, 672)  # beside the scene at the same scale
         key(app, k)
         assert not getattr(app.charts, attr)
-        assert pygame.display.get_surface().get_size() == (640, 672)
+        assert window_size(app) == (640, 672)
 
     return check
 
@@ -232,25 +245,25 @@ def _table(app, k):
 
 def _ask_reset(app, k):
     key(app, k)
-    assert app.overlay == "table" and app.confirm_reset
+    assert app.overlay == "table" and app.input.mode is Mode.CONFIRM_CLEAR
     key(app, pygame.K_n)
-    assert not app.confirm_reset and app.overlay == "table"
+    assert app.input.mode is Mode.TABLE and app.overlay == "table"
 
 
 def _next_player(app, k):
     old = app.game.sim
     key(app, k)  # nothing to do before a score was stored
     assert app.game.sim is old
-    app.ready_for_next = True
+    app.scores.ready_for_next = True
     key(app, k)
-    assert app.game.sim is not old and not app.ready_for_next
+    assert app.game.sim is not old and not app.scores.ready_for_next
 
 
 def _settings(app, k):
     key(app, k)
     assert app.overlay == "settings"
     key(app, k)  # O closes it again; nothing changed, so nothing is written
-    assert app.overlay is None and not app.settings_path.exists()
+    assert app.overlay is None and not app.options.path.exists()
 
 
 KEY_CHECKS = {
@@ -354,12 +367,13 @@ def test_screenshot_shows_cup_atoms_and_mercury_at_t_over_1_2_t0(app, tmp_path):
 
 def test_forced_win_stops_collisions_and_shows_the_score(app):
     app.run_frames(20)
-    assert white_pixels(app, SCORE_BOX) == 0
+    assert count(app, SCORE_BOX, white) == 0
     before = app.game.sim.pair_collision_count
     frames(app, 10)
     assert app.game.sim.pair_collision_count > before  # collisions happen while playing
     app.game.sim.force_win()
     frames(app)
+    won_with = app.game.sim.n_trapped
     pairs = app.game.sim.pair_collision_count
     energy = app.game.sim.total_energy()
     app.game.set_speed(4.0)
@@ -367,8 +381,8 @@ def test_forced_win_stops_collisions_and_shows_the_score(app):
     sim = app.game.sim
     assert sim.pair_collision_count == pairs
     assert sim.total_energy() < 0.5 * energy  # damped bounces: the atoms settle
-    assert app.game.score == sim.n_trapped > 0
-    assert white_pixels(app, SCORE_BOX) > 300  # "Score: N" in large text
+    assert app.game.score == won_with > 0  # fixed when the gas condensed
+    assert count(app, SCORE_BOX, white) > 300  # "Score: N" in large text
     # The trap is frozen once the gas has condensed.
     post(pygame.MOUSEBUTTONDOWN, pos=(SLIDER_RECT.left, SLIDER_RECT.centery), button=1)
     post(pygame.MOUSEBUTTONUP, pos=(SLIDER_RECT.left, SLIDER_RECT.centery), button=1)
@@ -376,81 +390,101 @@ def test_forced_win_stops_collisions_and_shows_the_score(app):
     assert sim.trap_height == 400.0
 
 
+# -- too few atoms (issue 14, item 6) --------------------------------------------------------------
+
+
 def _one_escaping_atom() -> Simulation:
     # Thrown up and out: it meets the wall line at x ~ 88 px, beyond a rim at 50 px.
     return Simulation(n_atoms=1, radius=12.0, positions=[[0.0, 10.0]], velocities=[[8.0, 8.0]])
 
 
-def test_empty_cup_says_so_and_offers_a_restart(app):
+def test_empty_cup_says_too_few_atoms_and_r_restarts(app):
     app.game.sim = _one_escaping_atom()
     app.game.set_trap_height(25.0)
     app.game.paused = False
-    frames(app, 5)
-    assert white_pixels(app, SCORE_BOX) == 0
+    frames(app, 2)
+    assert app.game.too_few_atoms == "One atom alone cannot cool below Tc."
     for _ in range(200):
         frames(app)
         if app.game.sim.n_trapped == 0:
             break
     frames(app)
-    assert app.game.all_escaped
-    assert white_pixels(app, SCORE_BOX) > 300
+    assert app.game.all_escaped and app.game.too_few_atoms == "All the atoms escaped."
+    assert count(app, SCORE_BOX, white) > 300  # "Too few atoms left" in large text
     key(app, pygame.K_r)
-    assert app.game.sim.n_trapped == 49 and not app.game.all_escaped
+    assert app.game.sim.n_trapped == 49 and app.game.too_few_atoms is None
+    frames(app)
+    assert count(app, SCORE_BOX, white) == 0
 
 
-# -- the window scales --------------------------------------------------------------------------
+def test_two_cold_atoms_that_cannot_leave_are_too_few(app):
+    # Both far below the lowest rim's energy, and hotter than Tc(2): nothing can change.
+    sim = Simulation(
+        n_atoms=2,
+        radius=12.0,
+        positions=[[-30.0, 9.5], [30.0, 9.5]],
+        velocities=[[0.3, 0.0], [-0.3, 0.0]],
+    )
+    app.game.sim = sim
+    assert sim.temperature > sim.critical_temperature
+    assert sim.total_energy() < 1.0 * sim.gravity * rules.HEIGHT_MIN
+    frames(app)
+    assert app.game.too_few_atoms == "No atom can leave any more: T stays above Tc."
+    assert count(app, SCORE_BOX, white) > 300
+
+
+# -- the window scales, drawn at its size ---------------------------------------------------------
 
 
 def test_resized_window_scales_the_scene_and_the_mouse(app):
     frames(app)
     small = pixels(app).copy()
-    pygame.display.set_mode((1280, 1344), pygame.RESIZABLE)  # what a user's resize does
+    app.window.win.size = (1280, 1344)  # what a user's resize does
     frames(app)
     big = pixels(app)
     assert big.shape[:2] == (1280, 1344)
     for x, y in ((20, 300), (600, 300), (PAUSE_RECT.left + 10, PAUSE_RECT.top + 10)):
-        assert np.abs(big[2 * x, 2 * y].astype(int) - small[x, y]).max() < 40
-    post(pygame.MOUSEBUTTONDOWN, pos=(2 * PAUSE_RECT.centerx, 2 * PAUSE_RECT.centery), button=1)
-    post(pygame.MOUSEBUTTONUP, pos=(2 * PAUSE_RECT.centerx, 2 * PAUSE_RECT.centery), button=1)
-    frames(app)
+        assert np.abs(big[2 * x, 2 * y] - small[x, y]).max() < 40
+    click(app, (2 * PAUSE_RECT.centerx, 2 * PAUSE_RECT.centery))
     assert not app.game.paused
 
 
 def test_wide_window_keeps_the_aspect_with_bars(app):
-    pygame.display.set_mode((1000, 672), pygame.RESIZABLE)
+    app.window.win.size = (1000, 672)
     frames(app)
     px = pixels(app)
     assert tuple(px[50, 300]) == (0, 0, 0)  # bar at the side
     assert tuple(px[180 + 20, 300]) == BORDER  # scene starts at (1000 - 640) / 2
 
 
-class _Panel:
-    width = 200
-
-    def __init__(self):
-        self.events = []
-
-    def draw(self, surface, app):
-        surface.fill((10, 120, 10))
-
-    def handle_event(self, event, pos):
-        self.events.append((event.type, pos))
-        return event.type == pygame.MOUSEBUTTONDOWN
+def _ramp_pixels(profile: np.ndarray) -> int:
+    """Pixels of a 1-D profile unlike both neighbours: the in-between shades of a blur."""
+    p = profile.astype(int)
+    return int(np.count_nonzero((p[1:-1] != p[:-2]) & (p[1:-1] != p[2:])))
 
 
-def test_side_panel_widens_the_canvas_and_gets_its_clicks(app):
-    panel = _Panel()
-    app.add_panel(panel)
+@pytest.mark.parametrize("scale", [1.5, 2.0])
+def test_a_scaled_scene_is_drawn_at_its_size_with_sharp_edges(app, scale):
+    """Borders and the slider bar: one-pixel edges at 1.5x and 2x, not a blurred bitmap."""
+    app.window.win.size = (round(640 * scale), round(672 * scale))
     frames(app)
-    assert pygame.display.get_surface().get_size() == (840, 672)
-    px = pixels(app)
-    assert tuple(px[700, 300]) == (10, 120, 10)
-    assert tuple(px[20, 300]) == BORDER
-    post(pygame.MOUSEBUTTONDOWN, pos=(700, 100), button=1)
-    frames(app)
-    assert (pygame.MOUSEBUTTONDOWN, (60.0, 100.0)) in panel.events
-    click(app, PAUSE_RECT.center)
-    assert not app.game.paused
+    px = pixels(app).sum(axis=-1)
+    assert app.layout.scale == pytest.approx(scale)
+    # Left border to play area: grey 79 to grey 159 in at most one pixel's step.
+    row = px[round(40 * scale) : round(56 * scale), round(300 * scale)]
+    assert _ramp_pixels(row) == 0 and len(set(row.tolist())) == 2
+    # The slider bar's top edge (white on the dark border), along a column.
+    x = round((SLIDER_RECT.left + 30) * scale)
+    col = px[x, round((SLIDER_RECT.top - 6) * scale) : round((SLIDER_RECT.top + 3) * scale)]
+    assert _ramp_pixels(col) == 0 and set(col.tolist()) == {3 * 79, 0, 3 * 255}
+    # The title is the text drawn at 40 x scale px, pixel for pixel, not a scaled 40 px one.
+    image = text_image("Evaporation cooling", round(40 * scale), (255, 255, 255))
+    reference = pygame.Surface(image.get_size())
+    reference.fill(BORDER)
+    reference.blit(image, (0, 0))
+    where = image.get_rect(center=(round(320 * scale), round(25 * scale)))
+    shown = pygame.surfarray.array3d(app.window.surface.subsurface(where))
+    np.testing.assert_array_equal(shown, pygame.surfarray.array3d(reference))
 
 
 def test_closing_the_window_quits(app):
@@ -464,3 +498,53 @@ def test_interactive_loop_runs_on_the_wall_clock_and_quits_on_escape(app):
     post(pygame.KEYDOWN, key=pygame.K_ESCAPE, mod=0, unicode="", scancode=0)
     app.run()  # returns once Esc is handled
     assert not app.running
+
+
+# -- frame rate and bounded physics (issue 14, item 15) -------------------------------------------
+
+
+def test_a_slow_frame_advances_the_physics_by_the_bounded_step_only(app):
+    app.game.paused = False
+    app.game.set_speed(2.0)
+    t = app.game.sim.time
+    app.frame(0.5)  # a frame that took half a second
+    step = rules.MAX_WALL_STEP * 30 * 2.0
+    assert app.game.sim.time == pytest.approx(t + step)
+    app.frame(0.01)  # a quick one advances by its own time
+    assert app.game.sim.time == pytest.approx(t + step + 0.01 * 30 * 2.0)
+    assert app.stats.pace is not None and app.stats.pace < 0.3
+
+
+def test_the_loop_slows_the_game_when_frames_fall_behind(app, monkeypatch):
+    class SlowClock:
+        def tick(self, fps=0):
+            return 400  # every frame took 0.4 s
+
+    app.clock = SlowClock()
+    app.game.paused = False
+    calls = []
+    real = app.frame
+
+    def counted(seconds):
+        calls.append(seconds)
+        if len(calls) == 4:
+            app.running = False
+        real(seconds)
+
+    monkeypatch.setattr(app, "frame", counted)
+    app.run()
+    assert calls == [0.4, 0.4, 0.4, 0.4]
+    assert app.game.sim.time == pytest.approx(3 * rules.MAX_WALL_STEP * 30)  # the 4th quit
+    assert any("falls behind" in line or "fall behind" in line for line in app.stats.lines())
+
+
+def test_help_shows_the_frame_rate_and_times(app):
+    app.game.paused = False
+    frames(app, 5)
+    key(app, pygame.K_h)
+    lines = app.stats.lines()
+    assert lines[0].startswith("Frame rate") and "physics" in lines[0] and "drawing" in lines[0]
+    assert app.stats.fps > 0 and app.stats.drawing_ms > 0
+    # The readout is drawn: the help panel's light-blue footer text is on screen.
+    blue = count(app, PLAY_RECT, lambda r, g, b: (b > 230) & (g > 200) & (r > 170) & (r < 215))
+    assert blue > 100

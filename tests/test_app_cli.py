@@ -123,21 +123,59 @@ def test_zero_frames_still_draws_the_start(tmp_path, capsys):
     assert img.get_at((20, 300))[:3] == (79, 79, 79)
 
 
-def test_a_slow_start_says_why_once(tmp_path, monkeypatch, capsys):
-    """The fast engine's first compile keeps the window away: one line says why."""
-    import time
+def test_a_slow_start_says_why_once(monkeypatch, capsys):
+    """A first start of the fast engine: the window shows the progress, stderr says why once."""
+    from apphelp import fake_fast_engine
 
-    from evapcool.app import cli
+    from evapcool.app import applet
 
-    real = cli.Game
-
-    def slow_game(config):
-        time.sleep(0.3)
-        return real(config)
-
-    monkeypatch.setattr(cli, "SLOW_START_NOTICE_S", 0.05)
-    monkeypatch.setattr(cli, "Game", slow_game)
+    fake_fast_engine(monkeypatch, steps=4, seconds=0.15)
+    monkeypatch.setattr(applet, "SLOW_BUILD_NOTICE_S", 0.2)
     rc, _, err = run(["--frames", "2", "--seed", "1"], capsys)
     assert rc == 0
-    assert err.count("compiles it") == 1
+    assert err.count("compiles the fast engine") == 1
     assert len(err.strip().splitlines()) == 1
+
+
+def test_no_display_is_one_line_with_the_headless_way_exit_2(monkeypatch, capsys):
+    monkeypatch.delenv("DISPLAY", raising=False)
+    monkeypatch.delenv("WAYLAND_DISPLAY", raising=False)
+    monkeypatch.delenv("SDL_VIDEODRIVER", raising=False)
+    monkeypatch.setattr(sys, "platform", "linux")
+    rc, out, err = run(["--seed", "1"], capsys)
+    assert rc == 2 and out == ""
+    lines = err.strip().splitlines()
+    assert len(lines) == 1 and "no display" in lines[0]
+    assert "--frames N --screenshot" in lines[0]
+
+
+def test_no_display_through_the_real_command_exits_at_once():
+    env = {k: v for k, v in os.environ.items() if k not in ("DISPLAY", "WAYLAND_DISPLAY")}
+    env.pop("SDL_VIDEODRIVER", None)
+    proc = subprocess.run(
+        [sys.executable, "-m", "evapcool"], capture_output=True, text=True, env=env, timeout=60
+    )
+    assert proc.returncode == 2 and proc.stdout == ""
+    assert proc.stderr.count("\n") == 1 and "no display" in proc.stderr
+
+
+def test_frames_and_screenshot_keep_working_without_a_display(tmp_path):
+    env = {k: v for k, v in os.environ.items() if k not in ("DISPLAY", "WAYLAND_DISPLAY")}
+    env.pop("SDL_VIDEODRIVER", None)
+    path = tmp_path / "shot.png"
+    proc = subprocess.run(
+        [sys.executable, "-m", "evapcool", "--frames", "3", "--screenshot", str(path)],
+        capture_output=True,
+        text=True,
+        env=env,
+        timeout=120,
+    )
+    assert (proc.returncode, proc.stderr) == (0, "")
+    assert pygame.image.load(str(path)).get_size() == (640, 672)
+
+
+def test_a_dummy_video_driver_without_frames_is_refused(monkeypatch, capsys):
+    monkeypatch.setenv("SDL_VIDEODRIVER", "dummy")
+    monkeypatch.setenv("DISPLAY", ":0")
+    rc, _, err = run([], capsys)
+    assert rc == 2 and "SDL_VIDEODRIVER=dummy" in err and "--frames N" in err

@@ -14,15 +14,13 @@ from evapcool.view.panels import BAR, CONDENSATE, CUT, PLOT_BG
 from evapcool.view.scene import SCENE_SIZE
 
 
-def window_size() -> tuple[int, int]:
-    return pygame.display.get_surface().get_size()
+def window_size(app: App) -> tuple[int, int]:
+    return app.window.surface.get_size()
 
 
 def chart_pixels(app: App, name: str) -> tuple[np.ndarray, pygame.Rect]:
-    """(x, y, rgb) pixels of one chart, and its rectangle in those pixels' coordinates."""
-    px = pygame.surfarray.array3d(pygame.display.get_surface())
-    x0 = SCENE_SIZE[0]  # the chart column starts right of the scene (window at scale 1)
-    return px[x0:], app.charts.rects[name]
+    """(x, y, rgb) pixels of the window, and one chart's rectangle in them."""
+    return pygame.surfarray.array3d(app.window.surface), app.charts.rects[name]
 
 
 def is_color(px: np.ndarray, color: tuple[int, int, int]) -> np.ndarray:
@@ -34,26 +32,26 @@ def is_color(px: np.ndarray, color: tuple[int, int, int]) -> np.ndarray:
 
 def test_e_and_the_button_toggle_the_energy_chart(app):
     frames(app)
-    assert window_size() == SCENE_SIZE
+    assert window_size(app) == SCENE_SIZE
     key(app, pygame.K_e)
-    assert window_size() == (SCENE_SIZE[0] + app.charts.width, SCENE_SIZE[1])
+    assert window_size(app) == (SCENE_SIZE[0] + 520, SCENE_SIZE[1])
     px, rect = chart_pixels(app, "energy")
-    assert rect.size == (app.charts.width, SCENE_SIZE[1])  # alone: the whole column
+    assert rect == pygame.Rect(SCENE_SIZE[0], 0, 520, SCENE_SIZE[1])  # alone: the whole column
     plot = app.charts.energy.plot_rect(rect)
     area = px[plot.left : plot.right, plot.top : plot.bottom]
     assert np.count_nonzero(is_color(area, BAR)) > 500  # the start's histogram is drawn
     key(app, pygame.K_e)
-    assert window_size() == SCENE_SIZE and not app.charts.show_energy
+    assert window_size(app) == SCENE_SIZE and not app.charts.show_energy
 
     click(app, CHART_BUTTON_RECT.center, move=False)
-    assert app.charts.show_energy and window_size()[0] == SCENE_SIZE[0] + app.charts.width
+    assert app.charts.show_energy and window_size(app)[0] == SCENE_SIZE[0] + 520
     click(app, CHART_BUTTON_RECT.center, move=False)
-    assert not app.charts.show_energy and window_size() == SCENE_SIZE
+    assert not app.charts.show_energy and window_size(app) == SCENE_SIZE
 
 
 def test_g_toggles_the_path_chart_and_both_share_the_column(app):
     key(app, pygame.K_g)
-    assert app.charts.show_path and window_size()[0] == SCENE_SIZE[0] + app.charts.width
+    assert app.charts.show_path and window_size(app)[0] == SCENE_SIZE[0] + 520
     px, rect = chart_pixels(app, "path")
     plot = app.charts.path.plot_rect(rect)
     area = px[plot.left : plot.right, plot.top : plot.bottom]
@@ -62,9 +60,9 @@ def test_g_toggles_the_path_chart_and_both_share_the_column(app):
     energy, path = app.charts.rects["energy"], app.charts.rects["path"]
     assert energy.bottom <= path.top and energy.h == path.h == SCENE_SIZE[1] // 2
     key(app, pygame.K_g)
-    assert "path" not in app.charts.rects and window_size()[0] > SCENE_SIZE[0]
+    assert "path" not in app.charts.rects and window_size(app)[0] > SCENE_SIZE[0]
     key(app, pygame.K_e)
-    assert window_size() == SCENE_SIZE and app.panels == []
+    assert window_size(app) == SCENE_SIZE and app.charts.shown == []
 
 
 # -- the energy histogram ------------------------------------------------------------------

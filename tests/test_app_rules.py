@@ -112,3 +112,67 @@ def test_missing_fast_engine_falls_back_to_reference(monkeypatch):
     monkeypatch.setitem(sys.modules, "evapcool.physics.fast", None)
     g = Game(GameConfig(n_atoms=400, radius=3.0, seed=1))
     assert g.sim.engine == "reference"
+
+
+# -- when the gas can no longer condense (issue 14, item 6) -----------------------------------
+
+ESCAPE = 1.0 * (10.0 / 30.0) * rules.HEIGHT_MIN  # m g H_min: the least an escaping atom carries
+
+
+def test_no_atoms_left_is_out_of_reach():
+    assert rules.out_of_reach(0, 0.0, 0.0, ESCAPE) == "All the atoms escaped."
+
+
+def test_one_atom_above_tc_is_out_of_reach_below_it_is_not():
+    assert rules.out_of_reach(1, 5.0, 4.0, ESCAPE) is not None
+    assert rules.out_of_reach(1, 3.0, 4.0, ESCAPE) is None  # condensing now
+
+
+def test_two_atoms_with_energy_to_spare_can_still_win():
+    # One may leave carrying nearly all the energy: the other is then as cold as it likes.
+    assert rules.out_of_reach(2, 2 * 50.0, 4.0, ESCAPE) is None
+    assert rules.out_of_reach(500, 500 * 50.0, 40.0, ESCAPE) is None
+
+
+def test_atoms_that_cannot_leave_keep_their_temperature():
+    assert rules.out_of_reach(3, 0.9 * ESCAPE, 0.1, ESCAPE) is not None
+    assert rules.out_of_reach(3, 1.1 * ESCAPE, 0.1, ESCAPE) is None
+
+
+def test_a_lone_atom_in_a_real_game_is_out_of_reach_until_restart():
+    g = Game(GameConfig(seed=4))
+    assert g.too_few_atoms is None
+    g.sim = Simulation(n_atoms=1, radius=12.0, positions=[[0.0, 50.0]], velocities=[[1.0, 0.0]])
+    assert g.sim.temperature > g.sim.critical_temperature
+    assert g.too_few_atoms == "One atom alone cannot cool below Tc."
+    g.sim.force_win()
+    assert g.too_few_atoms is None  # a won game is not lost
+    g.restart()
+    assert g.too_few_atoms is None
+
+
+def test_the_rule_is_exact_for_a_lone_atom_in_the_simulation():
+    """Its energy, hence T, is kept through every bounce: T never falls below Tc(1)."""
+    sim = Simulation(n_atoms=1, radius=12.0, positions=[[0.0, 50.0]], velocities=[[1.5, 0.5]])
+    g = Game()
+    g.sim = sim
+    g.paused = False
+    t0 = sim.temperature
+    for _ in range(300):
+        g.run_frames(1)
+        assert sim.temperature == pytest.approx(t0, rel=1e-9)
+        assert not sim.won and g.too_few_atoms is not None
+
+
+def test_the_score_is_fixed_when_the_gas_condenses():
+    """An atom on its way over the rim may leave after the win: the score does not change."""
+    g = Game(GameConfig(seed=4))
+    g.paused = False
+    g.run_frames(2)
+    g.sim.force_win()
+    g.run_frames(1)
+    won_with = g.sim.n_trapped
+    g.sim.trap_height = 25.0  # (the game freezes the trap; the physics lets atoms out)
+    for _ in range(300):
+        g.run_frames(1)
+    assert g.sim.n_trapped < won_with and g.score == won_with

@@ -11,7 +11,8 @@ from apphelp import NOTICE_STRIP, key
 
 from evapcool.app import applet
 from evapcool.app.cli import main
-from evapcool.game.settings import TC_EXPONENT_CUP, TC_EXPONENT_SEED
+from evapcool.game.settings import TC_EXPONENT_CUP, TC_EXPONENT_SEED, max_atoms
+from evapcool.physics.simulation import BORDER_TOP
 
 
 @pytest.fixture
@@ -27,8 +28,8 @@ def saved(config) -> dict:
     return json.loads((config / "settings.json").read_text(encoding="utf-8"))
 
 
-def notice_pixels() -> int:
-    px = pygame.surfarray.array3d(pygame.display.get_surface()).astype(int)
+def notice_pixels(app) -> int:
+    px = pygame.surfarray.array3d(app.window.surface).astype(int)
     box = px[NOTICE_STRIP.left : NOTICE_STRIP.right, NOTICE_STRIP.top : NOTICE_STRIP.bottom]
     return int(np.count_nonzero((box[..., 0] > 90) & (box[..., 1] < 60) & (box[..., 2] < 60)))
 
@@ -85,9 +86,9 @@ def test_a_bad_value_in_the_file_falls_back_with_a_visible_notice(make_app, dirs
     )
     app = make_app()
     app.frame(None)
-    assert app.settings.n_atoms == 49 and app.settings.tc_law == "cup"
+    assert app.options.settings.n_atoms == 49 and app.options.settings.tc_law == "cup"
     assert any("n_atoms" in n and "default" in n for n in app.visible_notices)
-    assert notice_pixels() > 2000
+    assert notice_pixels(app) > 2000
     key(app, pygame.K_r)
     assert app.game.sim.n_atoms == 49 and app.game.sim.escape_rule == "knife"
 
@@ -146,3 +147,31 @@ def test_bad_command_line_values_exit_2_with_one_line(dirs, args, option, capsys
     lines = err.strip().splitlines()
     assert len(lines) == 1 and lines[0].startswith("evapcool: ") and option in lines[0], err
     assert not (dirs[1] / "settings.json").exists()
+
+
+@pytest.mark.parametrize("radius_presses", [8, -9])  # radius 20 px, and 3 px
+def test_the_overlay_caps_the_atoms_so_every_start_fits_below_the_rim(
+    make_app, dirs, radius_presses
+):
+    """Issue 14, item 7: the most atoms the overlay allows all start in the cup, in view."""
+    app = make_app()
+    key(app, pygame.K_o)
+    key(app, pygame.K_DOWN)
+    k = pygame.K_RIGHT if radius_presses > 0 else pygame.K_LEFT
+    key(app, k, abs(radius_presses))
+    key(app, pygame.K_UP)
+    key(app, pygame.K_RIGHT, 40)  # more than any cap allows
+    draft = app.options.draft
+    cap = max_atoms(draft.radius)
+    assert draft.n_atoms == cap
+    assert f"(1 to {cap})" in dict(app.options.rows())["Number of atoms"]
+    assert any(f"At most {cap} atoms" in line for line in app.options.footer())
+    key(app, pygame.K_RETURN)
+    key(app, pygame.K_r)
+    sim = app.game.sim
+    assert sim.n_trapped == cap
+    tops = sim.positions[:, 1] + float(sim.radii[0])
+    assert tops.max() <= sim.trap_height  # no atom above the rim...
+    screen_tops = sim.to_screen(sim.positions)[:, 1] - float(sim.radii[0])
+    assert screen_tops.min() >= BORDER_TOP  # ...or under the top border
+    assert np.abs(sim.positions[:, 0]).max() < sim.rim_half_width

@@ -71,19 +71,20 @@ def test_rim_keeps_atoms_above_the_rim_energy_and_knife_does_not():
 
 def test_constant_eta_schedule_tracks_its_target_while_n_falls():
     target = 5.0
-    sim = _gas(150, "knife", 5, tc_exponent=5.0)  # steep Tc law: no win, collisions continue
+    sim = _gas(150, "knife", 5, win=False)  # no win: collisions continue below Tc
     schedule = parse_schedule(f"eta={target}")
     schedule.apply(sim, 0.0)
     n_start = sim.n_trapped
-    # The cut is self-consistent: eta = m g H / kT with kT from the atoms that remain.
-    assert th.truncation_eta(sim.trap_height, 0.4 * sim.temperature, 1.0, G) == pytest.approx(
-        target, rel=1e-12
-    )
+    # The cut is self-consistent: eta = m g H / kT, kT from the mean energy of the law cut
+    # at eta kT, for the atoms that remain.
+    kt = sim.temperature / th.truncated_mean_energy(target)
+    assert th.truncation_eta(sim.trap_height, kt, 1.0, G) == pytest.approx(target, rel=1e-12)
+    assert th.eta_from_cut(sim.temperature, G * sim.trap_height) == pytest.approx(target, 1e-12)
     etas = []
     for frame in range(1, 1000):
         sim.advance(1.0)
         # eta just before the schedule moves H again: the drift within one frame.
-        etas.append(th.truncation_eta(sim.trap_height, 0.4 * sim.temperature, 1.0, G))
+        etas.append(th.eta_from_cut(sim.temperature, G * sim.trap_height))
         schedule.apply(sim, float(frame))
         if sim.n_trapped <= n_start // 2:
             break

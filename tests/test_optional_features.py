@@ -45,10 +45,14 @@ def test_lab_plot_without_matplotlib_is_refused_before_the_run(monkeypatch, caps
     _without(monkeypatch, "matplotlib")
     out, png = tmp_path / "run.csv", tmp_path / "run.png"
     # A run of a million frames: refused at once, so nothing is simulated or written.
-    status = main(["lab", "--frames", "1000000", "--out", str(out), "--plot", str(png)])
-    assert status == 2
-    _one_error_line(capsys.readouterr().err, "evapcool lab: error: plot needs matplotlib", "lab")
-    assert not out.exists() and not png.exists()
+    for theory in ([], ["--theory"]):
+        args = ["lab", "--frames", "1000000", "--out", str(out), "--plot", str(png), *theory]
+        assert main(args) == 2
+        err = capsys.readouterr().err
+        _one_error_line(err, "evapcool lab: error: --plot needs matplotlib", "lab")
+        assert not out.exists() and not png.exists()
+    with pytest.raises(MissingExtraError, match=r"^plot needs matplotlib.*evapcool\[lab\]"):
+        run_experiment(frames=1_000_000, plot=png)
 
 
 def test_bench_fast_without_numba_is_one_line(monkeypatch, capsys):

@@ -7,11 +7,13 @@ import math
 import numpy as np
 import pygame
 import pytest
+from apphelp import blends
 
 from evapcool import Simulation
 from evapcool.view import panels
 from evapcool.view.condensate import Condensate, draw_condensate, packet_size
 from evapcool.view.panels import EnergyPanel, PathPanel
+from evapcool.view.pen import Pen
 
 RECT = pygame.Rect(40, 30, 520, 340)
 MAGENTA = (255, 0, 255)
@@ -351,6 +353,72 @@ def test_panels_and_scene_text_survive_pygame_quit_and_init() -> None:
         surface = _surface()
         energy.draw(surface, RECT)
         path.draw(surface, RECT)
-        scene.Scene(pygame.Surface((640, 672))).draw_empty()
+        pen = Pen(pygame.Surface((640, 672)))
+        scene.Scene().draw_too_few(pen, "All the atoms escaped.")
+        pen.text("Ada 名字 علي", 24, (255, 255, 255))  # the fallback fonts too
         pygame.quit()
         pygame.init()
+
+
+# -- labels never crossed by data (issue 14, item 11) ---------------------------------------------
+DATA_COLOURS = (panels.BAR, panels.CUT, panels.PATH, panels.CONDENSATE, panels.TC_LINE)
+
+
+def _runs(tc_exponent: float) -> list:
+    """Energy and path charts in states where data reach every edge of their plots."""
+    hot = _sim(tc_exponent=tc_exponent)
+    hot.trap_height = 450.0  # the cut at the right edge
+    low = _sim(tc_exponent=tc_exponent)
+    low.trap_height = 25.0  # the cut at the left edge; the gas then cools along the path
+    states = []
+    for sim, frames in ((hot, 3), (low, 400)):
+        energy, path = EnergyPanel(window_frames=1), PathPanel()
+        for _ in range(frames):
+            sim.advance(1.0)
+            energy.record(sim)
+            path.record(sim)
+        states += [energy, path]
+    far = PathPanel()  # a path running along the top and through the corner
+    fake = _Fake(49, 80.0)
+    for n, t in ((49, 1e6), (30, 1e6), (1, 1e6), (1, 1e-6)):
+        fake.n_trapped, fake.temperature = n, t
+        far.record(fake)
+    return [*states, far]
+
+
+@pytest.mark.parametrize("scale", [1.0, 1.5])
+@pytest.mark.parametrize("tc_exponent", [2 / 3])
+def test_no_label_is_crossed_by_data(scale: float, tc_exponent: float) -> None:
+    rect = pygame.Rect(10, 10, round(520 * scale), round(336 * scale))
+    for panel in _runs(tc_exponent):
+        surf = pygame.Surface((rect.right + 10, rect.bottom + 10))
+        panel.draw(surf, rect, scale)
+        plot = panel.plot_rect(rect)
+        px = pygame.surfarray.array3d(surf).astype(float)
+        assert len(panel.label_rects) >= 5
+        for r in panel.label_rects:
+            assert not r.colliderect(plot), (type(panel).__name__, r, plot)
+            cells = px[r.left : r.right, r.top : r.bottom]
+            # Text is ink (or the cut's red, for nothing but the legend swatch's words) on
+            # the panel's background: no bar, path or line colour anywhere in a label.
+            clean = blends(cells, panels.BG, [panels.INK])
+            assert clean.all(), (type(panel).__name__, r, int((~clean).sum()))
+        # ...and the data stay inside the plot: none of their colours outside it, but
+        # in the legend's swatches.
+        outside = np.ones(px.shape[:2], dtype=bool)
+        outside[plot.left : plot.right, plot.top : plot.bottom] = False
+        for _, sw in panel.layout(rect).legend:
+            outside[sw.left : sw.right, sw.top : sw.bottom] = False
+        for colour in DATA_COLOURS:
+            stray = np.all(px[outside] == np.array(colour), axis=-1)
+            assert not stray.any(), (type(panel).__name__, colour)
+
+
+def test_one_symbol_for_the_temperature() -> None:
+    """The game's temperature is T everywhere: no 'kT' in the charts' words."""
+    sim = _sim()
+    for panel in (EnergyPanel(), PathPanel()):
+        panel.record(sim)
+        words = [panel.title, panel.readout_template, *(i.text for i in panel.legend_items)]
+        assert not any("kT" in w for w in words)
+    assert "T = " in EnergyPanel.readout_template and "T" in EnergyPanel.legend_items[1].text

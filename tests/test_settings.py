@@ -6,6 +6,7 @@ import json
 import tempfile
 from pathlib import Path
 
+import numpy as np
 import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
@@ -28,6 +29,7 @@ from evapcool.game.settings import (
     validate,
     with_overrides,
 )
+from evapcool.physics.loading import cell_centres
 from evapcool.physics.simulation import TC_EXPONENT_CUP, TC_EXPONENT_SEED
 
 
@@ -141,13 +143,19 @@ def test_command_line_overrides_are_not_bound_by_the_overlay_ranges() -> None:
         Simulation(**too_many.simulation_kwargs())
 
 
-@pytest.mark.parametrize("radius", [12.0, 16.0, 20.0])
-def test_capacity_matches_what_the_simulation_accepts(radius: float) -> None:
+@pytest.mark.parametrize("radius", [3.0, 12.0, 16.0, 20.0])
+def test_capacity_is_what_starts_below_the_rim(radius: float) -> None:
+    """Issue 14, item 7: every start the settings allow is wholly in the cup, under the rim."""
     cap = cup_capacity(radius)
     assert cap >= 1
-    Simulation(n_atoms=cap, radius=radius, seed=0, engine="reference")
+    for seed in range(3):
+        sim = Simulation(n_atoms=cap, radius=radius, seed=seed, engine="reference")
+        tops = sim.positions[:, 1] + radius
+        assert tops.max() <= sim.trap_height and sim.n_trapped == cap
+        assert np.all(np.abs(sim.positions[:, 0]) < sim.rim_half_width)
+    # One more atom would need a cell reaching above the rim.
     with pytest.raises(ValueError):
-        Simulation(n_atoms=cap + 1, radius=radius, seed=0, engine="reference")
+        cell_centres(cap + 1, radius, 0.01, 400.0)
 
 
 def test_every_allowed_radius_fits_at_least_the_default_count_or_says_so() -> None:

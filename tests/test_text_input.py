@@ -7,6 +7,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
+from evapcool.view.pen import Pen
 from evapcool.view.text_input import CANCEL, CHANGE, SUBMIT, TextInput
 
 
@@ -97,17 +98,29 @@ def test_draw_shows_text_and_cursor_inside_the_box() -> None:
     surf.fill((0, 0, 0))
     box = TextInput(prompt="Name: ", text="Lise")
     rect = pygame.Rect(20, 20, 300, 50)
-    cursor = box.draw(surf, rect)
+    pen = Pen(surf)
+    cursor = box.draw(pen, rect)
     assert rect.contains(cursor)
     assert tuple(surf.get_at(cursor.center))[:3] == (20, 20, 20)  # the cursor is drawn
     assert tuple(surf.get_at((5, 5)))[:3] == (0, 0, 0)  # nothing outside the box
     box.update(0.6)
     surf.fill((0, 0, 0))
-    cursor = box.draw(surf, rect)
+    cursor = box.draw(pen, rect)
     assert tuple(surf.get_at(cursor.center))[:3] == (255, 255, 255)  # blinked off
     long_box = TextInput(max_length=200, text="W" * 200)
-    cur = long_box.draw(surf, rect)  # text wider than the box keeps its end in view
+    cur = long_box.draw(pen, rect)  # text wider than the box keeps its end in view
     assert rect.left < cur.x < rect.right
+
+
+def test_draw_at_twice_the_size_doubles_the_box() -> None:
+    surf = pygame.Surface((800, 200))
+    box = TextInput(text="Lise")
+    rect = pygame.Rect(20, 20, 300, 50)
+    cursor = box.draw(Pen(surf, 2.0), rect)
+    assert pygame.Rect(40, 40, 600, 100).contains(cursor) and cursor.h > 50
+    assert tuple(surf.get_at((41, 41)))[:3] == (20, 20, 20)  # the frame, 2 px wide
+    assert tuple(surf.get_at((42, 42)))[:3] == (20, 20, 20)
+    assert tuple(surf.get_at((45, 45)))[:3] == (255, 255, 255)
 
 
 def test_bad_max_length() -> None:

@@ -1,4 +1,4 @@
-"""The reusable widgets: one control(mouse) call per frame updates, draws, returns."""
+"""The reusable widgets: geometry, state and looks, drawn through a Pen at any scale."""
 
 from __future__ import annotations
 
@@ -9,7 +9,8 @@ import pygame
 import pytest
 
 from evapcool.view import widgets
-from evapcool.view.widgets import Button, ImageButton, MouseState, Slider, ToggleButton
+from evapcool.view.pen import Pen
+from evapcool.view.widgets import Button, Pointer, Slider, ToggleButton
 
 RED, GREEN, BLUE = (255, 0, 0), (0, 255, 0), (0, 0, 255)
 CYAN, MAGENTA, YELLOWISH = (0, 255, 255), (255, 0, 255), (255, 255, 0)
@@ -21,132 +22,126 @@ def _pygame():
     yield
 
 
-def solid(color, size=(20, 20)) -> pygame.Surface:
-    s = pygame.Surface(size)
-    s.fill(color)
-    return s
+def solid(*colors):
+    """Looks: one square image per colour, of the size asked for."""
+
+    def looks(size: int) -> list[pygame.Surface]:
+        images = []
+        for color in colors:
+            s = pygame.Surface((size, size))
+            s.fill(color)
+            images.append(s)
+        return images
+
+    return looks
 
 
-def test_widgets_module_imports_nothing_from_the_game():
+def test_widgets_import_nothing_from_the_game():
     tree = ast.parse(inspect.getsource(widgets))
     names = [a.name for n in ast.walk(tree) if isinstance(n, ast.Import) for a in n.names]
     names += [n.module for n in ast.walk(tree) if isinstance(n, ast.ImportFrom) and n.module]
-    assert not [n for n in names if n.startswith("evapcool")]
+    assert [n for n in names if n.startswith("evapcool")] == ["evapcool.view.pen"]
 
 
-def test_button_fires_only_on_a_click_inside():
+def test_button_hit_box_is_its_rectangle():
+    b = Button((10, 10, 30, 30))
+    assert b.hit((10, 10)) and b.hit((39, 39))
+    assert not b.hit((40, 20)) and not b.hit(None)
+
+
+def test_button_looks_follow_the_pointer():
+    b = Button((0, 0, 10, 10))
+    assert b.look(Pointer((30, 30))) == "idle"
+    assert b.look(Pointer((5, 5))) == "hover"
+    assert b.look(Pointer((5, 5), down=True)) == "down"
+    assert b.look(Pointer((30, 30), down=True)) == "idle"
+    assert b.look(Pointer()) == "idle"
+
+
+def test_plain_button_draws_black():
     surf = pygame.Surface((100, 100))
-    b = Button(surf, (10, 10, 30, 30))
-    assert b.control(MouseState((20, 20), clicked=True, down=True)) is True
-    assert b.control(MouseState((20, 20), clicked=False, down=True)) is False  # held, not new
-    assert b.control(MouseState((60, 60), clicked=True, down=True)) is False  # outside
-    assert b.control(MouseState((20, 20))) is False  # hover
-    assert surf.get_at((25, 25))[:3] == (0, 0, 0)  # the plain button draws black
+    surf.fill(RED)
+    Button((10, 10, 30, 30)).draw(Pen(surf))
+    assert surf.get_at((25, 25))[:3] == (0, 0, 0)
+    assert surf.get_at((45, 45))[:3] == RED
 
 
-def test_button_looks_follow_the_mouse():
-    b = Button(pygame.Surface((50, 50)), (0, 0, 10, 10))
-    assert b.look(MouseState((30, 30))) == "idle"
-    assert b.look(MouseState((5, 5))) == "hover"
-    assert b.look(MouseState((5, 5), down=True)) == "down"
-    assert b.look(MouseState((30, 30), down=True)) == "idle"
+def test_button_draws_the_image_of_its_look_at_the_pen_scale():
+    surf = pygame.Surface((200, 200))
+    b = Button((40, 40, 20, 20), solid(RED, GREEN, BLUE))
+    for pointer, colour in ((Pointer((0, 0)), RED), ((Pointer((45, 45))), GREEN)):
+        b.draw(Pen(surf), pointer)
+        assert surf.get_at((50, 50))[:3] == colour
+    surf.fill((0, 0, 0))
+    b.draw(Pen(surf, 2.0), Pointer((45, 45), down=True))  # 40 px at (80, 80)
+    assert surf.get_at((81, 81))[:3] == BLUE and surf.get_at((118, 118))[:3] == BLUE
+    assert surf.get_at((79, 79))[:3] == (0, 0, 0) and surf.get_at((121, 121))[:3] == (0, 0, 0)
 
 
-def test_image_button_draws_the_image_of_its_look():
+def test_missing_looks_fall_back_to_the_one_before():
     surf = pygame.Surface((100, 100))
-    b = ImageButton(surf, (40, 40, 20, 20), solid(RED), solid(GREEN), solid(BLUE))
-    b.control(MouseState((0, 0)))
-    assert surf.get_at((50, 50))[:3] == RED
-    b.control(MouseState((45, 45)))
-    assert surf.get_at((50, 50))[:3] == GREEN
-    assert b.control(MouseState((45, 45), clicked=True, down=True)) is True
-    assert surf.get_at((50, 50))[:3] == BLUE
-
-
-def test_image_button_defaults_hover_to_idle_and_down_to_hover():
-    surf = pygame.Surface((100, 100))
-    b = ImageButton(surf, (40, 40, 20, 20), solid(RED))
-    b.control(MouseState((45, 45), down=True))
-    assert surf.get_at((50, 50))[:3] == RED
-    b = ImageButton(surf, (40, 40, 20, 20), solid(RED), solid(GREEN))
-    b.control(MouseState((45, 45), down=True))
-    assert surf.get_at((50, 50))[:3] == GREEN
-
-
-def test_toggle_button_flips_on_click_and_returns_its_state():
-    surf = pygame.Surface((100, 100))
-    on = (solid(RED), solid(GREEN), solid(BLUE))
-    off = (solid(CYAN), solid(MAGENTA), solid(YELLOWISH))
-    t = ToggleButton(surf, (40, 40, 20, 20), on, off, is_on=False)
-    away, over = MouseState((0, 0)), MouseState((45, 45))
-    click = MouseState((45, 45), clicked=True, down=True)
-    assert t.control(away) is False
+    b = Button((40, 40, 20, 20), solid(CYAN))
+    b.draw(Pen(surf), Pointer((45, 45), down=True))
     assert surf.get_at((50, 50))[:3] == CYAN
-    assert t.control(click) is True  # toggled on, drawn pressed in the "on" set
-    assert surf.get_at((50, 50))[:3] == BLUE
-    assert t.control(over) is True
-    assert surf.get_at((50, 50))[:3] == GREEN
-    assert t.control(MouseState((45, 45), down=True)) is True  # still held: no second flip
-    assert t.control(click) is False
-    t.set_state(True)
-    assert t.control(away) is True
-    assert surf.get_at((50, 50))[:3] == RED
 
 
-def test_toggle_button_rejects_missing_images():
-    with pytest.raises(ValueError):
-        ToggleButton(pygame.Surface((10, 10)), (0, 0, 5, 5), (), (solid(RED),))
+def test_toggle_button_flips_and_draws_its_state():
+    surf = pygame.Surface((100, 100))
+    t = ToggleButton((0, 0, 20, 20), solid(GREEN), solid(RED))
+    assert not t.is_on
+    t.draw(Pen(surf))
+    assert surf.get_at((10, 10))[:3] == RED
+    assert t.toggle() is True
+    t.draw(Pen(surf))
+    assert surf.get_at((10, 10))[:3] == GREEN
+    t.set_state(False)
+    assert not t.is_on
 
 
-def make_slider(surf=None) -> Slider:
-    surf = surf or pygame.Surface((400, 100))
-    return Slider(surf, (100, 46, 200, 8), 25.0, 450.0, 400.0, knob_radius=10, label="Trap")
-
-
-def test_slider_starts_at_its_value_and_maps_position_linearly():
-    s = make_slider()
+def test_slider_maps_position_linearly_and_clamps():
+    s = Slider((100, 50, 200, 8), 25.0, 450.0, 400.0)
     assert s.value == pytest.approx(400.0)
-    assert s.knob_xy() == (round(100 + 200 * 375 / 425), 50)
-    s.set_value(1000.0)
+    assert s.value_at(100) == 25.0 and s.value_at(300) == 450.0
+    assert s.value_at(200) == pytest.approx(237.5)
+    assert s.value_at(-50) == 25.0 and s.value_at(1000) == 450.0
+    s.set_value(1e9)
     assert s.value == 450.0
-    s.set_value(-5.0)
-    assert s.value == 25.0
 
 
-def test_slider_press_jumps_drag_follows_even_off_the_bar_release_stops():
-    s = make_slider()
-    assert s.control(MouseState((150, 50), clicked=True, down=True)) == pytest.approx(
-        25.0 + 0.25 * 425.0
-    )
-    assert s.sliding and s.changed
-    # Held: follows the mouse although it left the hit box vertically, clamped at the end.
-    assert s.control(MouseState((200, 95), down=True)) == pytest.approx(25.0 + 0.5 * 425.0)
-    assert s.control(MouseState((390, 95), down=True)) == pytest.approx(450.0)
-    # Released: the knob stays put whatever the mouse does.
-    assert s.control(MouseState((120, 50))) == pytest.approx(450.0)
-    assert not s.sliding and not s.changed
+def test_slider_press_starts_a_drag_that_follows_until_release():
+    s = Slider((100, 50, 200, 8), 0.0, 1.0, 0.5, knob_radius=10)
+    assert not s.press((100, 80))  # below the hit box
+    assert s.press((150, 54)) and s.sliding and s.value == pytest.approx(0.25)
+    s.drag((250, 300))  # off the bar: still follows
+    assert s.value == pytest.approx(0.75)
+    s.release()
+    s.drag((100, 54))
+    assert s.value == pytest.approx(0.75) and not s.sliding
 
 
-def test_slider_ignores_presses_outside_its_hit_box_and_when_disabled():
-    s = make_slider()
-    assert s.control(MouseState((150, 70), clicked=True, down=True)) == pytest.approx(400.0)
-    assert s.control(MouseState((150, 50), down=True)) == pytest.approx(400.0)  # drag-in
+def test_disabled_slider_ignores_presses():
+    s = Slider((100, 50, 200, 8), 0.0, 1.0, 0.5)
     s.enabled = False
-    assert s.control(MouseState((150, 50), clicked=True, down=True)) == pytest.approx(400.0)
+    assert not s.press((150, 54)) and s.value == 0.5
 
 
-def test_slider_draws_bar_knob_and_label():
-    surf = pygame.Surface((400, 100))
-    surf.fill((79, 79, 79))
-    s = make_slider(surf)
-    s.control(MouseState((0, 0)))
-    kx, ky = s.knob_xy()
-    assert surf.get_at((kx, ky))[:3] == s.knob_color
-    assert surf.get_at((120, 50))[:3] == s.bar_color
-    label_rows = [surf.get_at((x, y))[:3] for x in range(150, 250) for y in range(62, 90)]
-    assert (255, 255, 255) in label_rows
+def test_slider_draws_bar_knob_and_label_at_scale():
+    for scale in (1.0, 2.0):
+        surf = pygame.Surface((round(400 * scale), round(120 * scale)))
+        surf.fill((79, 79, 79))
+        s = Slider((100, 50, 200, 8), 0.0, 1.0, 0.5, label="Trap height")
+        s.draw(Pen(surf, scale))
+        kx, ky = round(200 * scale), round(54 * scale)
+        assert surf.get_at((kx, ky))[:3] == widgets.YELLOW  # knob at the middle
+        assert surf.get_at((round(120 * scale), ky))[:3] == widgets.WHITE  # the bar
+        lit = [
+            surf.get_at((x, y))[0] > 200
+            for x in range(surf.get_width())
+            for y in range(round(75 * scale), surf.get_height())
+        ]
+        assert sum(lit) > 40 * scale * scale  # the label, drawn at its size
 
 
 def test_slider_needs_a_real_range():
     with pytest.raises(ValueError):
-        Slider(pygame.Surface((10, 10)), (0, 0, 5, 5), 3.0, 3.0)
+        Slider((0, 0, 10, 4), 1.0, 1.0)

@@ -1,52 +1,62 @@
-"""The side column beside the scene: the energy and path charts, and the chart button.
+"""The charts beside (or below, or over) the scene, and the chart button.
 
-The charts themselves (`evapcool.view.panels`) know nothing of the app; this
-module stacks the visible ones in one column that `App.add_panel` puts to the
-right of the scene, and feeds them a record per frame the physics advanced.
+The charts themselves (`evapcool.view.panels`) know nothing of the app; this module
+keeps which are shown, feeds them a record per frame the physics advanced, and draws
+them into the rectangles the layout gives, each with a close button.
 """
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING
-
 import pygame
 
+from evapcool.physics.simulation import Simulation
 from evapcool.view.icons import FACE, SUPER
-from evapcool.view.panels import EnergyPanel, PathPanel
+from evapcool.view.panels import INK, EnergyPanel, PathPanel
 from evapcool.view.widgets import BLACK, LOOKS
 
-if TYPE_CHECKING:
-    from evapcool.app.applet import App
-    from evapcool.physics.simulation import Simulation
-
-#: Width of the chart column, logical px (the height is the scene's, 672).
-COLUMN_WIDTH = 520
 #: The chart button, in the bottom border between the slider and the thermometer.
 CHART_BUTTON_RECT = pygame.Rect(528, 600, 40, 40)
+#: The close button of a chart: logical size, and its inset from the top-right corner.
+CLOSE_SIZE = 26
+CLOSE_INSET = 6
+CHARTS = ("energy", "path")
 
 
 class ChartColumn:
-    """Energy and path charts stacked in one side panel (App.Panel protocol).
-
-    Both charts always record (so opening one shows a filled history at once);
-    `show_energy` / `show_path` only decide what is drawn.
-    """
-
-    width = COLUMN_WIDTH
+    """The energy and path charts; both always record, `shown` says which are drawn."""
 
     def __init__(self) -> None:
-        self.energy = EnergyPanel()
-        self.path = PathPanel()
-        self.show_energy = False
-        self.show_path = False
-        #: Chart rectangles (column pixels) at the last draw, for tests and clicks.
+        self.panels = {"energy": EnergyPanel(), "path": PathPanel()}
+        self.shown: list[str] = []
+        #: Chart name -> pixel rectangle at the last draw (hit tests, tests).
         self.rects: dict[str, pygame.Rect] = {}
+        self.close_rects: dict[str, pygame.Rect] = {}
         self._sim: Simulation | None = None
         self._time = -1.0
 
     @property
-    def visible(self) -> bool:
-        return self.show_energy or self.show_path
+    def energy(self) -> EnergyPanel:
+        return self.panels["energy"]
+
+    @property
+    def path(self) -> PathPanel:
+        return self.panels["path"]
+
+    @property
+    def show_energy(self) -> bool:
+        return "energy" in self.shown
+
+    @property
+    def show_path(self) -> bool:
+        return "path" in self.shown
+
+    def toggle(self, name: str) -> None:
+        """Show or hide a chart; shown charts keep the order energy, path."""
+        if name not in CHARTS:
+            raise ValueError(f"chart must be one of {', '.join(CHARTS)} (got {name!r})")
+        on = set(self.shown) ^ {name}
+        self.shown = [c for c in CHARTS if c in on]
+        self.rects = {k: v for k, v in self.rects.items() if k in on}
 
     def reset(self) -> None:
         """Forget both histories (a restart)."""
@@ -67,24 +77,34 @@ class ChartColumn:
         self.path.record(sim)
         return True
 
-    def layout(self, height: int) -> dict[str, pygame.Rect]:
-        shown = [
-            name for name, on in (("energy", self.show_energy), ("path", self.show_path)) if on
-        ]
-        if not shown:
-            return {}
-        h = height // len(shown)
-        return {name: pygame.Rect(0, k * h, self.width, h) for k, name in enumerate(shown)}
+    def draw(self, surface: pygame.Surface, rects: tuple[pygame.Rect, ...], scale: float) -> None:
+        """Each shown chart into its rectangle (window pixels) at this scale."""
+        self.rects = dict(zip(self.shown, rects, strict=True))
+        self.close_rects = {}
+        for name, rect in self.rects.items():
+            self.panels[name].draw(surface, rect, scale)
+            self.close_rects[name] = close_button(surface, rect, scale)
 
-    def draw(self, surface: pygame.Surface, app: App) -> None:
-        self.rects = self.layout(surface.get_height())
-        if "energy" in self.rects:
-            self.energy.draw(surface, self.rects["energy"])
-        if "path" in self.rects:
-            self.path.draw(surface, self.rects["path"])
+    def target_at(self, pos: tuple[float, float]) -> str | None:
+        """'close:<chart>' when pos (window pixels) is on a close button."""
+        for name, r in self.close_rects.items():
+            if r.collidepoint(pos):
+                return f"close:{name}"
+        return None
 
-    def handle_event(self, event: pygame.event.Event, pos: tuple[float, float] | None) -> bool:
-        return False  # the charts only show
+
+def close_button(surface: pygame.Surface, rect: pygame.Rect, scale: float) -> pygame.Rect:
+    """A small framed cross in the chart's top-right corner; returns its rectangle."""
+    size = max(12, round(CLOSE_SIZE * scale))
+    inset = round(CLOSE_INSET * scale)
+    r = pygame.Rect(rect.right - inset - size, rect.top + inset, size, size)
+    pygame.draw.rect(surface, (225, 225, 220), r, border_radius=max(1, size // 6))
+    pygame.draw.rect(surface, INK, r, max(1, round(1.5 * scale)), border_radius=max(1, size // 6))
+    m = size // 4
+    w = max(2, round(2.5 * scale))
+    pygame.draw.line(surface, INK, (r.left + m, r.top + m), (r.right - m - 1, r.bottom - m - 1), w)
+    pygame.draw.line(surface, INK, (r.left + m, r.bottom - m - 1), (r.right - m - 1, r.top + m), w)
+    return r
 
 
 def _chart_symbol(big: pygame.Surface, look: str) -> None:
@@ -102,8 +122,14 @@ def _chart_symbol(big: pygame.Surface, look: str) -> None:
     pygame.draw.line(big, (200, 20, 20), (x_cut, 0.2 * s + shift), (x_cut, base), 3 * SUPER)
 
 
+_looks_cache: dict[int, tuple[pygame.Surface, ...]] = {}
+
+
 def chart_button_looks(size: int = CHART_BUTTON_RECT.width) -> tuple[pygame.Surface, ...]:
-    """(idle, hover, down) images of the energy-chart button, drawn in code."""
+    """(idle, hover, down) images of the energy-chart button at this pixel size."""
+    cached = _looks_cache.get(size)
+    if cached is not None:
+        return cached
     images = []
     for look in LOOKS:
         s = size * SUPER
@@ -113,4 +139,5 @@ def chart_button_looks(size: int = CHART_BUTTON_RECT.width) -> tuple[pygame.Surf
         pygame.draw.rect(big, BLACK, face, width=3 * SUPER, border_radius=s // 6)
         _chart_symbol(big, look)
         images.append(pygame.transform.smoothscale(big, (size, size)))
-    return tuple(images)
+    _looks_cache[size] = tuple(images)
+    return _looks_cache[size]

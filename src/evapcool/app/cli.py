@@ -5,12 +5,11 @@ from __future__ import annotations
 import argparse
 import os
 import sys
-import threading
 from pathlib import Path
 
 from evapcool.app.storage import settings_path
 from evapcool.argtypes import positive, whole
-from evapcool.game.rules import SPEED_MAX, SPEED_MIN, Game, GameConfig, check_speed
+from evapcool.game.rules import SPEED_MAX, SPEED_MIN, GameConfig, check_speed
 from evapcool.game.settings import (
     RADIUS_MAX,
     RADIUS_MIN,
@@ -19,11 +18,11 @@ from evapcool.game.settings import (
     max_atoms,
     with_overrides,
 )
+from evapcool.physics.loading import cell_centres
+from evapcool.physics.simulation import CURVATURE, WINDOW, cup_vertex
 from evapcool.physics.world import ESCAPE_RULES
 
 PROG = "evapcool"
-#: A start slower than this (s) is the fast engine compiling: say so once.
-SLOW_START_NOTICE_S = 2.0
 #: Parameter names -> our options, so ValueErrors name what the user typed.
 _OPTION_OF = {
     "n_atoms": "--atoms",
@@ -137,34 +136,16 @@ def _user_message(exc: ValueError) -> str:
     return text
 
 
-def _no_display() -> bool:
-    """True on a Linux/BSD machine with neither an X11 nor a Wayland display."""
+def _no_display() -> str | None:
+    """Why no window can open here, or None. Checked before anything slow happens."""
+    driver = os.environ.get("SDL_VIDEODRIVER", "")
+    if driver in ("dummy", "offscreen"):
+        return f"SDL_VIDEODRIVER={driver} shows no window"
     if sys.platform.startswith(("win", "darwin")):
-        return False
-    return not (os.environ.get("DISPLAY") or os.environ.get("WAYLAND_DISPLAY"))
-
-
-def _build_game(config: GameConfig) -> Game:
-    """Game(config), with one line on stderr if it keeps the player waiting.
-
-    The first start with the Numba engine on a machine compiles it (about half a
-    minute); without a word the window would just not appear for that long.
-    """
-    notice = threading.Timer(
-        SLOW_START_NOTICE_S,
-        lambda: print(
-            f"{PROG}: preparing the fast engine; its first start on this machine compiles it "
-            "(about half a minute, once)...",
-            file=sys.stderr,
-            flush=True,
-        ),
-    )
-    notice.daemon = True
-    notice.start()
-    try:
-        return Game(config)
-    finally:
-        notice.cancel()
+        return None
+    if not (os.environ.get("DISPLAY") or os.environ.get("WAYLAND_DISPLAY")):
+        return "no display (neither DISPLAY nor WAYLAND_DISPLAY is set)"
+    return None
 
 
 def main(argv: list[str] | None = None) -> int:
@@ -193,9 +174,17 @@ def main(argv: list[str] | None = None) -> int:
             tc_exponent=run.tc_exponent,
             escape=run.escape,
         )
-        game = _build_game(config)
+        # Whether the atoms fit is the loader's call: asked now, before a window opens.
+        cell_centres(run.n_atoms, run.radius, CURVATURE, cup_vertex(WINDOW)[1] - run.radius)
     except ValueError as exc:
         print(f"{PROG}: {_user_message(exc)}", file=sys.stderr)
+        return 2
+    if args.frames is None and (why := _no_display()):
+        print(
+            f"{PROG}: cannot play without a window: {why}; to run headless use "
+            "--frames N --screenshot out.png",
+            file=sys.stderr,
+        )
         return 2
 
     os.environ.setdefault("PYGAME_HIDE_SUPPORT_PROMPT", "1")
@@ -203,21 +192,29 @@ def main(argv: list[str] | None = None) -> int:
         os.environ.setdefault("SDL_VIDEODRIVER", "dummy")  # headless: no window needed
     import pygame  # only now: bad arguments should not pay for SDL start-up
 
-    from evapcool.app.applet import App
+    from evapcool.app.applet import App, StartCancelledError, stderr_log
 
     try:
+        # The window opens at once; a first start of the fast engine shows its progress.
         app = App(
-            game,
+            config,
             fullscreen=args.fullscreen,
             data_dir=args.data_dir,
             config_dir=args.config_dir,
             settings=saved,
             overrides={k: v for k, v in overrides.items() if v is not None},
             notices=notices,
+            log=stderr_log,
         )
+    except StartCancelledError:
+        return 0
+    except ValueError as exc:
+        print(f"{PROG}: {_user_message(exc)}", file=sys.stderr)
+        return 2
     except pygame.error as exc:
         print(
-            f"{PROG}: cannot open a window ({exc}); for headless runs set SDL_VIDEODRIVER=dummy",
+            f"{PROG}: cannot open a window ({exc}); to run headless use "
+            "--frames N --screenshot out.png",
             file=sys.stderr,
         )
         return 1

@@ -27,9 +27,11 @@ HEIGHT_START = TRAP_HEIGHT
 #: Simulation speed multipliers: +/- double or halve within these.
 SPEED_MIN = 0.25
 SPEED_MAX = 4.0
-#: One wall-clock step never advances more than this many seconds of play, so a
-#: stall (window dragged, laptop asleep) does not jump the game minutes ahead.
-MAX_WALL_STEP = 0.1
+#: One wall-clock step never advances more than this many seconds of play: when frames
+#: fall behind (a loaded machine, thousands of atoms) the game slows down instead of
+#: taking ever larger steps, each costlier than the last; a stall (window dragged,
+#: laptop asleep) does not jump the game ahead. At 1x: at most 2 physics frames a frame.
+MAX_WALL_STEP = 1.0 / 15.0
 
 
 @dataclass(frozen=True)
@@ -77,23 +79,26 @@ def make_simulation(config: GameConfig) -> Simulation:
 class Game:
     """One game: a simulation plus the player's controls and the rules of winning."""
 
-    def __init__(self, config: GameConfig | None = None) -> None:
+    def __init__(self, config: GameConfig | None = None, sim: Simulation | None = None) -> None:
+        """sim: a simulation already made for config (built elsewhere, e.g. in a thread)."""
         self.config = config or GameConfig()
         self.speed = check_speed(self.config.speed)
         #: Called once with the game when the gas condenses (highscores, sounds...).
         self.on_win: list[Callable[[Game], None]] = []
         #: Bumped by every restart so views can drop per-game caches.
         self.generation = 0
-        self.restart()
+        self.restart(sim=sim)
 
     # -- lifecycle ---------------------------------------------------------------
-    def restart(self, config: GameConfig | None = None) -> None:
+    def restart(self, config: GameConfig | None = None, sim: Simulation | None = None) -> None:
         """New atoms, trap at its start height, paused (the original's restart).
 
         config, if given, replaces the current one first (settings applied on restart);
         a config the simulation rejects raises ValueError and leaves the game as it was.
+        sim: the new simulation, already made for that config.
         """
-        sim = make_simulation(config or self.config)
+        if sim is None:
+            sim = make_simulation(config or self.config)
         if config is not None:
             self.config = config
         self.sim = sim
@@ -101,6 +106,7 @@ class Game:
         self.paused = True
         #: Play time (s) at which the win was first seen, None before.
         self.won_at: float | None = None
+        self._won_with: int | None = None
         self.generation += 1
 
     # -- pause and speed -----------------------------------------------------------
@@ -158,6 +164,7 @@ class Game:
         self.sim.advance(frames)
         if self.sim.won and self.won_at is None:
             self.won_at = self.play_time
+            self._won_with = self.sim.n_trapped
             for callback in list(self.on_win):
                 callback(self)
         return frames
@@ -174,10 +181,58 @@ class Game:
 
     @property
     def score(self) -> int | None:
-        """Atoms left in the cup once the gas has condensed; None before."""
-        return self.sim.n_trapped if self.sim.won else None
+        """Atoms in the cup when the gas condensed; None before.
+
+        Fixed at that moment: an atom already on its way over the rim may still leave
+        while the rest settle, but the score shown and the one stored stay the same.
+        """
+        if not self.sim.won:
+            return None
+        return self._won_with if self._won_with is not None else self.sim.n_trapped
 
     @property
     def all_escaped(self) -> bool:
         """Every atom has left the cup: nothing more can happen but a restart."""
         return self.sim.n_trapped == 0 and not self.sim.won
+
+    @property
+    def too_few_atoms(self) -> str | None:
+        """Why the gas can no longer condense (say so, offer a restart), or None."""
+        sim = self.sim
+        if sim.won or not sim.win_rule:
+            return None
+        masses = sim.masses
+        lightest = float(masses.min()) if masses.size else 1.0
+        return out_of_reach(
+            sim.n_trapped,
+            sim.total_energy(),
+            sim.critical_temperature,
+            escape_energy=lightest * sim.gravity * HEIGHT_MIN,
+        )
+
+
+def out_of_reach(
+    n: int, energy: float, critical_temperature: float, escape_energy: float
+) -> str | None:
+    """Why T < Tc can no longer be reached by n trapped atoms of total energy E, or None.
+
+    T = E / N (seed Eq. 1) changes only when atoms leave: collisions and bounces keep
+    E. An atom leaves only above the rim (or, with the knife, above m g H), so it
+    carries away more than escape_energy = m g H_min, H_min being the lowest rim the
+    slider allows. With n >= 2 atoms and E above that, one may leave carrying nearly
+    all the energy, and the rest could be left as cold as they like: a win stays
+    possible, however unlikely. It is out of reach exactly when
+    - no atom is left;
+    - one atom is left above Tc(1): alone it never collides, so its energy (its T)
+      stays until it leaves, and then none is left;
+    - T >= Tc(N) and no atom can ever leave (E <= escape_energy), so T stays.
+    """
+    if n <= 0:
+        return "All the atoms escaped."
+    if energy / n < critical_temperature:
+        return None  # condensing now
+    if n == 1:
+        return "One atom alone cannot cool below Tc."
+    if energy <= escape_energy:
+        return "No atom can leave any more: T stays above Tc."
+    return None

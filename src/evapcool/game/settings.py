@@ -16,13 +16,15 @@ from functools import lru_cache
 from pathlib import Path
 
 from evapcool.fileio import atomic_write_text, set_aside
-from evapcool.physics.loading import cell_centres
+from evapcool.physics.loading import capacity
 from evapcool.physics.simulation import (
     ATOM_RADIUS,
+    BORDER_TOP,
     CURVATURE,
     N_ATOMS,
     TC_EXPONENT_CUP,
     TC_EXPONENT_SEED,
+    TRAP_HEIGHT,
     WINDOW,
     cup_vertex,
 )
@@ -70,28 +72,13 @@ FIELD_NAMES = tuple(f.name for f in fields(Settings))
 
 @lru_cache(maxsize=64)
 def cup_capacity(radius: float) -> int:
-    """How many atoms of this radius the initial loading fits in the classic window.
+    """How many atoms of this radius start wholly inside the cup, below its rim.
 
-    Bisects on the loader itself, so it agrees exactly with `Simulation` raising.
+    The rim starts at TRAP_HEIGHT, below the play area's top border, so every atom of
+    such a start is trapped and in view (`loading.capacity`, the loader's own rows).
     """
-    y_top = cup_vertex(WINDOW)[1] - radius  # screen y of the trap origin
-
-    def fits(n: int) -> bool:
-        try:
-            cell_centres(n, radius, CURVATURE, y_top)
-        except ValueError:
-            return False
-        return True
-
-    lo, hi = 0, 1
-    while fits(hi):
-        lo, hi = hi, hi * 2
-        if hi > 1_000_000:  # cannot happen for RADIUS_MIN; a guard, not a limit
-            return lo
-    while hi - lo > 1:
-        mid = (lo + hi) // 2
-        lo, hi = (mid, hi) if fits(mid) else (lo, mid)
-    return lo
+    play_top = cup_vertex(WINDOW)[1] - radius - BORDER_TOP  # trap y of the border's edge
+    return capacity(radius, CURVATURE, min(TRAP_HEIGHT, play_top))
 
 
 def max_atoms(radius: float) -> int:

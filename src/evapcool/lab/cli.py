@@ -6,13 +6,17 @@ import argparse
 import sys
 from typing import NoReturn
 
+import numpy as np
+
 from evapcool.argtypes import choice, positive, whole
+from evapcool.extras import check
 from evapcool.lab.experiment import ESCAPES, START_HELP, TC_LAWS, LabConfig, run_experiment
 from evapcool.lab.io import COLUMNS, read_result, to_csv_text
 from evapcool.lab.schedule import SCHEDULE_HELP
 from evapcool.physics.simulation import ENGINES
 
 EXIT_USAGE = 2
+EXIT_NO_THEORY = 1  # the run is written, but too short (or unsuitable) for the model
 EXIT_INTERRUPTED = 130
 
 
@@ -70,6 +74,13 @@ def build_parser() -> argparse.ArgumentParser:
         help="keep running under the game's rules once T < Tc",
     )
     p.add_argument(
+        "--no-win",
+        dest="win",
+        action="store_const",
+        const=False,
+        help="turn the game's win rule off: the gas stays a gas below Tc (evaporation goes on)",
+    )
+    p.add_argument(
         "--from",
         dest="from_file",
         metavar="FILE",
@@ -77,6 +88,12 @@ def build_parser() -> argparse.ArgumentParser:
     )
     p.add_argument("--out", metavar="FILE", help="results, .csv or .json (default: CSV on stdout)")
     p.add_argument("--plot", metavar="FILE.png", help="save the four-panel figure")
+    p.add_argument(
+        "--theory",
+        action="store_true",
+        help="print the measured rates beside the truncated-Boltzmann model (stdout if --out "
+        "is given, else stderr) and draw the model in the figure",
+    )
     return p
 
 
@@ -115,29 +132,60 @@ def main(argv: list[str] | None = None) -> int:
         value = getattr(args, name, None)
         if value is not None:
             params[name] = value
+    if args.plot is not None:
+        check("matplotlib", "--plot")  # before the run, which may be long
+    plot = None if args.theory else args.plot  # with --theory the figure waits for the model
     try:
-        result = run_experiment(out=args.out, plot=args.plot, progress=None, **params)
+        result = run_experiment(out=args.out, plot=plot, progress=None, **params)
     except ValueError as exc:
         return _fail(_option_message(str(exc)))
     except OSError as exc:
         return _fail(f"could not write output: {exc}")
     if args.out is None:
         sys.stdout.write(to_csv_text(result.metadata, result.columns, result.final_energies))
+    print(_summary(result, args.out), file=sys.stderr)
+    if not result.completed:
+        if args.theory and args.plot:
+            result.plot(args.plot)
+        return EXIT_INTERRUPTED
+    return _theory(result, args) if args.theory else 0
+
+
+def _summary(result, out: str | None) -> str:
+    """One line: records, N and T from first to last, when T fell below Tc."""
     n = result.n_trapped
     t = result.temperature
     won = result.metadata.get("won_frame")
+    if result.parameters.get("win", True):
+        below = f", T < Tc from frame {won}" if won is not None else ", T > Tc throughout"
+    else:
+        crossed = np.flatnonzero(t < result.critical_temperature)
+        below = (
+            f", T < Tc from frame {result.frame[crossed[0]]} (win rule off)"
+            if crossed.size
+            else ", T > Tc throughout (win rule off)"
+        )
     summary = (
         f"evapcool lab: {len(result)} records, N {n[0]} -> {n[-1]}, "
-        f"T {t[0]:.4g} -> {t[-1]:.4g}"
-        + (f", T < Tc from frame {won}" if won is not None else ", T > Tc throughout")
-        + (f"; wrote {args.out}" if args.out else "")
+        f"T {t[0]:.4g} -> {t[-1]:.4g}" + below + (f"; wrote {out}" if out else "")
     )
     if not result.completed:
-        print(
-            summary + f" (interrupted at frame {result.metadata['frames_done']})", file=sys.stderr
-        )
-        return EXIT_INTERRUPTED
-    print(summary, file=sys.stderr)
+        summary += f" (interrupted at frame {result.metadata['frames_done']})"
+    return summary
+
+
+def _theory(result, args) -> int:
+    """Print the comparison with the model (stdout if the CSV went to a file) and plot it."""
+    try:
+        report = result.theory()
+    except ValueError as exc:
+        print(f"evapcool lab: error: --theory: {exc}", file=sys.stderr)
+        if args.plot:
+            result.plot(args.plot)
+        return EXIT_NO_THEORY
+    print(report, file=sys.stdout if args.out else sys.stderr)
+    if args.plot:
+        result.plot(args.plot, theory=report)
     return 0
 
 

@@ -24,7 +24,7 @@ from evapcool.lab.io import (
 )
 from evapcool.lab.progress import Progress
 from evapcool.lab.schedule import Schedule, parse_schedule
-from evapcool.lab.theory import thermal_cloud
+from evapcool.lab.theory import eta_from_cut, thermal_cloud
 from evapcool.physics.simulation import (
     ATOM_RADIUS,
     CURVATURE,
@@ -88,6 +88,7 @@ class LabConfig:
     tc_law: str = "seed"
     start: str = "cup"
     stop_at_win: bool = True
+    win: bool = True
 
     def validated(self) -> LabConfig:
         """A copy with checked, normalised values and a concrete seed; ValueError on bad input."""
@@ -106,6 +107,8 @@ class LabConfig:
         parse_start(self.start)
         if not isinstance(self.stop_at_win, bool):
             raise ValueError(f"stop_at_win must be True or False (got {self.stop_at_win!r})")
+        if not isinstance(self.win, bool):
+            raise ValueError(f"win must be True or False (got {self.win!r})")
         return LabConfig(
             atoms=_whole("atoms", self.atoms, 1),
             radius=_positive("radius", self.radius),
@@ -120,6 +123,7 @@ class LabConfig:
             tc_law=self.tc_law,
             start=self.start,
             stop_at_win=self.stop_at_win,
+            win=self.win,
         )
 
 
@@ -162,22 +166,43 @@ class LabResult:
 
     @property
     def eta(self) -> np.ndarray:
-        """Truncation parameter m g H / kT at each record, kT = 2/5 of the temperature column."""
-        kt = 0.4 * self.columns["temperature"]
-        with np.errstate(divide="ignore", invalid="ignore"):
-            return MASS * self.metadata["parameters"]["gravity"] * self.trap_height / kt
+        """Truncation parameter m g H / kT at each record, kT from the law cut at m g H.
+
+        The law E^(3/2) exp(-E/kT) cut at eta kT whose mean energy is the temperature
+        column (doc/lab.md); inf without a cut, nan where no such law has that mean.
+        """
+        cut = MASS * self.metadata["parameters"]["gravity"] * self.trap_height
+        return np.array(
+            [eta_from_cut(float(t), float(c)) for t, c in zip(self.temperature, cut, strict=True)]
+        )
+
+    def theory(self, *, settle: float | None = None):
+        """The run's measured rates beside the truncated-Boltzmann model (doc/lab.md).
+
+        Returns a TheoryReport: print it for the table; report["alpha"] etc. for a row.
+        The window opens after `settle` collisions per atom (default 10).
+        """
+        from evapcool.lab.compare import SETTLE_COLLISIONS, compare_with_theory
+
+        return compare_with_theory(self, settle=SETTLE_COLLISIONS if settle is None else settle)
 
     def save(self, path: str | os.PathLike[str]) -> None:
         """Write as CSV or JSON (by extension), atomically."""
         write_result(path, self.metadata, self.columns, self.final_energies)
 
-    def plot(self, path: str | os.PathLike[str] | None = None):
-        """The four-panel figure (doc/lab.md); saved to path if given; returns the Figure."""
+    def plot(self, path: str | os.PathLike[str] | None = None, *, theory=None):
+        """The four-panel figure (doc/lab.md); saved to path if given; returns the Figure.
+
+        theory=True (or a report from self.theory()) draws the model over the measurement
+        and adds two panels: the collision rate and the evaporated atoms against time.
+        """
         check("matplotlib", "LabResult.plot")
         from evapcool.lab.plot import plot_result
 
         notebook.show_figures_inline()
-        return plot_result(self, path)
+        if theory is True:
+            theory = self.theory()
+        return plot_result(self, path, theory=theory or None)
 
 
 def load_result(path: str | os.PathLike[str]) -> LabResult:
@@ -187,6 +212,34 @@ def load_result(path: str | os.PathLike[str]) -> LabResult:
 
 def _new_columns() -> dict[str, list]:
     return {c: [] for c in COLUMNS}
+
+
+@dataclass
+class _Ledger:
+    """Atoms that left the trap and the energy they took, by how they left (doc/lab.md).
+
+    Evaporated: during flight (a collision pushed it over the knife, or it flew over the
+    rim), with its energy at that moment; spilled: when the schedule lowered the cut.
+    Collisions and bounces conserve energy, so what the trapped atoms lose is exactly what
+    the leavers took (before the win, whose damped bounces lose energy too).
+    """
+
+    evaporated: int = 0
+    evaporated_energy: float = 0.0
+    excess_energy: float = 0.0  # sum of E - m g H over the evaporated atoms
+    spilled: int = 0
+    spilled_energy: float = 0.0
+
+    def evaporate(self, count: int, energy: float, cut: float) -> None:
+        if count:
+            self.evaporated += count
+            self.evaporated_energy += energy
+            self.excess_energy += energy - count * cut
+
+    def spill(self, count: int, energy: float) -> None:
+        if count:
+            self.spilled += count
+            self.spilled_energy += energy
 
 
 def _make_simulation(cfg: LabConfig, schedule: Schedule) -> Simulation:
@@ -215,6 +268,7 @@ def _make_simulation(cfg: LabConfig, schedule: Schedule) -> Simulation:
         engine=cfg.engine,
         tc_exponent=TC_LAWS[cfg.tc_law],
         escape=cfg.escape,
+        win=cfg.win,
         positions=pos,
         velocities=vel,
     )
@@ -232,9 +286,10 @@ def run_experiment(
     """Run one evaporation experiment; ValueError on bad input, before any simulation work.
 
     params are the LabConfig fields (atoms, radius, curvature, gravity, seed, engine,
-    frames, every, escape, schedule, tc_law, start, stop_at_win). The trap height
+    frames, every, escape, schedule, tc_law, start, stop_at_win, win). The trap height
     follows the schedule frame by frame; a record (a row) is taken every `every`
     frames and at the end, which is the frame where T < Tc unless stop_at_win=False.
+    win=False turns the game's win rule off: the gas stays a gas below Tc (no stop).
     Ctrl-C stops the run early and returns (and writes) the rows so far, marked
     completed=False. progress=None draws a bar only if stderr is a terminal.
     """
@@ -272,6 +327,7 @@ def run_experiment(
     }
     cols = _new_columns()
     n0 = sim.n_atoms
+    ledger = _Ledger()
     psd0: list[float] = []  # N T^-5/2 at the first record, for the normalisation
 
     def snapshot() -> LabResult:
@@ -293,6 +349,8 @@ def run_experiment(
         cols["pair_collisions"].append(sim.pair_collision_count)
         cols["wall_collisions"].append(sim.wall_collision_count)
         cols["escaped"].append(n0 - n)
+        for name, value in asdict(ledger).items():
+            cols[name].append(value)
         cols["phase_space_density"].append(psd / psd0[0] if psd0[0] > 0.0 else 0.0)
         cols["won"].append(int(sim.won))
 
@@ -301,10 +359,18 @@ def run_experiment(
     try:
         if schedule.kind == "eta":
             schedule.apply(sim, 0.0)
+        energy = sim.total_energy()
+        ledger.spill(n0 - sim.n_trapped, n0 * sim.initial_temperature - energy)
         record(0)
         for frame in range(1, cfg.frames + 1):
+            n, cut = sim.n_trapped, MASS * cfg.gravity * sim.trap_height
             sim.advance(1.0)
+            flown = sim.total_energy()
+            ledger.evaporate(n - sim.n_trapped, energy - flown, cut)
+            n = sim.n_trapped
             schedule.apply(sim, float(frame))
+            energy = sim.total_energy()
+            ledger.spill(n - sim.n_trapped, flown - energy)
             won_now = sim.won and metadata["won_frame"] is None
             if won_now:
                 metadata["won_frame"] = frame

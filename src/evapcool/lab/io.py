@@ -22,11 +22,25 @@ COLUMNS = (
     "pair_collisions",
     "wall_collisions",
     "escaped",
+    "evaporated",
+    "evaporated_energy",
+    "excess_energy",
+    "spilled",
+    "spilled_energy",
     "phase_space_density",
     "won",
 )
 INT_COLUMNS = frozenset(
-    {"frame", "n_trapped", "pair_collisions", "wall_collisions", "escaped", "won"}
+    {
+        "frame",
+        "n_trapped",
+        "pair_collisions",
+        "wall_collisions",
+        "escaped",
+        "evaporated",
+        "spilled",
+        "won",
+    }
 )
 FORMATS = (".csv", ".json")
 CSV_MAGIC = "# evapcool lab results"

@@ -6,8 +6,9 @@ import itertools
 import math
 import re
 from dataclasses import dataclass
+from functools import cached_property
 
-from evapcool.lab.theory import kt_from_mean_energy, truncation_height
+from evapcool.lab.theory import truncated_mean_energy, truncation_height
 
 SCHEDULE_HELP = (
     "a height > 0 like 400 (or inf), a ramp like 400@0,60@1800 "
@@ -32,6 +33,11 @@ class Schedule:
     eta: float = math.nan
     text: str = ""
 
+    @cached_property
+    def mean_energy_per_kt(self) -> float:
+        """<E> / kT of the law E^(3/2) exp(-E/kT) cut at eta kT (eta schedules)."""
+        return float(truncated_mean_energy(self.eta))
+
     def fixed_height(self, frame: float) -> float:
         """H at this frame for a constant or ramp schedule; linear between points, held outside."""
         if self.kind != "ramp":
@@ -50,14 +56,15 @@ class Schedule:
         if self.kind == "ramp":
             sim.trap_height = self.fixed_height(frame)
             return
-        # Constant truncation: H = eta kT / (m g), kT = 2/5 <E> (SPEC 4). With the knife,
-        # lowering H removes hot atoms and cools the rest, so repeat until self-consistent.
+        # Constant truncation: H = eta kT / (m g), kT from the mean energy of the law
+        # E^(3/2) exp(-E/kT) cut at eta kT (doc/lab.md). With the knife, lowering H removes
+        # hot atoms and cools the rest, so repeat until self-consistent.
         mass = float(sim.masses.mean()) if sim.n_trapped else 1.0
         for _ in range(sim.n_atoms + 1):
             n_before = sim.n_trapped
             if n_before == 0:
                 return
-            kt = kt_from_mean_energy(sim.temperature)
+            kt = sim.temperature / self.mean_energy_per_kt
             sim.trap_height = max(truncation_height(self.eta, kt, mass, sim.gravity), 1e-300)
             if sim.n_trapped == n_before:
                 return

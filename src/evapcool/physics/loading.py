@@ -80,3 +80,22 @@ def load_cup(
     theta = 2.0 * math.pi * u[:, 3]
     vel = np.column_stack((speed * np.cos(theta), speed * np.sin(theta)))
     return pos, vel
+
+
+def capacity(radius: float, curvature: float, y_top: float) -> int:
+    """How many atoms of this radius the loading places with every disk below y_top.
+
+    The count `cell_centres` fills before it would raise: whole rows of cells whose
+    disks (cell radius R * 20/12) stay under y_top, wherever the jitter puts them.
+    """
+    jitter = radius * 8.0 / 12.0
+    cell = radius + jitter
+    spacing = 2.0 * cell
+    y0 = jitter * 1.05
+    count, k = 0, 0
+    while (yc := y0 + k * spacing) + cell <= y_top:
+        m = int(math.sqrt(yc / curvature) / spacing) + 1
+        xs = np.arange(-m, m + 1) * spacing
+        count += int(np.count_nonzero(_disk_inside_cup(xs.astype(float), yc, jitter, curvature)))
+        k += 1
+    return count

@@ -1,24 +1,246 @@
-"""One cache of pygame's bundled font by size and weight, for every view module."""
+"""Text for every view module: pygame's bundled font, then system fonts for what it lacks.
+
+The bundled font (the original applet's look) covers Latin only. Each character it lacks is
+drawn with the first installed font of `FALLBACK_FAMILIES` that has it, so a name typed in
+Chinese, Korean, Arabic or with emoji shows as typed, not as empty boxes. FreeType tells
+which font has a glyph (`pygame.freetype` reports a missing one); SDL_ttf draws, with
+HarfBuzz shaping, so Arabic letters join and read right to left. Nothing is shipped: the
+chain is whatever of these families the system has (`fc-list` on Linux).
+"""
 
 from __future__ import annotations
 
-import pygame
+import unicodedata
+from dataclasses import dataclass, field
+from functools import lru_cache
 
-_cache: dict[tuple[int, bool], pygame.font.Font] = {}
+import pygame
+import pygame.freetype
+
+Color = tuple[int, int, int]
+
+#: System font families tried in order for characters the bundled font lacks (names as
+#: pygame.font.match_font spells them: lower case, no spaces). Linux, Windows and macOS names.
+FALLBACK_FAMILIES = (
+    # Wide Latin, Greek, Cyrillic, Arabic, Hebrew, symbols (and monochrome emoji)
+    "dejavusans",
+    "notosans",
+    "segoeui",
+    "arial",
+    "liberationsans",
+    "helvetica",
+    "notosansarabic",
+    "notonaskharabic",
+    "geezapro",
+    "tahoma",
+    # Chinese, Japanese, Korean
+    "notosanscjkjp",
+    "notosanscjksc",
+    "notosanscjkkr",
+    "sourcehansans",
+    "droidsansfallback",
+    "wenquanyimicrohei",
+    "microsoftyahei",
+    "yugothic",
+    "malgungothic",
+    "pingfangsc",
+    "hiraginosans",
+    "applesdgothicneo",
+    # Emoji and symbols
+    "notocoloremoji",
+    "notoemoji",
+    "segoeuiemoji",
+    "applecoloremoji",
+    "symbola",
+    "segoeuisymbol",
+    # More scripts
+    "notosansdevanagari",
+    "notosanshebrew",
+    "notosansthai",
+    "nirmalaui",
+    "arialunicodems",
+)
+#: Right-to-left scripts HarfBuzz shapes (ISO 15924 tags) by a character's Unicode name.
+_RTL_SCRIPTS = {"ARABIC": "Arab", "HEBREW": "Hebr", "SYRIAC": "Syrc", "THAANA": "Thaa"}
+
+
+@dataclass
+class _Face:
+    """One font file: its glyph coverage (FreeType) and SDL_ttf fonts by size and style."""
+
+    path: str | None  # None: pygame's bundled font
+    _covered: dict[str, bool] = field(default_factory=dict)
+    _ft: pygame.freetype.Font | None = None
+
+    def has(self, ch: str) -> bool:
+        known = self._covered.get(ch)
+        if known is None:
+            if self._ft is None:
+                if not pygame.freetype.get_init():
+                    pygame.freetype.init()
+                self._ft = pygame.freetype.Font(self.path, 16)
+            try:
+                known = self._ft.get_metrics(ch)[0] is not None
+            except (pygame.error, ValueError, TypeError):
+                known = False
+            self._covered[ch] = known
+        return known
+
+    def forget_fonts(self) -> None:
+        self._ft = None
+
+
+_faces: list[_Face] | None = None
+_fonts: dict[tuple[str | None, int, bool, str | None], pygame.font.Font] = {}
+
+
+def _on_quit() -> None:
+    # Fonts die with pygame's font modules: drop them (coverage, plain data, stays).
+    _fonts.clear()
+    text_image.cache_clear()
+    for face in _faces or ():
+        face.forget_fonts()
+
+
+def faces() -> list[_Face]:
+    """The chain: the bundled font, then each installed fallback family once."""
+    global _faces
+    if _faces is None:
+        chain, seen = [_Face(None)], set()
+        for family in FALLBACK_FAMILIES:
+            try:
+                path = pygame.font.match_font(family)
+            except Exception:  # a broken font cache must not stop the applet
+                path = None
+            if path and path not in seen:
+                seen.add(path)
+                chain.append(_Face(path))
+        _faces = chain
+    return _faces
+
+
+def fallback_paths() -> list[str]:
+    """Files of the installed fallback fonts, in the order they are tried."""
+    return [f.path for f in faces() if f.path is not None]
+
+
+def _sdl_font(path: str | None, size: int, bold: bool, script: str | None) -> pygame.font.Font:
+    if not pygame.font.get_init():
+        pygame.font.init()
+    key = (path, size, bold, script)
+    f = _fonts.get(key)
+    if f is None:
+        if not _fonts:
+            pygame.register_quit(_on_quit)  # once per filling: pygame runs it once
+        if path is None:
+            f = pygame.font.Font(None, size)
+        else:
+            f = pygame.font.Font(path, _matched_size(path, size))
+        f.set_bold(bold)
+        if script is not None:
+            f.set_script(script)
+            f.set_direction(pygame.DIRECTION_RTL)
+        _fonts[key] = f
+    return f
+
+
+def _cap_height(f: pygame.font.Font) -> int:
+    """Height of a capital H above the baseline (0 if the font has no H)."""
+    metrics = f.metrics("H")
+    return metrics[0][3] if metrics and metrics[0] else 0
+
+
+@lru_cache(maxsize=256)
+def _matched_size(path: str, size: int) -> int:
+    """The size at which this font's capitals are as tall as the bundled font's at `size`
+    (its ascent, for a font without Latin letters): letters of every script then sit
+    at one visual size, as a designer pairs fonts, rather than shrunk by tall ascents."""
+    primary, probe = pygame.font.Font(None, size), pygame.font.Font(path, size)
+    want, have = _cap_height(primary), _cap_height(probe)
+    if not (want and have):
+        want, have = primary.get_ascent(), probe.get_ascent()
+    return max(1, round(size * want / max(1, have)))
 
 
 def font(size: int, bold: bool = False) -> pygame.font.Font:
-    """pygame's bundled font (present everywhere) at this pixel size."""
-    if not pygame.font.get_init():
-        pygame.font.init()
-    key = (size, bold)
-    f = _cache.get(key)
-    if f is None:
-        if not _cache:
-            # A Font dies with the font module: forget them all when pygame quits, so
-            # an applet reopened in one process (a notebook, the tests) gets live fonts.
-            # pygame runs a quit callback once, hence one registration per filling.
-            pygame.register_quit(_cache.clear)
-        f = _cache[key] = pygame.font.Font(None, size)
-        f.set_bold(bold)
-    return f
+    """pygame's bundled font (the original's look) at this pixel size."""
+    return _sdl_font(None, int(size), bold, None)
+
+
+def _script(ch: str) -> str | None:
+    if unicodedata.bidirectional(ch) not in ("R", "AL"):
+        return None
+    word = unicodedata.name(ch, "").split(" ")[0]
+    return _RTL_SCRIPTS.get(word, "Arab")
+
+
+def _joins_previous(ch: str) -> bool:
+    """Marks, joiners, variation selectors and modifiers stay with the letter before them."""
+    return unicodedata.category(ch) in ("Mn", "Me", "Cf", "Sk")
+
+
+def runs(text: str) -> list[tuple[int, str | None, str]]:
+    """(face index, RTL script or None, text) runs in logical order, one font each.
+
+    Spaces make runs of their own, so they stay between words when right-to-left
+    runs are turned round.
+    """
+    chain = faces()
+    out: list[tuple[int, str | None, str]] = []
+    for ch in text:
+        if out and _joins_previous(ch) and not out[-1][2][-1].isspace():
+            k, script, s = out[-1]
+            out[-1] = (k, script, s + ch)
+            continue
+        k = next((i for i, face in enumerate(chain) if face.has(ch)), 0)
+        script = _script(ch)
+        prev = out[-1] if out else None
+        if prev and prev[0] == k and prev[1] == script and prev[2][-1].isspace() == ch.isspace():
+            out[-1] = (k, script, prev[2] + ch)
+        else:
+            out.append((k, script, ch))
+    return out
+
+
+def _rtl_paragraph(text: str) -> bool:
+    """Unicode's rule for the base direction: the first strong character decides."""
+    for ch in text:
+        kind = unicodedata.bidirectional(ch)
+        if kind in ("R", "AL"):
+            return True
+        if kind == "L":
+            return False
+    return False
+
+
+@lru_cache(maxsize=4096)
+def text_image(text: str, size: int, color: Color, bold: bool = False) -> pygame.Surface:
+    """The text rendered (antialiased, transparent background) at this pixel size."""
+    if text.isascii():  # the common case: the bundled font alone, as the original
+        return font(size, bold).render(text, True, color)
+    chain = faces()
+    parts = []
+    for k, script, s in runs(text):
+        f = _sdl_font(chain[k].path, size, bold, script)
+        parts.append((f.render(s, True, color), f.get_ascent()))
+    if _rtl_paragraph(text):
+        parts.reverse()
+    ascent = max(a for _, a in parts)
+    height = max(ascent - a + img.get_height() for img, a in parts)
+    out = pygame.Surface((sum(img.get_width() for img, _ in parts), height), pygame.SRCALPHA)
+    x = 0
+    for img, a in parts:
+        out.blit(img, (x, ascent - a))
+        x += img.get_width()
+    return out
+
+
+def text_size(text: str, size: int, bold: bool = False) -> tuple[int, int]:
+    """Width and height of `text_image(text, size, ...)`."""
+    return text_image(text, size, (255, 255, 255), bold).get_size()
+
+
+def missing(text: str) -> list[str]:
+    """Characters of text that no font of the chain has (they would show as boxes)."""
+    chain = faces()
+    return [ch for ch in text if not ch.isspace() and not any(f.has(ch) for f in chain)]

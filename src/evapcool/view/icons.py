@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable
+from functools import lru_cache
 
 import pygame
 
@@ -89,8 +90,9 @@ def button_icon(symbol: str, look: str = "idle", size: int = 64) -> pygame.Surfa
     return _smooth(big, size)
 
 
+@lru_cache(maxsize=64)
 def button_looks(symbol: str, size: int = 64) -> tuple[pygame.Surface, ...]:
-    """(idle, hover, down) images of one symbol."""
+    """(idle, hover, down) images of one symbol, drawn for this size in real pixels."""
     return tuple(button_icon(symbol, look, size) for look in LOOKS)
 
 

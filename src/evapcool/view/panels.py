@@ -1,27 +1,30 @@
 """Side panels that show why evaporation cools, drawn with pygame only.
 
 `EnergyPanel`: live histogram of the trapped atoms' energies, the cut at m g H
-and the equilibrium curve N w P(E), P(E) ~ E^(3/2) exp(-E/kT), kT = 2/5 T.
+and the equilibrium curve N w P(E), P(E) ~ E^(3/2) exp(-5E / 2T) (T: the game's
+temperature, the mean energy per atom).
 `PathPanel`: the path in the (N, T) plane on log-log axes with T = Tc(N) and
 the condensate region (T < Tc(N)) shaded.
 
-Both: `record(sim)` once per frame, `draw(surface, rect)` into any rectangle.
-Static parts (axes, ticks, shading) are cached per rectangle size, so a frame
-costs a blit plus the live marks. Both reset themselves when handed a new
-`Simulation` (a restart), so the applet needs no extra bookkeeping.
+Both: `record(sim)` once per frame, `draw(surface, rect, scale)` into any rectangle at
+any scale (fonts and lines drawn at the size they are seen). Every word sits outside the
+plotting area, in the header (title, legend, live readout) or by the axes, so data
+never crosses a label. Static parts are cached per size, so a frame costs a blit
+plus the live marks. Both reset themselves when handed a new `Simulation`.
 """
 
 from __future__ import annotations
 
 import math
 from collections import deque
-from collections.abc import Callable
+from collections.abc import Sequence
+from dataclasses import dataclass
 from typing import Protocol
 
 import numpy as np
 import pygame
 
-from evapcool.view.fonts import font as _font
+from evapcool.view.fonts import text_image, text_size
 
 # Light background, dark ink: what survives a washed-out classroom projector.
 BG = (244, 243, 238)
@@ -34,20 +37,10 @@ ESCAPE_TINT = (252, 226, 226)
 CONDENSATE = (188, 214, 246)
 TC_LINE = (25, 60, 150)
 PATH = (215, 95, 10)
+#: Room kept free in a panel's top-right corner (logical px), for the app's close button.
+CORNER_RESERVE = 40
 KT_FRACTION = 0.4  # kT = 2/5 of the mean energy per atom in this cup (SPEC 4)
 _GAMMA_5_2 = 0.75 * math.sqrt(math.pi)
-
-
-def _blank_canvas(
-    rect: pygame.Rect, plot_rect: Callable[[pygame.Rect], pygame.Rect]
-) -> tuple[pygame.Surface, pygame.Rect, pygame.Rect]:
-    """A panel-sized surface in the background colour with its plot area filled."""
-    local = pygame.Rect(0, 0, rect.w, rect.h)
-    surf = pygame.Surface(local.size)
-    surf.fill(BG)
-    plot = plot_rect(local)
-    pygame.draw.rect(surf, PLOT_BG, plot)
-    return surf, local, plot
 
 
 class SimLike(Protocol):
@@ -69,22 +62,107 @@ class SimLike(Protocol):
     def energies(self) -> np.ndarray: ...
 
 
-def _font_size(rect: pygame.Rect) -> int:
+# -- layout shared by both panels ------------------------------------------------------
+@dataclass(frozen=True)
+class LegendItem:
+    """A legend entry: a swatch ('bar', 'line' or 'dot') in a colour, and its words."""
+
+    mark: str
+    color: tuple[int, int, int]
+    text: str
+
+
+@dataclass(frozen=True)
+class Layout:
+    """Where everything of a panel goes, in surface pixels, for one rect and scale."""
+
+    rect: pygame.Rect
+    scale: float
+    title_text: str
+    font: int  # title size, px (smaller than the panel's font size if it had to fit)
+    small: int  # legend, ticks and axis labels, px
+    title: pygame.Rect
+    legend: tuple[tuple[LegendItem, pygame.Rect], ...]
+    readout: pygame.Rect  # the live numbers (N, T...), reserved at their widest
+    plot: pygame.Rect
+
+    def px(self, v: float) -> int:
+        """A logical length at this scale, whole pixels, at least 1."""
+        return max(1, round(v * self.scale))
+
+
+def _font_size(rect: pygame.Rect, scale: float = 1.0) -> int:
     # Scale with the panel, but never below what reads from the back of a room.
-    return max(18, min(30, rect.h // 11))
+    return round(scale * max(18, min(30, int(rect.h / scale) // 11)))
 
 
-def _margins(rect: pygame.Rect) -> pygame.Rect:
-    """The plotting area inside a panel rectangle (room for title, ticks and labels)."""
-    fs = _font_size(rect)
-    left, right = int(2.6 * fs), int(0.8 * fs)
-    top, bottom = int(1.5 * fs), int(2.1 * fs)
-    return pygame.Rect(
-        rect.x + left,
-        rect.y + top,
-        max(10, rect.w - left - right),
-        max(10, rect.h - top - bottom),
+def layout(
+    rect: pygame.Rect, scale: float, title: str, items: Sequence[LegendItem], readout: str
+) -> Layout:
+    """Title on top, the legend flowing in rows below it, then the plot with its margins."""
+    rect = pygame.Rect(rect)
+    fs = _font_size(rect, scale)
+    small = max(1, round(0.85 * fs))
+    pad = max(1, round(6 * scale))
+    # The title shrinks to fit between the corners (the top-right one is kept for a
+    # close button), never below the legend's size.
+    room = rect.w - 2 * round(CORNER_RESERVE * scale)
+    title_size = fs
+    while title_size > small and text_size(title, title_size, True)[0] > room:
+        title_size -= 1
+    tw, th = text_size(title, title_size, True)
+    title_rect = pygame.Rect(0, rect.y + pad // 2, tw, th)
+    title_rect.centerx = rect.centerx
+    left, right = rect.x + int(2.6 * fs), rect.right - int(0.8 * fs)
+    x0 = rect.x + 2 * pad  # the legend may use the width the y labels leave free
+    row_h = text_size("Ag", small)[1]
+    x, y = x0, title_rect.bottom + pad // 2
+    placed = []
+    widths = [(item, 2 * small + text_size(item.text, small)[0]) for item in items]
+    widths.append((None, text_size(readout, small)[0]))
+    readout_rect = pygame.Rect(0, 0, 0, 0)
+    for item, w in widths:
+        if x > x0 and x + w > right:
+            x, y = x0, y + row_h
+        r = pygame.Rect(x, y, w, row_h)
+        if item is None:
+            readout_rect = r
+        else:
+            placed.append((item, r))
+        x += w + small
+    top = y + row_h + pad
+    bottom = rect.bottom - int(2.1 * fs)
+    plot = pygame.Rect(left, top, max(10, right - left), max(10, bottom - top))
+    return Layout(
+        rect, scale, title, title_size, small, title_rect, tuple(placed), readout_rect, plot
     )
+
+
+def _blank(lay: Layout) -> pygame.Surface:
+    """The static layer: background, title, legend, empty plot (panel-local pixels)."""
+    surf = pygame.Surface(lay.rect.size)
+    surf.fill(BG)
+    ox, oy = lay.rect.topleft
+    surf.fill(PLOT_BG, lay.plot.move(-ox, -oy))
+    image = text_image(lay.title_text, lay.font, INK, True)
+    surf.blit(image, lay.title.move(-ox, -oy))
+    for item, r in lay.legend:
+        r = r.move(-ox, -oy)
+        sw = pygame.Rect(r.x, r.y, int(1.5 * lay.small), r.h).inflate(0, -r.h // 3)
+        if item.mark == "bar":
+            surf.fill(item.color, sw)
+        elif item.mark == "line":
+            pygame.draw.line(surf, item.color, sw.midleft, sw.midright, lay.px(3))
+        else:
+            pygame.draw.circle(surf, item.color, sw.center, lay.px(5))
+        image = text_image(item.text, lay.small, INK)
+        surf.blit(image, image.get_rect(midleft=(r.x + 2 * lay.small, r.centery)))
+    return surf
+
+
+def _draw_frame(surf: pygame.Surface, lay: Layout) -> None:
+    ox, oy = lay.rect.topleft
+    pygame.draw.rect(surf, INK, lay.plot.move(-ox, -oy), lay.px(2))
 
 
 def _nice_step(span: float, target: int = 5) -> float:
@@ -116,24 +194,89 @@ def _tick_text(v: float) -> str:
 def _blit_text(
     surface: pygame.Surface,
     text: str,
-    font: pygame.font.Font,
+    size: int,
     color: tuple[int, int, int],
+    bold: bool = False,
     **anchor: object,
 ) -> pygame.Rect:
-    img = font.render(text, True, color)
+    img = text_image(text, size, color, bold)
     r = img.get_rect(**anchor)
     surface.blit(img, r)
     return r
 
 
+class _Panel:
+    """What both panels share: layouts by size and scale, the static layer, clipped drawing."""
+
+    title = ""
+    legend_items: tuple[LegendItem, ...] = ()
+    readout_template = ""
+
+    def __init__(self) -> None:
+        self.scale = 1.0
+        #: Every text drawn at the last draw (surface pixels): none lies in the plot.
+        self.label_rects: list[pygame.Rect] = []
+        self._layouts: dict[tuple, Layout] = {}
+
+    def layout(self, rect: pygame.Rect, scale: float | None = None) -> Layout:
+        s = self.scale if scale is None else float(scale)
+        rect = pygame.Rect(rect)
+        key = (rect.x, rect.y, rect.w, rect.h, s)
+        lay = self._layouts.get(key)
+        if lay is None:
+            if len(self._layouts) > 16:
+                self._layouts.clear()
+            lay = self._layouts[key] = layout(
+                rect, s, self.title, self.legend_items, self.readout_template
+            )
+        return lay
+
+    def plot_rect(self, rect: pygame.Rect, scale: float | None = None) -> pygame.Rect:
+        """Where the data goes inside the panel rectangle (at the last drawn scale)."""
+        return self.layout(rect, scale).plot
+
+    def draw(self, surface: pygame.Surface, rect: pygame.Rect, scale: float = 1.0) -> None:
+        """Draw the panel into rect on surface at this scale (nothing outside rect changes)."""
+        self.scale = float(scale)
+        lay = self.layout(rect)
+        old_clip = surface.get_clip()
+        surface.set_clip(lay.rect.clip(old_clip) if old_clip else lay.rect)
+        try:
+            words = [r.inflate(-2 * lay.small, 0).move(lay.small, 0) for _, r in lay.legend]
+            self.label_rects = [lay.title, *words]
+            self._draw(surface, lay)
+        finally:
+            surface.set_clip(old_clip)
+
+    def _draw(self, surface: pygame.Surface, lay: Layout) -> None:
+        raise NotImplementedError
+
+    def _readout(self, surface: pygame.Surface, lay: Layout, text: str) -> None:
+        r = _blit_text(surface, text, lay.small, INK, midleft=lay.readout.midleft)
+        self.label_rects.append(r)
+
+    def _label(self, surface: pygame.Surface, lay: Layout, text: str, **anchor) -> pygame.Rect:
+        r = _blit_text(surface, text, lay.small, INK, **anchor)
+        self.label_rects.append(r)
+        return r
+
+
 # ----------------------------------------------------------------------------------
-class EnergyPanel:
+class EnergyPanel(_Panel):
     """Smoothed histogram of the trapped atoms' energies, the cut and the equilibrium curve.
 
     Bins are fixed for a whole run (chosen at the first `record` of a simulation)
     so bars stay comparable while the gas cools. `heights` is the mean of the
     per-frame counts over the last `window_frames` recorded frames.
     """
+
+    title = "Energies of the trapped atoms"
+    legend_items = (
+        LegendItem("bar", BAR, "atoms"),
+        LegendItem("line", CURVE, "equilibrium at T"),
+        LegendItem("bar", CUT, "cut m g H"),
+    )
+    readout_template = "N = 00000   T = 00000"
 
     def __init__(
         self,
@@ -145,11 +288,11 @@ class EnergyPanel:
             raise ValueError(f"window_frames must be >= 1 (got {window_frames!r})")
         if n_bins is not None and n_bins < 1:
             raise ValueError(f"n_bins must be >= 1 (got {n_bins!r})")
+        super().__init__()
         self.n_bins_requested = n_bins
         self.window_frames = int(window_frames)
         self.e_max_requested = e_max
-        self._static: tuple[tuple[int, int, int], pygame.Surface] | None = None
-        self._label_cache: dict[tuple[str, int], pygame.Surface] = {}
+        self._static: tuple[tuple, pygame.Surface] | None = None
         self.reset()
 
     def reset(self) -> None:
@@ -229,6 +372,7 @@ class EnergyPanel:
 
     @property
     def kt(self) -> float:
+        """The equilibrium curve's energy scale, 2/5 T in this cup (never shown as such)."""
         return KT_FRACTION * self.temperature
 
     def equilibrium_density(self, energy: np.ndarray | float) -> np.ndarray:
@@ -247,10 +391,6 @@ class EnergyPanel:
         return self.equilibrium_density(centres) * self.bin_width
 
     # -- geometry ---------------------------------------------------------------
-    def plot_rect(self, rect: pygame.Rect) -> pygame.Rect:
-        """Where the bars go inside the panel rectangle."""
-        return _margins(pygame.Rect(rect))
-
     def energy_to_x(self, energy: float, rect: pygame.Rect) -> float:
         """Screen x (float) of an energy on the panel's axis."""
         plot = self.plot_rect(rect)
@@ -270,108 +410,83 @@ class EnergyPanel:
         return plot.bottom - plot.h * float(count) / self._y_max
 
     # -- drawing ----------------------------------------------------------------
-    def _static_layer(self, rect: pygame.Rect) -> pygame.Surface:
-        key = (rect.w, rect.h, id(self.bin_edges))
+    def _static_layer(self, lay: Layout) -> pygame.Surface:
+        key = (lay.rect.size, lay.scale, id(self.bin_edges))
         if self._static is not None and self._static[0] == key:
             return self._static[1]
-        surf, local, plot = _blank_canvas(rect, self.plot_rect)
-        fs = _font_size(local)
-        font, small = _font(fs, bold=True), _font(int(fs * 0.85))
-        _blit_text(surf, "Energies of the trapped atoms", font, INK, midtop=(local.centerx, 4))
+        surf = _blank(lay)
+        plot = lay.plot.move(-lay.rect.x, -lay.rect.y)
         if self.bin_edges is not None:
             e_max = float(self.bin_edges[-1])
             step = _nice_step(e_max)
             v = 0.0
             while v <= e_max * (1 + 1e-9):
                 x = round(plot.x + plot.w * v / e_max)
-                pygame.draw.line(surf, INK, (x, plot.bottom), (x, plot.bottom + 5), 2)
-                _blit_text(surf, _tick_text(v), small, INK, midtop=(x, plot.bottom + 6))
+                pygame.draw.line(
+                    surf, INK, (x, plot.bottom), (x, plot.bottom + lay.px(5)), lay.px(2)
+                )
+                _blit_text(surf, _tick_text(v), lay.small, INK, midtop=(x, plot.bottom + lay.px(6)))
                 v += step
-        _blit_text(surf, "energy E", small, INK, midbottom=(plot.centerx, local.bottom - 2))
-        ylabel = pygame.transform.rotate(small.render("atoms per bin", True, INK), 90)
-        surf.blit(ylabel, ylabel.get_rect(midleft=(4, plot.centery)))
-        pygame.draw.rect(surf, INK, plot, 2)
+        _draw_frame(surf, lay)
         self._static = (key, surf)
         return surf
 
-    def _tick_label(
-        self, v: float, font: pygame.font.Font, **anchor: object
-    ) -> tuple[pygame.Surface, pygame.Rect]:
-        key = (_tick_text(v), font.get_height())
-        img = self._label_cache.get(key)
-        if img is None:
-            img = self._label_cache[key] = font.render(key[0], True, INK)
-        return img, img.get_rect(**anchor)
-
-    def draw(self, surface: pygame.Surface, rect: pygame.Rect) -> None:
-        """Draw the panel into rect on surface (nothing outside rect is touched)."""
-        rect = pygame.Rect(rect)
-        old_clip = surface.get_clip()
-        surface.set_clip(rect.clip(old_clip) if old_clip else rect)
-        try:
-            self._draw(surface, rect)
-        finally:
-            surface.set_clip(old_clip)
-
-    def _draw(self, surface: pygame.Surface, rect: pygame.Rect) -> None:
-        surface.blit(self._static_layer(rect), rect)
-        plot = self.plot_rect(rect)
-        inner = plot.inflate(-4, -4)
-        fs = _font_size(rect)
-        small = _font(int(fs * 0.85))
+    def _draw(self, surface: pygame.Surface, lay: Layout) -> None:
+        surface.blit(self._static_layer(lay), lay.rect)
+        plot = lay.plot
+        rect = lay.rect
+        self._label(surface, lay, "energy E", midbottom=(plot.centerx, rect.bottom - lay.px(2)))
+        ylabel = pygame.transform.rotate(text_image("atoms per bin", lay.small, INK), 90)
+        self.label_rects.append(
+            surface.blit(ylabel, ylabel.get_rect(midleft=(rect.x + lay.px(4), plot.centery)))
+        )
         if self.bin_edges is None:
-            _blit_text(surface, "no data yet", small, INK, center=plot.center)
+            self._label(surface, lay, "no data yet", midleft=lay.readout.midleft)
             return
+        self._draw_data(surface, lay)
+        # Count ticks move with the (slowly adapting) y range, so they are drawn per frame.
+        for v in np.arange(0.0, self._y_max, _nice_step(self._y_max, 4)):
+            y = round(self.count_to_y(v, rect))
+            pygame.draw.line(surface, INK, (plot.x - lay.px(5), y), (plot.x, y), lay.px(2))
+            self._label(surface, lay, _tick_text(v), midright=(plot.x - lay.px(6), y))
+        self._readout(surface, lay, f"N = {self.n_trapped}   T = {self.temperature:.3g}")
+
+    def _draw_data(self, surface: pygame.Surface, lay: Layout) -> None:
+        """Tint, bars, curve and cut, all clipped to the inside of the frame."""
+        plot = lay.plot
+        inner = plot.inflate(-2 * lay.px(2), -2 * lay.px(2))
         outer_clip = surface.get_clip()
         surface.set_clip(inner.clip(outer_clip))
-        cx = self.cut_x(rect)
+        cx = self.cut_x(lay.rect)
         if cx < inner.right:  # tint the energies that leave the trap
-            pygame.draw.rect(surface, ESCAPE_TINT, (cx, inner.y, inner.right - cx, inner.h))
-        # Bars. Positions are energy_to_x / count_to_y in bulk (the same arithmetic,
-        # without recomputing the plot rectangle per point: it is the frame's hot path).
+            surface.fill(ESCAPE_TINT, (cx, inner.y, inner.right - cx, inner.h))
+        # Bars: energy_to_x / count_to_y in bulk (the frame's hot path).
         e_max = float(self.bin_edges[-1])
         edges_x = (plot.x + plot.w * self.bin_edges / e_max).tolist()
+        gap = lay.px(1)
         for i, h in enumerate(self.heights.tolist()):
             if h <= 0:
                 continue
             x0, x1 = round(edges_x[i]), round(edges_x[i + 1])
             top = round(plot.bottom - plot.h * h / self._y_max)
-            surface.fill(BAR, (x0 + 1, top, max(1, x1 - x0 - 2), plot.bottom - top))
+            surface.fill(BAR, (x0 + gap, top, max(1, x1 - x0 - 2 * gap), plot.bottom - top))
         # Equilibrium curve, as atoms per bin so it sits on the bars.
         if self.n_trapped and self.kt > 0:
-            es = np.linspace(0.0, e_max, 120)
+            es = np.linspace(0.0, e_max, 160)
             ys = self.equilibrium_density(es) * self.bin_width
             pts = np.column_stack(
                 (plot.x + plot.w * es / e_max, plot.bottom - plot.h * ys / self._y_max)
             )
-            pygame.draw.lines(surface, CURVE, False, pts.tolist(), 3)
+            pygame.draw.lines(surface, CURVE, False, pts.tolist(), lay.px(3))
         # The cut line on top of everything in the plot.
         if cx <= inner.right:
-            pygame.draw.rect(surface, CUT, (cx - 1, inner.y, 3, inner.h))
+            w = max(3, lay.px(3))
+            surface.fill(CUT, (cx - w // 2, inner.y, w, inner.h))
         surface.set_clip(outer_clip)
-        # Count ticks move with the (slowly adapting) y range, so they are drawn per frame.
-        for v in np.arange(0.0, self._y_max, _nice_step(self._y_max, 4)):
-            y = round(self.count_to_y(v, rect))
-            pygame.draw.line(surface, INK, (plot.x - 5, y), (plot.x, y), 2)
-            surface.blit(*self._tick_label(v, small, midright=(plot.x - 6, y)))
-        # Labels and legend.
-        if cx <= inner.right:
-            lab = small.render("cut m g H", True, CUT)
-            lr = lab.get_rect(topright=(cx - 6, inner.y + 4))
-            if lr.left < inner.left + 4:
-                lr.topleft = (cx + 6, inner.y + 4)
-            surface.blit(lab, lr)
-        else:
-            _blit_text(surface, "cut m g H ->", small, CUT, topright=(inner.right - 4, inner.y + 4))
-        legend = f"N = {self.n_trapped}   kT = {self.kt:.3g}"
-        _blit_text(surface, legend, small, INK, topright=(inner.right - 4, inner.y + 8 + fs))
-        ly = inner.y + 14 + 2 * fs
-        pygame.draw.line(surface, CURVE, (inner.right - 150, ly), (inner.right - 125, ly), 3)
-        _blit_text(surface, "equilibrium", small, INK, midright=(inner.right - 4, ly))
 
 
 # ----------------------------------------------------------------------------------
-class PathPanel:
+class PathPanel(_Panel):
     """The player's path in the (N, T) plane, log-log, with T = Tc(N) and the condensate.
 
     Axes are fixed per run from the first `record`: N from 1 to 1.25 N0, T from
@@ -380,11 +495,18 @@ class PathPanel:
     ends where the gas condenses; the settling afterwards is not cooling).
     """
 
+    title = "Path to condensation"
+    legend_items = (
+        LegendItem("dot", PATH, "your path"),
+        LegendItem("line", TC_LINE, "T = Tc(N)"),
+        LegendItem("bar", CONDENSATE, "condensate, T < Tc"),
+    )
+    readout_template = "N = 00000   T = 00000   Tc = 00000"
+
     def __init__(self, stop_after_win: bool = True) -> None:
+        super().__init__()
         self.stop_after_win = stop_after_win
         self._static: tuple[tuple, pygame.Surface] | None = None
-        self.overlay_rects: list[pygame.Rect] = []
-        self._overlay_local: list[pygame.Rect] = []
         self.reset()
 
     def reset(self) -> None:
@@ -401,7 +523,7 @@ class PathPanel:
         self._static = None
         self._px: list[tuple[int, int]] = []
         self._px_upto = 0
-        self._px_key: tuple[int, int, int, int] | None = None
+        self._px_key: tuple | None = None
 
     # -- data -------------------------------------------------------------------
     def _adopt(self, sim: SimLike) -> None:
@@ -456,9 +578,6 @@ class PathPanel:
         return bool(t < self.tc(n))
 
     # -- geometry ---------------------------------------------------------------
-    def plot_rect(self, rect: pygame.Rect) -> pygame.Rect:
-        return _margins(pygame.Rect(rect))
-
     def _log_frac(self, v: float | np.ndarray, lo: float, hi: float) -> np.ndarray:
         return (np.log(np.asarray(v, dtype=float)) - math.log(lo)) / (math.log(hi) - math.log(lo))
 
@@ -487,97 +606,85 @@ class PathPanel:
         return plot.collidepoint(px, py) and self.in_condensate(*self.from_pixel(px, py, rect))
 
     # -- drawing ----------------------------------------------------------------
-    def _static_layer(self, rect: pygame.Rect) -> pygame.Surface:
-        key = (rect.w, rect.h, self.n_range, self.t_range, self.tc0, self.exponent, self.n0)
+    def _static_layer(self, lay: Layout) -> pygame.Surface:
+        key = (lay.rect.topleft, lay.rect.size, lay.scale, self.n_range, self.t_range)
+        key += (self.tc0, self.exponent, self.n0)
         if self._static is not None and self._static[0] == key:
             return self._static[1]
-        surf, local, plot = _blank_canvas(rect, self.plot_rect)
+        surf = _blank(lay)
+        ox, oy = lay.rect.topleft
+        plot = lay.plot
         # Shading column by column, so pixel (x, y) is shaded exactly when the
         # (N, T) at its centre has T < Tc(N) (see from_pixel).
         xs = np.arange(plot.x, plot.right)
-        ns = np.array([self.from_pixel(int(x), plot.y, local)[0] for x in xs])
-        ybound = np.array([self.to_pixel(n, float(self.tc(n)), local)[1] for n in ns])
+        ns = np.array([self.from_pixel(int(x), plot.y, lay.rect)[0] for x in xs])
+        ybound = np.array([self.to_pixel(n, float(self.tc(n)), lay.rect)[1] for n in ns])
         first = np.floor(ybound - 0.5).astype(int) + 1
         for x, y0 in zip(xs, first, strict=True):
             y0 = max(int(y0), plot.y)
             if y0 < plot.bottom:
-                surf.fill(CONDENSATE, (int(x), y0, 1, plot.bottom - y0))
-        line = [(float(x) + 0.5, float(y)) for x, y in zip(xs, ybound, strict=True)]
-        surf.set_clip(plot)
-        pygame.draw.lines(surf, TC_LINE, False, line, 3)
+                surf.fill(CONDENSATE, (int(x) - ox, y0 - oy, 1, plot.bottom - y0))
+        line = [(float(x) + 0.5 - ox, float(y) - oy) for x, y in zip(xs, ybound, strict=True)]
+        surf.set_clip(plot.move(-ox, -oy))
+        pygame.draw.lines(surf, TC_LINE, False, line, lay.px(3))
         surf.set_clip(None)
-
-        fs = _font_size(local)
-        font, small = _font(fs, bold=True), _font(int(fs * 0.85))
-        _blit_text(surf, "Path to condensation", font, INK, midtop=(local.centerx, 4))
         for v in _log_ticks(*self.n_range):
-            x = round(self.to_pixel(v, self.t_range[0], local)[0])
-            pygame.draw.line(surf, INK, (x, plot.bottom), (x, plot.bottom + 5), 2)
-            _blit_text(surf, _tick_text(v), small, INK, midtop=(x, plot.bottom + 6))
+            x = round(self.to_pixel(v, self.t_range[0], lay.rect)[0]) - ox
+            pygame.draw.line(
+                surf, INK, (x, plot.bottom - oy), (x, plot.bottom - oy + lay.px(5)), lay.px(2)
+            )
+            _blit_text(
+                surf, _tick_text(v), lay.small, INK, midtop=(x, plot.bottom - oy + lay.px(6))
+            )
         for v in _log_ticks(*self.t_range):
-            y = round(self.to_pixel(self.n_range[0], v, local)[1])
-            pygame.draw.line(surf, INK, (plot.x - 5, y), (plot.x, y), 2)
-            _blit_text(surf, _tick_text(v), small, INK, midright=(plot.x - 6, y))
-        _blit_text(
-            surf, "atoms in the cup N", small, INK, midbottom=(plot.centerx, local.bottom - 2)
-        )
-        ylabel = pygame.transform.rotate(small.render("temperature T", True, INK), 90)
-        surf.blit(ylabel, ylabel.get_rect(midleft=(2, plot.centery)))
-
-        # Labels inside the plot: remembered (panel-relative) so tests can skip them.
-        self._overlay_local = []
-        lab = font.render("condensate", True, TC_LINE)
-        lr = lab.get_rect(bottomright=(plot.right - 8, plot.bottom - 8))
-        surf.blit(lab, lr)
-        self._overlay_local.append(lr)
-        # "T = Tc(N)" just above the line, a third of the way across.
-        lab2 = small.render("T = Tc(N)", True, TC_LINE)
-        xl = plot.x + plot.w // 3
-        span = np.interp([xl, xl + lab2.get_width()], xs, ybound)
-        lr2 = lab2.get_rect(bottomleft=(xl, round(float(span.min())) - 8))
-        lr2.clamp_ip(plot.inflate(-8, -8))
-        surf.blit(lab2, lr2)
-        self._overlay_local.append(lr2)
-        pygame.draw.rect(surf, INK, plot, 2)
+            y = round(self.to_pixel(self.n_range[0], v, lay.rect)[1]) - oy
+            x0 = plot.x - ox
+            pygame.draw.line(surf, INK, (x0 - lay.px(5), y), (x0, y), lay.px(2))
+            _blit_text(surf, _tick_text(v), lay.small, INK, midright=(x0 - lay.px(6), y))
+        _draw_frame(surf, lay)
         self._static = (key, surf)
         return surf
 
-    def _path_pixels(self, rect: pygame.Rect) -> list[tuple[int, int]]:
+    def _path_pixels(self, lay: Layout) -> list[tuple[int, int]]:
         """Recorded points as pixels, consecutive repeats dropped (cached, incremental)."""
-        key = (rect.x, rect.y, rect.w, rect.h)
+        key = (lay.rect.x, lay.rect.y, lay.rect.w, lay.rect.h, lay.scale)
         if key != self._px_key:
             self._px, self._px_upto, self._px_key = [], 0, key
-        plot = self.plot_rect(rect).inflate(-4, -4)
+        plot = lay.plot.inflate(-4, -4)
         for n, t in zip(self._n[self._px_upto :], self._t[self._px_upto :], strict=True):
-            x, y = self.pixel_of(n, t, rect)
+            x, y = self.pixel_of(n, t, lay.rect)
             p = (min(max(x, plot.x), plot.right - 1), min(max(y, plot.y), plot.bottom - 1))
             if not self._px or self._px[-1] != p:
                 self._px.append(p)
         self._px_upto = len(self._n)
         return self._px
 
-    def draw(self, surface: pygame.Surface, rect: pygame.Rect) -> None:
-        """Draw the panel into rect on surface (nothing outside rect is touched)."""
-        rect = pygame.Rect(rect)
-        old_clip = surface.get_clip()
-        surface.set_clip(rect.clip(old_clip) if old_clip else rect)
-        try:
-            surface.blit(self._static_layer(rect), rect)
-            self.overlay_rects = [r.move(rect.x, rect.y) for r in self._overlay_local]
-            pts = self._path_pixels(rect)
-            if len(pts) >= 2:
-                pygame.draw.lines(surface, PATH, False, pts, 3)
-            for p in pts[:: max(1, len(pts) // 200)]:  # markers, thinned for long runs
-                pygame.draw.circle(surface, PATH, p, 3)
-            if pts:
-                pygame.draw.circle(surface, INK, pts[-1], 8)
-                pygame.draw.circle(surface, PATH, pts[-1], 6)
-                fs = _font_size(rect)
-                small = _font(int(fs * 0.85))
-                n, t = self._n[-1], self._t[-1]
-                text = f"N = {n}   T = {t:.3g}   Tc = {float(self.tc(n)):.3g}"
-                plot = self.plot_rect(rect)
-                r = _blit_text(surface, text, small, INK, topleft=(plot.x + 8, plot.y + 6))
-                self.overlay_rects.append(r)
-        finally:
-            surface.set_clip(old_clip)
+    @property
+    def overlay_rects(self) -> list[pygame.Rect]:
+        """Texts inside the plot: none (every label sits outside it)."""
+        return []
+
+    def _draw(self, surface: pygame.Surface, lay: Layout) -> None:
+        surface.blit(self._static_layer(lay), lay.rect)
+        plot, rect = lay.plot, lay.rect
+        self._label(
+            surface, lay, "atoms in the cup N", midbottom=(plot.centerx, rect.bottom - lay.px(2))
+        )
+        ylabel = pygame.transform.rotate(text_image("temperature T", lay.small, INK), 90)
+        where = ylabel.get_rect(midleft=(rect.x + lay.px(2), plot.centery))
+        self.label_rects.append(surface.blit(ylabel, where))
+        pts = self._path_pixels(lay)
+        old = surface.get_clip()
+        surface.set_clip(plot.inflate(-2 * lay.px(2), -2 * lay.px(2)).clip(old))
+        if len(pts) >= 2:
+            pygame.draw.lines(surface, PATH, False, pts, lay.px(3))
+        for p in pts[:: max(1, len(pts) // 200)]:  # markers, thinned for long runs
+            pygame.draw.circle(surface, PATH, p, lay.px(3))
+        if pts:
+            pygame.draw.circle(surface, INK, pts[-1], lay.px(8))
+            pygame.draw.circle(surface, PATH, pts[-1], lay.px(6))
+        surface.set_clip(old)
+        if self._n:
+            n, t = self._n[-1], self._t[-1]
+            tc = float(self.tc(n))
+            self._readout(surface, lay, f"N = {n}   T = {t:.3g}   Tc = {tc:.3g}")

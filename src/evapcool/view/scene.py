@@ -1,16 +1,15 @@
 """The applet's 640 x 672 scene: borders, title, cup, atoms, thermometer, messages.
 
-Everything is drawn in logical pixels on the surface handed in (the app scales
-that to the window). Positions and colours follow the original (SPEC section 1).
-Overlays (help, high scores, settings, name entry) and the notice toasts are
-drawn here too, from plain data the app hands in.
+Everything is laid out in logical pixels (the original's positions and colours, SPEC
+section 1) and drawn through a `Pen`, at the size it is seen: a scene at 1.5x or 2x
+has 1.5x or 2x lines, atoms and letters, not a blown-up bitmap. Overlays (help, high
+scores, settings, name entry), messages and notices are drawn here from plain data.
 """
 
 from __future__ import annotations
 
 import math
 from collections.abc import Sequence
-from functools import lru_cache
 
 import numpy as np
 import pygame
@@ -25,7 +24,8 @@ from evapcool.physics.simulation import (
     cup_vertex,
 )
 from evapcool.view.condensate import Condensate, draw_condensate
-from evapcool.view.fonts import font as _font
+from evapcool.view.fonts import text_size
+from evapcool.view.pen import Pen
 from evapcool.view.sprites import draw_atoms
 from evapcool.view.text_input import TextInput
 
@@ -65,6 +65,12 @@ BULB_RADIUS = 20
 MERCURY_WIDTH = 10
 THERMO_MAX_FRACTION = 1.2  # full scale is 1.2 x the starting temperature
 
+#: "Score: N" and the other big messages sit at the top of the play area, so the
+#: condensate below and any panel under them (name box, high scores) leave them in view.
+MESSAGE_Y = PLAY_RECT.top + 62
+#: Panels shown under a message start here.
+UNDER_MESSAGE = PLAY_RECT.top + 150
+
 
 def mercury_fraction(temperature: float, initial_temperature: float) -> float:
     """Height of the mercury as a fraction of the scale: T / (1.2 T0), clipped."""
@@ -93,24 +99,29 @@ def cup_outline(
     return np.column_stack((x + offset * slope / norm, curvature * x * x - offset / norm))
 
 
-@lru_cache(maxsize=256)
-def _text(text: str, size: int, color: tuple[int, int, int], bold: bool = False) -> pygame.Surface:
-    return _font(size, bold).render(text, True, color)
+def _shadowed(pen: Pen, text: str, size: int, center: tuple[float, float]) -> pygame.Rect:
+    pen.text(text, size, SHADOW, True, center=(center[0] + 3, center[1] + 3))
+    return pen.text(text, size, TEXT, True, center=center)
 
 
-def _shadowed(surface: pygame.Surface, text: str, size: int, center: tuple[int, int]) -> None:
-    for color, (dx, dy) in ((SHADOW, (3, 3)), (TEXT, (0, 0))):
-        image = _text(text, size, color, True)
-        surface.blit(image, image.get_rect(center=(center[0] + dx, center[1] + dy)))
+def _shade(pen: Pen, rect: pygame.Rect, color: tuple[int, int, int, int]) -> pygame.Rect:
+    """A translucent fill of a logical rect; returns its pixels."""
+    r = pen.rect(rect)
+    shade = pygame.Surface(r.size, pygame.SRCALPHA)
+    shade.fill(color)
+    pen.surface.blit(shade, r)
+    return r
+
+
+def to_pixels(pen: Pen, sim_to_screen, xy: np.ndarray) -> np.ndarray:
+    """Trap coordinates to the pen's pixels (float)."""
+    return np.asarray(sim_to_screen(xy), dtype=float) * pen.scale + np.array(pen.origin)
 
 
 class Scene:
-    """Draws the game onto a 640 x 672 logical surface."""
+    """Draws the game in the 640 x 672 logical scene through a Pen."""
 
-    def __init__(self, surface: pygame.Surface) -> None:
-        if surface.get_size() != SCENE_SIZE:
-            raise ValueError(f"the scene surface must be {SCENE_SIZE}, not {surface.get_size()}")
-        self.surface = surface
+    def __init__(self) -> None:
         self._cup_key: tuple[float, ...] | None = None
         self._cup_inner: list[tuple[float, float]] = []
         self._cup_outer: list[tuple[float, float]] = []
@@ -120,23 +131,20 @@ class Scene:
         self._atom_layer: pygame.Surface | None = None
 
     # -- the parts --------------------------------------------------------------------
-    def draw(self, game: Game, t: float = 0.0) -> None:
+    def draw(self, pen: Pen, game: Game, t: float = 0.0) -> None:
         """Background, cup, atoms, borders, title, thermometer and status texts.
 
         t: animation clock in seconds (drives the condensate's fade and pulse).
         """
-        s = self.surface
-        s.fill(BACKGROUND, PLAY_RECT)
-        s.set_clip(PLAY_RECT)  # escaping atoms slide under the borders
-        self.draw_cup(game)
-        self.draw_atoms(game, t)
-        s.set_clip(None)
-        self.draw_borders()
-        self.draw_thermometer(game)
-        self.draw_status(game)
+        pen.fill(BACKGROUND, PLAY_RECT)
+        with pen.clip(PLAY_RECT):  # escaping atoms slide under the borders
+            self.draw_cup(pen, game)
+            self.draw_atoms(pen, game, t)
+        self.draw_borders(pen)
+        self.draw_thermometer(pen, game)
+        self.draw_status(pen, game)
 
-    def draw_borders(self) -> None:
-        s = self.surface
+    def draw_borders(self, pen: Pen, title: str = "Evaporation cooling") -> None:
         w, h = SCENE_SIZE
         for rect in (
             (0, 0, w, BORDER_TOP),
@@ -144,9 +152,8 @@ class Scene:
             (0, 0, BORDER_LEFT, h),
             (w - BORDER_RIGHT, 0, BORDER_RIGHT, h),
         ):
-            s.fill(BORDER, rect)
-        title = _text("Evaporation cooling", 40, TEXT)
-        s.blit(title, title.get_rect(center=(w // 2, BORDER_TOP // 2 + 1)))
+            pen.fill(BORDER, rect)
+        pen.text(title, 40, TEXT, center=(w // 2, BORDER_TOP // 2 + 1))
 
     def _cup_points(self, game: Game) -> tuple[list, list]:
         sim = game.sim
@@ -161,203 +168,255 @@ class Scene:
             self._cup_key = key
         return self._cup_inner, self._cup_outer
 
-    def draw_cup(self, game: Game) -> None:
+    def draw_cup(self, pen: Pen, game: Game) -> None:
         """A 6 px black band whose inner edge is where atom edges touch the wall."""
         inner, outer = self._cup_points(game)
-        pygame.draw.polygon(self.surface, CUP_COLOR, inner + outer[::-1])
-        pygame.draw.aalines(self.surface, CUP_COLOR, False, inner)
-        pygame.draw.aalines(self.surface, CUP_COLOR, False, outer)
+        pen.polygon(CUP_COLOR, inner + outer[::-1])
+        pen.aalines(CUP_COLOR, False, inner)
+        pen.aalines(CUP_COLOR, False, outer)
 
-    def draw_atoms(self, game: Game, t: float = 0.0) -> None:
+    def draw_atoms(self, pen: Pen, game: Game, t: float = 0.0) -> None:
         """Atoms; after the win the trapped ones fade out under the condensate."""
         sim = game.sim
+        s = pen.scale
         if sim.n_escaped:
-            draw_atoms(self.surface, sim.to_screen(sim.escaped_positions), sim.escaped_radii)
+            xy = to_pixels(pen, sim.to_screen, sim.escaped_positions)
+            draw_atoms(pen.surface, xy, sim.escaped_radii * s)
         fade = self.fade = self.condensate.update(sim, t)
         if sim.n_trapped and fade <= 0.0:
-            draw_atoms(self.surface, sim.to_screen(sim.positions), sim.radii)
+            draw_atoms(pen.surface, to_pixels(pen, sim.to_screen, sim.positions), sim.radii * s)
         elif sim.n_trapped and fade < 1.0:
             # Sprites carry per-pixel alpha, so dim them as one layer with a surface alpha.
-            if self._atom_layer is None:
-                self._atom_layer = pygame.Surface(PLAY_RECT.size, pygame.SRCALPHA)
+            play = pen.rect(PLAY_RECT)
+            if self._atom_layer is None or self._atom_layer.get_size() != play.size:
+                self._atom_layer = pygame.Surface(play.size, pygame.SRCALPHA)
             layer = self._atom_layer
             layer.fill((0, 0, 0, 0))
-            draw_atoms(layer, sim.to_screen(sim.positions) - PLAY_RECT.topleft, sim.radii)
+            xy = to_pixels(pen, sim.to_screen, sim.positions) - np.array(play.topleft)
+            draw_atoms(layer, xy, sim.radii * s)
             layer.set_alpha(round(255 * (1.0 - fade)))
-            self.surface.blit(layer, PLAY_RECT)
+            pen.surface.blit(layer, play)
         if fade > 0.0:
-            draw_condensate(self.surface, sim, sim.to_screen, t, fade)
+            draw_condensate(pen.surface, sim, lambda xy: to_pixels(pen, sim.to_screen, xy), t, fade)
 
-    def draw_thermometer(self, game: Game) -> None:
-        s = self.surface
+    def draw_thermometer(self, pen: Pen, game: Game) -> None:
         sim = game.sim
         tube = pygame.Rect(0, 0, TUBE_WIDTH, BULB_CENTER[1] - TUBE_TOP)
         tube.midtop = (THERMO_X, TUBE_TOP)
-        pygame.draw.rect(s, GLASS, tube, border_radius=TUBE_WIDTH // 2)
-        pygame.draw.circle(s, GLASS, BULB_CENTER, BULB_RADIUS)
-        pygame.draw.circle(s, MERCURY, BULB_CENTER, BULB_RADIUS - 5)
+        pen.box(GLASS, tube, border_radius=TUBE_WIDTH // 2)
+        pen.circle(GLASS, BULB_CENTER, BULB_RADIUS)
+        pen.circle(MERCURY, BULB_CENTER, BULB_RADIUS - 5)
         top = scale_row(mercury_fraction(sim.temperature, sim.initial_temperature))
         column = pygame.Rect(0, 0, MERCURY_WIDTH, BULB_CENTER[1] - top)
         column.midtop = (THERMO_X, top)
-        s.fill(MERCURY, column)
+        pen.fill(MERCURY, column)
         # Tick marks every tenth of the scale, then the critical temperature.
         for k in range(11):
             y = scale_row(k / 10)
-            pygame.draw.line(s, (90, 90, 90), (tube.right - 5, y), (tube.right - 1, y))
+            pen.line((90, 90, 90), (tube.right - 5, y), (tube.right - 1, y))
         tc = scale_row(mercury_fraction(sim.critical_temperature, sim.initial_temperature))
-        pygame.draw.line(s, (0, 0, 0), (tube.left - 6, tc), (tube.right + 2, tc), 2)
-        label = _text("Tc", 26, TEXT)
-        s.blit(label, label.get_rect(midright=(tube.left - 8, tc)))
-        t_label = _text("T", 26, TEXT)
-        s.blit(t_label, t_label.get_rect(midbottom=(THERMO_X, TUBE_TOP - 2)))
+        pen.line((0, 0, 0), (tube.left - 6, tc), (tube.right + 2, tc), 2)
+        pen.text("Tc", 26, TEXT, midright=(tube.left - 8, tc))
+        pen.text("T", 26, TEXT, midbottom=(THERMO_X, TUBE_TOP - 2))
 
-    def draw_status(self, game: Game) -> None:
+    def draw_status(self, pen: Pen, game: Game) -> None:
         speed = game.speed
         text = f"speed {speed:g}x" if speed >= 1 else f"speed 1/{1 / speed:g}x"
-        image = _text(text, 22, (220, 220, 220))
-        self.surface.blit(image, image.get_rect(midleft=(10, BORDER_TOP // 2)))
-        hint = _text("H: help", 22, (220, 220, 220))
-        self.surface.blit(hint, hint.get_rect(midright=(SCENE_SIZE[0] - 10, BORDER_TOP // 2)))
+        pen.text(text, 22, (220, 220, 220), midleft=(10, BORDER_TOP // 2))
+        pen.text("H: help", 22, (220, 220, 220), midright=(SCENE_SIZE[0] - 10, BORDER_TOP // 2))
 
     # -- messages over the play area ------------------------------------------------------
-    def draw_score(self, score: int) -> None:
-        """'Score: N' in large text over the play area (the win)."""
-        _shadowed(self.surface, f"Score: {score}", 84, (PLAY_RECT.centerx, PLAY_RECT.top + 150))
-        sub = _text("The gas has condensed!", 30, TEXT, True)
-        self.surface.blit(sub, sub.get_rect(center=(PLAY_RECT.centerx, PLAY_RECT.top + 215)))
+    def draw_score(self, pen: Pen, score: int) -> pygame.Rect:
+        """'Score: N' in large text at the top of the play area (the win); its pixels."""
+        r = _shadowed(pen, f"Score: {score}", 84, (PLAY_RECT.centerx, MESSAGE_Y))
+        pen.text(
+            "The gas has condensed!", 30, TEXT, True, center=(PLAY_RECT.centerx, MESSAGE_Y + 58)
+        )
+        return r
 
-    def draw_empty(self) -> None:
-        """Every atom has escaped: say so and offer a restart."""
-        cx, y = PLAY_RECT.centerx, PLAY_RECT.top + 170
-        _shadowed(self.surface, "All the atoms escaped!", 52, (cx, y))
-        lines = ("Nothing left to cool.", "Press R or click restart to try again.")
+    def draw_too_few(self, pen: Pen, reason: str) -> None:
+        """The gas can no longer condense: say why and offer a restart."""
+        cx = PLAY_RECT.centerx
+        _shadowed(pen, "Too few atoms left", 52, (cx, MESSAGE_Y))
+        lines = [*wrap(reason, 26, PLAY_RECT.width - 40, True), "Press R to try again."]
         for k, line in enumerate(lines):
-            image = _text(line, 30, TEXT, True)
-            self.surface.blit(image, image.get_rect(center=(cx, y + 55 + 32 * k)))
+            pen.text(line, 26, TEXT, True, center=(cx, MESSAGE_Y + 48 + 30 * k))
 
-    def draw_start_hint(self) -> None:
-        image = _text("Press Space or click play to start", 28, TEXT, True)
-        self.surface.blit(image, image.get_rect(center=(PLAY_RECT.centerx, PLAY_RECT.top + 40)))
+    def draw_start_hint(self, pen: Pen) -> None:
+        pen.text(
+            "Press Space or click play to start",
+            28,
+            TEXT,
+            True,
+            center=(PLAY_RECT.centerx, PLAY_RECT.top + 40),
+        )
 
-    def _frame(self, rect: pygame.Rect) -> None:
+    def _frame(self, pen: Pen, rect: pygame.Rect) -> None:
         """A translucent dark panel with the accent border."""
-        shade = pygame.Surface(rect.size, pygame.SRCALPHA)
-        shade.fill(OVERLAY_SHADE)
-        self.surface.blit(shade, rect)
-        pygame.draw.rect(self.surface, ACCENT, rect, width=2, border_radius=4)
+        _shade(pen, rect, OVERLAY_SHADE)
+        pen.box(ACCENT, rect, width=2, border_radius=4)
 
-    def _overlay(self, title: str, height: int) -> pygame.Rect:
-        """A translucent framed panel over the play area with a title; returns its rect."""
-        panel = pygame.Rect(0, 0, PLAY_RECT.width - 24, min(height, PLAY_RECT.height - 8))
-        panel.center = PLAY_RECT.center
-        self._frame(panel)
-        image = _text(title, 34, ACCENT, True)
-        self.surface.blit(image, image.get_rect(midtop=(panel.centerx, panel.top + 12)))
+    def _overlay(self, pen: Pen, title: str, height: int, top: int | None = None) -> pygame.Rect:
+        """A framed panel over the play area (centred, or from `top` down); returns it."""
+        room = PLAY_RECT.bottom - 4 - (PLAY_RECT.top + 4 if top is None else top)
+        panel = pygame.Rect(0, 0, PLAY_RECT.width - 24, min(height, room))
+        panel.centerx = PLAY_RECT.centerx
+        if top is None:
+            panel.centery = PLAY_RECT.centery
+        else:
+            panel.top = top
+        self._frame(pen, panel)
+        pen.text(title, 34, ACCENT, True, midtop=(panel.centerx, panel.top + 12))
         return panel
 
-    def draw_help(self, rows: list[tuple[str, str]]) -> None:
-        """A translucent panel listing (keys, what they do)."""
+    def draw_help(
+        self, pen: Pen, rows: list[tuple[str, str]], footer: Sequence[str] = ()
+    ) -> pygame.Rect:
+        """A panel listing (keys, what they do), then footer lines (the frame rate)."""
         # Rows shrink a little when there are many, so the list always fits.
-        step = max(18, min(27, (PLAY_RECT.height - 70) // max(1, len(rows))))
+        n = len(rows) + len(footer)
+        step = max(17, min(27, (PLAY_RECT.height - 76) // max(1, n)))
         size = min(24, step - 2)
-        panel = self._overlay("Controls", 60 + step * len(rows))
-        col = panel.left + 18 + max(_text(k, size, TEXT, True).get_width() for k, _ in rows) + 16
+        panel = self._overlay(pen, "Controls", 64 + step * n)
+        col = panel.left + 18 + max(text_size(k, size, True)[0] for k, _ in rows) + 16
         for k, (keys, what) in enumerate(rows):
             y = panel.top + 52 + step * k
-            self.surface.blit(_text(keys, size, ACCENT, True), (panel.left + 18, y))
-            self.surface.blit(_text(what, size, TEXT), (col, y))
+            pen.text(keys, size, ACCENT, True, topleft=(panel.left + 18, y))
+            pen.text(what, size, TEXT, topleft=(col, y))
+        for k, line in enumerate(footer):
+            y = panel.top + 56 + step * (len(rows) + k)
+            pen.text(line, size, (190, 220, 255), topleft=(panel.left + 18, y))
+        return panel
 
     def draw_table(
-        self, entries: list[Entry], highlight: int | None = None, footer: Sequence[str] = ()
+        self,
+        pen: Pen,
+        entries: list[Entry],
+        highlight: int | None = None,
+        footer: Sequence[str] = (),
+        top: int | None = None,
     ) -> pygame.Rect:
-        """The high-score table; row `highlight` (1-based) stands out; footer lines below."""
-        panel = self._overlay("High scores", 100 + 30 * (max(1, len(entries)) + 1 + len(footer)))
+        """The high-score table; row `highlight` (1-based) stands out; footer lines below.
+
+        top: put the panel's top edge there (under the score) and fit the rows below it.
+        """
+        rows = max(1, len(entries))
+        room = PLAY_RECT.bottom - 4 - (PLAY_RECT.top + 4 if top is None else top)
+        step = max(20, min(30, (room - 96 - 28 * len(footer)) // rows))
+        panel = self._overlay(pen, "High scores", 96 + step * rows + 28 * len(footer), top)
         cols = (panel.left + 16, panel.left + 50, panel.left + 222, panel.left + 292)
-        y = panel.top + 56
+        y = panel.top + 54
         for x, head in zip(cols, ("#", "name", "atoms", "time"), strict=True):
-            self.surface.blit(_text(head, 22, ACCENT, True), (x, y))
-        date_head = _text("date", 22, ACCENT, True)
-        self.surface.blit(date_head, date_head.get_rect(topright=(panel.right - 16, y)))
+            pen.text(head, 22, ACCENT, True, topleft=(x, y))
+        pen.text("date", 22, ACCENT, True, topright=(panel.right - 16, y))
         if not entries:
-            image = _text("No scores yet: be the first!", 24, TEXT)
-            self.surface.blit(image, (cols[1], y + 32))
+            pen.text("No scores yet: be the first!", 24, TEXT, topleft=(cols[1], y + 30))
+        size = min(24, step - 4)
         name_width = cols[2] - cols[1] - 8
         for k, e in enumerate(entries):
-            y = panel.top + 88 + 30 * k
+            y = panel.top + 84 + step * k
             mine = highlight == k + 1
             color = ACCENT if mine else TEXT
             cells = (f"{k + 1}", e.name, f"{e.score}", format_seconds(e.seconds))
             for x, cell in zip(cols, cells, strict=True):
-                image = _text(cell, 24, color, mine)
                 # A long name is cut at its column rather than running into the score.
-                self.surface.blit(image, (x, y), pygame.Rect(0, 0, name_width, image.get_height()))
-            date = _text(e.date[:10], 22, color)
-            self.surface.blit(date, date.get_rect(topright=(panel.right - 16, y + 1)))
-        y = panel.top + 88 + 30 * max(1, len(entries)) + 14
+                with pen.clip(pygame.Rect(x, y - 4, name_width, step + 4)):
+                    pen.text(cell, size, color, mine, topleft=(x, y))
+            pen.text(e.date[:10], min(22, size), color, topright=(panel.right - 16, y + 1))
+        y = panel.top + 84 + step * rows + 8
         for line in footer:
-            image = _text(line, 24, ACCENT, True)
-            self.surface.blit(image, image.get_rect(midtop=(panel.centerx, y)))
-            y += 30
-        return panel
-
-    def draw_settings(
-        self, rows: list[tuple[str, str]], selected: int, footer: Sequence[str] = ()
-    ) -> pygame.Rect:
-        """The settings screen: (label, value) rows, the selected one marked."""
-        panel = self._overlay("Settings", 110 + 40 * len(rows) + 28 * len(footer))
-        for k, (label, value) in enumerate(rows):
-            y = panel.top + 60 + 40 * k
-            if k == selected:
-                pygame.draw.rect(
-                    self.surface, (60, 60, 110), (panel.left + 8, y - 6, panel.w - 16, 34), 0, 4
-                )
-                self.surface.blit(_text(">", 26, ACCENT, True), (panel.left + 14, y))
-            self.surface.blit(_text(label, 24, TEXT, k == selected), (panel.left + 34, y))
-            v = _text(f"< {value} >" if k == selected else value, 24, ACCENT, True)
-            self.surface.blit(v, v.get_rect(topright=(panel.right - 16, y)))
-        y = panel.top + 72 + 40 * len(rows)
-        for line in footer:
-            image = _text(line, 22, TEXT)
-            self.surface.blit(image, image.get_rect(midtop=(panel.centerx, y)))
+            pen.text(line, 24, ACCENT, True, midtop=(panel.centerx, y))
             y += 28
         return panel
 
-    def draw_name_entry(self, box: TextInput, prompt: str) -> pygame.Rect:
-        """Below the score: the prompt and the name being typed; returns the text box."""
-        frame = pygame.Rect(PLAY_RECT.left + 40, PLAY_RECT.top + 250, PLAY_RECT.width - 80, 120)
-        self._frame(frame)
-        image = _text(prompt, 26, ACCENT, True)
-        self.surface.blit(image, image.get_rect(midtop=(frame.centerx, frame.top + 10)))
-        field = pygame.Rect(frame.left + 20, frame.top + 40, frame.width - 40, 40)
-        box.draw(self.surface, field, _font(32))
-        hint = _text("Enter: store   Esc: skip", 22, TEXT)
-        self.surface.blit(hint, hint.get_rect(midtop=(frame.centerx, field.bottom + 8)))
+    def draw_settings(
+        self, pen: Pen, rows: list[tuple[str, str]], selected: int, footer: Sequence[str] = ()
+    ) -> pygame.Rect:
+        """The settings screen: (label, value) rows, the selected one marked."""
+        panel = self._overlay(pen, "Settings", 110 + 40 * len(rows) + 28 * len(footer))
+        for k, (label, value) in enumerate(rows):
+            y = panel.top + 60 + 40 * k
+            if k == selected:
+                pen.box((60, 60, 110), (panel.left + 8, y - 6, panel.w - 16, 34), 0, 4)
+                pen.text(">", 26, ACCENT, True, topleft=(panel.left + 14, y))
+            pen.text(label, 24, TEXT, k == selected, topleft=(panel.left + 34, y))
+            shown = f"< {value} >" if k == selected else value
+            pen.text(shown, 24, ACCENT, True, topright=(panel.right - 16, y))
+        y = panel.top + 72 + 40 * len(rows)
+        for line in footer:
+            pen.text(line, 22, TEXT, midtop=(panel.centerx, y))
+            y += 28
+        return panel
+
+    def draw_name_entry(self, pen: Pen, box: TextInput, prompt: str) -> pygame.Rect:
+        """Under the score: the prompt, the name being typed and its length; the field."""
+        frame = pygame.Rect(PLAY_RECT.left + 30, UNDER_MESSAGE, PLAY_RECT.width - 60, 136)
+        self._frame(pen, frame)
+        pen.text(prompt, 26, ACCENT, True, midtop=(frame.centerx, frame.top + 10))
+        field = pygame.Rect(frame.left + 20, frame.top + 40, frame.width - 40, 44)
+        box.draw(pen, field, 32)
+        count = f"{len(box.text)}/{box.max_length}"
+        full = len(box.text) >= box.max_length
+        pen.text(
+            f"{count}  (full)" if full else count,
+            22,
+            ACCENT if full else TEXT,
+            full,
+            topright=(field.right, field.bottom + 8),
+        )
+        pen.text("Enter: store   Esc: skip", 22, TEXT, topleft=(field.left, field.bottom + 8))
         return field
 
-    def draw_notices(self, lines: list[str]) -> pygame.Rect | None:
+    def draw_notices(self, pen: Pen, lines: list[str]) -> pygame.Rect | None:
         """Toasts at the bottom of the play area, wrapped to its width; returns their box."""
         if not lines:
             return None
-        font = _font(22)
         width = PLAY_RECT.width - 32
-        wrapped = [row for line in lines for row in _wrap(line, font, width)]
+        wrapped = [row for line in lines for row in wrap(line, 22, width)]
         box = pygame.Rect(0, 0, PLAY_RECT.width - 12, 12 + 20 * len(wrapped))
         box.midbottom = (PLAY_RECT.centerx, PLAY_RECT.bottom - 6)
-        shade = pygame.Surface(box.size, pygame.SRCALPHA)
-        shade.fill(NOTICE_SHADE)
-        self.surface.blit(shade, box)
+        _shade(pen, box, NOTICE_SHADE)
         for k, row in enumerate(wrapped):
-            self.surface.blit(_text(row, 22, TEXT), (box.left + 10, box.top + 6 + 20 * k))
+            pen.text(row, 22, TEXT, topleft=(box.left + 10, box.top + 6 + 20 * k))
         return box
 
 
-def _wrap(text: str, font: pygame.font.Font, width: int) -> list[str]:
-    """Greedy word wrap to a pixel width (a word longer than the width gets its own row)."""
+def draw_progress(
+    pen: Pen, what: str, fraction: float | None, elapsed: float, note: str = ""
+) -> pygame.Rect:
+    """A scene-sized 'please wait' screen: a bar (filled to fraction, or a moving block
+    when the share done is unknown), what is happening and the time so far; the bar."""
+    pen.fill(BACKGROUND, PLAY_RECT)
+    Scene().draw_borders(pen)
+    cx = PLAY_RECT.centerx
+    pen.text("Getting ready", 44, TEXT, True, center=(cx, PLAY_RECT.top + 150))
+    bar = pygame.Rect(PLAY_RECT.left + 40, PLAY_RECT.top + 230, PLAY_RECT.width - 80, 28)
+    pen.box(GLASS, bar)
+    inner = bar.inflate(-6, -6)
+    if fraction is None:
+        block = inner.w // 4
+        x = inner.left + round((inner.w - block) * (0.5 + 0.5 * math.sin(2.0 * elapsed)))
+        pen.fill(MERCURY, (x, inner.top, block, inner.h))
+    else:
+        done = round(inner.w * min(1.0, max(0.0, fraction)))
+        if done:
+            pen.fill(MERCURY, (inner.left, inner.top, done, inner.h))
+    pen.box(CUP_COLOR, bar, width=2)
+    for k, line in enumerate(wrap(what, 26, bar.w, True)):
+        pen.text(line, 26, TEXT, True, midtop=(cx, bar.bottom + 14 + 28 * k))
+    pen.text(f"{elapsed:.0f} s", 26, TEXT, midtop=(cx, bar.bottom + 80))
+    for k, line in enumerate(wrap(note, 22, bar.w)):
+        pen.text(line, 22, (225, 225, 225), midtop=(cx, bar.bottom + 130 + 24 * k))
+    return pen.rect(bar)
+
+
+def wrap(text: str, size: int, width: float, bold: bool = False) -> list[str]:
+    """Greedy word wrap to a logical width (a word longer than it gets its own row)."""
     rows: list[str] = []
     row = ""
     for word in text.split():
         candidate = f"{row} {word}" if row else word
-        if row and font.size(candidate)[0] > width:
+        if row and text_size(candidate, size, bold)[0] > width:
             rows.append(row)
             row = word
         else:

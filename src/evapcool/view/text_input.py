@@ -11,6 +11,8 @@ from collections.abc import Callable
 
 import pygame
 
+from evapcool.view.pen import Pen
+
 SUBMIT = "submit"
 CANCEL = "cancel"
 CHANGE = "change"
@@ -107,30 +109,29 @@ class TextInput:
     # -- drawing ------------------------------------------------------------------
     def draw(
         self,
-        surface: pygame.Surface,
+        pen: Pen,
         rect: pygame.Rect,
-        font: pygame.font.Font | None = None,
+        size: int = 32,
         color: tuple[int, int, int] = (20, 20, 20),
         background: tuple[int, int, int] | None = (255, 255, 255),
     ) -> pygame.Rect:
-        """Draw prompt, text and cursor into rect; returns the cursor rectangle."""
+        """Draw prompt, text and cursor into a logical rect at the pen's scale.
+
+        Any script: letters the bundled font lacks come from the system's fonts
+        (`evapcool.view.fonts`). Returns the cursor rectangle in pixels.
+        """
         rect = pygame.Rect(rect)
-        if font is None:
-            if not pygame.font.get_init():
-                pygame.font.init()
-            font = pygame.font.Font(None, max(18, int(rect.h * 0.7)))
         if background is not None:
-            pygame.draw.rect(surface, background, rect)
-            pygame.draw.rect(surface, color, rect, 2)
-        pad = max(4, rect.h // 6)
-        img = font.render(self.prompt + self.text, True, color)
-        old_clip = surface.get_clip()
-        surface.set_clip(rect.clip(old_clip))
-        # If the text is wider than the box, keep its end (where typing happens) in view.
-        x = rect.x + pad + min(0, rect.w - 2 * pad - img.get_width() - 4)
-        surface.blit(img, img.get_rect(midleft=(x, rect.centery)))
-        cursor = pygame.Rect(x + img.get_width() + 1, rect.y + pad, 3, rect.h - 2 * pad)
-        if self.cursor_visible:
-            pygame.draw.rect(surface, color, cursor)
-        surface.set_clip(old_clip)
+            pen.box(background, rect)
+            pen.box(color, rect, width=2)
+        box = pen.rect(rect)
+        pad = pen.size(max(4, rect.h // 6))
+        img = pen.text_image(self.prompt + self.text, size, color)
+        with pen.clip(rect):
+            # If the text is wider than the box, keep its end (where typing happens) in view.
+            x = box.x + pad + min(0, box.w - 2 * pad - img.get_width() - pen.size(4))
+            pen.surface.blit(img, img.get_rect(midleft=(x, box.centery)))
+            cursor = pygame.Rect(x + img.get_width() + 1, box.y + pad, pen.size(3), box.h - 2 * pad)
+            if self.cursor_visible:
+                pen.surface.fill(color, cursor)
         return cursor

@@ -1,151 +1,102 @@
-"""Immediate-mode buttons and a slider for any pygame applet (no game imports).
+"""Buttons and a slider for any pygame applet (nothing of the game in here).
 
-Every widget is driven by one call per frame, ``result = widget.control(mouse)``:
-it reads the mouse, updates its state, draws itself on its surface and returns
-its value (a click flag, a toggle state or the slider value).
+Widgets hold their geometry (logical pixels) and state; the app's input machine
+decides what an event means and calls them (`Slider.press`, `drag`, `release`,
+`ToggleButton.toggle`...). `draw(pen, pointer)` draws a widget at the pen's
+scale, its look following the pointer (idle, hover, held down).
 """
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from typing import NamedTuple
 
 import pygame
 
+from evapcool.view.pen import Pen
+
 Color = tuple[int, int, int]
+#: A widget's images for a size in real pixels: (idle, hover, down), hover and down optional.
+Looks = Callable[[int], Sequence[pygame.Surface]]
 
 BLACK: Color = (0, 0, 0)
 WHITE: Color = (255, 255, 255)
 YELLOW: Color = (250, 215, 40)
-
-
-class MouseState(NamedTuple):
-    """The left mouse button this frame, in the widgets' surface coordinates."""
-
-    xy: tuple[float, float]
-    clicked: bool = False  # went down during this frame
-    down: bool = False  # is held (or was pressed during this frame)
-
-
 LOOKS = ("idle", "hover", "down")
 
 
+class Pointer(NamedTuple):
+    """The mouse as widgets see it: where (logical pixels; None when elsewhere), held or not."""
+
+    xy: tuple[float, float] | None = None
+    down: bool = False
+
+
+NO_POINTER = Pointer()
+
+
 class Button:
-    """A rectangular click target drawn as a black rectangle; subclass for looks."""
+    """A rectangular click target; drawn with `looks` at the pen's scale, or black."""
 
-    def __init__(self, surface: pygame.Surface, rect: pygame.Rect | Sequence[int]) -> None:
-        self.surface = surface
+    def __init__(self, rect: pygame.Rect | Sequence[int], looks: Looks | None = None) -> None:
         self.rect = pygame.Rect(rect)
+        self.looks = looks
 
-    def check_mouse(self, mouse: MouseState) -> bool:
-        """Whether the mouse is over the hit box (the bounding rectangle)."""
-        return self.rect.collidepoint(mouse.xy)
+    def hit(self, xy: tuple[float, float] | None) -> bool:
+        """Whether a logical point is on the button (its bounding rectangle)."""
+        return xy is not None and self.rect.collidepoint(xy)
 
-    def is_active(self, mouse: MouseState) -> bool:
-        """Clicked on this frame inside the hit box."""
-        return mouse.clicked and self.check_mouse(mouse)
-
-    def action(self) -> bool:
-        return True
-
-    def idle(self) -> bool:
-        return False
-
-    def look(self, mouse: MouseState) -> str:
-        """'down' while pressed over the button, 'hover' when over it, else 'idle'."""
-        if not self.check_mouse(mouse):
+    def look(self, pointer: Pointer) -> str:
+        """'down' while held over the button, 'hover' when over it, else 'idle'."""
+        if not self.hit(pointer.xy):
             return "idle"
-        return "down" if mouse.down else "hover"
+        return "down" if pointer.down else "hover"
 
-    def draw(self, mouse: MouseState) -> None:
-        pygame.draw.rect(self.surface, BLACK, self.rect)
+    def images(self, pen: Pen) -> Sequence[pygame.Surface]:
+        return self.looks(pen.size(self.rect.w)) if self.looks else ()
 
-    def control(self, mouse: MouseState) -> bool:
-        """Update from the mouse, draw, and return action() or idle()."""
-        result = self.action() if self.is_active(mouse) else self.idle()
-        self.draw(mouse)  # after the update, so the picture shows the new state
-        return result
-
-
-class ImageButton(Button):
-    """A button drawn with an image per look (hover defaults to idle, down to hover)."""
-
-    def __init__(
-        self,
-        surface: pygame.Surface,
-        rect: pygame.Rect | Sequence[int],
-        idle_image: pygame.Surface,
-        hover_image: pygame.Surface | None = None,
-        down_image: pygame.Surface | None = None,
-    ) -> None:
-        super().__init__(surface, rect)
-        self.set_images(idle_image, hover_image, down_image)
-
-    def set_images(
-        self,
-        idle_image: pygame.Surface,
-        hover_image: pygame.Surface | None = None,
-        down_image: pygame.Surface | None = None,
-    ) -> None:
-        self.idle_image = idle_image
-        self.hover_image = hover_image or idle_image
-        self.down_image = down_image or self.hover_image
-
-    def image_for(self, look: str) -> pygame.Surface:
-        return {"idle": self.idle_image, "hover": self.hover_image, "down": self.down_image}[look]
-
-    def draw(self, mouse: MouseState) -> None:
-        image = self.image_for(self.look(mouse))
-        self.surface.blit(image, image.get_rect(center=self.rect.center))
+    def draw(self, pen: Pen, pointer: Pointer = NO_POINTER) -> None:
+        images = self.images(pen)
+        if not images:
+            pen.box(BLACK, self.rect)
+            return
+        k = LOOKS.index(self.look(pointer))
+        pen.blit(images[min(k, len(images) - 1)], self.rect, "center")
 
 
-class ToggleButton(ImageButton):
-    """An on/off button: a click flips the state, control() returns the state.
-
-    on_images and off_images are (idle, hover, down) looks; hover and down may be
-    left out. Change the state from code with set_state() so the looks follow.
-    """
+class ToggleButton(Button):
+    """An on/off button: `toggle()` flips it; drawn with the looks of its state."""
 
     def __init__(
         self,
-        surface: pygame.Surface,
         rect: pygame.Rect | Sequence[int],
-        on_images: Sequence[pygame.Surface],
-        off_images: Sequence[pygame.Surface],
+        on_looks: Looks,
+        off_looks: Looks,
         is_on: bool = False,
     ) -> None:
-        self.on_images = tuple(on_images)
-        self.off_images = tuple(off_images)
-        if not 1 <= len(self.on_images) <= 3 or not 1 <= len(self.off_images) <= 3:
-            raise ValueError("on_images and off_images must hold 1 to 3 images each")
-        super().__init__(surface, rect, *self.off_images)
+        super().__init__(rect, off_looks)
+        self.on_looks, self.off_looks = on_looks, off_looks
         self.set_state(is_on)
-
-    def update_images(self) -> None:
-        self.set_images(*(self.on_images if self.is_on else self.off_images))
 
     def set_state(self, is_on: bool) -> None:
         self.is_on = bool(is_on)
-        self.update_images()
+        self.looks = self.on_looks if self.is_on else self.off_looks
 
-    def action(self) -> bool:
+    def toggle(self) -> bool:
         self.set_state(not self.is_on)
-        return self.is_on
-
-    def idle(self) -> bool:
         return self.is_on
 
 
 class Slider:
-    """A horizontal slider returning a value in [min_value, max_value].
+    """A horizontal slider for values in [min_value, max_value].
 
-    Press anywhere on the bar (a hit box as tall as the knob) and the knob jumps
-    there and follows the mouse while the button stays down, even off the bar.
+    A press anywhere on the bar (a hit box as tall as the knob) moves the knob there
+    and starts a drag; the knob then follows the pointer, even off the bar, until
+    `release()`. A disabled slider ignores presses and draws its knob grey.
     """
 
     def __init__(
         self,
-        surface: pygame.Surface,
         rect: pygame.Rect | Sequence[int],
         min_value: float,
         max_value: float,
@@ -153,7 +104,6 @@ class Slider:
         *,
         knob_radius: int = 10,
         label: str = "",
-        font: pygame.font.Font | None = None,
         text_color: Color = WHITE,
         bar_color: Color = WHITE,
         knob_color: Color = YELLOW,
@@ -161,36 +111,30 @@ class Slider:
     ) -> None:
         if not max_value > min_value:
             raise ValueError("max_value must be greater than min_value")
-        self.surface = surface
         self.rect = pygame.Rect(rect)
         self.min_value = float(min_value)
         self.max_value = float(max_value)
         self.knob_radius = int(knob_radius)
         self.label = label
-        self._font = font
         self.text_color = text_color
         self.bar_color = bar_color
         self.knob_color = knob_color
         self.outline_color = outline_color
         self.sliding = False
-        #: A disabled slider ignores the mouse and draws its knob grey.
         self.enabled = True
-        #: True if the last control() call moved the value (the user dragged).
-        self.changed = False
         self.activation = 0.0
         self.set_value(self.min_value if value is None else value)
-        self._label_image: pygame.Surface | None = None
 
     # -- value <-> knob position -------------------------------------------------------
     def activation_at(self, x: float) -> float:
-        """Activation in [0, 1] for a knob at screen x."""
+        """Activation in [0, 1] for a knob at logical x."""
         return min(1.0, max(0.0, (x - self.rect.left) / self.rect.width))
 
-    def knob_xy(self) -> tuple[int, int]:
-        return (
-            round(self.rect.left + self.activation * self.rect.width),
-            self.rect.centery,
-        )
+    def value_at(self, x: float) -> float:
+        return self.min_value + self.activation_at(x) * (self.max_value - self.min_value)
+
+    def knob_xy(self) -> tuple[float, float]:
+        return (self.rect.left + self.activation * self.rect.width, self.rect.centery)
 
     @property
     def value(self) -> float:
@@ -201,7 +145,7 @@ class Slider:
         span = self.max_value - self.min_value
         self.activation = min(1.0, max(0.0, (float(value) - self.min_value) / span))
 
-    # -- mouse -----------------------------------------------------------------------------
+    # -- the pointer ----------------------------------------------------------------------
     def hit_box(self) -> pygame.Rect:
         """As wide as the bar (plus the knob's overhang), as tall as the knob."""
         r = self.knob_radius
@@ -209,48 +153,35 @@ class Slider:
             self.rect.left - r, self.rect.centery - r, self.rect.width + 2 * r, 2 * r + 1
         )
 
-    def check_mouse(self, mouse: MouseState) -> bool:
-        return self.hit_box().collidepoint(mouse.xy)
+    def hit(self, xy: tuple[float, float] | None) -> bool:
+        return xy is not None and self.hit_box().collidepoint(xy)
 
-    def is_sliding(self, mouse: MouseState) -> bool:
-        """Starts with a press on the hit box, lasts while the button is held."""
-        if not self.enabled:
+    def press(self, xy: tuple[float, float]) -> bool:
+        """Start a drag if xy is on the slider (and it is enabled); True if it did."""
+        if not (self.enabled and self.hit(xy)):
             return False
-        if mouse.clicked and self.check_mouse(mouse):
-            return True
-        return self.sliding and mouse.down
+        self.sliding = True
+        self.activation = self.activation_at(xy[0])
+        return True
+
+    def drag(self, xy: tuple[float, float]) -> None:
+        if self.sliding:
+            self.activation = self.activation_at(xy[0])
+
+    def release(self) -> None:
+        self.sliding = False
 
     # -- drawing ----------------------------------------------------------------------------
-    @property
-    def font(self) -> pygame.font.Font:
-        if self._font is None:
-            self._font = pygame.font.Font(None, 24)
-        return self._font
-
-    def draw(self, mouse: MouseState) -> None:
-        pygame.draw.rect(self.surface, self.bar_color, self.rect, border_radius=3)
-        pygame.draw.rect(self.surface, self.outline_color, self.rect, width=1, border_radius=3)
+    def draw(self, pen: Pen, pointer: Pointer = NO_POINTER) -> None:
+        pen.box(self.bar_color, self.rect, border_radius=3)
+        pen.box(self.outline_color, self.rect, width=1, border_radius=3)
         if self.label:
-            if self._label_image is None:
-                self._label_image = self.font.render(self.label, True, self.text_color)
-            pos = self._label_image.get_rect(
-                midtop=(self.rect.centerx, self.rect.bottom + self.knob_radius + 4)
-            )
-            self.surface.blit(self._label_image, pos)
-        hot = self.sliding or (self.enabled and self.check_mouse(mouse))
+            top = self.rect.bottom + self.knob_radius + 4
+            pen.text(self.label, 24, self.text_color, midtop=(self.rect.centerx, top))
+        hot = self.sliding or (self.enabled and self.hit(pointer.xy))
         knob = tuple(min(255, c + 30) for c in self.knob_color) if hot else self.knob_color
         if not self.enabled:
             knob = (170, 170, 170)
         center = self.knob_xy()
-        pygame.draw.circle(self.surface, knob, center, self.knob_radius)
-        pygame.draw.circle(self.surface, self.outline_color, center, self.knob_radius, width=2)
-
-    def control(self, mouse: MouseState) -> float:
-        """Update from the mouse, draw, and return the value."""
-        before = self.activation
-        self.sliding = self.is_sliding(mouse)
-        if self.sliding:
-            self.activation = self.activation_at(mouse.xy[0])
-        self.changed = self.activation != before
-        self.draw(mouse)
-        return self.value
+        pen.circle(knob, center, self.knob_radius)
+        pen.circle(self.outline_color, center, self.knob_radius, width=2)

@@ -1,0 +1,84 @@
+"""The settings screen (key O): a draft edited with the arrow keys, saved or dropped."""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Mapping
+from pathlib import Path
+
+import pygame
+
+from evapcool.game import settings as settings_mod
+from evapcool.game.settings import Settings, describe, load_settings, max_atoms, save_settings
+
+
+class SettingsEditor:
+    """Saved settings, this run's command-line overrides, and the draft on screen."""
+
+    def __init__(
+        self,
+        path: Path,
+        notify: Callable[[str], None],
+        settings: Settings | None = None,
+        overrides: Mapping[str, object] | None = None,
+    ) -> None:
+        self.path = path
+        self.notify = notify
+        if settings is None:
+            settings, problems = load_settings(path)
+            for text in problems:
+                notify(text)
+        self.settings = settings
+        self.overrides = {k: v for k, v in (overrides or {}).items() if v is not None}
+        self.draft = settings
+        self.row = 0
+
+    def for_run(self) -> Settings:
+        """What a restart applies: the saved settings with this run's overrides on top."""
+        try:
+            return settings_mod.with_overrides(self.settings, **self.overrides)
+        except ValueError as exc:
+            self.notify(f"Command-line options dropped ({exc}).")
+            self.overrides = {}
+            return self.settings
+
+    def open(self) -> None:
+        self.draft = self.settings
+        self.row = 0
+
+    def key(self, key: int) -> None:
+        """Up/Down choose a row, Left/Right change its value."""
+        names = settings_mod.FIELD_NAMES
+        if key == pygame.K_UP:
+            self.row = (self.row - 1) % len(names)
+        elif key == pygame.K_DOWN:
+            self.row = (self.row + 1) % len(names)
+        elif key in (pygame.K_LEFT, pygame.K_RIGHT):
+            d = 1 if key == pygame.K_RIGHT else -1
+            self.draft = settings_mod.step(self.draft, names[self.row], d)
+
+    def close(self, save: bool) -> None:
+        draft = self.draft
+        if not save or draft == self.settings:
+            return
+        self.settings = draft
+        self.overrides = {}  # a choice made here beats the command line for the rest of the run
+        problems = save_settings(draft, self.path)
+        for text in problems:
+            self.notify(text)
+        if not problems:
+            self.notify("Settings saved. Press R (restart) to play with them.")
+
+    def rows(self) -> list[tuple[str, str]]:
+        return describe(self.draft)
+
+    def footer(self) -> list[str]:
+        r = self.draft.radius
+        lines = [
+            f"At most {max_atoms(r)} atoms of radius {r:g} px start below the rim.",
+            "Up/Down choose, Left/Right change",
+            "Enter or O: save   Esc: cancel",
+        ]
+        if self.overrides:
+            names = ", ".join(sorted(self.overrides))
+            lines.append(f"This run uses command-line {names} until you save here.")
+        return lines

@@ -1,0 +1,166 @@
+"""Every code block of README.md and doc/*.md runs, as written, in a scratch folder.
+
+Fenced blocks are tagged: ```python and ```sh blocks run (Python as a script, each shell
+command on its own, headless: SDL's dummy driver, scores and settings in the scratch
+folder; a command that would open the applet's window gets `--frames 5` so it plays five
+frames and exits). Blocks that must not run here say so in their tag: ```text for output
+and listings, and `not-run` after the language (```sh not-run) for commands that install
+the package, run this very suite or build the executable (CI runs packaging/check_exe.sh
+for that one). An untagged block fails this test: nothing is skipped silently.
+"""
+
+from __future__ import annotations
+
+import os
+import re
+import shlex
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+ROOT = Path(__file__).resolve().parents[1]
+DOCS = [ROOT / "README.md", *sorted((ROOT / "doc").glob("*.md"))]
+RUN = {"python", "sh"}
+FENCE = re.compile(r"^```(.*)$")
+#: Frames a window-opening command plays in this test.
+FRAMES = "5"
+
+
+def blocks(path: Path) -> list[tuple[int, str, str]]:
+    """(line number, info string, code) of every fenced block in a Markdown file."""
+    out, info, start, lines = [], None, 0, []
+    for n, line in enumerate(path.read_text(encoding="utf-8").splitlines(), 1):
+        m = FENCE.match(line.strip())
+        if m and info is None:
+            info, start, lines = m.group(1).strip(), n, []
+        elif m and info is not None:
+            out.append((start, info, "\n".join(lines)))
+            info = None
+        elif info is not None:
+            lines.append(line)
+    assert info is None, f"{path.name}: a block opened at line {start} is never closed"
+    return out
+
+
+ALL = [(p, n, info, code) for p in DOCS for n, info, code in blocks(p)]
+
+
+def _id(block) -> str:
+    path, n, info, _ = block
+    return f"{path.relative_to(ROOT)}:{n}:{info.split()[0] if info else 'untagged'}"
+
+
+def _runs(info: str) -> bool:
+    words = info.split()
+    return bool(words) and words[0] in RUN and "not-run" not in words[1:]
+
+
+def test_every_block_is_tagged():
+    for block in ALL:
+        info = block[2]
+        words = info.split()
+        assert words, f"{_id(block)}: tag it (python, sh, text, or sh not-run)"
+        assert words[0] in (*RUN, "text"), f"{_id(block)}: unknown language {words[0]!r}"
+        if "not-run" in words:
+            assert words[0] in RUN, f"{_id(block)}: only code is marked not-run"
+
+
+def commands(code: str) -> list[list[str]]:
+    """The shell block's commands (continuation lines joined), as argument lists."""
+    out = []
+    for line in code.replace("\\\n", " ").splitlines():
+        argv = shlex.split(line, comments=True)
+        if argv:
+            out.append(argv)
+    return out
+
+
+def headless(argv: list[str]) -> list[str]:
+    """The command, with `--frames 5` if it would open the applet's window."""
+    if argv[:3] == ["python", "-m", "evapcool"]:
+        rest = argv[3:]
+    elif argv[0] == "evapcool":
+        rest = argv[1:]
+    else:
+        return argv
+    if (rest and not rest[0].startswith("-")) or "--frames" in rest or "--help" in rest:
+        return argv  # a subcommand (lab, bench, web...), or a run that ends by itself
+    return [*argv, "--frames", FRAMES]
+
+
+def test_window_commands_get_a_short_headless_run():
+    assert headless(["evapcool"]) == ["evapcool", "--frames", "5"]
+    assert headless(["python", "-m", "evapcool", "--speed", "2"])[-2:] == ["--frames", "5"]
+    assert headless(["evapcool", "--frames", "300", "--screenshot", "a.png"])[-1] == "a.png"
+    assert headless(["evapcool", "lab", "--frames", "10"]) == ["evapcool", "lab", "--frames", "10"]
+    assert headless(["evapcool", "web", "--print-path"]) == ["evapcool", "web", "--print-path"]
+
+
+@pytest.fixture
+def scratch(tmp_path) -> tuple[Path, dict[str, str]]:
+    """A scratch folder with doc/ and docs/ (where examples put figures), and the env."""
+    for sub in ("doc", "docs"):
+        (tmp_path / sub).mkdir()
+    env = dict(os.environ)
+    env.update(
+        SDL_VIDEODRIVER="dummy",
+        SDL_AUDIODRIVER="dummy",
+        PYGAME_HIDE_SUPPORT_PROMPT="1",
+        EVAPCOOL_DATA_DIR=str(tmp_path / "data"),
+        EVAPCOOL_CONFIG_DIR=str(tmp_path / "config"),
+        MPLBACKEND="Agg",
+        PATH=f"{Path(sys.executable).parent}{os.pathsep}{env.get('PATH', '')}",
+    )
+    return tmp_path, env
+
+
+@pytest.mark.parametrize("block", [b for b in ALL if _runs(b[2])], ids=_id)
+def test_block_runs(block, scratch):
+    _, _, info, code = block
+    folder, env = scratch
+    if info.split()[0] == "python":
+        script = folder / "block.py"
+        script.write_text(code + "\n", encoding="utf-8")
+        runs = [[sys.executable, str(script)]]
+    else:
+        runs = [headless(argv) for argv in commands(code)]
+        assert runs, f"{_id(block)}: an empty block"
+    for argv in runs:
+        proc = subprocess.run(
+            argv, cwd=folder, env=env, capture_output=True, text=True, timeout=600
+        )
+        assert proc.returncode == 0, f"{shlex.join(argv)}\n{proc.stdout}\n{proc.stderr}"
+
+
+def test_the_executable_is_where_the_readme_says():
+    """packaging/check_exe.sh (CI) builds the README's dist/evapcool and checks it there."""
+    readme = (ROOT / "README.md").read_text(encoding="utf-8")
+    script = (ROOT / "packaging" / "check_exe.sh").read_text(encoding="utf-8")
+    assert "`dist/evapcool`" in readme and "`dist\\evapcool.exe`" in readme
+    assert 'DIST="$ROOT/dist"' in script and 'exe="$DIST/evapcool"' in script
+    spec = (ROOT / "packaging" / "evapcool.spec").read_text(encoding="utf-8")
+    assert 'name="evapcool"' in spec
+    build = next(c for p, _, i, c in ALL if p.name == "README.md" and "PyInstaller" in c)
+    assert "packaging/evapcool.spec" in build and "--distpath" not in build  # the default: dist/
+
+
+def test_the_screenshot_script_makes_the_readmes_pictures(tmp_path):
+    """docs/make_screenshots.py regenerates every picture the README shows."""
+    env = dict(os.environ, SDL_VIDEODRIVER="dummy", PYGAME_HIDE_SUPPORT_PROMPT="1")
+    proc = subprocess.run(
+        [sys.executable, str(ROOT / "docs" / "make_screenshots.py"), str(tmp_path)],
+        env=env,
+        capture_output=True,
+        text=True,
+        timeout=600,
+    )
+    assert proc.returncode == 0, proc.stderr
+    readme = (ROOT / "README.md").read_text(encoding="utf-8")
+    shown = re.findall(r"!\[[^\]]*\]\(docs/([^)]+\.png)\)", readme)
+    made = {p.name for p in tmp_path.glob("*.png")}
+    assert made == {"classic-start.png", "win.png", "small-screen.png"}
+    assert made <= set(shown)  # (the browser edition's picture comes from web/)
+    for name in shown:
+        assert (ROOT / "docs" / name).exists()

@@ -1,0 +1,116 @@
+"""A private X server with a window manager for tests: Xvfb plus openbox.
+
+`XServer(width, height)` starts Xvfb on a free display number and openbox on it;
+`stop()` ends both (only the processes it started). Tests drive the applet in a
+real window there (SDL_VIDEODRIVER=x11) and read window geometry with xdotool.
+"""
+
+from __future__ import annotations
+
+import os
+import shutil
+import subprocess
+import time
+from pathlib import Path
+
+NEEDED = ("Xvfb", "openbox", "xdotool", "xprop")
+
+
+def missing_tools() -> list[str]:
+    return [tool for tool in NEEDED if shutil.which(tool) is None]
+
+
+def _free_display(start: int = 70) -> int:
+    for n in range(start, start + 200):
+        if not Path(f"/tmp/.X{n}-lock").exists() and not Path(f"/tmp/.X11-unix/X{n}").exists():
+            return n
+    raise RuntimeError("no free X display number")
+
+
+class XServer:
+    """Xvfb with one screen of the given size, managed by openbox."""
+
+    def __init__(self, width: int, height: int) -> None:
+        self.size = (width, height)
+        self._procs: list[subprocess.Popen] = []
+        for _ in range(5):  # another server may take a number between the check and the start
+            n = _free_display()
+            xvfb = subprocess.Popen(
+                ["Xvfb", f":{n}", "-screen", "0", f"{width}x{height}x24", "-nolisten", "tcp"],
+                stdout=subprocess.DEVNULL,
+                stderr=subprocess.DEVNULL,
+            )
+            self.display = f":{n}"
+            if self._wait(self._accepting, xvfb):
+                self._procs.append(xvfb)
+                break
+            xvfb.kill()
+            xvfb.wait()
+        else:
+            raise RuntimeError("Xvfb did not start")
+        for _ in range(3):
+            wm = subprocess.Popen(
+                ["openbox", "--sm-disable"],
+                env=self.env(),
+                stdout=subprocess.DEVNULL,
+                stderr=subprocess.DEVNULL,
+            )
+            if self._wait(self._wm_running, wm):
+                self._procs.append(wm)
+                break
+            wm.kill()
+            wm.wait()
+        else:
+            self.stop()
+            raise RuntimeError("openbox did not start")
+
+    def env(self, **extra: str) -> dict[str, str]:
+        return {**os.environ, "DISPLAY": self.display, **extra}
+
+    def _accepting(self) -> bool:
+        """The server answers a client (its socket alone may come before that)."""
+        probe = subprocess.run(["xprop", "-root"], env=self.env(), capture_output=True)
+        return probe.returncode == 0
+
+    def _wm_running(self) -> bool:
+        out = subprocess.run(
+            ["xprop", "-root", "_NET_SUPPORTING_WM_CHECK"],
+            env=self.env(),
+            capture_output=True,
+            text=True,
+        ).stdout
+        return "window id" in out
+
+    @staticmethod
+    def _wait(ready, proc: subprocess.Popen, seconds: float = 15.0) -> bool:
+        end = time.monotonic() + seconds
+        while time.monotonic() < end:
+            if proc.poll() is not None:
+                return False
+            if ready():
+                return True
+            time.sleep(0.05)
+        return False
+
+    def xdotool(self, *args: str) -> str:
+        return subprocess.run(
+            ["xdotool", *args], env=self.env(), capture_output=True, text=True, check=True
+        ).stdout
+
+    def geometry(self, window_id: int) -> tuple[int, int, int, int]:
+        """(x, y, width, height) of a window's client area on the screen, from xdotool."""
+        out = self.xdotool("getwindowgeometry", str(window_id)).split()
+        x, y = (int(v) for v in out[out.index("Position:") + 1].split(","))
+        w, h = (int(v) for v in out[out.index("Geometry:") + 1].split("x"))
+        return x, y, w, h
+
+    def stop(self) -> None:
+        for proc in reversed(self._procs):
+            if proc.poll() is None:
+                proc.terminate()
+                try:
+                    proc.wait(5)
+                except subprocess.TimeoutExpired:
+                    proc.kill()
+                    proc.wait()
+        self._procs.clear()
