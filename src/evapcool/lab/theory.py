@@ -327,7 +327,7 @@ class TruncatedCloud:
         bracket = bulk - wall
         speed = math.sqrt(2.0 * self.kt / self.cup.mass)
         pairs = max(1.0 - 1.0 / self.n_atoms, 0.0)
-        return 0.5 * 4.0 * r * speed * bessel_i0(2.0 * r / self.scale_height) * pairs * bracket
+        return 0.5 * 4.0 * r * speed * float(np.i0(2.0 * r / self.scale_height)) * pairs * bracket
 
     @cached_property
     def _integrals(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
@@ -482,18 +482,6 @@ def cup_pair_collision_rate(
     cup = Cup(radius=radius, mass=mass, gravity=gravity, curvature=curvature)
     cloud = TruncatedCloud(cup, n_atoms, kt, math.inf, dense=dense, wall=wall_correction)
     return cloud.pair_collision_rate
-
-
-def bessel_i0(x: float) -> float:
-    """Modified Bessel I0(x) = sum (x/2)^(2k) / (k!)^2: the mean of exp(x sin theta)."""
-    term = total = 1.0
-    q = 0.25 * x * x
-    for k in range(1, 200):
-        term *= q / (k * k)
-        total += term
-        if term < 1e-17 * total:
-            break
-    return total
 
 
 def truncation_height(eta: float, kt: float, mass: float, gravity: float) -> float:
