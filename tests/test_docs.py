@@ -21,7 +21,11 @@ from pathlib import Path
 import pytest
 
 ROOT = Path(__file__).resolve().parents[1]
-DOCS = [ROOT / "README.md", *sorted((ROOT / "doc").glob("*.md"))]
+DOCS = [
+    ROOT / "README.md",
+    *sorted((ROOT / "doc").glob("*.md")),
+    *sorted((ROOT / "docs").glob("*.md")),
+]
 RUN = {"python", "sh"}
 FENCE = re.compile(r"^```(.*)$")
 #: Frames a window-opening command plays in this test.
