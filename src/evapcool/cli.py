@@ -6,6 +6,8 @@ import argparse
 import importlib
 import sys
 import warnings
+from collections.abc import Callable
+from typing import TextIO
 
 from evapcool.about import __version__, error_line, note_line
 from evapcool.extras import MissingExtraError, SlowEngineWarning, missing_message
@@ -44,10 +46,17 @@ def _print_help() -> None:
     parser.print_help()
 
 
-def _note_printer(command: str | None):
+def _note_printer(command: str | None) -> Callable[..., None]:
     """showwarning for our warnings: one line on stderr, not a code location."""
 
-    def show(message, category, filename, lineno, file=None, line=None) -> None:
+    def show(
+        message: Warning | str,
+        category: type[Warning],
+        filename: str,
+        lineno: int,
+        file: TextIO | None = None,
+        line: str | None = None,
+    ) -> None:
         if issubclass(category, SlowEngineWarning):
             print(note_line(command, str(message)), file=sys.stderr, flush=True)
         else:
@@ -84,7 +93,8 @@ def main(argv: list[str] | None = None) -> int:
             # The stand-alone executable ships the applet only.
             print(error_line(None, f"'{command}' is not part of this build"), file=sys.stderr)
             return EXIT_USAGE
-        return module.main(args[1:])
+        status: int = module.main(args[1:])
+        return status
     except MissingExtraError as exc:
         print(error_line(command, str(exc)), file=sys.stderr)
         return EXIT_USAGE
