@@ -162,7 +162,9 @@ def test_the_screenshot_script_makes_the_readmes_pictures(tmp_path):
     )
     assert proc.returncode == 0, proc.stderr
     readme = (ROOT / "README.md").read_text(encoding="utf-8")
-    shown = re.findall(r"!\[[^\]]*\]\(docs/([^)]+\.png)\)", readme)
+    # Absolute addresses, so that the pictures show on PyPI too.
+    raw = "https://raw.githubusercontent.com/evapcool/evapcool/main/docs/"
+    shown = re.findall(r"!\[[^\]]*\]\(" + re.escape(raw) + r"([^)]+\.png)\)", readme)
     made = {p.name for p in tmp_path.glob("*.png")}
     assert made == {"classic-start.png", "win.png", "small-screen.png"}
     assert made <= set(shown)  # (the browser edition's picture comes from web/)

@@ -3,6 +3,7 @@ the changelog, every command in the help, and type information shipped."""
 
 from __future__ import annotations
 
+import json
 import re
 import shutil
 import subprocess
@@ -100,3 +101,24 @@ def test_changelog_keeps_a_changelog():
     assert sections and sections[0] == "Unreleased"
     for name in sections:  # every section heading has its link
         assert re.search(rf"^\[{re.escape(name)}\]: https://", text, flags=re.M), name
+
+
+def test_readme_links_work_on_pypi():
+    """PyPI shows the README without the repository around it: every link is absolute."""
+    readme = (ROOT / "README.md").read_text(encoding="utf-8")
+    targets = re.findall(r"\]\(([^)\s]+)\)", readme)
+    assert targets
+    relative = [t for t in targets if not t.startswith("https://")]
+    assert relative == []
+    for t in targets:
+        assert t.startswith((about.HOMEPAGE, about.REPOSITORY, _RAW)), t
+
+
+_RAW = "https://raw.githubusercontent.com/evapcool/evapcool/main/"
+
+
+def test_web_package_version_is_the_packages():
+    package = ROOT / "web" / "package.json"
+    if not package.exists():
+        pytest.skip("web/ is not in the sdist")
+    assert json.loads(package.read_text(encoding="utf-8"))["version"] == about.__version__
