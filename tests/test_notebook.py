@@ -11,7 +11,7 @@ import numpy as np
 import pytest
 
 from evapcool import Simulation, __version__
-from evapcool.lab import load_result, run_experiment
+from evapcool.lab import COLUMNS, load_result, run_experiment
 
 
 @pytest.fixture(scope="module")
@@ -99,5 +99,5 @@ def test_a_fresh_kernel_shows_results_inline():
     assert "<table>" in first["text/html"] and "data:image/png;base64," in first["text/html"]
     figure = outputs[1][0]["data"]
     assert base64.b64decode(figure["image/png"]).startswith(b"\x89PNG")
-    assert outputs[2][0]["data"]["text/plain"] == "(3, 11)"
+    assert outputs[2][0]["data"]["text/plain"] == f"(3, {len(COLUMNS)})"
     assert outputs[3][0]["data"]["text/plain"].startswith("Simulation(atoms 49 of 49, T ")
