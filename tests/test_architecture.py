@@ -1,4 +1,4 @@
-"""The layers' imports point one way: physics <- game <- view <- app (doc/architecture.md)."""
+"""The layers' imports point one way: physics <- game <- view <- app (docs/architecture.md)."""
 
 from __future__ import annotations
 

@@ -303,7 +303,7 @@ def test_from_measured_recovers_kt(dense):
 
 def test_uniform_dilute_limit_of_the_rates():
     # Without cut and in the dilute limit: Gamma_pair = (N^2/2) R sqrt(2 a kT/m) / lambda^(3/2)
-    # (doc/lab.md), times (1 - 1/N) for the pairs; the wall strip and I0 are small here.
+    # (docs/lab.md), times (1 - 1/N) for the pairs; the wall strip and I0 are small here.
     cup = th.Cup(radius=0.01, gravity=1.0 / 3.0, curvature=0.01)
     n, kt = 300, 30.0
     lam = kt / cup.gravity

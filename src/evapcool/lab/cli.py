@@ -37,7 +37,7 @@ def build_parser() -> argparse.ArgumentParser:
         prog="evapcool lab",
         description=(
             "Run an evaporative-cooling experiment headless: a trap-height schedule in, "
-            "time series (CSV/JSON) and a figure out. See doc/lab.md."
+            "time series (CSV/JSON) and a figure out. See docs/lab.md."
         ),
     )
     p.add_argument("--atoms", type=whole(1), help=f"number of atoms (default {d.atoms})")

@@ -169,7 +169,7 @@ class LabResult:
         """Truncation parameter m g H / kT at each record, kT from the law cut at m g H.
 
         The law E^(3/2) exp(-E/kT) cut at eta kT whose mean energy is the temperature
-        column (doc/lab.md); inf without a cut, nan where no such law has that mean.
+        column (docs/lab.md); inf without a cut, nan where no such law has that mean.
         """
         cut = MASS * self.metadata["parameters"]["gravity"] * self.trap_height
         return np.array(
@@ -177,7 +177,7 @@ class LabResult:
         )
 
     def theory(self, *, settle: float | None = None):
-        """The run's measured rates beside the truncated-Boltzmann model (doc/lab.md).
+        """The run's measured rates beside the truncated-Boltzmann model (docs/lab.md).
 
         Returns a TheoryReport: print it for the table; report["alpha"] etc. for a row.
         The window opens after `settle` collisions per atom (default 10).
@@ -191,7 +191,7 @@ class LabResult:
         write_result(path, self.metadata, self.columns, self.final_energies)
 
     def plot(self, path: str | os.PathLike[str] | None = None, *, theory=None):
-        """The four-panel figure (doc/lab.md); saved to path if given; returns the Figure.
+        """The four-panel figure (docs/lab.md); saved to path if given; returns the Figure.
 
         theory=True (or a report from self.theory()) draws the model over the measurement
         and adds two panels: the collision rate and the evaporated atoms against time.
@@ -216,7 +216,7 @@ def _new_columns() -> dict[str, list]:
 
 @dataclass
 class _Ledger:
-    """Atoms that left the trap and the energy they took, by how they left (doc/lab.md).
+    """Atoms that left the trap and the energy they took, by how they left (docs/lab.md).
 
     Evaporated: during flight (a collision pushed it over the knife, or it flew over the
     rim), with its energy at that moment; spilled: when the schedule lowered the cut.

@@ -11,7 +11,7 @@ import numpy as np
 
 from evapcool.fileio import atomic_write_text
 
-#: Output columns, one row per record (doc/lab.md explains each).
+#: Output columns, one row per record (docs/lab.md explains each).
 COLUMNS = (
     "frame",
     "n_trapped",

@@ -201,13 +201,13 @@ class Simulation:
 
     @classmethod
     def from_state(cls, state: dict | str, engine: str = "auto", **kw: bool) -> Simulation:
-        """Go on exactly from a state (dict or JSON text, doc/state.md); see physics.state."""
+        """Go on exactly from a state (dict or JSON text, docs/state.md); see physics.state."""
         from evapcool.physics.state import from_state
 
         return from_state(state, engine=engine, **kw)
 
     def to_state(self) -> dict:
-        """The state as a JSON-ready dict (doc/state.md), resumable with from_state."""
+        """The state as a JSON-ready dict (docs/state.md), resumable with from_state."""
         from evapcool.physics.state import to_state
 
         return to_state(self)

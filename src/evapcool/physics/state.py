@@ -1,4 +1,4 @@
-"""The state JSON shared by the Python and web editions (doc/state.md).
+"""The state JSON shared by the Python and web editions (docs/state.md).
 
 A state holds what the physics needs to go on exactly: each atom's stored state at its own
 last-event time (positions move lazily), radius, mass and lifecycle, the clock, the trap,

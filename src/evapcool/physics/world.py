@@ -30,7 +30,7 @@ EVENT_NAMES = ("pair", "wall", "escape", "gone", "knife")
 ESCAPE_RULES = ("rim", "knife")
 
 #: An elastic bounce leaves the wall at least this fast along the normal (px/frame), so
-#: grazing and resting atoms hop instead of stalling (kernels.bounce_wall, doc/model.md).
+#: grazing and resting atoms hop instead of stalling (kernels.bounce_wall, docs/model.md).
 WALL_MIN_NORMAL_SPEED = 1e-3
 #: After the win, wall bounces keep 1 - 0.2 of the speed (seed Eq. 34)...
 WIN_DAMPING = 0.2
