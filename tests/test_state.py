@@ -126,3 +126,15 @@ def test_overlap_names_the_first_offending_atoms() -> None:
     # escaped atoms may be anywhere; touching atoms and centres on the wall are fine
     atoms["status"] = ["escaped", "trapped", "escaped", "trapped"]
     assert from_state({"atoms": atoms}).n_trapped == 2
+
+
+def test_a_condensate_may_overlap() -> None:
+    # after the win, atoms no longer collide with each other: a won state may overlap
+    atoms = {"x": [0.0, 5.0], "y": [10.0, 10.0], "vx": [0.0, 0.0], "vy": [0.0, 0.0]}
+    with pytest.raises(ValueError, match="atoms 0 and 1 overlap"):
+        from_state({"atoms": atoms})
+    sim = from_state({"won": True, "atoms": atoms}, engine="reference")
+    sim.advance(30.0)
+    assert sim.won and sim.pair_collision_count == 0
+    with pytest.raises(ValueError, match=r"atom 0 .* outside the cup"):
+        from_state({"won": True, "atoms": {**atoms, "y": [-1.0, 10.0]}})

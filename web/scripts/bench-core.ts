@@ -7,14 +7,6 @@
  */
 import { Simulation } from "../src/physics/index";
 
-/** Time sources, ms: wall clock, and the process's CPU time where there is one (Node). */
-export interface Clock {
-  now(): number;
-  cpu?: () => number;
-  /** What the clocks are, for the report. */
-  name: string;
-}
-
 export interface Throughput {
   n: number;
   radius: number;
@@ -46,62 +38,80 @@ function quantile(xs: number[], q: number): number {
   return s[Math.min(s.length - 1, Math.floor(q * s.length))];
 }
 
-/** Collisions and events per second over `frames` frames after a 1-frame warm-up. */
-export function throughput(n: number, frames: number, clock: Clock, seed = 1): Throughput {
-  const radius = Math.sqrt(10_000 / n);
-  const sim = new Simulation({ nAtoms: n, radius, seed, trapHeight: 450 });
+/** A simulation of n atoms at constant packing (radius sqrt(10 000 / N)), H = 450, one frame in. */
+export function prepare(n: number, seed = 1): Simulation {
+  const sim = new Simulation({ nAtoms: n, radius: Math.sqrt(10_000 / n), seed, trapHeight: 450 });
   sim.advance(1);
-  const s0 = sim.engineStats;
-  const c0 = sim.collisionCount;
-  const read = clock.cpu ?? clock.now;
-  const t0 = read();
-  sim.advance(frames);
-  const ms = read() - t0;
-  const s1 = sim.engineStats;
-  const collisions = sim.collisionCount - c0;
-  const events = collisions + (s1.crossings - s0.crossings) + (s1.stale - s0.stale);
-  return {
-    n,
-    radius,
-    frames,
-    collisions,
-    events,
-    collPerS: collisions / (ms / 1000),
-    eventsPerS: events / (ms / 1000),
-    msPerFrame: ms / frames,
-  };
+  return sim;
 }
 
-/**
- * The classic start (49 atoms, R = 12, H = 450): physics time per frame of advance(1),
- * median and 95th percentile. With a coarse clock, blocks of `block` frames are timed
- * and divided.
- */
-export function classicFrame(frames: number, clock: Clock, block = 1): BenchReport["classic"] {
+/** Advance `frames` frames; the collisions and events (with crossings and stale pops) done. */
+export function work(sim: Simulation, frames: number): { collisions: number; events: number } {
+  const s0 = sim.engineStats;
+  const c0 = sim.collisionCount;
+  sim.advance(frames);
+  const s1 = sim.engineStats;
+  const collisions = sim.collisionCount - c0;
+  return { collisions, events: collisions + (s1.crossings - s0.crossings) + (s1.stale - s0.stale) };
+}
+
+/** Physics time per frame of advance(1) at the classic start (49 atoms, R = 12, H = 450), ms. */
+export function classicTimes(frames: number, now: () => number): number[] {
   const sim = new Simulation({ nAtoms: 49, radius: 12, seed: 1, trapHeight: 450 });
   sim.advance(1);
   const times: number[] = [];
-  for (let f = 0; f < frames; f += block) {
-    const t = clock.now();
-    for (let k = 0; k < block; k++) sim.advance(1);
-    times.push((clock.now() - t) / block);
+  for (let f = 0; f < frames; f++) {
+    const t = now();
+    sim.advance(1);
+    times.push(now() - t);
   }
-  return { frames, medianMs: median(times), p95Ms: quantile(times, 0.95), block };
+  return times;
+}
+
+/** The JIT's warm-up: every hot path compiled (the knife's too) before anything is timed. */
+export function warmUp(): void {
+  new Simulation({ nAtoms: 400, radius: 3, seed: 0, escape: "knife" }).advance(20);
+  work(prepare(10_000), 3);
+}
+
+/** Where the figures are measured: here (Node) or in a page (driven from Node). */
+export interface Runner {
+  clock: string;
+  warmUp(): Promise<void>;
+  /** Collisions, events and the milliseconds (CPU time where known) of `frames` frames. */
+  throughput(
+    n: number,
+    frames: number,
+  ): Promise<{ collisions: number; events: number; ms: number }>;
+  classicTimes(frames: number): Promise<number[]>;
+}
+
+async function measure(runner: Runner, n: number, frames: number): Promise<Throughput> {
+  const r = await runner.throughput(n, frames);
+  return {
+    n,
+    radius: Math.sqrt(10_000 / n),
+    frames,
+    collisions: r.collisions,
+    events: r.events,
+    collPerS: r.collisions / (r.ms / 1000),
+    eventsPerS: r.events / (r.ms / 1000),
+    msPerFrame: r.ms / frames,
+  };
 }
 
 /** Every figure; quick: fewer frames and one run of the table. */
-export function runAll(clock: Clock, quick = false, block = 1): BenchReport {
-  // Warm-up: the JIT compiles the hot paths (the knife's too).
-  new Simulation({ nAtoms: 400, radius: 3, seed: 0, escape: "knife" }).advance(20);
+export async function runAll(runner: Runner, quick = false): Promise<BenchReport> {
+  await runner.warmUp();
   const frames = quick ? 10 : 30;
-  const big = throughput(10_000, frames, clock);
+  const big = await measure(runner, 10_000, frames);
   const sizes = [1_000, 10_000, 100_000];
   const repeats = quick ? 1 : 3;
   const runs = new Map<number, Throughput[]>(sizes.map((n) => [n, []]));
   for (let r = 0; r < repeats; r++) {
     for (const n of sizes) {
       const fr = Math.max(2, Math.floor((frames * 10_000) / n));
-      runs.get(n)!.push(throughput(n, fr, clock));
+      runs.get(n)!.push(await measure(runner, n, fr));
     }
   }
   const scaling = sizes.map((n) => ({
@@ -111,10 +121,11 @@ export function runAll(clock: Clock, quick = false, block = 1): BenchReport {
     medianEventsPerS: median(runs.get(n)!.map((r) => r.eventsPerS)),
   }));
   const rates = scaling.map((s) => s.medianCollPerS);
-  const classic = classicFrame(quick ? 300 : 900, clock, block);
+  const nf = quick ? 300 : 900;
+  const times = await runner.classicTimes(nf);
   return {
-    clock: clock.name,
-    classic,
+    clock: runner.clock,
+    classic: { frames: nf, medianMs: median(times), p95Ms: quantile(times, 0.95), block: 1 },
     big,
     scaling,
     maxOverMin: Math.max(...rates) / Math.min(...rates),
@@ -128,7 +139,7 @@ export function describe(where: string, r: BenchReport): string[] {
     `[${where}] timing: ${r.clock}`,
     `  classic start (49 atoms, R = 12, H = 450): median ${r.classic.medianMs.toFixed(4)} ms, ` +
       `p95 ${r.classic.p95Ms.toFixed(4)} ms physics per frame over ${r.classic.frames} frames` +
-      (r.classic.block > 1 ? ` (timed in blocks of ${r.classic.block})` : ""),
+      "",
     `  10 000 atoms, R = 1, H = 450: ${r.big.collisions.toLocaleString("en")} collisions in frames ` +
       `1-${r.big.frames + 1}: ${Math.round(r.big.collPerS).toLocaleString("en")} collisions/s, ` +
       `${Math.round(r.big.eventsPerS).toLocaleString("en")} events/s, ${r.big.msPerFrame.toFixed(1)} ms per frame`,

@@ -3,8 +3,9 @@
  *
  * The web engine's figures (scripts/bench-core.ts) in Node, then in headless Chromium
  * (/usr/bin/chromium through playwright-core, a fresh profile, the page served with
- * cross-origin isolation so performance.now() is fine-grained). --numba also measures the
- * Numba engine in this session (the project's .venv, or EVAPCOOL_PYTHON) for the ratio.
+ * cross-origin isolation so performance.now() is fine-grained). Rates are per second of CPU
+ * time in both (the machine is shared), frame times by the wall clock. --numba also measures
+ * the Numba engine in this session (the project's .venv, or EVAPCOOL_PYTHON) for the ratio.
  */
 import { spawnSync } from "node:child_process";
 import { existsSync, mkdtempSync, rmSync } from "node:fs";
@@ -13,7 +14,16 @@ import { join, resolve } from "node:path";
 import { fileURLToPath } from "node:url";
 import { chromium } from "playwright-core";
 import { build } from "vite";
-import { describe, runAll, type BenchReport, type Clock } from "./bench-core";
+import {
+  classicTimes,
+  describe,
+  prepare,
+  runAll,
+  warmUp,
+  work,
+  type BenchReport,
+  type Runner,
+} from "./bench-core";
 
 const WEB = process.env.EVAPCOOL_WEB ?? fileURLToPath(new URL("..", import.meta.url));
 const CHROMIUM = "/usr/bin/chromium";
@@ -35,17 +45,32 @@ Simulation(n_atoms=50, radius=3.0, seed=0, engine="fast", escape="knife").advanc
 print(json.dumps(throughput(10_000, FRAMES)))
 `;
 
-function nodeClock(): Clock {
+/** Node: rates per second of this process's CPU time, frame times by the wall clock. */
+function nodeRunner(): Runner {
+  const cpu = () => {
+    const u = process.cpuUsage();
+    return (u.user + u.system) / 1000;
+  };
   return {
-    now: () => performance.now(),
-    cpu: () => {
-      const u = process.cpuUsage();
-      return (u.user + u.system) / 1000;
+    clock: `Node ${process.version}; rates per second of process CPU time, frames by the wall clock`,
+    warmUp: async () => warmUp(),
+    throughput: async (n, frames) => {
+      const sim = prepare(n);
+      const t0 = cpu();
+      const r = work(sim, frames);
+      return { ...r, ms: cpu() - t0 };
     },
-    name: `Node ${process.version}; rates per second of process CPU time, frames by the wall clock`,
+    classicTimes: async (frames) => classicTimes(frames, () => performance.now()),
   };
 }
 
+type BenchGlobal = { EvapcoolBench: typeof import("./bench-core"); benchSim?: unknown };
+
+/**
+ * Headless Chromium: the engine bundled into a page; each measurement driven from here and
+ * timed by the page's main-thread CPU time (DevTools protocol, Performance.getMetrics'
+ * ThreadTime), so a busy machine does not count; frame times by performance.now().
+ */
 async function browserReport(quick: boolean): Promise<{ report: BenchReport; version: string }> {
   const out = await build({
     configFile: false,
@@ -85,23 +110,41 @@ async function browserReport(quick: boolean): Promise<{ report: BenchReport; ver
     );
     await page.goto(url);
     await page.addScriptTag({ content: code });
-    const isolated = await page.evaluate(
-      () => (globalThis as { crossOriginIsolated?: boolean }).crossOriginIsolated === true,
-    );
-    const report = await page.evaluate(
-      ({ quick, isolated }) => {
-        const bench = (globalThis as unknown as { EvapcoolBench: { runAll: typeof runAll } })
-          .EvapcoolBench;
-        const clock = {
-          now: () => performance.now(),
-          name:
-            "headless Chromium, wall clock (performance.now, " +
-            (isolated ? "cross-origin isolated: 5 us steps)" : "coarse: 100 us steps)"),
-        };
-        return bench.runAll(clock, quick, isolated ? 1 : 10);
+    const cdp = await context.newCDPSession(page);
+    await cdp.send("Performance.enable");
+    const threadMs = async (): Promise<number> => {
+      const { metrics } = await cdp.send("Performance.getMetrics");
+      return 1000 * (metrics.find((m) => m.name === "ThreadTime")?.value ?? NaN);
+    };
+    const runner: Runner = {
+      clock:
+        "headless Chromium; rates per second of the page's main-thread CPU time " +
+        "(DevTools ThreadTime), frames by performance.now() (cross-origin isolated)",
+      warmUp: () =>
+        page.evaluate(() => (globalThis as unknown as BenchGlobal).EvapcoolBench.warmUp()),
+      throughput: async (n, frames) => {
+        await page.evaluate((n) => {
+          const g = globalThis as unknown as BenchGlobal;
+          g.benchSim = g.EvapcoolBench.prepare(n);
+        }, n);
+        const t0 = await threadMs();
+        const r = await page.evaluate((frames) => {
+          const g = globalThis as unknown as BenchGlobal;
+          return g.EvapcoolBench.work(g.benchSim as never, frames);
+        }, frames);
+        const ms = (await threadMs()) - t0;
+        return { ...r, ms };
       },
-      { quick, isolated },
-    );
+      classicTimes: (frames) =>
+        page.evaluate(
+          (frames) =>
+            (globalThis as unknown as BenchGlobal).EvapcoolBench.classicTimes(frames, () =>
+              performance.now(),
+            ),
+          frames,
+        ),
+    };
+    const report = await runAll(runner, quick);
     return { report, version: context.browser()?.version() ?? "?" };
   } finally {
     await context.close();
@@ -140,7 +183,7 @@ export async function main(args: string[]): Promise<number> {
   const quick = args.includes("--quick");
   const rates: [string, number][] = [];
   if (!args.includes("--browser-only")) {
-    const r = runAll(nodeClock(), quick);
+    const r = await runAll(nodeRunner(), quick);
     for (const line of describe("node", r)) console.log(line);
     rates.push(["node", r.big.collPerS]);
   }

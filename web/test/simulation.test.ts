@@ -270,6 +270,18 @@ describe("the state", () => {
     expect(back.trapHeight).toBe(Infinity);
   });
 
+  it("loads a condensate whose atoms overlap (after the win they no longer collide)", () => {
+    const atoms = { x: [0, 5], y: [10, 10], vx: [0, 0], vy: [0, 0] };
+    expect(() => Simulation.fromState({ atoms })).toThrow("atoms 0 and 1 overlap");
+    const sim = Simulation.fromState({ won: true, atoms });
+    sim.advance(30);
+    expect(sim.won).toBe(true);
+    expect(sim.pairCollisionCount).toBe(0);
+    expect(() => Simulation.fromState({ won: true, atoms: { ...atoms, y: [-1, 10] } })).toThrow(
+      "atom 0",
+    );
+  });
+
   it("fills defaults for a minimal hand-written state", () => {
     const sim = Simulation.fromState({
       atoms: { x: [0, 30], y: [10, 40], vx: [1, 0], vy: [0, 0] },

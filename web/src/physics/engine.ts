@@ -75,26 +75,27 @@ import {
 } from "./kernels";
 import { EventQueue } from "./queue";
 
-// S, 8 floats a row: the stored state at the atom's own time, radius, mass, world index.
+// S, 8 floats a row: the stored state at the atom's own time, radius, event counter, world
+// index (the pair scan and the partner check read them on one cache line; both exact as floats).
 const X = 0;
 const Y = 1;
 const VX = 2;
 const VY = 3;
 const T = 4;
 const R = 5;
-const M = 6;
+const CNT = 6;
 const SID = 7;
 const SW = 8;
-// I, 16 integers a row: lifecycle, event counter, cell and the previous row in it, the real
-// event (kind, partner row, partner's counter, key parts), the crossing (axis, target cell).
+// I, 16 integers a row: lifecycle, the partner's event counter (low 32 bits) when the pair was
+// predicted, cell and the previous row in it, the real event (kind, partner row, key parts),
+// the crossing (axis, target cell), world index.
 const I_ST = 0;
-const I_CNT = 1;
+const I_PC = 1;
 const I_CX = 2;
 const I_CY = 3;
 const I_PRV = 4;
 const I_KIND = 5;
 const I_ARG = 6;
-const I_PC = 7;
 const I_RANK = 8;
 const I_RA = 9;
 const I_RB = 10;
@@ -102,10 +103,12 @@ const I_XK = 11;
 const I_XT = 12;
 const I_ID = 13;
 const IW = 16;
-// E, 4 floats a row: real-event time, crossing time, the time of the arc's last y crossing.
+// E, 4 floats a row: real-event time, crossing time, the time of the arc's last y crossing,
+// mass.
 const E_RT = 0;
 const E_CT = 1;
 const E_TLY = 2;
+const E_M = 3;
 const EW = 4;
 
 // Internal event kinds.
@@ -255,7 +258,7 @@ export class Engine {
       S[b + VY] = atoms.vy[i];
       S[b + T] = atoms.t[i];
       S[b + R] = atoms.radius[i];
-      S[b + M] = atoms.mass[i];
+      this.E[EW * i + E_M] = atoms.mass[i];
       S[b + SID] = i;
       this.I[IW * i + I_ST] = atoms.status[i];
       this.I[IW * i + I_ID] = i;
@@ -307,7 +310,7 @@ export class Engine {
       if (this.I[IW * r + I_ST] !== TRAPPED) continue;
       const b = SW * r;
       if (S[b + R] > rMax) rMax = S[b + R];
-      const h = this.energy(r) / (S[b + M] * this.g);
+      const h = this.energy(r) / (this.E[EW * r + E_M] * this.g);
       if (h > top) top = h;
     }
     const cs = rMax > 0 ? CELL_FACTOR * 2 * rMax : 1;
@@ -327,7 +330,7 @@ export class Engine {
   private energy(r: number): number {
     const S = this.S;
     const b = SW * r;
-    return atomEnergy(S[b + M], S[b + Y], S[b + VX], S[b + VY], this.g);
+    return atomEnergy(this.E[EW * r + E_M], S[b + Y], S[b + VX], S[b + VY], this.g);
   }
 
   /** Put trapped atoms in their cells (positions now), predict every atom, file the keys. */
@@ -448,28 +451,29 @@ export class Engine {
     let ba = I[ir + I_RA];
     let bb = I[ir + I_RB];
     let best = -1;
+    // Integer arithmetic in asm.js style (shifts, | 0): no overflow checks in the hot loop.
     for (let yy = ylo; yy <= yhi; yy++) {
-      const rowStart = yy * nx;
+      const rowStart = (yy * nx) | 0;
       for (let xx = xlo; xx <= xhi; xx++) {
-        for (let j = next[rowStart + xx]; j >= 0; j = next[nc + j]) {
+        for (let j = next[(rowStart + xx) | 0]; j >= 0; j = next[(nc + j) | 0]) {
           if (j === r) continue;
-          const bj = SW * j;
+          const bj = j << 3; // SW = 8: bj | k is bj + k
           const t = pairContactTime(
             x,
             y,
             vx,
             vy,
             t0,
-            S[bj + X],
-            S[bj + Y],
-            S[bj + VX],
-            S[bj + VY],
-            S[bj + T],
-            ri + S[bj + R],
+            S[bj],
+            S[bj | Y],
+            S[bj | VX],
+            S[bj | VY],
+            S[bj | T],
+            ri + S[bj | R],
             g,
           );
           if (t <= bt) {
-            const jj = S[bj + SID]; // rare: only now the partner's world index
+            const jj = S[bj | SID]; // rare: only now the partner's world index
             const lo = ii < jj ? ii : jj;
             const hi = ii < jj ? jj : ii;
             if (t < bt || (pair && (lo < ba || (lo === ba && hi < bb)))) {
@@ -490,7 +494,7 @@ export class Engine {
       I[ir + I_RB] = bb;
       I[ir + I_KIND] = K_PAIR;
       I[ir + I_ARG] = best;
-      I[ir + I_PC] = I[IW * best + I_CNT];
+      I[ir + I_PC] = S[SW * best + CNT] | 0;
     }
   }
 
@@ -685,7 +689,7 @@ export class Engine {
     I[IW * r + I_ST] = newStatus;
     this.nTrapped--;
     this.energySum -= this.energy(r);
-    I[IW * r + I_CNT] = (I[IW * r + I_CNT] + 1) | 0;
+    this.S[SW * r + CNT] += 1;
     this.unlink(r);
     this.predict(r);
     this.checkWin();
@@ -694,7 +698,7 @@ export class Engine {
   /** Remove trapped row r now if its energy exceeds m g H; true if removed. */
   private knifeCut(r: number): boolean {
     if (!this.knife) return false;
-    const m = this.S[SW * r + M];
+    const m = this.E[EW * r + E_M];
     if (this.energy(r) > m * this.g * this.trapHeight) {
       this.log(EV_KNIFE, this.I[IW * r + I_ID], -1);
       this.remove(r, GONE);
@@ -787,7 +791,7 @@ export class Engine {
       let t = te;
       if (kind === K_PAIR) {
         const j = I[ir + I_ARG];
-        if (this.won || I[IW * j + I_CNT] !== I[ir + I_PC]) {
+        if (this.won || (S[SW * j + CNT] | 0) !== I[ir + I_PC]) {
           this.staleCount++; // the partner moved on (or pairs are over)
           rp = r;
         } else {
@@ -807,16 +811,16 @@ export class Engine {
           io[IO_VY1] = S[bl + VY];
           io[IO_VX2] = S[bh + VX];
           io[IO_VY2] = S[bh + VY];
-          io[IO_M1] = S[bl + M];
-          io[IO_M2] = S[bh + M];
+          io[IO_M1] = this.E[EW * lo + E_M];
+          io[IO_M2] = this.E[EW * hi + E_M];
           collidePair(io);
           S[bl + VX] = io[IO_OUT];
           S[bl + VY] = io[IO_OUT + 1];
           S[bh + VX] = io[IO_OUT + 2];
           S[bh + VY] = io[IO_OUT + 3];
           this.pairCount++;
-          I[IW * lo + I_CNT] = (I[IW * lo + I_CNT] + 1) | 0;
-          I[IW * hi + I_CNT] = (I[IW * hi + I_CNT] + 1) | 0;
+          S[bl + CNT] += 1;
+          S[bh + CNT] += 1;
           this.log(EV_PAIR, I[IW * lo + I_ID], I[IW * hi + I_ID]);
           if (!this.knifeCut(lo)) rp = lo;
           pend = hi;
@@ -881,7 +885,7 @@ export class Engine {
         S[b + VY] = io[IO_OUT + 1];
         if (changes) this.energySum += this.energy(r);
         this.wallCount++;
-        I[ir + I_CNT] = (I[ir + I_CNT] + 1) | 0;
+        S[b + CNT] += 1;
         this.log(EV_WALL, I[ir + I_ID], -1);
         rp = r;
       } else if (kind === K_EXIT) {
@@ -889,7 +893,7 @@ export class Engine {
         this.time = t;
         this.move(r);
         I[ir + I_ST] = GONE;
-        I[ir + I_CNT] = (I[ir + I_CNT] + 1) | 0;
+        S[SW * r + CNT] += 1;
         this.log(EV_GONE, I[ir + I_ID], -1);
         rp = r;
       } else {
@@ -933,7 +937,7 @@ export class Engine {
 
   /** Stored value k of world atom i: 0 x, 1 y, 2 vx, 3 vy, 4 t, 5 radius, 6 mass. */
   storedOf(i: number, k: number): number {
-    return this.S[SW * this.row[i] + k];
+    return k === 6 ? this.E[EW * this.row[i] + E_M] : this.S[SW * this.row[i] + k];
   }
 
   /** World atom i's energy 1/2 m v^2 + m g y from its stored state (conserved in flight). */

@@ -377,6 +377,7 @@ export class Simulation {
       (i) => p.status[i] === TRAPPED,
       p.curvature,
       STATE_TOLERANCE,
+      !p.won, // the condensate's atoms no longer collide: they may overlap
     );
     const sim = Object.create(Simulation.prototype) as Simulation;
     sim.seedUsed = null;

@@ -308,6 +308,7 @@ export function parseState(input: unknown): ParsedState {
  * trapped atoms at least r_i + r_j apart, within a relative tolerance tol (0 for a fresh
  * start; a little for a mid-run state, whose atoms touch after collisions up to round-off).
  * Throws RangeError naming the first offending atoms (least index, then least partner).
+ * overlaps false skips the pairs: after the win, atoms no longer collide with each other.
  */
 export function checkPlacement(
   name: string,
@@ -317,6 +318,7 @@ export function checkPlacement(
   trapped: (i: number) => boolean,
   curvature: number,
   tol: number,
+  overlaps = true,
 ): void {
   const n = x.length;
   for (let i = 0; i < n; i++) {
@@ -329,6 +331,7 @@ export function checkPlacement(
       );
     }
   }
+  if (!overlaps) return;
   // Sweep along x: only atoms closer than the largest contact distance in x can overlap.
   const order: number[] = [];
   let rMax = 0;
