@@ -14,6 +14,7 @@ import json
 import math
 import numbers
 from dataclasses import dataclass
+from typing import Any, TypeGuard
 
 import numpy as np
 
@@ -115,7 +116,7 @@ class ParsedState:
     status: np.ndarray
 
 
-def _real(v: object) -> bool:
+def _real(v: object) -> TypeGuard[numbers.Real]:
     return isinstance(v, numbers.Real) and not isinstance(v, bool)
 
 
@@ -140,7 +141,7 @@ def _count(name: str, v: object) -> int:
         return 0
     if not _real(v) or not float(v).is_integer() or float(v) < 0 or float(v) > 2**53:
         raise _bad(name, "a whole number >= 0", v)
-    return int(v)
+    return int(float(v))
 
 
 def _flag(name: str, v: object, default: bool) -> bool:
@@ -288,24 +289,24 @@ def check_placement(
         near = np.flatnonzero(xs[shift:] - xs[:-shift] <= reach)
         if near.size == 0:
             break
-        i = order[near]
-        j = order[near + shift]
-        lim = (radius[i] + radius[j]) * (1.0 - tol)
-        hit = np.flatnonzero((x[j] - x[i]) ** 2 + (y[j] - y[i]) ** 2 < lim * lim)
+        lo = order[near]
+        hi = order[near + shift]
+        lim = (radius[lo] + radius[hi]) * (1.0 - tol)
+        hit = np.flatnonzero((x[hi] - x[lo]) ** 2 + (y[hi] - y[lo]) ** 2 < lim * lim)
         for k in hit:
-            pair = (int(min(i[k], j[k])), int(max(i[k], j[k])))
+            pair = (int(min(lo[k], hi[k])), int(max(lo[k], hi[k])))
             best = pair if best is None or pair < best else best
     if best is not None:
-        i, j = best
-        d = math.hypot(x[j] - x[i], y[j] - y[i])
+        a, b = best
+        d = math.hypot(x[b] - x[a], y[b] - y[a])
         raise ValueError(
-            f"{name}: atoms {i} and {j} overlap (centres {d!r} apart, less than r{i} + r{j} = "
-            f"{radius[i] + radius[j]!r}); atoms must be at least r_i + r_j apart"
+            f"{name}: atoms {a} and {b} overlap (centres {d!r} apart, less than r{a} + r{b} = "
+            f"{radius[a] + radius[b]!r}); atoms must be at least r_i + r_j apart"
         )
 
 
 # -- to and from a Simulation ------------------------------------------------------------
-def to_state(sim: Simulation) -> dict:
+def to_state(sim: Simulation) -> dict[str, Any]:
     """The state of sim as a JSON-ready dict (fields in the order both editions write)."""
     w = sim._world
     return {
@@ -343,7 +344,7 @@ def state_text(sim: Simulation) -> str:
 
 
 def from_state(
-    state: dict | str, engine: str = "auto", *, record_events: bool = False
+    state: dict[str, Any] | str, engine: str = "auto", *, record_events: bool = False
 ) -> Simulation:
     """A Simulation that goes on exactly from state (dict or JSON text).
 
