@@ -7,6 +7,7 @@ import os
 import sys
 from pathlib import Path
 
+from evapcool.about import error_line
 from evapcool.app.storage import settings_path
 from evapcool.argtypes import positive, whole
 from evapcool.game.rules import SPEED_MAX, SPEED_MIN, GameConfig, check_speed
@@ -36,7 +37,7 @@ _OPTION_OF = {
 
 class _Parser(argparse.ArgumentParser):
     def error(self, message: str) -> None:  # one line and exit 2, never a usage dump
-        print(f"{PROG}: {message}", file=sys.stderr)
+        print(error_line(None, message), file=sys.stderr)
         raise SystemExit(2)
 
 
@@ -152,7 +153,9 @@ def main(argv: list[str] | None = None) -> int:
     """Play the applet (or, with --frames, run it headless); returns the exit status."""
     args = build_parser().parse_args(argv)
     if args.screenshot is not None and args.frames is None:
-        print(f"{PROG}: --screenshot needs --frames N (frames to run first)", file=sys.stderr)
+        print(
+            error_line(None, "--screenshot needs --frames N (frames to run first)"), file=sys.stderr
+        )
         return 2
     saved, notices = load_settings(settings_path(args.config_dir))
     overrides = {
@@ -177,12 +180,15 @@ def main(argv: list[str] | None = None) -> int:
         # Whether the atoms fit is the loader's call: asked now, before a window opens.
         cell_centres(run.n_atoms, run.radius, CURVATURE, cup_vertex(WINDOW)[1] - run.radius)
     except ValueError as exc:
-        print(f"{PROG}: {_user_message(exc)}", file=sys.stderr)
+        print(error_line(None, _user_message(exc)), file=sys.stderr)
         return 2
     if args.frames is None and (why := _no_display()):
         print(
-            f"{PROG}: cannot play without a window: {why}; to run headless use "
-            "--frames N --screenshot out.png",
+            error_line(
+                None,
+                f"cannot play without a window: {why}; to run headless use "
+                "--frames N --screenshot out.png",
+            ),
             file=sys.stderr,
         )
         return 2
@@ -209,12 +215,15 @@ def main(argv: list[str] | None = None) -> int:
     except StartCancelledError:
         return 0
     except ValueError as exc:
-        print(f"{PROG}: {_user_message(exc)}", file=sys.stderr)
+        print(error_line(None, _user_message(exc)), file=sys.stderr)
         return 2
     except pygame.error as exc:
         print(
-            f"{PROG}: cannot open a window ({exc}); to run headless use "
-            "--frames N --screenshot out.png",
+            error_line(
+                None,
+                f"cannot open a window ({exc}); to run headless use "
+                "--frames N --screenshot out.png",
+            ),
             file=sys.stderr,
         )
         return 1
@@ -227,7 +236,10 @@ def main(argv: list[str] | None = None) -> int:
                 try:
                     app.screenshot(args.screenshot)
                 except OSError as exc:
-                    print(f"{PROG}: cannot write {str(args.screenshot)!r}: {exc}", file=sys.stderr)
+                    print(
+                        error_line(None, f"cannot write {str(args.screenshot)!r}: {exc}"),
+                        file=sys.stderr,
+                    )
                     return 1
     except KeyboardInterrupt:
         return 130

@@ -12,6 +12,7 @@ import importlib
 import sys
 import warnings
 
+from evapcool.about import error_line
 from evapcool.extras import MissingExtraError, SlowEngineWarning, check, missing_message
 
 #: section name -> module (each has run(args)).
@@ -24,7 +25,7 @@ SECTIONS = {
 
 class _Parser(argparse.ArgumentParser):
     def error(self, message: str) -> None:  # one line, exit 2
-        print(f"evapcool bench: {message}", file=sys.stderr)
+        print(error_line("bench", message), file=sys.stderr)
         raise SystemExit(2)
 
 

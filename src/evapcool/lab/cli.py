@@ -8,6 +8,7 @@ from typing import NoReturn
 
 import numpy as np
 
+from evapcool.about import error_line
 from evapcool.argtypes import choice, positive, whole
 from evapcool.extras import check
 from evapcool.lab.experiment import ESCAPES, START_HELP, TC_LAWS, LabConfig, run_experiment
@@ -98,7 +99,7 @@ def build_parser() -> argparse.ArgumentParser:
 
 
 def _fail(message: str) -> int:
-    print(f"evapcool lab: error: {message}", file=sys.stderr)
+    print(error_line("lab", message), file=sys.stderr)
     return EXIT_USAGE
 
 
@@ -179,7 +180,7 @@ def _theory(result, args) -> int:
     try:
         report = result.theory()
     except ValueError as exc:
-        print(f"evapcool lab: error: --theory: {exc}", file=sys.stderr)
+        print(error_line("lab", f"--theory: {exc}"), file=sys.stderr)
         if args.plot:
             result.plot(args.plot)
         return EXIT_NO_THEORY
