@@ -7,7 +7,7 @@ import os
 import sys
 from pathlib import Path
 
-from evapcool.about import error_line
+from evapcool.about import APP_NAME, error_line
 from evapcool.app.storage import settings_path
 from evapcool.argtypes import positive, whole
 from evapcool.game.rules import SPEED_MAX, SPEED_MIN, GameConfig, check_speed
@@ -23,7 +23,7 @@ from evapcool.physics.loading import cell_centres
 from evapcool.physics.simulation import CURVATURE, WINDOW, cup_vertex
 from evapcool.physics.world import ESCAPE_RULES
 
-PROG = "evapcool"
+PROG = APP_NAME
 #: Parameter names -> our options, so ValueErrors name what the user typed.
 _OPTION_OF = {
     "n_atoms": "--atoms",

@@ -15,9 +15,9 @@ from dataclasses import asdict, dataclass
 from datetime import datetime
 from pathlib import Path
 
+from evapcool.about import APP_NAME
 from evapcool.fileio import atomic_write_text, set_aside
 
-APP_NAME = "evapcool"
 FILE_NAME = "highscores.json"
 FORMAT_VERSION = 1
 MAX_ENTRIES = 10

@@ -15,6 +15,7 @@ from dataclasses import asdict, dataclass, fields, replace
 from functools import lru_cache
 from pathlib import Path
 
+from evapcool.about import APP_NAME
 from evapcool.fileio import atomic_write_text, set_aside
 from evapcool.physics.loading import capacity
 from evapcool.physics.simulation import (
@@ -22,20 +23,16 @@ from evapcool.physics.simulation import (
     BORDER_TOP,
     CURVATURE,
     N_ATOMS,
-    TC_EXPONENT_CUP,
-    TC_EXPONENT_SEED,
+    TC_LAWS,
     TRAP_HEIGHT,
     WINDOW,
     cup_vertex,
 )
 from evapcool.physics.world import ESCAPE_RULES
 
-APP_NAME = "evapcool"
 FILE_NAME = "settings.json"
 FORMAT_VERSION = 1
 
-#: Tc law name -> exponent p in Tc(N) = Tc0 (N / N0)^p.
-TC_LAWS: dict[str, float] = {"seed": TC_EXPONENT_SEED, "cup": TC_EXPONENT_CUP}
 #: Below 3 px an atom is a speck on a projector; above 20 px fewer than 49 fit.
 RADIUS_MIN = 3.0
 RADIUS_MAX = 20.0

@@ -31,13 +31,12 @@ from evapcool.physics.simulation import (
     ENGINES,
     GRAVITY,
     N_ATOMS,
-    TC_EXPONENT_CUP,
-    TC_EXPONENT_SEED,
+    TC_LAWS,
     Simulation,
 )
+from evapcool.physics.world import ESCAPE_RULES
 
-TC_LAWS = {"seed": TC_EXPONENT_SEED, "cup": TC_EXPONENT_CUP}
-ESCAPES = ("rim", "knife")
+ESCAPES = ESCAPE_RULES
 MASS = 1.0
 START_HELP = "'cup' (the game's loading) or 'thermal=KT' (a thermal cloud at kT > 0)"
 

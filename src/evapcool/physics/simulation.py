@@ -40,6 +40,8 @@ BORDER_LEFT, BORDER_RIGHT, BORDER_TOP, BORDER_BOTTOM = 48, 96, 48, 96
 CUP_DROP = 32  # px between the drawn cup bottom and the play-area bottom
 TC_EXPONENT_SEED = 2.0 / 3.0  # seed Eq. (46), the 3D-box law
 TC_EXPONENT_CUP = 2.0 / 5.0  # ideal Bose gas with g(E) ~ E^(3/2) (SPEC 4)
+#: The Tc laws by name (game settings, the lab's --tc-law): name -> exponent p in Tc ~ N^p.
+TC_LAWS: dict[str, float] = {"seed": TC_EXPONENT_SEED, "cup": TC_EXPONENT_CUP}
 ENGINES = ("auto", "reference", "fast")
 #: engine="auto" uses the fast engine from this many atoms on (docs/benchmarks.md).
 AUTO_FAST_MIN_ATOMS = 100

@@ -14,9 +14,9 @@ import webbrowser
 from importlib import resources
 from pathlib import Path
 
-from evapcool.about import error_line
+from evapcool.about import APP_NAME, error_line
 
-PROG = "evapcool web"
+PROG = f"{APP_NAME} web"
 PAGE_NAME = "evapcool.html"
 
 
