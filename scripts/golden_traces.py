@@ -8,7 +8,7 @@
                                                      # any state: its trace on stdout
 
 `npm run replay -- STATE.json --events N` (in web/) prints the web engine's trace of the same
-state in the same format: `diff` the two. See doc/state.md.
+state in the same format: `diff` the two. See docs/state.md.
 """
 
 from __future__ import annotations

@@ -1,4 +1,4 @@
-"""The layers' imports point one way: physics <- game <- view <- app (doc/architecture.md)."""
+"""The layers' imports point one way: physics <- game <- view <- app (docs/architecture.md)."""
 
 from __future__ import annotations
 
@@ -11,13 +11,19 @@ SRC = Path(__file__).resolve().parents[1] / "src" / "evapcool"
 
 # Which evapcool subpackages each layer may import (besides itself).
 ALLOWED = {
-    "physics": {"limits"},
-    "game": {"physics", "fileio", "limits"},
-    "view": {"physics", "game", "fileio", "limits"},
-    "lab": {"physics", "game", "fileio", "argtypes", "limits"},
+    "physics": {"limits", "extras"},
+    "game": {"physics", "fileio", "limits", "about", "extras"},
+    "view": {"physics", "game", "fileio", "limits", "about", "extras"},
+    "lab": {"physics", "game", "fileio", "argtypes", "limits", "about", "extras"},
 }
 #: Top-level modules below physics (or beside it): what each may import from evapcool.
-BASE_MODULES = {"limits": set(), "fileio": {"limits"}, "argtypes": {"limits", "fileio"}}
+BASE_MODULES = {
+    "about": set(),
+    "extras": set(),
+    "limits": set(),
+    "fileio": {"limits"},
+    "argtypes": {"limits", "fileio", "about"},
+}
 FORBIDDEN_MODULES = {"physics": {"pygame"}, "game": {"pygame"}, "lab": {"pygame"}}
 
 

@@ -132,7 +132,7 @@ def test_the_demo_ships_with_the_package_and_says_where_it_came_from():
     assert strategy == parse_strategy(doc["strategy"])
     assert doc["budget"] == 1800
     assert doc["game"]["atoms"] == 49
-    # Its validation against the best linear ramp travels with it (doc/cluster.md).
+    # Its validation against the best linear ramp travels with it (docs/cluster.md).
     assert doc["comparison"]["seeds"] >= 100
 
 

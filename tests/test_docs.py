@@ -1,4 +1,4 @@
-"""Every code block of README.md and doc/*.md runs, as written, in a scratch folder.
+"""Every code block of README.md and docs/*.md runs, as written, in a scratch folder.
 
 Fenced blocks are tagged: ```python and ```sh blocks run (Python as a script, each shell
 command on its own, headless: SDL's dummy driver, scores and settings in the scratch
@@ -21,7 +21,7 @@ from pathlib import Path
 import pytest
 
 ROOT = Path(__file__).resolve().parents[1]
-DOCS = [ROOT / "README.md", *sorted((ROOT / "doc").glob("*.md"))]
+DOCS = [ROOT / "README.md", *sorted((ROOT / "docs").glob("*.md"))]
 RUN = {"python", "sh"}
 FENCE = re.compile(r"^```(.*)$")
 #: Frames a window-opening command plays in this test.
@@ -100,9 +100,8 @@ def test_window_commands_get_a_short_headless_run():
 
 @pytest.fixture
 def scratch(tmp_path) -> tuple[Path, dict[str, str]]:
-    """A scratch folder with doc/ and docs/ (where examples put figures), and the env."""
-    for sub in ("doc", "docs"):
-        (tmp_path / sub).mkdir()
+    """A scratch folder with docs/ (where examples put figures), and the env."""
+    (tmp_path / "docs").mkdir()
     env = dict(os.environ)
     env.update(
         SDL_VIDEODRIVER="dummy",
@@ -158,7 +157,9 @@ def test_the_screenshot_script_makes_the_readmes_pictures(tmp_path):
     )
     assert proc.returncode == 0, proc.stderr
     readme = (ROOT / "README.md").read_text(encoding="utf-8")
-    shown = re.findall(r"!\[[^\]]*\]\(docs/([^)]+\.png)\)", readme)
+    # Absolute addresses, so that the pictures show on PyPI too.
+    raw = "https://raw.githubusercontent.com/evapcool/evapcool/main/docs/"
+    shown = re.findall(r"!\[[^\]]*\]\(" + re.escape(raw) + r"([^)]+\.png)\)", readme)
     made = {p.name for p in tmp_path.glob("*.png")}
     assert made == {"classic-start.png", "win.png", "small-screen.png"}
     assert made <= set(shown)  # (the browser edition's picture comes from web/)

@@ -1,4 +1,4 @@
-"""The simulated gas against kinetic theory (SPEC section 4, doc/lab.md).
+"""The simulated gas against kinetic theory (SPEC section 4, docs/lab.md).
 
 One dilute equilibrium run serves every test here: 300 disks of radius 0.5 px
 with kT ~ 67 (scale height kT/mg ~ 200 px, packing fraction 0.5 % at the

@@ -1,4 +1,4 @@
-"""Evaporation with the knife against the truncated-Boltzmann model (doc/lab.md, "Evaporation").
+"""Evaporation with the knife against the truncated-Boltzmann model (docs/lab.md, "Evaporation").
 
 The default run has the quick checks: the ledger of evaporated and spilled atoms, both
 engines alike, and one short constant-eta measurement. The statistics (eta = 4, 5, 6, 7,
@@ -20,7 +20,7 @@ from evapcool.lab import theory as th
 from evapcool.lab.campaign import RUN, pool, quench, run_eta
 
 G, A = 1.0 / 3.0, 0.01
-SEEDS = range(24)  # resolves the per-eta ratios to about 2 % (doc/lab.md)
+SEEDS = range(24)  # resolves the per-eta ratios to about 2 % (docs/lab.md)
 
 
 def test_ledger_balances_atoms_and_energy_and_engines_agree():
@@ -85,7 +85,7 @@ def test_knife_at_constant_eta_against_the_model(eta):
 EV_XFAIL = pytest.mark.xfail(
     strict=True,
     reason="measured 0.866 +- 0.017 of the truncated-Boltzmann rate: the gas below the cut is "
-    "depleted (test_tail_below_the_cut_is_depleted), which the model leaves out (doc/lab.md)",
+    "depleted (test_tail_below_the_cut_is_depleted), which the model leaves out (docs/lab.md)",
 )
 
 

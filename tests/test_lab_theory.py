@@ -60,12 +60,6 @@ def test_henderson_and_local_rate():
     assert z == pytest.approx(4 * 1.5 * vrel, rel=5e-3)
 
 
-def test_bessel_i0():
-    assert th.bessel_i0(0.0) == 1.0
-    theta = np.linspace(0.0, 2.0 * math.pi, 100000, endpoint=False)
-    assert th.bessel_i0(0.7) == pytest.approx(np.mean(np.exp(0.7 * np.sin(theta))), rel=1e-6)
-
-
 @pytest.mark.parametrize(
     ("n", "r", "kt", "tol"),
     [(300, 1.0, 65.0, 2e-3), (100, 3.0, 5.0, 1.5e-2)],
@@ -309,7 +303,7 @@ def test_from_measured_recovers_kt(dense):
 
 def test_uniform_dilute_limit_of_the_rates():
     # Without cut and in the dilute limit: Gamma_pair = (N^2/2) R sqrt(2 a kT/m) / lambda^(3/2)
-    # (doc/lab.md), times (1 - 1/N) for the pairs; the wall strip and I0 are small here.
+    # (docs/lab.md), times (1 - 1/N) for the pairs; the wall strip and I0 are small here.
     cup = th.Cup(radius=0.01, gravity=1.0 / 3.0, curvature=0.01)
     n, kt = 300, 30.0
     lam = kt / cup.gravity

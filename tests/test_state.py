@@ -1,4 +1,4 @@
-"""The state JSON (physics/state.py, doc/state.md): exact resumption, defaults, bad states."""
+"""The state JSON (physics/state.py, docs/state.md): exact resumption, defaults, bad states."""
 
 from __future__ import annotations
 

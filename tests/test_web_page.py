@@ -32,7 +32,7 @@ def test_copy_to_a_folder_and_to_a_missing_one(tmp_path, capsys) -> None:
     assert (tmp_path / "evapcool.html").read_bytes() == page_path().read_bytes()
     assert main(["web", "--copy", str(tmp_path / "nope" / "x.html")]) == 2
     err = capsys.readouterr().err.strip().splitlines()
-    assert err == [f"evapcool web: --copy: folder {str(tmp_path / 'nope')!r} does not exist"]
+    assert err == [f"evapcool web: error: --copy: folder {str(tmp_path / 'nope')!r} does not exist"]
 
 
 def test_opens_the_file_in_the_default_browser(monkeypatch, capsys) -> None:

@@ -14,11 +14,6 @@ from evapcool.fileio import check_writable
 from evapcool.limits import Range
 
 
-def one_line(message: str) -> str:
-    """message with line breaks and other control characters escaped: one line on stderr."""
-    return "".join(ch if ch.isprintable() or ch == " " else repr(ch)[1:-1] for ch in message)
-
-
 def ranged(rng: Range) -> Callable[[str], float]:
     """A number (a whole number if rng.integer) within rng."""
 

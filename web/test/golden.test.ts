@@ -63,7 +63,7 @@ describe("golden traces", () => {
       ]);
       expect(bits(s.temperature)).toBe(bits(g.temperature));
       expect(bits(s.total_energy)).toBe(bits(g.total_energy));
-      // Math.pow is not C's pow: Tc(N) is held to 1e-12 relative (doc/model.md).
+      // Math.pow is not C's pow: Tc(N) is held to 1e-12 relative (docs/model.md).
       expect(Math.abs(s.critical_temperature - g.critical_temperature)).toBeLessThanOrEqual(
         1e-12 * Math.abs(g.critical_temperature),
       );

@@ -56,7 +56,7 @@ function broken(sim: Simulation): string {
     const wall = sim.curvature * x * x;
     if (p[2 * i + 1] < wall - 1e-9 * (1 + wall))
       return `atom ${i} below the wall by ${wall - p[2 * i + 1]}`;
-    // After the win the condensate's atoms no longer collide with each other (doc/model.md).
+    // After the win the condensate's atoms no longer collide with each other (docs/model.md).
     for (let j = i + 1; j < n && !sim.won; j++) {
       const d = Math.hypot(p[2 * j] - x, p[2 * j + 1] - p[2 * i + 1]);
       if (d < (r[i] + r[j]) * (1 - 1e-9)) return `atoms ${i}, ${j} overlap: ${d} < ${r[i] + r[j]}`;

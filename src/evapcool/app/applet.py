@@ -18,6 +18,7 @@ from dataclasses import replace
 
 import pygame
 
+from evapcool.about import note_line
 from evapcool.app import warmup
 from evapcool.app.charts import ChartColumn
 from evapcool.app.controls import SceneControls
@@ -545,7 +546,7 @@ class App:
 
 
 def stderr_log(text: str) -> None:
-    print(f"evapcool: {text}", file=sys.stderr, flush=True)
+    print(note_line(None, text), file=sys.stderr, flush=True)
 
 
 __all__ = [

@@ -8,8 +8,9 @@ import sys
 from pathlib import Path
 
 from evapcool import limits
+from evapcool.about import APP_NAME, error_line
 from evapcool.app.storage import settings_path
-from evapcool.argtypes import one_line, output_file, ranged
+from evapcool.argtypes import output_file, ranged
 from evapcool.game.rules import GameConfig
 from evapcool.game.settings import (
     TC_LAWS,
@@ -21,7 +22,7 @@ from evapcool.physics.loading import cell_centres
 from evapcool.physics.simulation import CURVATURE, WINDOW, cup_vertex
 from evapcool.physics.world import ESCAPE_RULES
 
-PROG = "evapcool"
+PROG = APP_NAME
 #: Parameter names -> our options, so ValueErrors name what the user typed.
 _OPTION_OF = {
     "n_atoms": "--atoms",
@@ -35,7 +36,7 @@ _OPTION_OF = {
 
 class _Parser(argparse.ArgumentParser):
     def error(self, message: str) -> None:  # one line and exit 2, never a usage dump
-        print(f"{PROG}: {one_line(message)}", file=sys.stderr)
+        print(error_line(None, message), file=sys.stderr)
         raise SystemExit(2)
 
 
@@ -154,7 +155,9 @@ def main(argv: list[str] | None = None) -> int:
     """Play the applet (or, with --frames, run it headless); returns the exit status."""
     args = build_parser().parse_args(argv)
     if args.screenshot is not None and args.frames is None:
-        print(f"{PROG}: --screenshot needs --frames N (frames to run first)", file=sys.stderr)
+        print(
+            error_line(None, "--screenshot needs --frames N (frames to run first)"), file=sys.stderr
+        )
         return 2
     saved, notices = load_settings(settings_path(args.config_dir))
     overrides = {
@@ -179,7 +182,7 @@ def main(argv: list[str] | None = None) -> int:
         # Whether the atoms fit is the loader's call: asked now, before a window opens.
         cell_centres(run.n_atoms, run.radius, CURVATURE, cup_vertex(WINDOW)[1] - run.radius)
     except ValueError as exc:
-        print(f"{PROG}: {one_line(_user_message(exc))}", file=sys.stderr)
+        print(error_line(None, _user_message(exc)), file=sys.stderr)
         return 2
     pilot = None
     if args.autopilot is not None:
@@ -188,12 +191,15 @@ def main(argv: list[str] | None = None) -> int:
         try:
             pilot = Autopilot.load(args.autopilot)
         except ValueError as exc:
-            print(f"{PROG}: --autopilot: {exc}", file=sys.stderr)
+            print(error_line(None, f"--autopilot: {exc}"), file=sys.stderr)
             return 2
     if args.frames is None and (why := _no_display()):
         print(
-            f"{PROG}: cannot play without a window: {why}; to run headless use "
-            "--frames N --screenshot out.png",
+            error_line(
+                None,
+                f"cannot play without a window: {why}; to run headless use "
+                "--frames N --screenshot out.png",
+            ),
             file=sys.stderr,
         )
         return 2
@@ -221,12 +227,15 @@ def main(argv: list[str] | None = None) -> int:
     except StartCancelledError:
         return 0
     except ValueError as exc:
-        print(f"{PROG}: {one_line(_user_message(exc))}", file=sys.stderr)
+        print(error_line(None, _user_message(exc)), file=sys.stderr)
         return 2
     except pygame.error as exc:
         print(
-            f"{PROG}: cannot open a window ({exc}); to run headless use "
-            "--frames N --screenshot out.png",
+            error_line(
+                None,
+                f"cannot open a window ({exc}); to run headless use "
+                "--frames N --screenshot out.png",
+            ),
             file=sys.stderr,
         )
         return 1
@@ -240,7 +249,7 @@ def main(argv: list[str] | None = None) -> int:
                     app.screenshot(args.screenshot)
                 except OSError as exc:
                     print(
-                        f"{PROG}: cannot write {str(args.screenshot)!r}: {one_line(str(exc))}",
+                        error_line(None, f"cannot write {str(args.screenshot)!r}: {exc}"),
                         file=sys.stderr,
                     )
                     return 1

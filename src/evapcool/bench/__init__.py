@@ -10,8 +10,10 @@ from __future__ import annotations
 import argparse
 import importlib
 import sys
+import warnings
 
-from evapcool.argtypes import one_line
+from evapcool.about import error_line
+from evapcool.extras import MissingExtraError, SlowEngineWarning, check, missing_message
 
 #: section name -> module (each has run(args)).
 SECTIONS = {
@@ -24,7 +26,7 @@ SECTIONS = {
 
 class _Parser(argparse.ArgumentParser):
     def error(self, message: str) -> None:  # one line, exit 2
-        print(f"evapcool bench: {one_line(message)}", file=sys.stderr)
+        print(error_line("bench", message), file=sys.stderr)
         raise SystemExit(2)
 
 
@@ -46,13 +48,22 @@ def main(argv: list[str] | None = None) -> int:
     p.add_argument("--quick", action="store_true", help="fewer repeats, smaller systems")
     args = p.parse_args(argv)
     names = args.only or list(SECTIONS)
-    if args.engine == "fast" and not args.only:
-        names = ["physics", "fast"]
+    if args.engine == "fast":
+        check("numba", "evapcool bench --engine fast")  # asked for: an error, not a skip
+        if not args.only:
+            names = ["physics", "fast"]
     for name in names:
         try:
             mod = importlib.import_module(SECTIONS[name])
-        except ModuleNotFoundError:
-            print(f"[{name}] not available in this build")
-            continue
-        mod.run(args)
+            with warnings.catch_warnings():
+                # Thousands of atoms on the NumPy engine would take hours: skip instead.
+                warnings.simplefilter("error", SlowEngineWarning)
+                mod.run(args)
+        except (MissingExtraError, SlowEngineWarning) as exc:  # e.g. no numba
+            print(f"[{name}] skipped: {exc}")
+        except ModuleNotFoundError as exc:
+            if exc.name and not exc.name.startswith("evapcool"):
+                print(f"[{name}] skipped: {missing_message(exc.name, 'this section')}")
+            else:
+                print(f"[{name}] not available in this build")
     return 0

@@ -18,6 +18,7 @@ from dataclasses import asdict, dataclass
 from datetime import datetime
 from pathlib import Path
 
+from evapcool.about import APP_NAME
 from evapcool.fileio import (
     NotRegularFileError,
     atomic_write_text,
@@ -28,7 +29,6 @@ from evapcool.fileio import (
 )
 from evapcool.limits import USER_FILE_MAX_BYTES
 
-APP_NAME = "evapcool"
 FILE_NAME = "highscores.json"
 FORMAT_VERSION = 1
 MAX_ENTRIES = 10

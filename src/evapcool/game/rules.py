@@ -55,20 +55,24 @@ def check_speed(speed: object) -> float:
 
 def make_simulation(config: GameConfig) -> Simulation:
     """A fresh simulation for config; the reference engine if the fast one can't load."""
-    kwargs = {
-        "n_atoms": config.n_atoms,
-        "radius": config.radius,
-        "seed": config.seed,
-        "tc_exponent": config.tc_exponent,
-        "escape": config.escape,
-    }
+
+    def simulation(engine: str) -> Simulation:
+        return Simulation(
+            n_atoms=config.n_atoms,
+            radius=config.radius,
+            seed=config.seed,
+            tc_exponent=config.tc_exponent,
+            escape=config.escape,
+            engine=engine,
+        )
+
     try:
-        return Simulation(**kwargs, engine=config.engine)
+        return simulation(config.engine)
     except ImportError:
         # numba (or the fast engine) missing, e.g. in the lean executable.
         if config.engine == "fast":
             raise
-        return Simulation(**kwargs, engine="reference")
+        return simulation("reference")
 
 
 class Game:

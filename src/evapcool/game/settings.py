@@ -17,6 +17,7 @@ from functools import lru_cache
 from pathlib import Path
 
 from evapcool import limits
+from evapcool.about import APP_NAME
 from evapcool.fileio import (
     NotRegularFileError,
     atomic_write_text,
@@ -31,20 +32,16 @@ from evapcool.physics.simulation import (
     BORDER_TOP,
     CURVATURE,
     N_ATOMS,
-    TC_EXPONENT_CUP,
-    TC_EXPONENT_SEED,
+    TC_LAWS,
     TRAP_HEIGHT,
     WINDOW,
     cup_vertex,
 )
 from evapcool.physics.world import ESCAPE_RULES
 
-APP_NAME = "evapcool"
 FILE_NAME = "settings.json"
 FORMAT_VERSION = 1
 
-#: Tc law name -> exponent p in Tc(N) = Tc0 (N / N0)^p.
-TC_LAWS: dict[str, float] = {"seed": TC_EXPONENT_SEED, "cup": TC_EXPONENT_CUP}
 #: The applet's ranges (limits.APPLET_RADIUS, limits.APPLET_ATOMS): the settings screen,
 #: the settings file and the command line all use them.
 RADIUS_MIN = limits.APPLET_RADIUS.low

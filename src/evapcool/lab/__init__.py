@@ -1,4 +1,4 @@
-"""The lab: headless evaporation experiments checked against kinetic theory (doc/lab.md).
+"""The lab: headless evaporation experiments checked against kinetic theory (docs/lab.md).
 
 from evapcool.lab import run_experiment
 res = run_experiment(atoms=49, schedule="400@0,60@1800", frames=1800, seed=1)

@@ -9,7 +9,9 @@ from typing import NoReturn
 import numpy as np
 
 from evapcool import limits
-from evapcool.argtypes import choice, one_line, output_file, ranged
+from evapcool.about import error_line
+from evapcool.argtypes import choice, output_file, ranged
+from evapcool.extras import check
 from evapcool.lab.experiment import ESCAPES, START_HELP, TC_LAWS, LabConfig, run_experiment
 from evapcool.lab.io import COLUMNS, read_result, to_csv_text
 from evapcool.lab.schedule import SCHEDULE_HELP
@@ -37,7 +39,7 @@ def build_parser() -> argparse.ArgumentParser:
         prog="evapcool lab",
         description=(
             "Run an evaporative-cooling experiment headless: a trap-height schedule in, "
-            "time series (CSV/JSON) and a figure out. See doc/lab.md."
+            "time series (CSV/JSON) and a figure out. See docs/lab.md."
         ),
     )
     p.add_argument(
@@ -138,7 +140,7 @@ def build_parser() -> argparse.ArgumentParser:
 
 
 def _fail(message: str) -> int:
-    print(f"evapcool lab: error: {one_line(message)}", file=sys.stderr)
+    print(error_line("lab", message), file=sys.stderr)
     return EXIT_USAGE
 
 
@@ -190,6 +192,8 @@ def main(argv: list[str] | None = None) -> int:
         if value is not None:
             params[name] = value
             given.add(name)
+    if args.plot is not None:
+        check("matplotlib", "--plot")  # before the run, which may be long
     plot = None if args.theory else args.plot  # with --theory the figure waits for the model
     try:
         result = run_experiment(out=args.out, plot=plot, progress=None, **params)
@@ -239,7 +243,7 @@ def _theory(result, args) -> int:
     try:
         report = result.theory()
     except ValueError as exc:
-        print(f"evapcool lab: error: --theory: {one_line(str(exc))}", file=sys.stderr)
+        print(error_line("lab", f"--theory: {exc}"), file=sys.stderr)
         if args.plot:
             result.plot(args.plot)
         return EXIT_NO_THEORY

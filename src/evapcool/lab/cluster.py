@@ -1,7 +1,7 @@
 """One distributed engine for `evapcool sweep` and `evapcool optimize`: Dask.
 
 Runs are Dask tasks. By default a LocalCluster with one single-threaded worker process per
-core; `scheduler="tcp://host:8786"` attaches to a running cluster instead (doc/cluster.md).
+core; `scheduler="tcp://host:8786"` attaches to a running cluster instead (docs/cluster.md).
 Each worker warms the fast engine once when it joins (compiled, or loaded from Numba's
 cache), never once per task. Results come back as tasks finish, so a worker that dies
 loses only what it was running: Dask runs that again elsewhere.

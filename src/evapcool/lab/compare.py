@@ -1,4 +1,4 @@
-"""A lab run beside the truncated-Boltzmann model of evaporation (doc/lab.md, "Evaporation").
+"""A lab run beside the truncated-Boltzmann model of evaporation (docs/lab.md, "Evaporation").
 
 For every record the model cloud is solved from what was measured there (atoms N, mean
 energy per atom, cut m g H); its rates are then set against the counts between records,

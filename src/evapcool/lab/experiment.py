@@ -12,7 +12,9 @@ from pathlib import Path
 import numpy as np
 
 from evapcool import limits
+from evapcool.extras import check
 from evapcool.fileio import check_writable
+from evapcool.lab import notebook
 from evapcool.lab.io import (
     COLUMNS,
     as_arrays,
@@ -29,13 +31,12 @@ from evapcool.physics.simulation import (
     ENGINES,
     GRAVITY,
     N_ATOMS,
-    TC_EXPONENT_CUP,
-    TC_EXPONENT_SEED,
+    TC_LAWS,
     Simulation,
 )
+from evapcool.physics.world import ESCAPE_RULES
 
-TC_LAWS = {"seed": TC_EXPONENT_SEED, "cup": TC_EXPONENT_CUP}
-ESCAPES = ("rim", "knife")
+ESCAPES = ESCAPE_RULES
 MASS = 1.0
 START_HELP = (
     f"'cup' (the game's loading) or 'thermal=KT' (a thermal cloud at kT {limits.START_KT.span()})"
@@ -150,13 +151,16 @@ class LabResult:
     def __len__(self) -> int:
         return len(self.columns["frame"])
 
+    # -- notebooks (lab/notebook.py) ---------------------------------------------
     def __repr__(self) -> str:
-        p = self.parameters
-        return (
-            f"LabResult({len(self)} records, atoms={p.get('atoms')}, "
-            f"schedule={p.get('schedule')!r}, escape={p.get('escape')!r}, "
-            f"completed={self.completed})"
-        )
+        return notebook.summary(self)
+
+    def _repr_html_(self) -> str:
+        return notebook.to_html(self)
+
+    def to_pandas(self):
+        """The records as a pandas DataFrame, metadata in `.attrs` (needs pandas)."""
+        return notebook.to_pandas(self)
 
     @property
     def parameters(self) -> dict:
@@ -172,7 +176,7 @@ class LabResult:
         """Truncation parameter m g H / kT at each record, kT from the law cut at m g H.
 
         The law E^(3/2) exp(-E/kT) cut at eta kT whose mean energy is the temperature
-        column (doc/lab.md); inf without a cut, nan where no such law has that mean.
+        column (docs/lab.md); inf without a cut, nan where no such law has that mean.
         """
         cut = MASS * self.metadata["parameters"]["gravity"] * self.trap_height
         return np.array(
@@ -180,7 +184,7 @@ class LabResult:
         )
 
     def theory(self, *, settle: float | None = None):
-        """The run's measured rates beside the truncated-Boltzmann model (doc/lab.md).
+        """The run's measured rates beside the truncated-Boltzmann model (docs/lab.md).
 
         Returns a TheoryReport: print it for the table; report["alpha"] etc. for a row.
         The window opens after `settle` collisions per atom (default 10).
@@ -194,13 +198,15 @@ class LabResult:
         write_result(path, self.metadata, self.columns, self.final_energies)
 
     def plot(self, path: str | os.PathLike[str] | None = None, *, theory=None):
-        """The four-panel figure (doc/lab.md); saved to path if given; returns the Figure.
+        """The four-panel figure (docs/lab.md); saved to path if given; returns the Figure.
 
         theory=True (or a report from self.theory()) draws the model over the measurement
         and adds two panels: the collision rate and the evaporated atoms against time.
         """
+        check("matplotlib", "LabResult.plot")
         from evapcool.lab.plot import plot_result
 
+        notebook.show_figures_inline()
         if theory is True:
             theory = self.theory()
         return plot_result(self, path, theory=theory or None)
@@ -217,7 +223,7 @@ def _new_columns() -> dict[str, list]:
 
 @dataclass
 class _Ledger:
-    """Atoms that left the trap and the energy they took, by how they left (doc/lab.md).
+    """Atoms that left the trap and the energy they took, by how they left (docs/lab.md).
 
     Evaporated: during flight (a collision pushed it over the knife, or it flew over the
     rim), with its energy at that moment; spilled: when the schedule lowered the cut.
@@ -290,6 +296,7 @@ def _check_run_options(out, plot, progress, checkpoint_seconds, on_record) -> No
         output_format(out)
         check_writable(out, "out")
     if plot is not None:
+        check("matplotlib", "plot")
         if Path(plot).suffix.lower() != ".png":
             raise ValueError(f"plot must be a file name ending in .png (got {str(plot)!r})")
         check_writable(plot, "plot")
@@ -342,6 +349,7 @@ def run_experiment(
         "completed": False,
         "frames_done": 0,
         "won_frame": None,
+        **notebook.run_info(sim),
     }
     cols = _new_columns()
     n0 = sim.n_atoms

@@ -12,7 +12,7 @@ import numpy as np
 from evapcool.fileio import atomic_write_text, check_writable, read_user_text
 from evapcool.limits import LAB_FILE_MAX_BYTES
 
-#: Output columns, one row per record (doc/lab.md explains each).
+#: Output columns, one row per record (docs/lab.md explains each).
 COLUMNS = (
     "frame",
     "n_trapped",

@@ -1,4 +1,4 @@
-"""Two-dimensional hard-disk collisions in a truncated Maxwellian gas (doc/lab.md, "Evaporation").
+"""Two-dimensional hard-disk collisions in a truncated Maxwellian gas (docs/lab.md, "Evaporation").
 
 Velocities in units of sqrt(2 kT / m), so that a kinetic energy is w^2 kT. The local
 velocity law at a height where the cut leaves kinetic energy kappa kT is

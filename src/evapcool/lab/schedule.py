@@ -68,7 +68,7 @@ class Schedule:
                 sim.trap_height = self._controller[0](autopilot.read(sim))
             return
         # Constant truncation: H = eta kT / (m g), kT from the mean energy of the law
-        # E^(3/2) exp(-E/kT) cut at eta kT (doc/lab.md). With the knife, lowering H removes
+        # E^(3/2) exp(-E/kT) cut at eta kT (docs/lab.md). With the knife, lowering H removes
         # hot atoms and cools the rest, so repeat until self-consistent.
         mass = float(sim.masses.mean()) if sim.n_trapped else 1.0
         for _ in range(sim.n_atoms + 1):

@@ -46,7 +46,7 @@ def build_parser() -> argparse.ArgumentParser:
         description=(
             "Run every combination of the lab parameters in a TOML spec as one lab run each, "
             "on a local Dask cluster or a running one; tidy Parquet tables out. "
-            "See doc/cluster.md."
+            "See docs/cluster.md."
         ),
     )
     p.add_argument(

@@ -43,7 +43,7 @@ RECORDS_FILE = "records.parquet"
 PARTS_DIR = "parts"
 SPEC_FILE = "spec.toml"
 CHECKPOINT_SECONDS = 10.0
-#: The spec `evapcool sweep --example FILE` writes (doc/cluster.md shows it).
+#: The spec `evapcool sweep --example FILE` writes (docs/cluster.md shows it).
 EXAMPLE_SPEC = """\
 # rim-or-knife.toml: the game's gas, two escape rules, two schedules, five seeds (20 runs)
 [sweep]
@@ -59,7 +59,7 @@ engine = "fast"
 # radius = { from = 6, to = 12, step = 2 }        a range, both ends included
 # curvature = { from = 0.005, to = 0.02, num = 4 }    evenly spaced (log = true: geometric)
 """
-#: Summary columns of the runs table besides the parameters (doc/cluster.md explains them).
+#: Summary columns of the runs table besides the parameters (docs/cluster.md explains them).
 RESULT_COLUMNS = (
     "run_id", "status", "error", "completed", "frames_done", "won_frame", "n_initial",
     "n_final", "temperature_initial", "temperature_final", "critical_temperature_final",
@@ -565,7 +565,7 @@ def _bar(total: int, progress: bool | None):
 
 
 def per_run_costs(runs) -> dict:
-    """Median CPU and wall seconds per successful run (for doc/cluster.md's estimates)."""
+    """Median CPU and wall seconds per successful run (for docs/cluster.md's estimates)."""
     ok = runs[runs["status"] == "ok"]
     return {
         "runs": len(ok),

@@ -3,7 +3,7 @@
 Trap coordinates as in the physics: centres live in y >= a x^2, potential m g y.
 All energies are per atom in the simulation's units (mass x px^2 / frame^2);
 ``kT`` is the Boltzmann temperature, which in this cup is 2/5 of the mean energy
-per atom that the game calls "temperature" (seed Eq. 1). See doc/lab.md for the
+per atom that the game calls "temperature" (seed Eq. 1). See docs/lab.md for the
 derivations.
 """
 
@@ -158,7 +158,7 @@ def local_collision_rate(
     """Collisions per atom per frame in a uniform 2D gas: z = n (4R) sqrt(pi kT/m) g(2R).
 
     The 2D cross-section of two disks of radius R is the impact-parameter
-    width 2 (2R) = 4R; the mean relative speed is sqrt(pi kT/m). See doc/lab.md.
+    width 2 (2R) = 4R; the mean relative speed is sqrt(pi kT/m). See docs/lab.md.
     """
     n = np.asarray(n, dtype=float)
     phi = math.pi * n * radius * radius
@@ -225,7 +225,7 @@ class TruncatedCloud:
     Walraven 1996), with the local-density correction for hard disks (dense=True): the
     positional factor carries exp(-mu_ex(phi)/kT) of the local packing fraction (Henderson
     1975), so the cloud is pushed up as it gets dense. Rates follow from the 2D hard-disk
-    collision integrals (lab/scattering.py) with the contact value g(2R); doc/lab.md derives
+    collision integrals (lab/scattering.py) with the contact value g(2R); docs/lab.md derives
     every formula. Lengths in px, times in frames, energies in m px^2 / frame^2.
     """
 
@@ -327,7 +327,7 @@ class TruncatedCloud:
         bracket = bulk - wall
         speed = math.sqrt(2.0 * self.kt / self.cup.mass)
         pairs = max(1.0 - 1.0 / self.n_atoms, 0.0)
-        return 0.5 * 4.0 * r * speed * bessel_i0(2.0 * r / self.scale_height) * pairs * bracket
+        return 0.5 * 4.0 * r * speed * float(np.i0(2.0 * r / self.scale_height)) * pairs * bracket
 
     @cached_property
     def _integrals(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
@@ -377,7 +377,7 @@ class TruncatedCloud:
     @cached_property
     def efficiency(self) -> float:
         """alpha = d ln T / d ln N at constant eta: collisions carry (eta + kappa) kT away,
-        the cut follows T down and spills the atoms at eta kT (doc/lab.md)."""
+        the cut follows T down and spills the atoms at eta kT (docs/lab.md)."""
         e = self.mean_energy / self.kt
         if self.dense:
             h = 1e-4
@@ -477,23 +477,11 @@ def cup_pair_collision_rate(
     Gamma = 1/2 (4R) sqrt(pi kT/m) I0(2R/lambda) (1 - 1/N) [ int n^2 g dA - (2R/pi) oint n^2 g ds ]:
     the dilute rate integrated over the barometric profile (lambda = kT/mg), less the
     collisions lost because a partner's centre cannot lie beyond the centre-wall; dense=True
-    uses the local-density profile. TruncatedCloud with eta = inf (doc/lab.md).
+    uses the local-density profile. TruncatedCloud with eta = inf (docs/lab.md).
     """
     cup = Cup(radius=radius, mass=mass, gravity=gravity, curvature=curvature)
     cloud = TruncatedCloud(cup, n_atoms, kt, math.inf, dense=dense, wall=wall_correction)
     return cloud.pair_collision_rate
-
-
-def bessel_i0(x: float) -> float:
-    """Modified Bessel I0(x) = sum (x/2)^(2k) / (k!)^2: the mean of exp(x sin theta)."""
-    term = total = 1.0
-    q = 0.25 * x * x
-    for k in range(1, 200):
-        term *= q / (k * k)
-        total += term
-        if term < 1e-17 * total:
-            break
-    return total
 
 
 def truncation_height(eta: float, kt: float, mass: float, gravity: float) -> float:

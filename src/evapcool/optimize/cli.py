@@ -87,7 +87,7 @@ def build_parser() -> argparse.ArgumentParser:
         prog=PROG,
         description=(
             "Search trap-height strategies for the game (open-loop ramps and closed-loop "
-            "policies) with Optuna; games run as Dask tasks. See doc/cluster.md."
+            "policies) with Optuna; games run as Dask tasks. See docs/cluster.md."
         ),
     )
     s = p.add_argument_group("the study")

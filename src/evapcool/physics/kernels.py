@@ -5,7 +5,7 @@ engine compiles these very functions with Numba and the reference engine's
 NumPy code mirrors them operation for operation. Both engines therefore do
 the same floating-point arithmetic and process the same events.
 
-Coordinates are trap coordinates (see doc/model.md): x right, y up, origin at
+Coordinates are trap coordinates (see docs/model.md): x right, y up, origin at
 the lowest point an atom centre can reach; the centre-wall is y = a x^2.
 Each atom stores its state (x, y, vx, vy) at its own time t0; predictions are
 functions of stored states only, never of the moment they are made.

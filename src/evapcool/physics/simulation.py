@@ -6,11 +6,19 @@ Pure model: NumPy (and Numba through the fast engine), never pygame.
 from __future__ import annotations
 
 import numbers
+import warnings
 from collections.abc import Sequence
 
 import numpy as np
 
 from evapcool import limits
+from evapcool.extras import (
+    SLOW_REFERENCE_ATOMS,
+    SlowEngineWarning,
+    available,
+    check,
+    slow_engine_message,
+)
 from evapcool.limits import Range, shown
 from evapcool.physics.loading import load_cup
 from evapcool.physics.validation import check_start, check_world
@@ -34,6 +42,8 @@ BORDER_LEFT, BORDER_RIGHT, BORDER_TOP, BORDER_BOTTOM = 48, 96, 48, 96
 CUP_DROP = 32  # px between the drawn cup bottom and the play-area bottom
 TC_EXPONENT_SEED = 2.0 / 3.0  # seed Eq. (46), the 3D-box law
 TC_EXPONENT_CUP = 2.0 / 5.0  # ideal Bose gas with g(E) ~ E^(3/2) (SPEC 4)
+#: The Tc laws by name (game settings, the lab's --tc-law): name -> exponent p in Tc ~ N^p.
+TC_LAWS: dict[str, float] = {"seed": TC_EXPONENT_SEED, "cup": TC_EXPONENT_CUP}
 ENGINES = ("auto", "reference", "fast")
 #: engine="auto" uses the fast engine from this many atoms on (docs/benchmarks.md).
 AUTO_FAST_MIN_ATOMS = 100
@@ -229,13 +239,13 @@ class Simulation:
 
     @classmethod
     def from_state(cls, state: dict | str, engine: str = "auto", **kw: bool) -> Simulation:
-        """Go on exactly from a state (dict or JSON text, doc/state.md); see physics.state."""
+        """Go on exactly from a state (dict or JSON text, docs/state.md); see physics.state."""
         from evapcool.physics.state import from_state
 
         return from_state(state, engine=engine, **kw)
 
     def to_state(self) -> dict:
-        """The state as a JSON-ready dict (doc/state.md), resumable with from_state."""
+        """The state as a JSON-ready dict (docs/state.md), resumable with from_state."""
         from evapcool.physics.state import to_state
 
         return to_state(self)
@@ -243,13 +253,27 @@ class Simulation:
     def _make_engine(self, engine: str, n: int):
         if engine == "auto":
             engine = "fast" if n >= AUTO_FAST_MIN_ATOMS and _fast_available() else "reference"
+            if engine == "reference" and n >= SLOW_REFERENCE_ATOMS:
+                warnings.warn(slow_engine_message(n), SlowEngineWarning, stacklevel=3)
         if engine == "fast":
+            check("numba", "the fast engine")
             from evapcool.physics.fast import FastEngine
 
             return FastEngine(self._world)
         from evapcool.physics.reference import ReferenceEngine
 
         return ReferenceEngine(self._world)
+
+    def __repr__(self) -> str:
+        """One line for notebooks: atoms, T, Tc, the frame reached and the engine."""
+        n = self.n_trapped
+        tc = f"{self.critical_temperature:.4g}" if n else "-"
+        t = f"{self.temperature:.4g}" if n else "-"
+        won = ", condensed" if self.won else ""
+        return (
+            f"Simulation(atoms {n} of {self.n_atoms}, T {t}, Tc {tc}, "
+            f"frame {self.time:g}, engine {self.engine}{won})"
+        )
 
     # -- time -----------------------------------------------------------------
     def advance(self, dt: float) -> None:
@@ -419,6 +443,4 @@ class Simulation:
 
 
 def _fast_available() -> bool:
-    import importlib.util
-
-    return importlib.util.find_spec("numba") is not None
+    return available("numba")

@@ -1,4 +1,4 @@
-"""The state JSON shared by the Python and web editions (doc/state.md).
+"""The state JSON shared by the Python and web editions (docs/state.md).
 
 A state holds what the physics needs to go on exactly: each atom's stored state at its own
 last-event time (positions move lazily), radius, mass and lifecycle, the clock, the trap,
@@ -14,6 +14,7 @@ import json
 import math
 import numbers
 from dataclasses import dataclass
+from typing import Any, TypeGuard
 
 import numpy as np
 
@@ -116,7 +117,7 @@ class ParsedState:
     status: np.ndarray
 
 
-def _real(v: object) -> bool:
+def _real(v: object) -> TypeGuard[numbers.Real]:
     return isinstance(v, numbers.Real) and not isinstance(v, bool)
 
 
@@ -141,7 +142,7 @@ def _count(name: str, v: object) -> int:
         return 0
     if not _real(v) or not float(v).is_integer() or float(v) < 0 or float(v) > 2**53:
         raise _bad(name, "a whole number >= 0", v)
-    return int(v)
+    return int(float(v))
 
 
 def _flag(name: str, v: object, default: bool) -> bool:
@@ -282,18 +283,18 @@ def check_placement(
         return
     # A grid, linear in N (validation.first_overlap); a sweep along x was O(N^2) for a column.
     pair = first_overlap(np.column_stack((x[idx], y[idx])), radius[idx], tol)
-    best = None if pair is None else (int(idx[pair[0]]), int(idx[pair[1]]))
+    best: tuple[int, int] | None = None if pair is None else (int(idx[pair[0]]), int(idx[pair[1]]))
     if best is not None:
-        i, j = best
-        d = math.hypot(x[j] - x[i], y[j] - y[i])
+        a, b = best
+        d = math.hypot(x[b] - x[a], y[b] - y[a])
         raise ValueError(
-            f"{name}: atoms {i} and {j} overlap (centres {d!r} apart, less than r{i} + r{j} = "
-            f"{radius[i] + radius[j]!r}); atoms must be at least r_i + r_j apart"
+            f"{name}: atoms {a} and {b} overlap (centres {d!r} apart, less than r{a} + r{b} = "
+            f"{radius[a] + radius[b]!r}); atoms must be at least r_i + r_j apart"
         )
 
 
 # -- to and from a Simulation ------------------------------------------------------------
-def to_state(sim: Simulation) -> dict:
+def to_state(sim: Simulation) -> dict[str, Any]:
     """The state of sim as a JSON-ready dict (fields in the order both editions write)."""
     w = sim._world
     return {
@@ -331,7 +332,7 @@ def state_text(sim: Simulation) -> str:
 
 
 def from_state(
-    state: dict | str, engine: str = "auto", *, record_events: bool = False
+    state: dict[str, Any] | str, engine: str = "auto", *, record_events: bool = False
 ) -> Simulation:
     """A Simulation that goes on exactly from state (dict or JSON text).
 

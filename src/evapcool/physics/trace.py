@@ -16,6 +16,7 @@ from __future__ import annotations
 import math
 from collections.abc import Callable
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 
@@ -42,11 +43,11 @@ def packed_steps(steps: list[Step]) -> list[list[float]]:
     return out
 
 
-def unpacked_steps(packed: list) -> list[Step]:
+def unpacked_steps(packed: list[list[float]]) -> list[Step]:
     return [(float(dt), float(h)) for dt, h, count in packed for _ in range(int(count))]
 
 
-def run_steps(state: dict, steps: list[Step], engine: str = "reference") -> Simulation:
+def run_steps(state: dict[str, Any], steps: list[Step], engine: str = "reference") -> Simulation:
     """Load state with event recording, then set each step's height and advance its dt."""
     sim = from_state(state, engine=engine, record_events=True)
     for dt, height in steps:
@@ -56,7 +57,7 @@ def run_steps(state: dict, steps: list[Step], engine: str = "reference") -> Simu
 
 
 def plan_steps(
-    state: dict,
+    state: dict[str, Any],
     n_events: int,
     height_of_frame: Callable[[int], float] | None = None,
     engine: str = "reference",
@@ -85,7 +86,7 @@ def plan_steps(
     return steps
 
 
-def summary_of(sim: Simulation) -> dict:
+def summary_of(sim: Simulation) -> dict[str, Any]:
     """What the game and the win read, after the last step."""
     return {
         "n_trapped": sim.n_trapped,
@@ -102,11 +103,11 @@ def summary_of(sim: Simulation) -> dict:
 def make_trace(
     name: str,
     description: str,
-    state: dict,
+    state: dict[str, Any],
     n_events: int,
     height_of_frame: Callable[[int], float] | None = None,
     engine: str = "reference",
-) -> dict:
+) -> dict[str, Any]:
     """The trace of engine from state over the schedule that reaches n_events."""
     steps = plan_steps(state, n_events, height_of_frame, engine)
     sim = run_steps(state, steps, engine)
@@ -124,7 +125,7 @@ def make_trace(
     }
 
 
-def replay(trace: dict, engine: str) -> dict:
+def replay(trace: dict[str, Any], engine: str) -> dict[str, Any]:
     """The trace that engine produces from trace's start and steps (the same, if it agrees)."""
     sim = run_steps(trace["start"], unpacked_steps(trace["steps"]), engine)
     out = dict(trace)
@@ -134,11 +135,11 @@ def replay(trace: dict, engine: str) -> dict:
     return out
 
 
-def trace_text(trace: dict) -> str:
+def trace_text(trace: dict[str, Any]) -> str:
     return json_text(trace) + "\n"
 
 
-def read_trace(text: str) -> dict:
+def read_trace(text: str) -> dict[str, Any]:
     trace = read_json(text)
     if not isinstance(trace, dict) or trace.get("format") != TRACE_FORMAT:
         raise ValueError(f"trace must be a JSON object with format {TRACE_FORMAT!r}")
@@ -150,12 +151,12 @@ def read_trace(text: str) -> dict:
 class GoldenCase:
     name: str
     description: str
-    start: Callable[[], dict]
+    start: Callable[[], dict[str, Any]]
     height_of_frame: Callable[[int], float] | None = None
     events: int = 2000
 
 
-def _one_atom(x: float, y: float, vx: float, vy: float, height: float = 450.0) -> dict:
+def _one_atom(x: float, y: float, vx: float, vy: float, height: float = 450.0) -> dict[str, Any]:
     sim = Simulation(
         n_atoms=1, radius=12.0, positions=[[x, y]], velocities=[[vx, vy]],
         trap_height=height, engine="reference",
@@ -163,13 +164,13 @@ def _one_atom(x: float, y: float, vx: float, vy: float, height: float = 450.0) -
     return to_state(sim)
 
 
-def _grazing() -> dict:
+def _grazing() -> dict[str, Any]:
     a, x = 0.01, 50.0
     norm = math.hypot(1.0, 2 * a * x)
     return _one_atom(x, a * x * x + 1e-9, 3.0 / norm, 3.0 * 2 * a * x / norm)
 
 
-def _two_atoms() -> dict:
+def _two_atoms() -> dict[str, Any]:
     sim = Simulation(
         n_atoms=2, radius=[12.0, 8.0], mass=[1.0, 3.0],
         positions=[[-14.0, 3.0], [8.0, 2.0]], velocities=[[1.5, 0.5], [-1.0, 0.2]],
@@ -178,7 +179,7 @@ def _two_atoms() -> dict:
     return to_state(sim)
 
 
-def _mixed(n: int = 200, seed: int = 11) -> dict:
+def _mixed(n: int = 200, seed: int = 11) -> dict[str, Any]:
     """n atoms of radii 4-8 px and masses 0.5-4 on cells of the largest radius."""
     rng = np.random.default_rng(seed)
     centres = cell_centres(n, 8.0, 0.01, 700.0)
@@ -194,7 +195,7 @@ def _mixed(n: int = 200, seed: int = 11) -> dict:
     return to_state(sim)
 
 
-def _mirror(seed: int = 9) -> dict:
+def _mirror(seed: int = 9) -> dict[str, Any]:
     """The classic cells with mirror-image atoms (x -> -x): many events tie exactly, so the
     order of ties (solo by index, pairs by (lower, higher) index) decides the run."""
     rng = np.random.default_rng(seed)
@@ -218,7 +219,7 @@ def _mirror(seed: int = 9) -> dict:
     return to_state(sim)
 
 
-def _ties_now() -> dict:
+def _ties_now() -> dict[str, Any]:
     """Events due at once at the start, all at t = 0: two touching pairs closing in and two
     centres on the wall moving outwards. The reference order: the solo events by index,
     then the pairs by (lower, higher) index."""
@@ -230,7 +231,7 @@ def _ties_now() -> dict:
     return to_state(Simulation(n_atoms=7, positions=pos, velocities=vel, engine="reference"))
 
 
-def _classic(seed: int, **kw: object) -> Callable[[], dict]:
+def _classic(seed: int, **kw: object) -> Callable[[], dict[str, Any]]:
     return lambda: to_state(Simulation.classic(seed=seed, engine="reference", **kw))
 
 
@@ -276,7 +277,7 @@ GOLDEN_CASES: tuple[GoldenCase, ...] = (
 )
 
 
-def golden_trace(case: GoldenCase, engine: str = "reference") -> dict:
+def golden_trace(case: GoldenCase, engine: str = "reference") -> dict[str, Any]:
     return make_trace(
         case.name, case.description, case.start(), case.events, case.height_of_frame, engine
     )

@@ -30,7 +30,7 @@ EVENT_NAMES = ("pair", "wall", "escape", "gone", "knife")
 ESCAPE_RULES = ("rim", "knife")
 
 #: An elastic bounce leaves the wall at least this fast along the normal (px/frame), so
-#: grazing and resting atoms hop instead of stalling (kernels.bounce_wall, doc/model.md).
+#: grazing and resting atoms hop instead of stalling (kernels.bounce_wall, docs/model.md).
 WALL_MIN_NORMAL_SPEED = 1e-3
 #: After the win, wall bounces keep 1 - 0.2 of the speed (seed Eq. 34)...
 WIN_DAMPING = 0.2
@@ -70,7 +70,7 @@ class World:
     energy_sum: float = field(init=False)  # running sum over trapped atoms
     initial_temperature: float = field(init=False)
     tc0: float = field(init=False)
-    log: list = field(default_factory=list)
+    log: list[tuple[int, int, int, float]] = field(default_factory=list)
 
     def __post_init__(self) -> None:
         n = len(self.radius)
@@ -101,9 +101,10 @@ class World:
     def energies(self) -> np.ndarray:
         """1/2 m v^2 + m g y of every atom from its stored state (conserved in flight)."""
         v = self.vel
-        return 0.5 * self.mass * (v[:, 0] * v[:, 0] + v[:, 1] * v[:, 1]) + (
+        energies: np.ndarray = 0.5 * self.mass * (v[:, 0] * v[:, 0] + v[:, 1] * v[:, 1]) + (
             self.mass * self.gravity * self.pos[:, 1]
         )
+        return energies
 
     def sequential_energy_sum(self) -> float:
         """Sum of trapped energies, added in index order (engines continue it)."""
@@ -115,7 +116,8 @@ class World:
 
     def critical_temperature_of(self, n: int) -> float:
         """Tc(N) = Tc0 (N / N0)^p, seed Eq. (46) with exponent p."""
-        return self.tc0 * (n / self.n_initial) ** self.tc_exponent
+        tc: float = self.tc0 * (n / self.n_initial) ** self.tc_exponent
+        return tc
 
     def win_threshold_of(self, n: int) -> float:
         """The temperature below which N atoms have won: Tc(N), or -inf without the win rule."""

@@ -14,7 +14,9 @@ import webbrowser
 from importlib import resources
 from pathlib import Path
 
-PROG = "evapcool web"
+from evapcool.about import APP_NAME, error_line
+
+PROG = f"{APP_NAME} web"
 PAGE_NAME = "evapcool.html"
 
 
@@ -25,7 +27,7 @@ def page_path() -> Path:
 
 class _Parser(argparse.ArgumentParser):
     def error(self, message: str) -> None:  # one line and exit 2, never a usage dump
-        print(f"{PROG}: {message}", file=sys.stderr)
+        print(error_line("web", message), file=sys.stderr)
         raise SystemExit(2)
 
 
@@ -51,7 +53,7 @@ def main(argv: list[str] | None = None) -> int:
     args = build_parser().parse_args(argv)
     page = page_path()
     if not page.is_file():
-        print(f"{PROG}: the page is missing from this install ({page})", file=sys.stderr)
+        print(error_line("web", f"the page is missing from this install ({page})"), file=sys.stderr)
         return 1
     if args.print_path:
         print(page)
@@ -59,17 +61,26 @@ def main(argv: list[str] | None = None) -> int:
     if args.copy is not None:
         dest = args.copy / PAGE_NAME if args.copy.is_dir() else args.copy
         if not dest.parent.is_dir():
-            print(f"{PROG}: --copy: folder {str(dest.parent)!r} does not exist", file=sys.stderr)
+            print(
+                error_line("web", f"--copy: folder {str(dest.parent)!r} does not exist"),
+                file=sys.stderr,
+            )
             return 2
         try:
             shutil.copyfile(page, dest)
         except OSError as exc:
-            print(f"{PROG}: cannot write {str(dest)!r}: {exc.strerror or exc}", file=sys.stderr)
+            print(
+                error_line("web", f"cannot write {str(dest)!r}: {exc.strerror or exc}"),
+                file=sys.stderr,
+            )
             return 1
         print(dest)
         return 0
     if not webbrowser.open(page.as_uri()):
-        print(f"{PROG}: no browser could be started; open this file: {page}", file=sys.stderr)
+        print(
+            error_line("web", f"no browser could be started; open this file: {page}"),
+            file=sys.stderr,
+        )
         return 1
     print(f"Opened {page}")
     return 0

@@ -1,4 +1,4 @@
-/** The original applet's constants (SPEC section 1) and the model's fixed numbers (doc/model.md). */
+/** The original applet's constants (SPEC section 1) and the model's fixed numbers (docs/model.md). */
 
 /** Frames per second of the original; physics time is measured in frames. */
 export const FPS = 30;

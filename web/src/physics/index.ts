@@ -1,5 +1,5 @@
 /**
- * The web edition's physics: the exact event-driven model of doc/model.md, the same events
+ * The web edition's physics: the exact event-driven model of docs/model.md, the same events
  * as the Python engines (held to it by the golden traces in web/test/golden/).
  */
 export {

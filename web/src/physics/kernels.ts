@@ -188,7 +188,7 @@ export function reflectWall(io: Float64Array): void {
 }
 
 /**
- * Elastic bounce that leaves the wall at least v_min along the normal (doc/model.md,
+ * Elastic bounce that leaves the wall at least v_min along the normal (docs/model.md,
  * "Grazing and resting atoms"): a slower bounce is turned, energy kept; an atom slower
  * than v_min leaves at exactly v_min along the normal.
  * in: io[IO_X], io[IO_VX], io[IO_VY], io[IO_A], io[IO_VMIN]; out: io[IO_OUT], io[IO_OUT + 1].

@@ -1,5 +1,5 @@
 /**
- * The game's start (SPEC section 1, doc/model.md "Initial loading"): rows of cells filled
+ * The game's start (SPEC section 1, docs/model.md "Initial loading"): rows of cells filled
  * from the bottom, centre-out within a row, one atom at a random point of each cell.
  * The same cells as src/evapcool/physics/loading.py; random numbers from Xoshiro128.
  */

@@ -6,7 +6,7 @@
  * 32 bits of a seed up to 2^53 are both mixed in); a double in [0, 1) takes 53 bits from
  * two outputs. Same seed, same start on every browser and in Node. It is not NumPy's
  * generator: the Python and web editions start differently from the same seed, and a
- * start is carried from one to the other as a state file (doc/state.md).
+ * start is carried from one to the other as a state file (docs/state.md).
  */
 export class Xoshiro128 {
   private s0 = 0;

@@ -349,7 +349,7 @@ export class Simulation {
   }
 
   /**
-   * A simulation that goes on exactly from a state (object or JSON text, doc/state.md).
+   * A simulation that goes on exactly from a state (object or JSON text, docs/state.md).
    * RangeError naming the field if the state is malformed, atoms overlap or lie outside the cup.
    */
   static fromState(
@@ -420,7 +420,7 @@ export class Simulation {
     return sim;
   }
 
-  /** The state as a JSON-ready object (doc/state.md): exact, resumable with fromState. */
+  /** The state as a JSON-ready object (docs/state.md): exact, resumable with fromState. */
   toState(): SimulationState {
     const e = this.engine;
     const n = e.n;

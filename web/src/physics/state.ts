@@ -1,5 +1,5 @@
 /**
- * The state JSON shared by both editions (doc/state.md; Python: evapcool.physics.state).
+ * The state JSON shared by both editions (docs/state.md; Python: evapcool.physics.state).
  *
  * A state is everything the physics needs to go on exactly: each atom's stored state at
  * its own last-event time (positions move lazily), radius, mass and lifecycle, the clock,
@@ -57,7 +57,7 @@ export interface SimulationState {
   };
 }
 
-/** A state as read: only the atoms' x, y, vx, vy are required (defaults in doc/state.md). */
+/** A state as read: only the atoms' x, y, vx, vy are required (defaults in docs/state.md). */
 export interface StateInput {
   format?: string;
   version?: number;

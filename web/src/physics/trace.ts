@@ -1,5 +1,5 @@
 /**
- * Event traces: the web twin of src/evapcool/physics/trace.py (doc/state.md).
+ * Event traces: the web twin of src/evapcool/physics/trace.py (docs/state.md).
  *
  * A trace is a starting state, a schedule of steps [dt, trap height, repeat], the events
  * processed over them and the state after the last step. `traceText` writes the layout of

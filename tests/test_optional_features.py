@@ -1,0 +1,109 @@
+"""Each optional feature without its extra says in one line what to install (issue 16).
+
+A missing package is simulated the way Python itself marks one: sys.modules[name] = None
+makes importlib.util.find_spec return None and `import name` fail.
+"""
+
+from __future__ import annotations
+
+import sys
+import warnings
+
+import pytest
+
+from evapcool import Simulation
+from evapcool.cli import main
+from evapcool.extras import MissingExtraError, SlowEngineWarning
+from evapcool.lab import run_experiment
+
+
+def _without(monkeypatch: pytest.MonkeyPatch, *modules: str) -> None:
+    for name in modules:
+        monkeypatch.setitem(sys.modules, name, None)
+
+
+def _one_error_line(text: str, prefix: str, extra: str) -> None:
+    lines = text.strip().splitlines()
+    assert len(lines) == 1, text
+    assert lines[0].startswith(prefix), text
+    assert f"pip install 'evapcool[{extra}]'" in lines[0]
+    assert "Traceback" not in text
+
+
+def test_lab_fast_engine_without_numba_names_the_extra(monkeypatch, capsys, tmp_path):
+    _without(monkeypatch, "numba")
+    out = tmp_path / "run.csv"
+    status = main(["lab", "--engine", "fast", "--frames", "5", "--out", str(out)])
+    assert status == 2
+    _one_error_line(
+        capsys.readouterr().err, "evapcool lab: error: the fast engine needs numba", "fast"
+    )
+    assert not out.exists()
+
+
+def test_lab_plot_without_matplotlib_is_refused_before_the_run(monkeypatch, capsys, tmp_path):
+    _without(monkeypatch, "matplotlib")
+    out, png = tmp_path / "run.csv", tmp_path / "run.png"
+    # A run of a million frames: refused at once, so nothing is simulated or written.
+    for theory in ([], ["--theory"]):
+        args = ["lab", "--frames", "1000000", "--out", str(out), "--plot", str(png), *theory]
+        assert main(args) == 2
+        err = capsys.readouterr().err
+        _one_error_line(err, "evapcool lab: error: --plot needs matplotlib", "lab")
+        assert not out.exists() and not png.exists()
+    with pytest.raises(MissingExtraError, match=r"^plot needs matplotlib.*evapcool\[lab\]"):
+        run_experiment(frames=1_000_000, plot=png)
+
+
+def test_bench_fast_without_numba_is_one_line(monkeypatch, capsys):
+    _without(monkeypatch, "numba")
+    assert main(["bench", "--engine", "fast", "--quick"]) == 2
+    _one_error_line(capsys.readouterr().err, "evapcool bench: error:", "fast")
+
+
+def test_bench_section_without_numba_is_skipped_with_the_extra(monkeypatch, capsys):
+    _without(monkeypatch, "numba")
+    assert main(["bench", "--only", "fast", "--quick"]) == 0
+    out = capsys.readouterr().out
+    assert out.startswith("[fast] skipped: ") and "pip install 'evapcool[fast]'" in out
+    assert len(out.strip().splitlines()) == 1
+
+
+def test_many_atoms_without_numba_warn_that_numpy_is_slow(monkeypatch):
+    _without(monkeypatch, "numba")
+    with pytest.warns(SlowEngineWarning, match=r"500 atoms without numba.*evapcool\[fast\]"):
+        sim = Simulation(n_atoms=500, radius=2.0, seed=1)
+    assert sim.engine == "reference"
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        Simulation(n_atoms=49, radius=12.0, seed=1)  # the classic count: no word
+
+
+def test_many_atoms_without_numba_on_the_command_line_is_a_note(monkeypatch, capsys, tmp_path):
+    _without(monkeypatch, "numba")
+    out = tmp_path / "run.csv"
+    args = ["lab", "--atoms", "500", "--radius", "2", "--frames", "1", "--out", str(out)]
+    assert main(args) == 0
+    err = capsys.readouterr().err.splitlines()
+    notes = [line for line in err if "without numba" in line]
+    assert len(notes) == 1 and notes[0].startswith("evapcool lab: note: 500 atoms without numba")
+    assert "pip install 'evapcool[fast]'" in notes[0]
+    assert out.exists()
+
+
+def test_python_api_raises_missing_extra_error(monkeypatch):
+    _without(monkeypatch, "numba")
+    with pytest.raises(MissingExtraError, match=r"evapcool\[fast\]"):
+        Simulation.classic(seed=1, engine="fast")
+    assert issubclass(MissingExtraError, ImportError)
+
+
+def test_result_plot_and_pandas_without_their_packages(monkeypatch):
+    result = run_experiment(atoms=12, radius=8.0, frames=4, every=2, seed=1, engine="reference")
+    _without(monkeypatch, "matplotlib", "pandas")
+    with pytest.raises(MissingExtraError, match=r"evapcool\[lab\]"):
+        result.plot()
+    with pytest.raises(MissingExtraError, match=r"pip install pandas"):
+        result.to_pandas()
+    page = result._repr_html_()  # the table still shows, with the line instead of the plot
+    assert "<table>" in page and "evapcool[lab]" in page and "<img" not in page
