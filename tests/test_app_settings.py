@@ -11,8 +11,8 @@ from apphelp import NOTICE_STRIP, key
 
 from evapcool.app import applet
 from evapcool.app.cli import main
-from evapcool.game.settings import TC_EXPONENT_CUP, TC_EXPONENT_SEED, max_atoms
-from evapcool.physics.simulation import BORDER_TOP
+from evapcool.game.settings import max_atoms
+from evapcool.physics.simulation import BORDER_TOP, TC_EXPONENT_CUP, TC_EXPONENT_SEED
 
 
 @pytest.fixture
