@@ -9,7 +9,7 @@ from typing import NoReturn
 import numpy as np
 
 from evapcool import limits
-from evapcool.about import error_line
+from evapcool.about import error_line, note_line, one_line
 from evapcool.argtypes import choice, output_file, ranged
 from evapcool.extras import check
 from evapcool.lab.experiment import ESCAPES, START_HELP, TC_LAWS, LabConfig, run_experiment
@@ -162,12 +162,15 @@ def _option_message(message: str) -> str:
 
 def _from_file(path: str) -> dict:
     """The parameters recorded in a lab result file; ValueError or OSError saying why not."""
-    params = read_result(path)[0].get("parameters")
+    metadata = read_result(path)[0]
+    params = metadata.get("parameters")
     if not isinstance(params, dict):
         raise ValueError("it records no parameters")
     unknown = sorted(str(k) for k in params if k not in LabConfig.__dataclass_fields__)
     if unknown:
         raise ValueError(f"unknown parameter {limits.shown(unknown[0])}")
+    if "note" in metadata:  # an older file, read as well as it can be
+        print(note_line("lab", one_line(f"--from {path}: {metadata['note']}")), file=sys.stderr)
     return params
 
 
