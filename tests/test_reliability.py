@@ -364,3 +364,18 @@ def test_a_fast_atom_grazing_the_wall_is_refused_above_the_speed_cap() -> None:
     sim = Simulation(1, positions=[(0.0, 0.0)], velocities=[(100.0, 0.0)], trap_height=math.inf)
     sim.advance(1.0)
     assert 0 < sim.wall_collision_count < 2.6e5  # (1 + pi/2) v / v_min, bounded
+
+
+# -- the documentation states the ranges limits.py holds -------------------------------------------
+def test_the_docs_table_of_ranges_is_limits_py() -> None:
+    import re
+
+    from evapcool import limits
+
+    page = Path(__file__).resolve().parents[1] / "docs" / "reliability.md"
+    rows = re.findall(r"^\| `([A-Z_]+)` \| [^|]* \| ([^|]*) \|", page.read_text(), re.M)
+    documented = {name: allowed.strip() for name, allowed in rows}
+    ranges = {n for n, v in vars(limits).items() if isinstance(v, limits.Range)}
+    assert set(documented) == ranges
+    for name, allowed in documented.items():
+        assert allowed == getattr(limits, name).span(), name
