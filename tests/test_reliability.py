@@ -379,3 +379,62 @@ def test_the_docs_table_of_ranges_is_limits_py() -> None:
     assert set(documented) == ranges
     for name, allowed in documented.items():
         assert allowed == getattr(limits, name).span(), name
+
+
+# -- lab files within the size cap but not what a lab writes ------------------------------------
+def test_a_lab_file_of_more_values_than_a_run_holds_is_refused(tmp_path, capsys) -> None:
+    # Found while measuring memory: 128 MB of "0," parsed to 1.2 GB (3.1 GB as CSV rows).
+    from evapcool.lab.io import COLUMNS, CSV_MAGIC, VALUES_MAX
+    from evapcool.limits import RECORDS_MAX
+
+    row = ",".join(["0"] * len(COLUMNS))
+    head = f'{CSV_MAGIC}\n# parameters: {{"atoms": 5}}\n{",".join(COLUMNS)}\n'
+    cases = {
+        "rows.csv": (head + (row + "\n") * (RECORDS_MAX + 1), "more than 100000 records"),
+        "energies.json": (
+            '{"metadata": {}, "final_energies": [' + "0," * VALUES_MAX + "0]}",
+            "more values than a lab result holds",
+        ),
+    }
+    for name, (text, why) in cases.items():
+        (tmp_path / name).write_text(text)
+        assert lab_cli.main(["--from", str(tmp_path / name)]) == 2
+        err = capsys.readouterr().err
+        assert err.count("\n") == 1 and why in err, err
+    (tmp_path / "ok.csv").write_text(head + (row + "\n") * RECORDS_MAX)
+    from evapcool.lab.io import read_result
+
+    assert len(read_result(tmp_path / "ok.csv")[1]["frame"]) == RECORDS_MAX
+
+
+_BIG_FILE = """
+import resource, sys
+from evapcool.lab.io import read_result
+try:
+    read_result(sys.argv[1])
+except ValueError:
+    pass
+print(resource.getrusage(resource.RUSAGE_SELF).ru_maxrss)
+"""
+
+
+@pytest.mark.skipif(sys.platform != "linux", reason="ru_maxrss in KB on Linux")
+def test_reading_a_lab_file_at_its_size_cap_stays_under_1_gb(tmp_path) -> None:
+    from evapcool.limits import LAB_FILE_MAX_BYTES
+
+    path = tmp_path / "zeros.json"
+    head = '{"metadata": {}, "final_energies": ['
+    path.write_text(head + "0," * ((LAB_FILE_MAX_BYTES - len(head)) // 2 - 2) + "0]}")
+    assert path.stat().st_size <= LAB_FILE_MAX_BYTES
+    out = subprocess.run(
+        [sys.executable, "-c", _BIG_FILE, str(path)], capture_output=True, text=True, timeout=600
+    )
+    assert out.returncode == 0, out.stderr
+    assert int(out.stdout) * 1024 < 1e9  # 1187 MB before the values were counted
+
+
+def test_lab_csv_lines_are_split_as_before() -> None:
+    from evapcool.lab.io import _lines
+
+    for text in ("", "a", "a\n", "a\r\nb", "\n\nx\n", "a,b\r\n\r\n#c: 1\n"):
+        assert list(_lines(text)) == text.splitlines()

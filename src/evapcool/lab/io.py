@@ -5,12 +5,13 @@ from __future__ import annotations
 import json
 import math
 import os
+from collections.abc import Iterator
 from pathlib import Path
 
 import numpy as np
 
 from evapcool.fileio import atomic_write_text, check_writable, read_user_text
-from evapcool.limits import LAB_FILE_MAX_BYTES
+from evapcool.limits import LAB_FILE_MAX_BYTES, N_ATOMS, RECORDS_MAX
 
 #: Output columns, one row per record (docs/lab.md explains each).
 COLUMNS = (
@@ -48,6 +49,10 @@ INT_COLUMNS = frozenset(
 LEDGER_COLUMNS = ("evaporated", "evaporated_energy", "excess_energy", "spilled", "spilled_energy")
 OLD_COLUMNS = tuple(c for c in COLUMNS if c not in LEDGER_COLUMNS)
 FORMATS = (".csv", ".json")
+#: Commas a lab file may hold: every record's columns, every atom's final energy, and room
+#: for the metadata. A file within its size cap could otherwise be 64 million zeros,
+#: several GB once parsed (issue 18: memory of any accepted input under 1 GB).
+VALUES_MAX = RECORDS_MAX * (len(COLUMNS) + 1) + int(N_ATOMS.high) + 100_000
 CSV_MAGIC = "# evapcool lab results"
 
 
@@ -198,6 +203,8 @@ def _energies(value: object) -> np.ndarray:
         arr = np.empty((0, 0))
     if arr.ndim != 1:
         raise ValueError("'final_energies' is not a list of numbers")
+    if len(arr) > N_ATOMS.high:
+        raise ValueError(f"'final_energies' holds more than {int(N_ATOMS.high)} atoms")
     return arr
 
 
@@ -248,6 +255,8 @@ def read_result(path: str | os.PathLike[str]) -> tuple[dict, dict[str, np.ndarra
     if Path(path).suffix.lower() not in FORMATS:
         raise ValueError(f"{str(path)!r} does not end in .csv or .json")
     text = read_user_text(path, LAB_FILE_MAX_BYTES)  # a UnicodeDecodeError is a ValueError
+    if text.count(",") > VALUES_MAX:
+        raise ValueError(f"more values than a lab result holds (over {VALUES_MAX} commas)")
     try:
         if Path(path).suffix.lower() == ".json":
             return _parse_json(text)
@@ -264,6 +273,8 @@ def _parse_json(text: str) -> tuple[dict, dict[str, np.ndarray], np.ndarray]:
     if not isinstance(metadata, dict):
         raise ValueError("no 'metadata' object")
     columns = _columns_of(metadata, doc.get("columns"))
+    if len(columns["frame"]) > RECORDS_MAX:
+        raise ValueError(f"more than {RECORDS_MAX} records")
     return metadata, columns, _energies(doc.get("final_energies", []))
 
 
@@ -272,7 +283,7 @@ def _parse_csv(text: str) -> tuple[dict, dict[str, np.ndarray], np.ndarray]:
     energies = np.empty(0)
     rows: list[list[str]] = []
     header: tuple[str, ...] | None = None
-    for number, line in enumerate(text.splitlines(), start=1):
+    for number, line in enumerate(_lines(text), start=1):
         if line.startswith("#"):
             key, sep, value = line[1:].strip().partition(": ")
             if not sep:
@@ -289,6 +300,8 @@ def _parse_csv(text: str) -> tuple[dict, dict[str, np.ndarray], np.ndarray]:
             row = line.split(",")
             if len(row) != len(header):
                 raise ValueError(f"line {number} has {len(row)} fields, not {len(header)}")
+            if len(rows) == RECORDS_MAX:
+                raise ValueError(f"more than {RECORDS_MAX} records")
             rows.append(row)
     if header is None:
         raise ValueError("not an evapcool lab CSV file (no header)")
@@ -297,6 +310,16 @@ def _parse_csv(text: str) -> tuple[dict, dict[str, np.ndarray], np.ndarray]:
     except ValueError:
         raise ValueError("a row holds something other than numbers") from None
     return metadata, _columns_of(metadata, parsed), energies
+
+
+def _lines(text: str) -> Iterator[str]:
+    """The lines of text one at a time (a list of them all could be GBs of short lines)."""
+    start = 0
+    while start < len(text):
+        end = text.find("\n", start)
+        end = len(text) if end < 0 else end
+        yield text[start:end].rstrip("\r")
+        start = end + 1
 
 
 def _number(name: str, text: str) -> int | float:
