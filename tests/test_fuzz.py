@@ -24,6 +24,7 @@ import queue
 import subprocess
 import sys
 import threading
+import time
 from pathlib import Path
 
 import numpy as np
@@ -35,8 +36,11 @@ from evapcool import limits
 from evapcool.cli import SUBCOMMANDS
 from evapcool.lab.experiment import LabConfig, run_experiment
 
-#: A case that runs longer than this (s) is a hang; the worker is killed.
+#: A case whose worker spends more CPU time than this (s) is a hang; the worker is killed.
+#: CPU time, not the clock's: on a loaded machine a niced worker may wait far longer.
 CASE_SECONDS = 120.0
+#: ...and a case still running after this long on the clock is one too.
+CASE_WALL_SECONDS = 20 * CASE_SECONDS
 #: Peak memory of the worker, MB: any accepted input below 100 000 atoms stays under it.
 MEMORY_MB = 1000.0
 #: Cases per test unless a profile asks for at least the 'fuzz' profile's number.
@@ -102,11 +106,7 @@ class Worker:
             self._start()
         self.proc.stdin.write(base64.b64encode(pickle.dumps(case)).decode() + "\n")
         self.proc.stdin.flush()
-        try:
-            line = self.lines.get(timeout=CASE_SECONDS)
-        except queue.Empty:
-            self.stop()
-            raise AssertionError(f"case ran over {CASE_SECONDS:g} s (a hang): {case!r}") from None
+        line = self._answer(case)
         if not line:
             self.stop()
             raise AssertionError(f"the worker died (a crash or the memory killer): {case!r}")
@@ -116,11 +116,37 @@ class Worker:
         assert answer["rss_mb"] < MEMORY_MB, f"peak memory {answer['rss_mb']:.0f} MB: {case!r}"
         return answer
 
+    def _answer(self, case: dict) -> str:
+        """The worker's answer line; AssertionError if the case runs over its time."""
+        start, cpu0 = time.monotonic(), _cpu_seconds(self.proc.pid)
+        while True:
+            try:
+                return self.lines.get(timeout=2.0)
+            except queue.Empty:
+                wall = time.monotonic() - start
+                cpu = _cpu_seconds(self.proc.pid)
+                used = wall if cpu is None or cpu0 is None else cpu - cpu0
+                if used > CASE_SECONDS or wall > CASE_WALL_SECONDS:
+                    self.stop()
+                    raise AssertionError(
+                        f"case ran over {CASE_SECONDS:g} s ({used:.0f} s of CPU, "
+                        f"{wall:.0f} s on the clock: a hang): {case!r}"
+                    ) from None
+
     def stop(self) -> None:
         if self.proc is not None:
             self.proc.kill()
             self.proc.wait()
             self.proc = None
+
+
+def _cpu_seconds(pid: int) -> float | None:
+    """CPU time (user + system) of a running process on Linux, else None."""
+    try:
+        fields = Path(f"/proc/{pid}/stat").read_text().rsplit(")", 1)[1].split()
+    except (OSError, IndexError):
+        return None
+    return (int(fields[11]) + int(fields[12])) / os.sysconf("SC_CLK_TCK")
 
 
 DEEP = "[" * 100_000 + "]" * 100_000
