@@ -262,6 +262,7 @@ SCHEDULES = st.one_of(
             *("400", "inf", "0", "-5", "nan", "eta=6", "eta=0", "eta=1e308", "eta=5e-324"),
             *("1e308", "400@0,60@1800", "400@0,60@0", "5e-324", "400@0,", "eta=", "@"),
             *("400@nan", "60@2", ",".join(f"{400 - i}@{i}" for i in range(1500))),
+            *("eta=1e-100", "eta=1000", "demo", "fifo.json", "deep.json", "x" * 1500),
         ]
     ),
     st.lists(
@@ -290,6 +291,8 @@ def _option_values(action: argparse.Action) -> st.SearchStrategy:
         own = st.sampled_from(sorted(map(str, action.choices)))
     elif action.dest == "from_file":
         own = st.sampled_from(FROMS)
+    elif action.dest in ("autopilot", "baseline"):
+        own = st.sampled_from([*FROMS, "demo", "1" * 1500, "linear:h0=400,h1=60"])
     elif action.dest == "schedule":
         own = SCHEDULES
     elif action.dest == "start":
@@ -348,7 +351,9 @@ COMMANDS = ["", *sorted(SUBCOMMANDS)]
 def _check_exit(argv: list[str], answer: dict) -> None:
     code, err = answer["code"], answer["stderr"]
     event(f"exit {code}")
-    assert code in (0, 2), f"exit {code}: {argv!r}\n{err}"
+    # Exit 1: a run too short for --theory's model (documented), known only after it.
+    theory = code == 1 and "--theory" in argv and "error: --theory: theory needs" in err
+    assert code in (0, 2) or theory, f"exit {code}: {argv!r}\n{err}"
     if code == 2:
         assert err.count("\n") == 1 and "Traceback" not in err, f"{argv!r}\n{err}"
         named = [t for t in argv if t.startswith("-") and t.split("=")[0] in err]
@@ -447,7 +452,14 @@ SIM_ANY = {
     "seed": _param(limits.SEED),
     "window": st.one_of(st.tuples(numbers(limits.WINDOW_SIDE), numbers(limits.WINDOW_SIDE)), ANY),
 }
-DT = st.one_of(st.floats(0, 1), st.sampled_from([0.0, 1.0, *EDGES, *SPECIAL]), ANY)
+
+
+def _short(dt: object) -> bool:
+    """dt is not an accepted long advance: those are bounded work, but minutes of it."""
+    return not (isinstance(dt, (int, float)) and limits.DT.contains(float(dt)) and dt > 100)
+
+
+DT = st.one_of(st.floats(0, 1), st.sampled_from([0.0, 1.0, *EDGES, *SPECIAL]), ANY.filter(_short))
 
 
 def _named(message: str, names) -> bool:

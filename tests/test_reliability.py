@@ -92,6 +92,8 @@ def test_advance_is_bounded(dt) -> None:
         ({"start": "thermal=1e308"}, "start"),
         ({"atoms": 6000, "radius": 1.0, "engine": "reference"}, "atoms"),
         ({"frames": 10**7, "every": 1}, "every"),
+        ({"schedule": "eta=5e-324"}, "schedule"),  # found by the fuzz: a NaN height
+        ({"schedule": "eta=1e308"}, "schedule"),
     ],
 )
 def test_run_experiment_refuses_before_simulating(kwargs, name, monkeypatch) -> None:
@@ -438,3 +440,44 @@ def test_lab_csv_lines_are_split_as_before() -> None:
 
     for text in ("", "a", "a\n", "a\r\nb", "\n\nx\n", "a,b\r\n\r\n#c: 1\n"):
         assert list(_lines(text)) == text.splitlines()
+
+
+# -- found by the long fuzz run (session 2) -------------------------------------------------------
+def _strategy_files(tmp_path: Path) -> dict[str, str]:
+    (tmp_path / "deep.json").write_text(DEEP)
+    out = {"long name": "1" * 1500, "deep": str(tmp_path / "deep.json")}
+    if hasattr(os, "mkfifo"):
+        os.mkfifo(tmp_path / "fifo.json")
+        out["fifo"] = str(tmp_path / "fifo.json")
+    return out
+
+
+def test_a_bad_autopilot_file_is_one_line_and_exit_2(tmp_path, monkeypatch, capsys) -> None:
+    # A name too long for the file system was an OSError traceback; a FIFO blocked forever.
+    from evapcool.app import applet
+
+    monkeypatch.setattr(applet, "App", _never)
+    for what, spec in _strategy_files(tmp_path).items():
+        assert _finishes(app_cli.main, ["--frames", "2", "--autopilot", spec]) == 2, what
+        err = capsys.readouterr().err
+        assert err.count("\n") == 1 and "--autopilot" in err and "Traceback" not in err, err
+
+
+def test_a_bad_schedule_file_is_one_line_and_exit_2(tmp_path, monkeypatch, capsys) -> None:
+    monkeypatch.setattr(experiment, "_make_simulation", _never)
+    for what, spec in _strategy_files(tmp_path).items():
+        assert _finishes(lab_cli.main, ["--frames", "3", "--schedule", spec]) == 2, what
+        err = capsys.readouterr().err
+        assert err.count("\n") == 1 and "--schedule" in err, err
+
+
+def test_lab_theory_without_three_records_is_refused_before_the_run(monkeypatch, capsys) -> None:
+    # Found by the fuzz: `lab --theory --frames 3` ran, then exited 1 (2 records of 30 frames).
+    monkeypatch.setattr(experiment, "_make_simulation", _never)
+    assert lab_cli.main(["--theory", "--frames", "3"]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "--theory needs a run of at least 3 records" in err
+    assert lab_cli.main(["--theory", "--frames", "30", "--every", "31"]) == 2  # records 0, 30
+    capsys.readouterr()
+    monkeypatch.undo()
+    assert lab_cli.main(["--theory", "--frames", "62", "--every", "31", "--atoms", "5"]) in (0, 1)

@@ -195,6 +195,8 @@ def main(argv: list[str] | None = None) -> int:
         if value is not None:
             params[name] = value
             given.add(name)
+    if args.theory and (why := _too_few_records(params)):
+        return _fail(why)  # known before the run: say it now, not after it
     if args.plot is not None:
         check("matplotlib", "--plot")  # before the run, which may be long
     plot = None if args.theory else args.plot  # with --theory the figure waits for the model
@@ -216,6 +218,21 @@ def main(argv: list[str] | None = None) -> int:
             result.plot(args.plot)
         return EXIT_INTERRUPTED
     return _theory(result, args) if args.theory else 0
+
+
+def _too_few_records(params: dict) -> str | None:
+    """Why --theory cannot work with these frames and every (it needs 3 records), or None."""
+    frames = params.get("frames", LabConfig.frames)
+    every = params.get("every", LabConfig.every)
+    if not (isinstance(frames, int) and isinstance(every, int) and frames > 0 and every > 0):
+        return None  # the run's own checks name the bad value
+    records = frames // every + 1 + (frames % every != 0)
+    if records >= 3:
+        return None
+    return (
+        f"--theory needs a run of at least 3 records: --frames {frames} with --every {every} "
+        f"records {records} (run longer, or record more often with --every)"
+    )
 
 
 def _summary(result, out: str | None) -> str:
