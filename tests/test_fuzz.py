@@ -256,13 +256,14 @@ DIRS = [
     *("cfg-good", "cfg-deep", "cfg-fifo", "data-deep", "afile", "missing-dir", "/proc"),
     *("outdir", "w" * 300, "afile/sub", "/dev/null"),
 ]
+LONG_RAMP = ",".join(f"{400 - i * 0.1:g}@{i}" for i in range(60))  # longer than a file name
 SCHEDULES = st.one_of(
     st.sampled_from(
         [
             *("400", "inf", "0", "-5", "nan", "eta=6", "eta=0", "eta=1e308", "eta=5e-324"),
             *("1e308", "400@0,60@1800", "400@0,60@0", "5e-324", "400@0,", "eta=", "@"),
             *("400@nan", "60@2", ",".join(f"{400 - i}@{i}" for i in range(1500))),
-            *("eta=1e-100", "eta=1000", "demo", "fifo.json", "deep.json", "x" * 1500),
+            *("eta=1e-100", "eta=1000", "demo", "fifo.json", "deep.json", "x" * 1500, LONG_RAMP),
         ]
     ),
     st.lists(
@@ -292,7 +293,7 @@ def _option_values(action: argparse.Action) -> st.SearchStrategy:
     elif action.dest == "from_file":
         own = st.sampled_from(FROMS)
     elif action.dest in ("autopilot", "baseline"):
-        own = st.sampled_from([*FROMS, "demo", "1" * 1500, "linear:h0=400,h1=60"])
+        own = st.sampled_from([*FROMS, "demo", "1" * 1500, "linear:h0=400,h1=60", LONG_RAMP])
     elif action.dest == "schedule":
         own = SCHEDULES
     elif action.dest == "start":

@@ -481,3 +481,11 @@ def test_lab_theory_without_three_records_is_refused_before_the_run(monkeypatch,
     capsys.readouterr()
     monkeypatch.undo()
     assert lab_cli.main(["--theory", "--frames", "62", "--every", "31", "--atoms", "5"]) in (0, 1)
+
+
+def test_an_autopilot_ramp_longer_than_a_file_name_plays(tmp_path, capsys) -> None:
+    # A valid strategy text of 517 characters was asked whether it names a file: OSError.
+    ramp = ",".join(f"{400 - i * 0.1:g}@{i}" for i in range(60))
+    argv = ["--frames", "2", "--autopilot", ramp, "--config-dir", str(tmp_path)]
+    assert app_cli.main([*argv, "--data-dir", str(tmp_path)]) == 0
+    assert "Traceback" not in capsys.readouterr().err

@@ -568,7 +568,7 @@ class Autopilot:
         text = str(spec).strip()
         if text.lower() == DEMO:
             name = DEMO
-        elif Path(text).is_file():
+        elif _is_file(text):
             name = Path(text).stem
         else:
             name = "custom"
