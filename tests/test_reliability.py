@@ -152,6 +152,8 @@ APPLET_CASES = [
     (["--atoms", "1000000000000"], "--atoms"),
     (["--speed", "nan"], "--speed"),
     (["--seed", "-1"], "--seed"),
+    (["--config-dir", "\x00"], "--config-dir"),  # found by the fuzz: a traceback
+    (["--data-dir", "\x00"], "--data-dir"),  # found by the fuzz: the option was not named
 ]
 
 
