@@ -491,3 +491,13 @@ def test_an_autopilot_ramp_longer_than_a_file_name_plays(tmp_path, capsys) -> No
     argv = ["--frames", "2", "--autopilot", ramp, "--config-dir", str(tmp_path)]
     assert app_cli.main([*argv, "--data-dir", str(tmp_path)]) == 0
     assert "Traceback" not in capsys.readouterr().err
+
+
+@pytest.mark.parametrize("command", ["sweep", "optimize"])
+def test_a_control_character_in_bad_arguments_stays_on_one_line(command, capsys) -> None:
+    # Found by the fuzz: `evapcool sweep -- --csv '\n' --help` printed its error on two lines.
+    from evapcool.cli import main
+
+    assert main([command, "--", "--csv", "\n", "--help"]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and err.startswith(f"evapcool {command}: error: "), err

@@ -8,6 +8,7 @@ import time
 from pathlib import Path
 from typing import NoReturn
 
+from evapcool.about import error_line
 from evapcool.argtypes import whole
 from evapcool.lab.cluster import (
     MissingExtraError,
@@ -76,7 +77,7 @@ def build_parser() -> argparse.ArgumentParser:
 
 
 def _fail(message: str) -> int:
-    print(f"{PROG}: error: {message}", file=sys.stderr)
+    print(error_line("sweep", message), file=sys.stderr)  # control characters escaped
     return EXIT_USAGE
 
 

@@ -9,6 +9,7 @@ import time
 from pathlib import Path
 from typing import NoReturn
 
+from evapcool.about import error_line
 from evapcool.argtypes import choice, positive, whole
 from evapcool.lab.cluster import MissingExtraError, check_scheduler, require_extra
 from evapcool.optimize.families import FAMILY_HELP, parse_families
@@ -184,7 +185,7 @@ def build_parser() -> argparse.ArgumentParser:
 
 
 def _fail(message: str) -> int:
-    print(f"{PROG}: error: {message}", file=sys.stderr)
+    print(error_line("optimize", message), file=sys.stderr)  # control characters escaped
     return EXIT_USAGE
 
 
