@@ -32,4 +32,4 @@ cd "$work"/evapcool-*/
 # The tests import the installed wheel (src/ is there only for the tests that read it).
 python -c 'import evapcool, sys; sys.exit("evapcool" not in evapcool.__file__ or "site-packages" not in evapcool.__file__)'
 export SDL_VIDEODRIVER=dummy SDL_AUDIODRIVER=dummy PYGAME_HIDE_SUPPORT_PROMPT=1
-python -m pytest -m "not slow" -p no:cacheprovider
+python -m pytest -m "not slow" -p no:cacheprovider -o faulthandler_timeout=600
