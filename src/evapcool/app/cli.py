@@ -5,12 +5,11 @@ from __future__ import annotations
 import argparse
 import os
 import sys
-from pathlib import Path
 
 from evapcool import limits
 from evapcool.about import APP_NAME, error_line
 from evapcool.app.storage import settings_path
-from evapcool.argtypes import output_file, ranged
+from evapcool.argtypes import OneLineParser, folder, output_file, ranged
 from evapcool.game.rules import GameConfig
 from evapcool.game.settings import (
     TC_LAWS,
@@ -34,14 +33,9 @@ _OPTION_OF = {
 }
 
 
-class _Parser(argparse.ArgumentParser):
-    def error(self, message: str) -> None:  # one line and exit 2, never a usage dump
-        print(error_line(None, message), file=sys.stderr)
-        raise SystemExit(2)
-
-
 def build_parser() -> argparse.ArgumentParser:
-    p = _Parser(
+    p = OneLineParser(
+        None,
         prog=PROG,
         description="Evaporative cooling of atoms in a cup: play the applet. "
         "Other commands: 'evapcool lab ...', 'evapcool bench'.",
@@ -114,14 +108,14 @@ def build_parser() -> argparse.ArgumentParser:
     )
     p.add_argument(
         "--data-dir",
-        type=Path,
+        type=folder,
         default=None,
         metavar="DIR",
         help="folder for the high scores (default $EVAPCOOL_DATA_DIR, else the user data folder)",
     )
     p.add_argument(
         "--config-dir",
-        type=Path,
+        type=folder,
         default=None,
         metavar="DIR",
         help="folder for the settings (default $EVAPCOOL_CONFIG_DIR, else the user config folder)",

@@ -7,12 +7,10 @@ the machine is shared and noisy.
 
 from __future__ import annotations
 
-import argparse
 import importlib
-import sys
 import warnings
 
-from evapcool.about import error_line
+from evapcool.argtypes import OneLineParser
 from evapcool.extras import MissingExtraError, SlowEngineWarning, check, missing_message
 
 #: section name -> module (each has run(args)).
@@ -24,15 +22,9 @@ SECTIONS = {
 }
 
 
-class _Parser(argparse.ArgumentParser):
-    def error(self, message: str) -> None:  # one line, exit 2
-        print(error_line("bench", message), file=sys.stderr)
-        raise SystemExit(2)
-
-
 def main(argv: list[str] | None = None) -> int:
     """Run the benchmark sections and print their figures."""
-    p = _Parser(prog="evapcool bench", description=__doc__.splitlines()[0])
+    p = OneLineParser("bench", prog="evapcool bench", description=__doc__.splitlines()[0])
     p.add_argument(
         "--engine",
         choices=("reference", "fast", "auto"),
@@ -63,7 +55,7 @@ def main(argv: list[str] | None = None) -> int:
             print(f"[{name}] skipped: {exc}")
         except ModuleNotFoundError as exc:
             if exc.name and not exc.name.startswith("evapcool"):
-                print(f"[{name}] skipped: {missing_message(exc.name, 'this section')}")
+                print(f"[{name}] skipped: {missing_message(exc.name.split('.')[0], 'this section')}")
             else:
                 print(f"[{name}] not available in this build")
     return 0
