@@ -145,4 +145,4 @@ def test_bad_autopilot_is_one_line_and_exit_2(tmp_path, capsys, bad):
 
     assert main(["--autopilot", bad, "--frames", "1", "--data-dir", str(tmp_path)]) == 2
     err = capsys.readouterr().err.strip().splitlines()
-    assert len(err) == 1 and err[0].startswith("evapcool: --autopilot:")
+    assert len(err) == 1 and err[0].startswith("evapcool: error: --autopilot:")
