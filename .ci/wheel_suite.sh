@@ -11,15 +11,18 @@ dist=${DIST:-$root/dist}
 wheel=$(ls "$dist"/*.whl) sdist=$(ls "$dist"/*.tar.gz)
 work=$(mktemp -d "/tmp/evapcool-$name.XXXXXX")
 trap 'rm -rf "$work"' EXIT
-constraints=()
-if [ "$mode" = floors ]; then
-  python3 "$root/.ci/floors.py" "$root" > "$work/floors.txt"  # the caller's Python (3.11+)
+constraints=() app_constraints=()
+if [ "$mode" = floors ]; then  # the caller's Python (3.11+) reads pyproject.toml
+  python3 "$root/.ci/floors.py" --dependencies "$root" > "$work/floors-applet.txt"
+  python3 "$root/.ci/floors.py" "$root" > "$work/floors.txt"
+  app_constraints=(-c "$work/floors-applet.txt")
   constraints=(-c "$work/floors.txt")
 fi
 uv venv -q -p "$py" "$work/venv"
 export VIRTUAL_ENV="$work/venv" PATH="$work/venv/bin:$PATH"
 echo "== [$name] $(python --version), lean install of the wheel built from the sdist"
-uv pip install -q "${constraints[@]}" "$wheel"
+uv pip install -q "${app_constraints[@]}" "$wheel"
+uv pip list 2>/dev/null | grep -iE '^(numpy|pygame-ce|platformdirs) ' | tr -s ' ' | paste -sd, -
 python "$root/.ci/check_lean.py"
 echo "== [$name] with the test extras ($mode versions)"
 uv pip install -q "${constraints[@]}" "evapcool[test] @ file://$wheel"
@@ -29,4 +32,4 @@ cd "$work"/evapcool-*/
 # The tests import the installed wheel (src/ is there only for the tests that read it).
 python -c 'import evapcool, sys; sys.exit("evapcool" not in evapcool.__file__ or "site-packages" not in evapcool.__file__)'
 export SDL_VIDEODRIVER=dummy SDL_AUDIODRIVER=dummy PYGAME_HIDE_SUPPORT_PROMPT=1
-python -m pytest -m "not slow" -p no:cacheprovider
+python -m pytest -m "not slow" -p no:cacheprovider -o faulthandler_timeout=600

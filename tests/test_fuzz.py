@@ -281,7 +281,7 @@ class _CapturedError(Exception):
 
 def parser_of(command: str) -> argparse.ArgumentParser:
     """The parser of a command (its build_parser, else caught from its main)."""
-    module = importlib.import_module(SUBCOMMANDS[command] if command else "evapcool.app.cli")
+    module = importlib.import_module(SUBCOMMANDS[command][0] if command else "evapcool.app.cli")
     if hasattr(module, "build_parser"):
         return module.build_parser()
     caught: list[argparse.ArgumentParser] = []

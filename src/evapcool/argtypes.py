@@ -7,11 +7,38 @@ from __future__ import annotations
 
 import argparse
 import math
+import sys
 from collections.abc import Callable, Sequence
 from pathlib import Path
+from typing import Any, NoReturn
 
+from evapcool.about import error_line
 from evapcool.fileio import check_writable
 from evapcool.limits import Range
+
+
+class UsageError(Exception):
+    """Bad command-line input from Parser: the command prints it as one line, exit 2."""
+
+
+class Parser(argparse.ArgumentParser):
+    """argparse that raises UsageError on bad input, for commands that word the line."""
+
+    def error(self, message: str) -> NoReturn:
+        raise UsageError(message)
+
+
+class OneLineParser(argparse.ArgumentParser):
+    """argparse whose bad input is one line (about.error_line) and exit status 2,
+    never the usage dump; command: 'lab', 'web'... or None for the applet."""
+
+    def __init__(self, command: str | None, **kwargs: Any) -> None:
+        super().__init__(**kwargs)
+        self.command = command
+
+    def error(self, message: str) -> NoReturn:
+        print(error_line(self.command, message), file=sys.stderr)
+        raise SystemExit(2)
 
 
 def ranged(rng: Range) -> Callable[[str], float]:

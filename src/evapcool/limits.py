@@ -92,6 +92,12 @@ class Range:
             raise bad
         return number
 
+    def check_int(self, name: str, value: object) -> int:
+        """check() of a whole-number range, typed as the int it returns."""
+        if not self.integer:
+            raise TypeError(f"{name}: check_int needs an integer range")
+        return int(self.check(name, value))
+
 
 # -- the physics (Simulation) ------------------------------------------------------------
 #: Atoms: every table is O(N): 645 MB measured at 10^6 atoms with the fast engine

@@ -10,7 +10,7 @@ from pathlib import Path
 from evapcool import limits
 from evapcool.about import APP_NAME, error_line
 from evapcool.app.storage import settings_path
-from evapcool.argtypes import output_file, ranged
+from evapcool.argtypes import OneLineParser, output_file, ranged
 from evapcool.game.rules import GameConfig
 from evapcool.game.settings import (
     TC_LAWS,
@@ -34,14 +34,9 @@ _OPTION_OF = {
 }
 
 
-class _Parser(argparse.ArgumentParser):
-    def error(self, message: str) -> None:  # one line and exit 2, never a usage dump
-        print(error_line(None, message), file=sys.stderr)
-        raise SystemExit(2)
-
-
 def build_parser() -> argparse.ArgumentParser:
-    p = _Parser(
+    p = OneLineParser(
+        None,
         prog=PROG,
         description="Evaporative cooling of atoms in a cup: play the applet. "
         "Other commands: 'evapcool lab ...', 'evapcool bench'.",

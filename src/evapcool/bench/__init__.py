@@ -7,12 +7,10 @@ the machine is shared and noisy.
 
 from __future__ import annotations
 
-import argparse
 import importlib
-import sys
 import warnings
 
-from evapcool.about import error_line
+from evapcool.argtypes import OneLineParser
 from evapcool.extras import MissingExtraError, SlowEngineWarning, check, missing_message
 
 #: section name -> module (each has run(args)).
@@ -24,15 +22,9 @@ SECTIONS = {
 }
 
 
-class _Parser(argparse.ArgumentParser):
-    def error(self, message: str) -> None:  # one line, exit 2
-        print(error_line("bench", message), file=sys.stderr)
-        raise SystemExit(2)
-
-
 def main(argv: list[str] | None = None) -> int:
     """Run the benchmark sections and print their figures."""
-    p = _Parser(prog="evapcool bench", description=__doc__.splitlines()[0])
+    p = OneLineParser("bench", prog="evapcool bench", description=__doc__.splitlines()[0])
     p.add_argument(
         "--engine",
         choices=("reference", "fast", "auto"),

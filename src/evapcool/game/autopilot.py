@@ -24,9 +24,10 @@ from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
 from importlib import resources
 from pathlib import Path
+from typing import Any
 
 from evapcool.fileio import atomic_write_text
-from evapcool.game.rules import HEIGHT_MAX, HEIGHT_MIN
+from evapcool.game.rules import HEIGHT_MAX, HEIGHT_MIN, Game
 from evapcool.physics.simulation import (
     ATOM_RADIUS,
     N_ATOMS,
@@ -74,7 +75,7 @@ class Reading:
         n = self.n_trapped
         if n < 2:
             return math.inf
-        tc_next = self.critical_temperature * ((n - 1) / n) ** self.tc_exponent
+        tc_next: float = self.critical_temperature * ((n - 1) / n) ** self.tc_exponent
         return n * self.temperature - (n - 1) * tc_next
 
 
@@ -356,7 +357,7 @@ Strategy = Ramp | Policy
 # -- text and files ------------------------------------------------------------------------
 
 
-def parse_strategy(text: str) -> Strategy:
+def parse_strategy(text: object) -> Strategy:
     """A ramp '400@0,140@1800' (or a constant '400'), or a policy 'family:k=v,...'."""
     if not isinstance(text, str) or not text.strip():
         raise ValueError(f"strategy must be {STRATEGY_HELP} (got {text!r})")
@@ -391,9 +392,9 @@ def is_strategy_name(text: str) -> bool:
     return s.lower() == DEMO or bool(_POLICY.match(s)) or s.lower().endswith(".json")
 
 
-def strategy_document(strategy: Strategy, **info: object) -> dict:
+def strategy_document(strategy: Strategy, **info: object) -> dict[str, object]:
     """The JSON object of a strategy file: the strategy text plus where it came from."""
-    doc = {
+    doc: dict[str, object] = {
         "format": FILE_FORMAT,
         "version": FILE_VERSION,
         "strategy": strategy.text,
@@ -423,7 +424,7 @@ def _from_document(doc: object, where: str) -> Strategy:
     return parse_strategy(doc.get("strategy"))
 
 
-def read_strategy_file(path: str | os.PathLike[str]) -> tuple[Strategy, dict]:
+def read_strategy_file(path: str | os.PathLike[str]) -> tuple[Strategy, dict[str, Any]]:
     """A strategy file's strategy and its whole document; ValueError if it is not one."""
     p = Path(path)
     try:
@@ -439,10 +440,11 @@ def read_strategy_file(path: str | os.PathLike[str]) -> tuple[Strategy, dict]:
     return _from_document(doc, repr(str(p))), doc
 
 
-def demo_document() -> dict:
+def demo_document() -> dict[str, Any]:
     """The shipped demo strategy's file (package data)."""
     text = resources.files("evapcool.data").joinpath(DEMO_RESOURCE).read_text(encoding="utf-8")
-    return json.loads(text)
+    doc: dict[str, Any] = json.loads(text)
+    return doc
 
 
 def load_strategy(spec: str | os.PathLike[str]) -> Strategy:
@@ -583,7 +585,7 @@ class Autopilot:
             self.engage()
         return self.engaged
 
-    def steer(self, game) -> float | None:
+    def steer(self, game: Game) -> float | None:
         """Set the game's trap for its current frame; the height set, or None if hands off.
 
         Nothing moves while paused (the player may still be choosing the start) or after

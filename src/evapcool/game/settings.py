@@ -12,9 +12,11 @@ from __future__ import annotations
 import json
 import numbers
 import os
+from collections.abc import Callable
 from dataclasses import asdict, dataclass, fields, replace
 from functools import lru_cache
 from pathlib import Path
+from typing import Any, TypeVar
 
 from evapcool import limits
 from evapcool.about import APP_NAME
@@ -75,6 +77,7 @@ class Settings:
 
 DEFAULTS = Settings()
 FIELD_NAMES = tuple(f.name for f in fields(Settings))
+_T = TypeVar("_T")
 
 
 @lru_cache(maxsize=64)
@@ -109,11 +112,15 @@ def _check_radius(value: object) -> float:
     return limits.APPLET_RADIUS.check("radius", value)
 
 
-def _check_n_atoms(value: object, radius: float, cap=max_atoms) -> int:
+def _check_n_atoms(value: object, radius: float, cap: Callable[[float], int] = max_atoms) -> int:
     top = cap(radius)
     if isinstance(value, float) and value.is_integer():
         value = int(value)  # 49.0 from a hand-edited file is fine; 49.5 is not
-    if isinstance(value, bool) or not isinstance(value, numbers.Integral) or not 1 <= value <= top:
+    if (
+        isinstance(value, bool)
+        or not isinstance(value, numbers.Integral)
+        or not 1 <= int(value) <= top
+    ):
         where = "below the rim" if cap is max_atoms else "below the window's top"
         raise ValueError(
             f"n_atoms must be a whole number from 1 to {top} for radius {radius:g}, "
@@ -128,7 +135,7 @@ def _check_choice(name: str, value: object, allowed: tuple[str, ...]) -> str:
     return value
 
 
-def validate(settings: Settings, cap=max_atoms) -> Settings:
+def validate(settings: Settings, cap: Callable[[float], int] = max_atoms) -> Settings:
     """The same settings with canonical types; ValueError naming the first bad field.
 
     cap(radius): the most atoms allowed, by default the settings screen's (all below the
@@ -150,7 +157,7 @@ def from_mapping(data: dict[str, object]) -> tuple[Settings, list[str]]:
     if unknown:
         notices.append(f"Settings: ignored unknown entries {', '.join(unknown)}.")
 
-    def take(name: str, check, default):
+    def take(name: str, check: Callable[[object], _T], default: _T) -> _T:
         if name not in data:
             return default
         try:
@@ -168,7 +175,7 @@ def from_mapping(data: dict[str, object]) -> tuple[Settings, list[str]]:
     return Settings(n_atoms=n_atoms, radius=radius, tc_law=tc_law, escape=escape), notices
 
 
-def with_overrides(settings: Settings, **overrides: object) -> Settings:
+def with_overrides(settings: Settings, **overrides: Any) -> Settings:
     """Settings for one run with command-line values on top (None = not given). Not saved.
 
     ValueError (naming the parameter and what is allowed) for an unknown name or bad value.
@@ -199,7 +206,8 @@ def step(settings: Settings, name: str, direction: int) -> Settings:
     if name in ("tc_law", "escape"):
         options = tuple(TC_LAWS) if name == "tc_law" else ESCAPE_RULES
         i = options.index(getattr(s, name))
-        return replace(s, **{name: options[(i + d) % len(options)]})
+        changed: dict[str, Any] = {name: options[(i + d) % len(options)]}
+        return replace(s, **changed)
     raise ValueError(f"unknown setting {name!r}; known: {', '.join(FIELD_NAMES)}")
 
 

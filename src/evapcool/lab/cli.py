@@ -4,13 +4,12 @@ from __future__ import annotations
 
 import argparse
 import sys
-from typing import NoReturn
 
 import numpy as np
 
 from evapcool import limits
 from evapcool.about import error_line
-from evapcool.argtypes import choice, output_file, ranged
+from evapcool.argtypes import Parser, UsageError, choice, output_file, ranged
 from evapcool.extras import check
 from evapcool.lab.experiment import ESCAPES, START_HELP, TC_LAWS, LabConfig, run_experiment
 from evapcool.lab.io import COLUMNS, read_result, to_csv_text
@@ -22,20 +21,9 @@ EXIT_NO_THEORY = 1  # the run is written, but too short (or unsuitable) for the 
 EXIT_INTERRUPTED = 130
 
 
-class _UsageError(Exception):
-    pass
-
-
-class _Parser(argparse.ArgumentParser):
-    """argparse that reports bad input as one line instead of usage plus traceback."""
-
-    def error(self, message: str) -> NoReturn:
-        raise _UsageError(message)
-
-
 def build_parser() -> argparse.ArgumentParser:
     d = LabConfig()
-    p = _Parser(
+    p = Parser(
         prog="evapcool lab",
         description=(
             "Run an evaporative-cooling experiment headless: a trap-height schedule in, "
@@ -175,7 +163,7 @@ def main(argv: list[str] | None = None) -> int:
     """Entry point of `evapcool lab`; returns the exit status (2 on bad input)."""
     try:
         args = build_parser().parse_args(sys.argv[1:] if argv is None else argv)
-    except _UsageError as exc:
+    except UsageError as exc:
         return _fail(str(exc))
     params: dict = {}
     from_file: dict = {}

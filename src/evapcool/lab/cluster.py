@@ -12,6 +12,7 @@ only here, inside functions, so `import evapcool` never pulls them in.
 
 from __future__ import annotations
 
+import argparse
 import contextlib
 import importlib.util
 import logging
@@ -55,6 +56,16 @@ def check_scheduler(address: str | None) -> str | None:
             and port.isdigit()):  # fmt: skip
         raise ValueError(f"scheduler must be an address like tcp://host:8786 (got {address!r})")
     return str(address)
+
+
+def scheduler_option(text: str) -> str:
+    """--scheduler on the command line: check_scheduler, as argparse's error."""
+    try:
+        return str(check_scheduler(text))
+    except ValueError:
+        raise argparse.ArgumentTypeError(
+            f"must be an address like tcp://host:8786 (got {text!r})"
+        ) from None
 
 
 def check_workers(workers: object) -> int | None:

@@ -6,14 +6,14 @@ import argparse
 import sys
 import time
 from pathlib import Path
-from typing import NoReturn
 
-from evapcool.argtypes import whole
+from evapcool.about import error_line
+from evapcool.argtypes import Parser, UsageError, whole
 from evapcool.lab.cluster import (
     MissingExtraError,
     VersionMismatchError,
-    check_scheduler,
     require_extra,
+    scheduler_option,
 )
 
 PROG = "evapcool sweep"
@@ -22,26 +22,8 @@ EXIT_FAILED_RUNS = 1
 EXIT_INTERRUPTED = 130
 
 
-class _UsageError(Exception):
-    pass
-
-
-class _Parser(argparse.ArgumentParser):
-    def error(self, message: str) -> NoReturn:
-        raise _UsageError(message)
-
-
-def _scheduler(text: str) -> str:
-    try:
-        return check_scheduler(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(
-            f"must be an address like tcp://host:8786 (got {text!r})"
-        ) from None
-
-
 def build_parser() -> argparse.ArgumentParser:
-    p = _Parser(
+    p = Parser(
         prog=PROG,
         description=(
             "Run every combination of the lab parameters in a TOML spec as one lab run each, "
@@ -64,7 +46,7 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--csv", action="store_true", help="also write runs.csv and records.csv")
     p.add_argument(
         "--scheduler",
-        type=_scheduler,
+        type=scheduler_option,
         metavar="tcp://HOST:8786",
         help="a running Dask scheduler (default: a local cluster)",
     )
@@ -76,7 +58,7 @@ def build_parser() -> argparse.ArgumentParser:
 
 
 def _fail(message: str) -> int:
-    print(f"{PROG}: error: {message}", file=sys.stderr)
+    print(error_line("sweep", message), file=sys.stderr)
     return EXIT_USAGE
 
 
@@ -96,7 +78,7 @@ def main(argv: list[str] | None = None) -> int:
     """Entry point of `evapcool sweep`; 0 all ran, 1 some runs failed, 2 bad input, 130 Ctrl-C."""
     try:
         args = build_parser().parse_args(sys.argv[1:] if argv is None else argv)
-    except _UsageError as exc:
+    except UsageError as exc:
         return _fail(str(exc))
     try:
         require_extra("sweep")

@@ -7,10 +7,10 @@ import contextlib
 import sys
 import time
 from pathlib import Path
-from typing import NoReturn
 
-from evapcool.argtypes import choice, positive, whole
-from evapcool.lab.cluster import MissingExtraError, check_scheduler, require_extra
+from evapcool.about import error_line
+from evapcool.argtypes import Parser, UsageError, choice, positive, whole
+from evapcool.lab.cluster import MissingExtraError, require_extra, scheduler_option
 from evapcool.optimize.families import FAMILY_HELP, parse_families
 from evapcool.optimize.report import DEFAULT_FINALISTS, DEFAULT_VALIDATE
 from evapcool.optimize.study import (
@@ -48,15 +48,6 @@ PROBLEM_OPTIONS = {
 }
 
 
-class _UsageError(Exception):
-    pass
-
-
-class _Parser(argparse.ArgumentParser):
-    def error(self, message: str) -> NoReturn:
-        raise _UsageError(message)
-
-
 def _families(text: str) -> tuple[str, ...]:
     try:
         return parse_families(text)
@@ -73,17 +64,8 @@ def _objectives(text: str) -> tuple[str, ...]:
     return names
 
 
-def _scheduler(text: str) -> str:
-    try:
-        return check_scheduler(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(
-            f"must be an address like tcp://host:8786 (got {text!r})"
-        ) from None
-
-
 def build_parser() -> argparse.ArgumentParser:
-    p = _Parser(
+    p = Parser(
         prog=PROG,
         description=(
             "Search trap-height strategies for the game (open-loop ramps and closed-loop "
@@ -141,7 +123,7 @@ def build_parser() -> argparse.ArgumentParser:
     c = p.add_argument_group("where games run")
     c.add_argument(
         "--scheduler",
-        type=_scheduler,
+        type=scheduler_option,
         metavar="tcp://HOST:8786",
         help="a running Dask scheduler (default: a local cluster)",
     )
@@ -184,7 +166,7 @@ def build_parser() -> argparse.ArgumentParser:
 
 
 def _fail(message: str) -> int:
-    print(f"{PROG}: error: {message}", file=sys.stderr)
+    print(error_line("optimize", message), file=sys.stderr)
     return EXIT_USAGE
 
 
@@ -255,7 +237,7 @@ def main(argv: list[str] | None = None) -> int:
     """Entry point of `evapcool optimize`; 0 done, 2 bad input, 130 interrupted."""
     try:
         args = build_parser().parse_args(sys.argv[1:] if argv is None else argv)
-    except _UsageError as exc:
+    except UsageError as exc:
         return _fail(str(exc))
     try:
         require_extra("optimize")

@@ -20,12 +20,11 @@ from evapcool.game.autopilot import GameSetup
 from evapcool.lab.cluster import Engine, StopRequest, TaskError, run_tasks
 from evapcool.optimize.evaluate import Summary, chunks, play_seeds
 from evapcool.optimize.families import DEFAULT_KNOTS, FAMILIES, build, params_of, suggest
-from evapcool.physics.simulation import ATOM_RADIUS, N_ATOMS, TC_EXPONENT_CUP, TC_EXPONENT_SEED
+from evapcool.physics.simulation import ATOM_RADIUS, N_ATOMS, TC_LAWS
+from evapcool.physics.world import ESCAPE_RULES as ESCAPES
 
 SAMPLERS = ("tpe", "cmaes", "nsga2")
 OBJECTIVES = ("score", "time")
-TC_LAWS = {"seed": TC_EXPONENT_SEED, "cup": TC_EXPONENT_CUP}
-ESCAPES = ("rim", "knife")
 DEFAULT_SEEDS = 100
 DEFAULT_BUDGET = 1800
 DEFAULT_BATCH = 8

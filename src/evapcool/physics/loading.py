@@ -30,7 +30,8 @@ def _disk_inside_cup(xc: np.ndarray, yc: float, rad: float, a: float) -> np.ndar
     ang = np.linspace(0.0, 2.0 * math.pi, _POLYGON, endpoint=False)
     px = xc[:, None] + rho * np.cos(ang)[None, :]
     py = yc + rho * np.sin(ang)[None, :]
-    return np.all(py > a * px * px, axis=1)
+    inside: np.ndarray = np.all(py > a * px * px, axis=1)
+    return inside
 
 
 def _row(yc: float, need: int, m: int, spacing: float, jitter: float, a: float) -> np.ndarray:
@@ -52,7 +53,8 @@ def _row(yc: float, need: int, m: int, spacing: float, jitter: float, a: float) 
         )
         taken = xs[ok]
         if len(taken) >= need or k >= m:
-            return taken[:need].astype(float)
+            row: np.ndarray = taken[:need].astype(float)
+            return row
         k = min(m, 2 * k)
 
 

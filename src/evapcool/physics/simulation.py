@@ -7,9 +7,10 @@ from __future__ import annotations
 
 import numbers
 import warnings
-from collections.abc import Sequence
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from evapcool import limits
 from evapcool.extras import (
@@ -29,6 +30,10 @@ from evapcool.physics.world import (
     TRAPPED,
     World,
 )
+
+if TYPE_CHECKING:
+    from evapcool.physics.fast import FastEngine
+    from evapcool.physics.reference import ReferenceEngine
 
 #: The original applet's constants (SPEC section 1).
 FPS = 30
@@ -105,7 +110,7 @@ def _window(value: object) -> tuple[int, int]:
         raise _bad("window", allowed, value)
     side = limits.WINDOW_SIDE
     try:
-        return side.check("window", value[0]), side.check("window", value[1])
+        return side.check_int("window", value[0]), side.check_int("window", value[1])
     except ValueError:
         raise _bad("window", allowed, value) from None
 
@@ -136,8 +141,8 @@ class Simulation:
     def __init__(
         self,
         n_atoms: int = N_ATOMS,
-        radius: float | Sequence[float] = ATOM_RADIUS,
-        mass: float | Sequence[float] = 1.0,
+        radius: float | ArrayLike = ATOM_RADIUS,
+        mass: float | ArrayLike = 1.0,
         *,
         curvature: float = CURVATURE,
         gravity: float = GRAVITY,
@@ -149,18 +154,18 @@ class Simulation:
         escape: str = "rim",
         record_events: bool = False,
         win: bool = True,
-        positions: np.ndarray | None = None,
-        velocities: np.ndarray | None = None,
+        positions: ArrayLike | None = None,
+        velocities: ArrayLike | None = None,
     ) -> None:
         # Every check comes before anything is allocated per atom (issue 18).
-        n = limits.N_ATOMS.check("n_atoms", n_atoms)
+        n = limits.N_ATOMS.check_int("n_atoms", n_atoms)
         a = limits.CURVATURE.check("curvature", curvature)
         g = limits.GRAVITY.check("gravity", gravity)
         height = limits.TRAP_HEIGHT.check("trap_height", trap_height)
         tc_p = limits.TC_EXPONENT.check("tc_exponent", tc_exponent)
         window = _window(window)
         if seed is not None:
-            seed = limits.SEED.check("seed", seed)
+            seed = limits.SEED.check_int("seed", seed)
         win = _flag("win", win)
         record_events = _flag("record_events", record_events)
         engine = _choice("engine", engine, ENGINES)
@@ -209,7 +214,7 @@ class Simulation:
         self._engine.set_trap_height(height)
 
     @classmethod
-    def classic(cls, seed: int | None = None, **overrides: object) -> Simulation:
+    def classic(cls, seed: int | None = None, **overrides: Any) -> Simulation:
         """The original applet's start: 49 atoms of radius 12 in the cup, H = 400."""
         return cls(n_atoms=N_ATOMS, radius=ATOM_RADIUS, seed=seed, **overrides)
 
@@ -238,19 +243,21 @@ class Simulation:
         return sim
 
     @classmethod
-    def from_state(cls, state: dict | str, engine: str = "auto", **kw: bool) -> Simulation:
+    def from_state(
+        cls, state: dict[str, Any] | str, engine: str = "auto", **kw: bool
+    ) -> Simulation:
         """Go on exactly from a state (dict or JSON text, docs/state.md); see physics.state."""
         from evapcool.physics.state import from_state
 
         return from_state(state, engine=engine, **kw)
 
-    def to_state(self) -> dict:
+    def to_state(self) -> dict[str, Any]:
         """The state as a JSON-ready dict (docs/state.md), resumable with from_state."""
         from evapcool.physics.state import to_state
 
         return to_state(self)
 
-    def _make_engine(self, engine: str, n: int):
+    def _make_engine(self, engine: str, n: int) -> ReferenceEngine | FastEngine:
         if engine == "auto":
             engine = "fast" if n >= AUTO_FAST_MIN_ATOMS and _fast_available() else "reference"
             if engine == "reference" and n >= SLOW_REFERENCE_ATOMS:
@@ -360,20 +367,24 @@ class Simulation:
     @property
     def radii(self) -> np.ndarray:
         """Radii of the trapped atoms."""
-        return self._world.radius[self.trapped_indices].copy()
+        radii: np.ndarray = self._world.radius[self.trapped_indices].copy()
+        return radii
 
     @property
     def masses(self) -> np.ndarray:
         """Masses of the trapped atoms."""
-        return self._world.mass[self.trapped_indices].copy()
+        masses: np.ndarray = self._world.mass[self.trapped_indices].copy()
+        return masses
 
     @property
     def escaped_radii(self) -> np.ndarray:
-        return self._world.radius[self.escaped_indices].copy()
+        radii: np.ndarray = self._world.radius[self.escaped_indices].copy()
+        return radii
 
     def energies(self) -> np.ndarray:
         """Energy 1/2 m v^2 + m g y of each trapped atom."""
-        return self._world.energies()[self.trapped_indices]
+        energies: np.ndarray = self._world.energies()[self.trapped_indices]
+        return energies
 
     def total_energy(self) -> float:
         """Sum of 1/2 m v^2 + m g y over trapped atoms."""

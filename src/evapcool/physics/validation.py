@@ -45,10 +45,13 @@ def _pairs_in_chunk(
     return q[rep], order[slot]
 
 
-def _closer(pos: np.ndarray, radii: np.ndarray, i: np.ndarray, j: np.ndarray, tol: float):
+def _closer(
+    pos: np.ndarray, radii: np.ndarray, i: np.ndarray, j: np.ndarray, tol: float
+) -> np.ndarray:
     d = pos[i] - pos[j]
     sigma = (radii[i] + radii[j]) * (1.0 - tol)
-    return (i != j) & (d[:, 0] * d[:, 0] + d[:, 1] * d[:, 1] < sigma * sigma)
+    closer: np.ndarray = (i != j) & (d[:, 0] * d[:, 0] + d[:, 1] * d[:, 1] < sigma * sigma)
+    return closer
 
 
 def first_overlap(pos: np.ndarray, radii: np.ndarray, tol: float = 0.0) -> tuple[int, int] | None:

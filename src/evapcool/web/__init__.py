@@ -15,6 +15,7 @@ from importlib import resources
 from pathlib import Path
 
 from evapcool.about import APP_NAME, error_line
+from evapcool.argtypes import OneLineParser
 
 PROG = f"{APP_NAME} web"
 PAGE_NAME = "evapcool.html"
@@ -25,14 +26,9 @@ def page_path() -> Path:
     return Path(str(resources.files(__name__).joinpath(PAGE_NAME)))
 
 
-class _Parser(argparse.ArgumentParser):
-    def error(self, message: str) -> None:  # one line and exit 2, never a usage dump
-        print(error_line("web", message), file=sys.stderr)
-        raise SystemExit(2)
-
-
 def build_parser() -> argparse.ArgumentParser:
-    p = _Parser(
+    p = OneLineParser(
+        "web",
         prog=PROG,
         description="Open the browser edition (one self-contained HTML file) in the default "
         "browser, or show where it is to send it on.",

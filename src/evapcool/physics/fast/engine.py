@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+from typing import Any
+
 import numpy as np
 
 from evapcool.physics.fast import calendar, driver, grid, warmup
@@ -87,7 +89,7 @@ class FastEngine:
         driver.start(self._scalars(), self._arrays(), *self.tb)
 
     # -- World <-> engine -----------------------------------------------------------
-    def _scalars(self) -> tuple:
+    def _scalars(self) -> tuple[float, ...]:
         """The World's scalars in the order driver._pull takes them."""
         w = self.w
         return (
@@ -95,7 +97,7 @@ class FastEngine:
             w.pair_count, w.wall_count,
         )  # fmt: skip
 
-    def _arrays(self) -> tuple:
+    def _arrays(self) -> tuple[np.ndarray, ...]:
         """The World's arrays, then rows (the row of each World atom), for driver._pull."""
         w = self.w
         return w.pos, w.vel, w.t_atom, w.status, w.counter, self.rows
@@ -108,7 +110,7 @@ class FastEngine:
             self.tb.tc_table[:] = [w.win_threshold_of(m) for m in range(w.n_initial + 1)]
             self._tc_key = key
 
-    def _take(self, result: tuple) -> int:
+    def _take(self, result: tuple[Any, ...]) -> int:
         """Store what driver._push returned in the World; returns the status."""
         status, n_log, time, energy_sum, won, n_trapped, pairs, walls = result
         w = self.w
@@ -120,7 +122,7 @@ class FastEngine:
         w.wall_count = walls
         if n_log:
             w.log.extend(tuple(line) for line in self.tb.log[:n_log].tolist())
-        return status
+        return int(status)
 
     def _spares(self) -> Spares:
         n = len(self.tb.state)

@@ -20,11 +20,18 @@ from __future__ import annotations
 import hashlib
 import sys
 import types
+from collections.abc import Callable
 from pathlib import Path
+from typing import Any
 
 from numba import njit
 
 from evapcool.physics import kernels
+
+#: A compiled function as Python code sees it: Numba chooses the machine code from the
+#: argument types at each call, so its Python signature is open (the compiled modules
+#: are checked by Numba's type inference, see [tool.mypy] in pyproject.toml).
+Compiled = Callable[..., Any]
 
 _FAST = Path(__file__).resolve().parent
 #: Modules of the package with no compiled code (editing them needs no recompile).
@@ -57,7 +64,7 @@ def source_hash(paths: tuple[Path, ...] = SOURCES) -> str:
 SOURCE_HASH = source_hash()
 
 
-def _source_keyed_cache():
+def _source_keyed_cache() -> type[Any] | None:
     """Numba's function cache with SOURCE_HASH in every key; None if Numba changed.
 
     Uses Numba's FunctionCache (numba.core.caching), an internal class: tests check
@@ -70,8 +77,9 @@ def _source_keyed_cache():
         return None
 
     class SourceKeyedCache(FunctionCache):
-        def _index_key(self, sig, codegen):
-            return (*super()._index_key(sig, codegen), SOURCE_HASH)
+        def _index_key(self, sig: Any, codegen: Any) -> tuple[Any, ...]:
+            base: Any = super()  # numba.core.caching carries no annotations
+            return (*base._index_key(sig, codegen), SOURCE_HASH)
 
     return SourceKeyedCache
 
@@ -79,36 +87,38 @@ def _source_keyed_cache():
 _CACHE = _source_keyed_cache()
 
 #: Every compiled function of the engine, in definition order (prepare() and tests).
-REGISTRY: list = []
+REGISTRY: list[Any] = []
 
 # No compiled function allocates, so Numba's reference counting (atomic operations on
 # every array passed around) is off. error_model="numpy": a division by zero gives inf
 # or nan, as in the NumPy arithmetic of the reference engine, and needs no check.
-_OPTIONS = {"_nrt": False, "error_model": "numpy", "boundscheck": False}
+_OPTIONS: dict[str, Any] = {"_nrt": False, "error_model": "numpy", "boundscheck": False}
 
 
-def _compiled(fn, **options):
+def _compiled(fn: Callable[..., Any], **options: Any) -> Compiled:
     disp = njit(**_OPTIONS, **options)(fn)
     if _CACHE is not None and hasattr(disp, "_cache"):
         disp._cache = _CACHE(disp.py_func)
     REGISTRY.append(disp)
-    return disp
+    compiled: Compiled = disp
+    return compiled
 
 
-def hot(fn):
+def hot(fn: Callable[..., Any]) -> Compiled:
     """A helper of the event loop: compiled once, inlined by LLVM into its callers."""
     return _compiled(fn, forceinline=True, no_cpython_wrapper=True, no_cfunc_wrapper=True)
 
 
-def part(fn):
+def part(fn: Callable[..., Any]) -> Compiled:
     """A piece of one caller, split out for reading: Numba splices it into the caller.
 
     It has no compiled code of its own (and so costs no compile time of its own).
     """
-    return njit(inline="always", **_OPTIONS)(fn)
+    spliced: Compiled = njit(inline="always", **_OPTIONS)(fn)
+    return spliced
 
 
-def entry(fn):
+def entry(fn: Callable[..., Any]) -> Compiled:
     """A function called from Python, or a rare step called from the event loop."""
     return _compiled(fn)
 
@@ -138,7 +148,7 @@ def _compile_kernels() -> types.ModuleType:
 K = _compile_kernels()
 
 
-def _make_prefetch():
+def _make_prefetch() -> Compiled:
     """prefetch(table, i): ask the CPU to start loading row i of a 1-D table.
 
     Why: at 10^5 atoms the tables outgrow the caches and each event starts with
@@ -156,11 +166,11 @@ def _make_prefetch():
             raise ImportError("opaque pointers needed")
 
         @intrinsic
-        def prefetch(typingctx, table, i):
+        def prefetch(typingctx: Any, table: Any, i: Any) -> Any:
             if not isinstance(table, nt.Array) or table.ndim != 1:
                 return None
 
-            def codegen(context, builder, sig, args):
+            def codegen(context: Any, builder: Any, sig: Any, args: Any) -> Any:
                 ary = context.make_array(sig.args[0])(context, builder, args[0])
                 row = context.cast(builder, args[1], sig.args[1], nt.intp)
                 ptr = builder.gep(ary.data, [row])
@@ -178,10 +188,10 @@ def _make_prefetch():
     except (ImportError, AttributeError):  # pragma: no cover - the fallback
 
         @hot
-        def prefetch(table, i):
+        def no_prefetch(table: Any, i: Any) -> None:
             pass
 
-        return prefetch
+        return no_prefetch
 
 
 prefetch = _make_prefetch()

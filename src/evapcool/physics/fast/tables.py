@@ -13,19 +13,19 @@ NumPy only: importing this module never imports Numba.
 from __future__ import annotations
 
 from collections import namedtuple
+from typing import Any
 
 import numpy as np
 
 LINE = 64  # bytes in a cache line
 
 
-def _record(fields: list[tuple[str, str]], itemsize: int | None = None) -> np.dtype:
+def _record(fields: list[tuple[str, str]], itemsize: int | None = None) -> np.dtype[np.void]:
     names = [name for name, _ in fields]
     formats = [fmt for _, fmt in fields]
-    spec = {"names": names, "formats": formats}
-    if itemsize is not None:
-        spec["itemsize"] = itemsize
-    return np.dtype(spec, align=True)
+    if itemsize is None:
+        return np.dtype({"names": names, "formats": formats}, align=True)
+    return np.dtype({"names": names, "formats": formats, "itemsize": itemsize}, align=True)
 
 
 #: What the pair scan reads of every neighbour, in one line: the stored state and the
@@ -174,7 +174,7 @@ Tables = namedtuple(
 Spares = namedtuple("Spares", ["state", "queued", "plan", "new_row"])
 
 
-def aligned(n: int, dtype: np.dtype) -> np.ndarray:
+def aligned(n: int, dtype: np.dtype[Any]) -> np.ndarray:
     """A zeroed table of n records starting on a cache-line boundary.
 
     NumPy aligns to 16 bytes only: a 64-byte record would then straddle two lines,

@@ -69,7 +69,7 @@ def _run_step(name: str) -> None:
         engine.set_trap_height(300.0)
 
 
-def _reachable(entries: Iterable[str]) -> set:
+def _reachable(entries: Iterable[str]) -> set[Any]:
     """The engine's compiled functions an entry point is built from (itself included).
 
     Follows the global names (and K.<kernel>) each function's code refers to, through
@@ -78,7 +78,7 @@ def _reachable(entries: Iterable[str]) -> set:
     from evapcool.physics.fast import driver, jit
 
     compiled = set(jit.REGISTRY)
-    seen: set = set()
+    seen: set[Any] = set()
     todo = [getattr(driver, e) for e in entries]
     while todo:
         disp = todo.pop()
@@ -109,7 +109,7 @@ class _Counter:
         self.total = total
         self.done = 0
         self.limit = 0  # progress never passes the end of the current step
-        self.functions: set = set()
+        self.functions: set[Any] = set()
         self.entries: set[str] = set()
         self.what = ""
 
@@ -124,23 +124,23 @@ class _Counter:
         self.progress(self.done, self.total, what)
 
 
-def _listeners(counter: _Counter):
+def _listeners(counter: _Counter) -> tuple[Any, Any]:
     from numba.core import event
 
     class Compiled(event.Listener):
-        def on_start(self, ev):
+        def on_start(self, ev: Any) -> None:
             pass
 
-        def on_end(self, ev):
+        def on_end(self, ev: Any) -> None:
             disp = ev.data["dispatcher"]
             if disp in counter.functions:
                 counter.tick(f"{counter.what}: {disp.py_func.__name__}")
 
     class Passes(event.Listener):
-        def on_start(self, ev):
+        def on_start(self, ev: Any) -> None:
             pass
 
-        def on_end(self, ev):
+        def on_end(self, ev: Any) -> None:
             if ev.data["qualname"] in counter.entries and ev.data["name"].split(" ")[0].endswith(
                 LONG_PASSES
             ):
@@ -175,7 +175,7 @@ def _run(todo: list[str], progress: Progress) -> None:
     from numba.core import event
 
     sets = []
-    covered: set = set()
+    covered: set[Any] = set()
     for name in todo:
         funcs = _reachable(STEPS[name][1]) - covered
         covered |= funcs
