@@ -348,3 +348,28 @@ def test_importing_evapcool_and_the_applet_pulls_in_no_cluster_library():
     r = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=120)
     assert r.returncode == 0, r.stderr
     assert r.stdout.strip() == "[]"
+
+
+@pytest.mark.parametrize(("n_linear", "candidates"), [(3, 3 + 18), (20, 5)])
+def test_a_study_with_few_linear_ramps_adds_a_grid_of_them_to_the_baseline(
+    tmp_path, n_linear, candidates
+):
+    from evapcool.optimize.report import choose, linear_grid
+    from evapcool.optimize.study import RESULT_ATTR, Problem, create_study
+
+    problem = Problem(seeds=2, families=("linear", "guarded"))
+    study = create_study(problem, f"sqlite:///{tmp_path / 's.db'}")
+
+    def add(family: str, text: str, score: float) -> None:
+        result = {"family": family, "strategy": text, "score_mean": score, "time_mean": 40.0,
+                  "scores": [score, score], "won_frames": [1200, 1200]}  # fmt: skip
+        study.add_trial(optuna.trial.create_trial(value=score, user_attrs={RESULT_ATTR: result}))
+
+    add("guarded", "guarded:h0=420,h1=175,duration=1723", 29.0)
+    for k in range(n_linear):
+        add("linear", f"{400 + k}@0,140@1800", 28.0 - k / 100)
+    best, base, info = choose(study, problem, None, finalists=5, validate=0)
+    assert best.family == "guarded" and base.text == "400@0,140@1800"
+    # Too few linear trials to stand for the best linear ramp: the grid is re-ranked too.
+    assert info["baseline_candidates"] == candidates
+    assert len(linear_grid(1800)) == 18
