@@ -55,7 +55,7 @@ def main(argv: list[str] | None = None) -> int:
             print(f"[{name}] skipped: {exc}")
         except ModuleNotFoundError as exc:
             if exc.name and not exc.name.startswith("evapcool"):
-                print(f"[{name}] skipped: {missing_message(exc.name, 'this section')}")
+                print(f"[{name}] skipped: {missing_message(exc.name.split('.')[0], 'this section')}")
             else:
                 print(f"[{name}] not available in this build")
     return 0
