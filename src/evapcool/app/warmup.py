@@ -1,7 +1,7 @@
 """Making a simulation in a worker thread, with progress the window can show.
 
 From AUTO_FAST_MIN_ATOMS atoms the game uses the Numba engine. Its first start on a
-machine compiles it (tens of seconds; later starts load Numba's cache). The compile
+machine compiles it (about ten seconds; later starts load Numba's cache). The compile
 runs here, off the main thread, through the agreed warm-up
 `evapcool.physics.fast.prepare(progress)`, so the window stays alive and shows a bar
 while it works. Where the engine has no `prepare` yet, making the simulation compiles
@@ -19,7 +19,7 @@ from evapcool.physics.simulation import AUTO_FAST_MIN_ATOMS, Simulation
 
 #: Shown under the bar while the fast engine is readied (docs/benchmarks.md, README).
 COMPILE_NOTE = (
-    "The first start on a machine compiles the fast engine: about 40 s of computing, "
+    "The first start on a machine compiles the fast engine: about 10 s of computing, "
     "longer on a busy machine. Later starts take about a second."
 )
 
