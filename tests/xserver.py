@@ -13,7 +13,7 @@ import shutil
 import subprocess
 import time
 
-NEEDED = ("Xvfb", "openbox", "xdotool", "xprop")
+NEEDED = ("Xvfb", "openbox", "xdotool", "xprop", "xmessage")
 
 
 def missing_tools() -> list[str]:
@@ -59,7 +59,7 @@ class XServer:
                 stdout=subprocess.DEVNULL,
                 stderr=subprocess.DEVNULL,
             )
-            if self._wait(self._wm_running, wm):
+            if self._wait(self._wm_running, wm) and self._wm_manages(wm):
                 self._procs.append(wm)
                 break
             wm.kill()
@@ -79,6 +79,31 @@ class XServer:
             text=True,
         ).stdout
         return "window id" in out
+
+    def _client_list(self) -> str:
+        return subprocess.run(
+            ["xprop", "-root", "_NET_CLIENT_LIST"], env=self.env(), capture_output=True, text=True
+        ).stdout
+
+    def _wm_manages(self, wm: subprocess.Popen, tries: int = 5) -> bool:
+        """openbox names itself on the root window early in its start; a window mapped
+        before its start is done may never be managed, and SDL then waits forever for it
+        to appear. So a probe window (xmessage) must be managed, and gone again, first."""
+        for _ in range(tries):
+            probe = subprocess.Popen(
+                ["xmessage", "-geometry", "+0+0", "window manager probe"],
+                env=self.env(),
+                stdout=subprocess.DEVNULL,
+                stderr=subprocess.DEVNULL,
+            )
+            managed = self._wait(lambda: "0x" in self._client_list(), probe, 3.0)
+            probe.terminate()
+            probe.wait()
+            if managed and self._wait(lambda: "0x" not in self._client_list(), wm):
+                return True
+            if wm.poll() is not None:
+                return False
+        return False
 
     @staticmethod
     def _wait(ready, proc: subprocess.Popen, seconds: float = 15.0) -> bool:
