@@ -126,6 +126,28 @@ def test_a_worker_killed_mid_sweep_loses_no_finished_run(tmp_path):
         c.close()
 
 
+def test_workers_compile_the_fast_engine_once_each_not_once_per_task(tmp_path):
+    from evapcool.lab.cluster import compiled_versions, connect
+
+    spec = tmp_path / "spec.toml"
+    spec.write_text(SPEC)
+    c = Cluster(tmp_path / "dask", workers=2)  # fresh workers: nothing compiled yet
+    try:
+        with connect(c.address) as engine:  # a client comes: the workers warm up
+            warm = engine.client.run(compiled_versions)
+            r = evapcool("sweep", str(spec), "--scheduler", c.address, "--out", "o",
+                         cwd=tmp_path)  # fmt: skip
+            assert r.returncode == 0, r.stderr
+            after = engine.client.run(compiled_versions)
+    finally:
+        c.close()
+    runs = pd.read_parquet(tmp_path / "o" / "runs.parquet")
+    assert len(runs) == 16 and runs["worker"].nunique() == 2  # both workers ran runs
+    # Compiled (or loaded from the cache) before the first task; 16 runs compiled nothing.
+    assert len(warm) == 2 and min(warm.values()) > 0
+    assert after == warm
+
+
 # -- the optimizer -------------------------------------------------------------------------------
 
 
@@ -326,3 +348,28 @@ def test_importing_evapcool_and_the_applet_pulls_in_no_cluster_library():
     r = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=120)
     assert r.returncode == 0, r.stderr
     assert r.stdout.strip() == "[]"
+
+
+@pytest.mark.parametrize(("n_linear", "candidates"), [(3, 3 + 18), (20, 5)])
+def test_a_study_with_few_linear_ramps_adds_a_grid_of_them_to_the_baseline(
+    tmp_path, n_linear, candidates
+):
+    from evapcool.optimize.report import choose, linear_grid
+    from evapcool.optimize.study import RESULT_ATTR, Problem, create_study
+
+    problem = Problem(seeds=2, families=("linear", "guarded"))
+    study = create_study(problem, f"sqlite:///{tmp_path / 's.db'}")
+
+    def add(family: str, text: str, score: float) -> None:
+        result = {"family": family, "strategy": text, "score_mean": score, "time_mean": 40.0,
+                  "scores": [score, score], "won_frames": [1200, 1200]}  # fmt: skip
+        study.add_trial(optuna.trial.create_trial(value=score, user_attrs={RESULT_ATTR: result}))
+
+    add("guarded", "guarded:h0=420,h1=175,duration=1723", 29.0)
+    for k in range(n_linear):
+        add("linear", f"{400 + k}@0,140@1800", 28.0 - k / 100)
+    best, base, info = choose(study, problem, None, finalists=5, validate=0)
+    assert best.family == "guarded" and base.text == "400@0,140@1800"
+    # Too few linear trials to stand for the best linear ramp: the grid is re-ranked too.
+    assert info["baseline_candidates"] == candidates
+    assert len(linear_grid(1800)) == 18

@@ -8,6 +8,8 @@ import sys
 from datetime import datetime, timedelta
 from pathlib import Path
 
+import pytest
+
 from evapcool.game.highscores import Entry, HighScoreTable, sorted_entries
 from evapcool.game.settings import DEFAULTS, Settings, load_settings, save_settings
 
@@ -104,3 +106,38 @@ def test_save_with_a_base_writes_only_what_changed(tmp_path: Path) -> None:
     assert save_settings(Settings(escape="knife"), path, base=mine) == []
     assert load_settings(path)[0] == Settings(radius=5.0, n_atoms=300, escape="knife")
     assert json.loads(path.read_text())["escape"] == "knife"
+
+
+# Two sweeps into one output folder (two terminals resuming it, or a shared folder): each
+# writes part files and merges every part into runs.parquet, then removes the parts.
+_SWEEPER = """
+import sys
+from pathlib import Path
+
+import pytest
+from evapcool.lab.sweeps import _consolidate, _Writer
+out, k, runs = Path(sys.argv[1]), sys.argv[2], int(sys.argv[3])
+writer = _Writer(out)
+for i in range(runs):
+    writer.add({"run_id": f"{k}-{i}", "status": "ok", "n_final": i}, None)
+    writer.flush()
+    notices = []
+    _consolidate(out, False, notices)
+    assert not notices, notices
+"""
+
+
+def test_two_sweeps_merging_into_one_folder_lose_no_run(tmp_path: Path) -> None:
+    pd = pytest.importorskip("pandas")
+    pytest.importorskip("pyarrow")
+    from evapcool.lab.sweeps import RUNS_FILE
+
+    runs = 40
+    procs = [
+        subprocess.Popen([sys.executable, "-c", _SWEEPER, str(tmp_path), k, str(runs)])
+        for k in ("a", "b")
+    ]
+    assert [p.wait(timeout=300) for p in procs] == [0, 0]
+    ids = set(pd.read_parquet(tmp_path / RUNS_FILE)["run_id"])
+    assert ids == {f"{k}-{i}" for k in ("a", "b") for i in range(runs)}
+    assert not list((tmp_path / "parts").glob("*.parquet"))

@@ -92,6 +92,8 @@ def test_advance_is_bounded(dt) -> None:
         ({"start": "thermal=1e308"}, "start"),
         ({"atoms": 6000, "radius": 1.0, "engine": "reference"}, "atoms"),
         ({"frames": 10**7, "every": 1}, "every"),
+        ({"schedule": "eta=5e-324"}, "schedule"),  # found by the fuzz: a NaN height
+        ({"schedule": "eta=1e308"}, "schedule"),
     ],
 )
 def test_run_experiment_refuses_before_simulating(kwargs, name, monkeypatch) -> None:
@@ -150,6 +152,8 @@ APPLET_CASES = [
     (["--atoms", "1000000000000"], "--atoms"),
     (["--speed", "nan"], "--speed"),
     (["--seed", "-1"], "--seed"),
+    (["--config-dir", "\x00"], "--config-dir"),  # found by the fuzz: a traceback
+    (["--data-dir", "\x00"], "--data-dir"),  # found by the fuzz: the option was not named
 ]
 
 
@@ -364,3 +368,136 @@ def test_a_fast_atom_grazing_the_wall_is_refused_above_the_speed_cap() -> None:
     sim = Simulation(1, positions=[(0.0, 0.0)], velocities=[(100.0, 0.0)], trap_height=math.inf)
     sim.advance(1.0)
     assert 0 < sim.wall_collision_count < 2.6e5  # (1 + pi/2) v / v_min, bounded
+
+
+# -- the documentation states the ranges limits.py holds -------------------------------------------
+def test_the_docs_table_of_ranges_is_limits_py() -> None:
+    import re
+
+    from evapcool import limits
+
+    page = Path(__file__).resolve().parents[1] / "docs" / "reliability.md"
+    rows = re.findall(r"^\| `([A-Z_]+)` \| [^|]* \| ([^|]*) \|", page.read_text(), re.M)
+    documented = {name: allowed.strip() for name, allowed in rows}
+    ranges = {n for n, v in vars(limits).items() if isinstance(v, limits.Range)}
+    assert set(documented) == ranges
+    for name, allowed in documented.items():
+        assert allowed == getattr(limits, name).span(), name
+
+
+# -- lab files within the size cap but not what a lab writes ------------------------------------
+def test_a_lab_file_of_more_values_than_a_run_holds_is_refused(tmp_path, capsys) -> None:
+    # Found while measuring memory: 128 MB of "0," parsed to 1.2 GB (3.1 GB as CSV rows).
+    from evapcool.lab.io import COLUMNS, CSV_MAGIC, VALUES_MAX
+    from evapcool.limits import RECORDS_MAX
+
+    row = ",".join(["0"] * len(COLUMNS))
+    head = f'{CSV_MAGIC}\n# parameters: {{"atoms": 5}}\n{",".join(COLUMNS)}\n'
+    cases = {
+        "rows.csv": (head + (row + "\n") * (RECORDS_MAX + 1), "more than 100000 records"),
+        "energies.json": (
+            '{"metadata": {}, "final_energies": [' + "0," * VALUES_MAX + "0]}",
+            "more values than a lab result holds",
+        ),
+    }
+    for name, (text, why) in cases.items():
+        (tmp_path / name).write_text(text)
+        assert lab_cli.main(["--from", str(tmp_path / name)]) == 2
+        err = capsys.readouterr().err
+        assert err.count("\n") == 1 and why in err, err
+    (tmp_path / "ok.csv").write_text(head + (row + "\n") * RECORDS_MAX)
+    from evapcool.lab.io import read_result
+
+    assert len(read_result(tmp_path / "ok.csv")[1]["frame"]) == RECORDS_MAX
+
+
+_BIG_FILE = """
+import resource, sys
+from evapcool.lab.io import read_result
+try:
+    read_result(sys.argv[1])
+except ValueError:
+    pass
+print(resource.getrusage(resource.RUSAGE_SELF).ru_maxrss)
+"""
+
+
+@pytest.mark.skipif(sys.platform != "linux", reason="ru_maxrss in KB on Linux")
+def test_reading_a_lab_file_at_its_size_cap_stays_under_1_gb(tmp_path) -> None:
+    from evapcool.limits import LAB_FILE_MAX_BYTES
+
+    path = tmp_path / "zeros.json"
+    head = '{"metadata": {}, "final_energies": ['
+    path.write_text(head + "0," * ((LAB_FILE_MAX_BYTES - len(head)) // 2 - 2) + "0]}")
+    assert path.stat().st_size <= LAB_FILE_MAX_BYTES
+    out = subprocess.run(
+        [sys.executable, "-c", _BIG_FILE, str(path)], capture_output=True, text=True, timeout=600
+    )
+    assert out.returncode == 0, out.stderr
+    assert int(out.stdout) * 1024 < 1e9  # 1187 MB before the values were counted
+
+
+def test_lab_csv_lines_are_split_as_before() -> None:
+    from evapcool.lab.io import _lines
+
+    for text in ("", "a", "a\n", "a\r\nb", "\n\nx\n", "a,b\r\n\r\n#c: 1\n"):
+        assert list(_lines(text)) == text.splitlines()
+
+
+# -- found by the long fuzz run (session 2) -------------------------------------------------------
+def _strategy_files(tmp_path: Path) -> dict[str, str]:
+    (tmp_path / "deep.json").write_text(DEEP)
+    out = {"long name": "1" * 1500, "deep": str(tmp_path / "deep.json")}
+    if hasattr(os, "mkfifo"):
+        os.mkfifo(tmp_path / "fifo.json")
+        out["fifo"] = str(tmp_path / "fifo.json")
+    return out
+
+
+def test_a_bad_autopilot_file_is_one_line_and_exit_2(tmp_path, monkeypatch, capsys) -> None:
+    # A name too long for the file system was an OSError traceback; a FIFO blocked forever.
+    from evapcool.app import applet
+
+    monkeypatch.setattr(applet, "App", _never)
+    for what, spec in _strategy_files(tmp_path).items():
+        assert _finishes(app_cli.main, ["--frames", "2", "--autopilot", spec]) == 2, what
+        err = capsys.readouterr().err
+        assert err.count("\n") == 1 and "--autopilot" in err and "Traceback" not in err, err
+
+
+def test_a_bad_schedule_file_is_one_line_and_exit_2(tmp_path, monkeypatch, capsys) -> None:
+    monkeypatch.setattr(experiment, "_make_simulation", _never)
+    for what, spec in _strategy_files(tmp_path).items():
+        assert _finishes(lab_cli.main, ["--frames", "3", "--schedule", spec]) == 2, what
+        err = capsys.readouterr().err
+        assert err.count("\n") == 1 and "--schedule" in err, err
+
+
+def test_lab_theory_without_three_records_is_refused_before_the_run(monkeypatch, capsys) -> None:
+    # Found by the fuzz: `lab --theory --frames 3` ran, then exited 1 (2 records of 30 frames).
+    monkeypatch.setattr(experiment, "_make_simulation", _never)
+    assert lab_cli.main(["--theory", "--frames", "3"]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "--theory needs a run of at least 3 records" in err
+    assert lab_cli.main(["--theory", "--frames", "30", "--every", "31"]) == 2  # records 0, 30
+    capsys.readouterr()
+    monkeypatch.undo()
+    assert lab_cli.main(["--theory", "--frames", "62", "--every", "31", "--atoms", "5"]) in (0, 1)
+
+
+def test_an_autopilot_ramp_longer_than_a_file_name_plays(tmp_path, capsys) -> None:
+    # A valid strategy text of 517 characters was asked whether it names a file: OSError.
+    ramp = ",".join(f"{400 - i * 0.1:g}@{i}" for i in range(60))
+    argv = ["--frames", "2", "--autopilot", ramp, "--config-dir", str(tmp_path)]
+    assert app_cli.main([*argv, "--data-dir", str(tmp_path)]) == 0
+    assert "Traceback" not in capsys.readouterr().err
+
+
+@pytest.mark.parametrize("command", ["sweep", "optimize"])
+def test_a_control_character_in_bad_arguments_stays_on_one_line(command, capsys) -> None:
+    # Found by the fuzz: `evapcool sweep -- --csv '\n' --help` printed its error on two lines.
+    from evapcool.cli import main
+
+    assert main([command, "--", "--csv", "\n", "--help"]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and err.startswith(f"evapcool {command}: error: "), err

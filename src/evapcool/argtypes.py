@@ -94,6 +94,13 @@ def choice(options: Sequence[str]) -> Callable[[str], str]:
     return parse
 
 
+def folder(text: str) -> Path:
+    """A folder path (it need not exist yet: the program makes it, or says why it cannot)."""
+    if not text or "\x00" in text:
+        raise argparse.ArgumentTypeError(f"must name a folder (got {text!r})")
+    return Path(text)
+
+
 def output_file(suffixes: Sequence[str]) -> Callable[[str], Path]:
     """A file the program can write, ending in one of suffixes, checked before any run.
 

@@ -159,6 +159,10 @@ CHECKPOINT_SECONDS = Range(0.0, math.inf, "s", inf_ok=True)
 #: about 5.3 sqrt(kT / m), 84 px/frame at the top, under VELOCITY_MAX, so the state a run
 #: saves stays a valid start; at 1e-3 the cloud is 3e-3 px tall.
 START_KT = Range(1e-3, 250.0, "mass px^2/frame^2")
+#: eta of an 'eta=' schedule (cut at eta kT). Below about 1e-50 the truncated law's mean
+#: energy underflows to 0 (then 0/0: a NaN height, found by the fuzz); at 1000 the cut
+#: leaves e^-1000 of the gas above it, no cut at all. Evaporation runs use 4 to 10.
+ETA = Range(1e-3, 1e3)
 #: Points of a ramp schedule: each frame looks its height up among them.
 SCHEDULE_POINTS_MAX = 1000
 

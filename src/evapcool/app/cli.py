@@ -5,12 +5,11 @@ from __future__ import annotations
 import argparse
 import os
 import sys
-from pathlib import Path
 
 from evapcool import limits
 from evapcool.about import APP_NAME, error_line
 from evapcool.app.storage import settings_path
-from evapcool.argtypes import OneLineParser, output_file, ranged
+from evapcool.argtypes import OneLineParser, folder, output_file, ranged
 from evapcool.game.rules import GameConfig
 from evapcool.game.settings import (
     TC_LAWS,
@@ -109,14 +108,14 @@ def build_parser() -> argparse.ArgumentParser:
     )
     p.add_argument(
         "--data-dir",
-        type=Path,
+        type=folder,
         default=None,
         metavar="DIR",
         help="folder for the high scores (default $EVAPCOOL_DATA_DIR, else the user data folder)",
     )
     p.add_argument(
         "--config-dir",
-        type=Path,
+        type=folder,
         default=None,
         metavar="DIR",
         help="folder for the settings (default $EVAPCOOL_CONFIG_DIR, else the user config folder)",

@@ -55,7 +55,8 @@ def main(argv: list[str] | None = None) -> int:
             print(f"[{name}] skipped: {exc}")
         except ModuleNotFoundError as exc:
             if exc.name and not exc.name.startswith("evapcool"):
-                print(f"[{name}] skipped: {missing_message(exc.name, 'this section')}")
+                package = exc.name.split(".")[0]
+                print(f"[{name}] skipped: {missing_message(package, 'this section')}")
             else:
                 print(f"[{name}] not available in this build")
     return 0

@@ -63,7 +63,7 @@ def _big_run_seconds() -> float:
     from evapcool.lab.experiment import run_experiment
 
     t = time.process_time()
-    run_experiment(atoms=2000, radius=3.0, schedule="450@0,60@1800", frames=1800, every=60,
+    run_experiment(atoms=1500, radius=3.0, schedule="450@0,60@1800", frames=1800, every=60,
                    engine="fast", stop_at_win=False, seed=1)  # fmt: skip
     return time.process_time() - t
 
@@ -120,7 +120,7 @@ def run(args) -> None:
     print(f"  Dask overhead: {1000 * statistics.median(overhead):.2f} ms per empty task "
           "(1000 tasks, 2 workers)")  # fmt: skip
     big = _big_run_seconds()
-    print(f"  a 2000-atom run (radius 3, 1800 frames): {big:.2f} s CPU")
+    print(f"  a 1500-atom run (radius 3, 1800 frames): {big:.2f} s CPU")
     ramp, policy = _game_ms()
     print(f"  one classic game of up to 1800 frames (fast engine): ramp {ramp:.1f} ms, "
           f"closed-loop policy {policy:.1f} ms CPU (median of 60)")  # fmt: skip

@@ -26,8 +26,9 @@ from importlib import resources
 from pathlib import Path
 from typing import Any
 
-from evapcool.fileio import atomic_write_text
+from evapcool.fileio import atomic_write_text, read_user_text
 from evapcool.game.rules import HEIGHT_MAX, HEIGHT_MIN, Game
+from evapcool.limits import USER_FILE_MAX_BYTES
 from evapcool.physics.simulation import (
     ATOM_RADIUS,
     N_ATOMS,
@@ -427,9 +428,9 @@ def _from_document(doc: object, where: str) -> Strategy:
 def read_strategy_file(path: str | os.PathLike[str]) -> tuple[Strategy, dict[str, Any]]:
     """A strategy file's strategy and its whole document; ValueError if it is not one."""
     p = Path(path)
-    try:
-        text = p.read_text(encoding="utf-8")
-    except (OSError, UnicodeDecodeError) as exc:
+    try:  # never blocks (a FIFO is refused), and capped: issue 18
+        text = read_user_text(p, USER_FILE_MAX_BYTES)
+    except (OSError, ValueError) as exc:
         raise ValueError(f"cannot read strategy file {str(p)!r}: {exc}") from None
     if p.suffix.lower() != ".json":
         return parse_strategy(text), {}
@@ -437,6 +438,8 @@ def read_strategy_file(path: str | os.PathLike[str]) -> tuple[Strategy, dict[str
         doc = json.loads(text)
     except json.JSONDecodeError as exc:
         raise ValueError(f"{str(p)!r} is not valid JSON: {exc}") from None
+    except RecursionError:
+        raise ValueError(f"{str(p)!r} is nested too deeply") from None
     return _from_document(doc, repr(str(p))), doc
 
 
@@ -445,6 +448,14 @@ def demo_document() -> dict[str, Any]:
     text = resources.files("evapcool.data").joinpath(DEMO_RESOURCE).read_text(encoding="utf-8")
     doc: dict[str, Any] = json.loads(text)
     return doc
+
+
+def _is_file(text: str) -> bool:
+    """Whether text names a file (False for names the system refuses, e.g. too long)."""
+    try:
+        return Path(text).is_file()
+    except (OSError, ValueError):
+        return False
 
 
 def load_strategy(spec: str | os.PathLike[str]) -> Strategy:
@@ -456,7 +467,7 @@ def load_strategy(spec: str | os.PathLike[str]) -> Strategy:
     s = spec.strip()
     if s.lower() == DEMO:
         return _from_document(demo_document(), "the demo strategy")
-    if s.lower().endswith(".json") or (Path(s).is_file() and not _POLICY.match(s)):
+    if s.lower().endswith(".json") or (_is_file(s) and not _POLICY.match(s)):
         return read_strategy_file(s)[0]
     return parse_strategy(s)
 
@@ -559,7 +570,7 @@ class Autopilot:
         text = str(spec).strip()
         if text.lower() == DEMO:
             name = DEMO
-        elif Path(text).is_file():
+        elif _is_file(text):
             name = Path(text).stem
         else:
             name = "custom"

@@ -8,7 +8,7 @@ import sys
 import numpy as np
 
 from evapcool import limits
-from evapcool.about import error_line
+from evapcool.about import error_line, note_line, one_line
 from evapcool.argtypes import Parser, UsageError, choice, output_file, ranged
 from evapcool.extras import check
 from evapcool.lab.experiment import ESCAPES, START_HELP, TC_LAWS, LabConfig, run_experiment
@@ -150,12 +150,15 @@ def _option_message(message: str) -> str:
 
 def _from_file(path: str) -> dict:
     """The parameters recorded in a lab result file; ValueError or OSError saying why not."""
-    params = read_result(path)[0].get("parameters")
+    metadata = read_result(path)[0]
+    params = metadata.get("parameters")
     if not isinstance(params, dict):
         raise ValueError("it records no parameters")
     unknown = sorted(str(k) for k in params if k not in LabConfig.__dataclass_fields__)
     if unknown:
         raise ValueError(f"unknown parameter {limits.shown(unknown[0])}")
+    if "note" in metadata:  # an older file, read as well as it can be
+        print(note_line("lab", one_line(f"--from {path}: {metadata['note']}")), file=sys.stderr)
     return params
 
 
@@ -180,6 +183,8 @@ def main(argv: list[str] | None = None) -> int:
         if value is not None:
             params[name] = value
             given.add(name)
+    if args.theory and (why := _too_few_records(params)):
+        return _fail(why)  # known before the run: say it now, not after it
     if args.plot is not None:
         check("matplotlib", "--plot")  # before the run, which may be long
     plot = None if args.theory else args.plot  # with --theory the figure waits for the model
@@ -201,6 +206,21 @@ def main(argv: list[str] | None = None) -> int:
             result.plot(args.plot)
         return EXIT_INTERRUPTED
     return _theory(result, args) if args.theory else 0
+
+
+def _too_few_records(params: dict) -> str | None:
+    """Why --theory cannot work with these frames and every (it needs 3 records), or None."""
+    frames = params.get("frames", LabConfig.frames)
+    every = params.get("every", LabConfig.every)
+    if not (isinstance(frames, int) and isinstance(every, int) and frames > 0 and every > 0):
+        return None  # the run's own checks name the bad value
+    records = frames // every + 1 + (frames % every != 0)
+    if records >= 3:
+        return None
+    return (
+        f"--theory needs a run of at least 3 records: --frames {frames} with --every {every} "
+        f"records {records} (run longer, or record more often with --every)"
+    )
 
 
 def _summary(result, out: str | None) -> str:

@@ -97,6 +97,13 @@ def warm_fast_engine() -> float:
     return time.perf_counter() - start
 
 
+def compiled_versions() -> int:
+    """Compiled versions of the fast engine's functions in this process: after a worker's
+    warm-up, tasks add none (`client.run(compiled_versions)` asks every worker)."""
+    jit = sys.modules.get("evapcool.physics.fast.jit")
+    return 0 if jit is None else sum(len(d.overloads) for d in jit.REGISTRY)
+
+
 def worker_environment() -> dict[str, str]:
     """Versions and host of the process a run executes in (stored with every run)."""
     import numpy

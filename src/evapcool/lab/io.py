@@ -5,12 +5,13 @@ from __future__ import annotations
 import json
 import math
 import os
+from collections.abc import Iterator
 from pathlib import Path
 
 import numpy as np
 
 from evapcool.fileio import atomic_write_text, check_writable, read_user_text
-from evapcool.limits import LAB_FILE_MAX_BYTES
+from evapcool.limits import LAB_FILE_MAX_BYTES, N_ATOMS, RECORDS_MAX
 
 #: Output columns, one row per record (docs/lab.md explains each).
 COLUMNS = (
@@ -43,7 +44,15 @@ INT_COLUMNS = frozenset(
         "won",
     }
 )
+#: The ledger columns (evaporated and spilled atoms and their energies) that files written
+#: before version 0.1.0's ledger lack; such files load with these derived or NaN.
+LEDGER_COLUMNS = ("evaporated", "evaporated_energy", "excess_energy", "spilled", "spilled_energy")
+OLD_COLUMNS = tuple(c for c in COLUMNS if c not in LEDGER_COLUMNS)
 FORMATS = (".csv", ".json")
+#: Commas a lab file may hold: every record's columns, every atom's final energy, and room
+#: for the metadata. A file within its size cap could otherwise be 64 million zeros,
+#: several GB once parsed (issue 18: memory of any accepted input under 1 GB).
+VALUES_MAX = RECORDS_MAX * (len(COLUMNS) + 1) + int(N_ATOMS.high) + 100_000
 CSV_MAGIC = "# evapcool lab results"
 
 
@@ -81,27 +90,39 @@ def _decode(value: object) -> object:
 
 def _cell(name: str, value: object) -> str:
     # repr of a float is the shortest string that reads back to the same bits.
-    return str(int(value)) if name in INT_COLUMNS else repr(float(value))
+    return str(int(value)) if name in INT_COLUMNS and value == value else repr(float(value))
+
+
+def _json_value(name: str, value: object) -> int | float:
+    return int(value) if name in INT_COLUMNS and value == value else float(value)
 
 
 def as_arrays(columns: dict[str, list]) -> dict[str, np.ndarray]:
-    """The columns as int64 / float64 arrays, in COLUMNS order."""
-    return {
-        name: np.asarray(columns[name], dtype=np.int64 if name in INT_COLUMNS else np.float64)
-        for name in COLUMNS
-    }
+    """The columns as int64 / float64 arrays, in COLUMNS order (an integer column that an
+    older file could not fill is float64 NaN)."""
+    out = {}
+    for name in COLUMNS:
+        values = columns[name]
+        unknown = name in INT_COLUMNS and any(v != v for v in values)
+        int_col = name in INT_COLUMNS and not unknown
+        out[name] = np.asarray(values, dtype=np.int64 if int_col else np.float64)
+    return out
+
+
+def _whole(v: object) -> bool:
+    return (isinstance(v, int) and not isinstance(v, bool)) or (isinstance(v, float) and v != v)
 
 
 def _checked_arrays(columns: object) -> dict[str, np.ndarray]:
     """as_arrays of a file's columns: ValueError unless every column is there, as numbers
-    of one length (ints where INT_COLUMNS says so)."""
+    of one length (ints where INT_COLUMNS says so, or NaN for an unknown ledger)."""
     if not isinstance(columns, dict):
         raise ValueError("'columns' is not an object")
     missing = [c for c in COLUMNS if not isinstance(columns.get(c), list)]
     if missing:
         raise ValueError(f"column {missing[0]!r} is missing")
     for c in INT_COLUMNS:
-        if not all(isinstance(v, int) and not isinstance(v, bool) for v in columns[c]):
+        if not all(_whole(v) for v in columns[c]):
             raise ValueError(f"column {c!r} holds something other than whole numbers")
     try:
         arrays = as_arrays(columns)
@@ -112,6 +133,69 @@ def _checked_arrays(columns: object) -> dict[str, np.ndarray]:
     return arrays
 
 
+def _constant_height(metadata: dict) -> float | None:
+    """The trap height of a run whose schedule never moved it, else None."""
+    from evapcool.lab.schedule import parse_schedule
+
+    try:
+        schedule = parse_schedule(metadata["parameters"]["schedule"])
+    except (KeyError, TypeError, ValueError):
+        return None
+    heights = {h for _, h in schedule.points}
+    return heights.pop() if schedule.kind == "ramp" and len(heights) == 1 else None
+
+
+def _with_ledger(metadata: dict, columns: dict) -> None:
+    """Fill the ledger columns of a file written before them (in place), and say so.
+
+    Only the escaped total was recorded. Under a constant trap height atoms spill only at
+    the start, so the ledger follows from it exactly (its energies until the win, after
+    which damped bounces lose energy too); otherwise it is unknown: NaN.
+    """
+    n = len(columns["frame"])
+    nan = [math.nan] * n
+    filled = dict.fromkeys(LEDGER_COLUMNS, nan)
+    height = _constant_height(metadata)
+    derived = height is not None and n > 0 and all(_whole(v) for v in columns["escaped"])
+    if derived:
+        escaped = [int(v) for v in columns["escaped"]]
+        won = np.cumsum(np.asarray(columns["won"], dtype=float)) > 0
+        energy = np.asarray(columns["total_energy"], dtype=float)
+        try:
+            cut = float(metadata["mass"]) * float(metadata["parameters"]["gravity"]) * height
+        except (KeyError, TypeError, ValueError):
+            cut = math.nan
+        evaporated = [e - escaped[0] for e in escaped]
+        flown = np.where(won, math.nan, energy[0] - energy)
+        filled.update(
+            evaporated=evaporated,
+            spilled=[escaped[0]] * n,
+            evaporated_energy=flown.tolist(),
+            excess_energy=(flown - np.asarray(evaporated) * cut).tolist(),
+            spilled_energy=[0.0] * n if escaped[0] == 0 else nan,
+        )
+    columns.update(filled)
+    how = (
+        "derived from the escaped count (the trap height was constant)"
+        if derived
+        else "filled with NaN (only the escaped total was recorded)"
+    )
+    metadata["note"] = f"an older lab file without the columns {', '.join(LEDGER_COLUMNS)}: {how}"
+    metadata["columns"] = list(COLUMNS)
+
+
+def _columns_of(metadata: dict, columns: object) -> dict[str, np.ndarray]:
+    """Checked arrays of a file's columns; an older file's missing ledger is filled."""
+    if (
+        isinstance(columns, dict)
+        and all(isinstance(columns.get(c), list) for c in OLD_COLUMNS)
+        and not any(c in columns for c in LEDGER_COLUMNS)
+    ):
+        columns = dict(columns)
+        _with_ledger(metadata, columns)
+    return _checked_arrays(columns)
+
+
 def _energies(value: object) -> np.ndarray:
     try:
         arr = np.asarray(value, dtype=np.float64)
@@ -119,6 +203,8 @@ def _energies(value: object) -> np.ndarray:
         arr = np.empty((0, 0))
     if arr.ndim != 1:
         raise ValueError("'final_energies' is not a list of numbers")
+    if len(arr) > N_ATOMS.high:
+        raise ValueError(f"'final_energies' holds more than {int(N_ATOMS.high)} atoms")
     return arr
 
 
@@ -139,7 +225,7 @@ def to_csv_text(metadata: dict, columns: dict[str, np.ndarray], energies: np.nda
 
 def to_json_text(metadata: dict, columns: dict[str, np.ndarray], energies: np.ndarray) -> str:
     """JSON: {'metadata', 'columns': {name: [...]}, 'final_energies'}."""
-    cols = {c: [int(v) if c in INT_COLUMNS else float(v) for v in columns[c]] for c in COLUMNS}
+    cols = {c: [_json_value(c, v) for v in columns[c]] for c in COLUMNS}
     doc = {
         "metadata": metadata,
         "columns": cols,
@@ -169,6 +255,8 @@ def read_result(path: str | os.PathLike[str]) -> tuple[dict, dict[str, np.ndarra
     if Path(path).suffix.lower() not in FORMATS:
         raise ValueError(f"{str(path)!r} does not end in .csv or .json")
     text = read_user_text(path, LAB_FILE_MAX_BYTES)  # a UnicodeDecodeError is a ValueError
+    if text.count(",") > VALUES_MAX:
+        raise ValueError(f"more values than a lab result holds (over {VALUES_MAX} commas)")
     try:
         if Path(path).suffix.lower() == ".json":
             return _parse_json(text)
@@ -184,15 +272,18 @@ def _parse_json(text: str) -> tuple[dict, dict[str, np.ndarray], np.ndarray]:
     metadata = doc.get("metadata")
     if not isinstance(metadata, dict):
         raise ValueError("no 'metadata' object")
-    return metadata, _checked_arrays(doc.get("columns")), _energies(doc.get("final_energies", []))
+    columns = _columns_of(metadata, doc.get("columns"))
+    if len(columns["frame"]) > RECORDS_MAX:
+        raise ValueError(f"more than {RECORDS_MAX} records")
+    return metadata, columns, _energies(doc.get("final_energies", []))
 
 
 def _parse_csv(text: str) -> tuple[dict, dict[str, np.ndarray], np.ndarray]:
     metadata: dict = {}
     energies = np.empty(0)
     rows: list[list[str]] = []
-    header: list[str] | None = None
-    for number, line in enumerate(text.splitlines(), start=1):
+    header: tuple[str, ...] | None = None
+    for number, line in enumerate(_lines(text), start=1):
         if line.startswith("#"):
             key, sep, value = line[1:].strip().partition(": ")
             if not sep:
@@ -202,24 +293,37 @@ def _parse_csv(text: str) -> tuple[dict, dict[str, np.ndarray], np.ndarray]:
             else:
                 metadata[key] = _decode(json.loads(value))
         elif header is None:
-            header = line.split(",")
-            if tuple(header) != COLUMNS:
+            header = tuple(line.split(","))
+            if header not in (COLUMNS, OLD_COLUMNS):
                 raise ValueError("not an evapcool lab CSV file (unexpected header)")
         elif line:
             row = line.split(",")
-            if len(row) != len(COLUMNS):
-                raise ValueError(f"line {number} has {len(row)} fields, not {len(COLUMNS)}")
+            if len(row) != len(header):
+                raise ValueError(f"line {number} has {len(row)} fields, not {len(header)}")
+            if len(rows) == RECORDS_MAX:
+                raise ValueError(f"more than {RECORDS_MAX} records")
             rows.append(row)
     if header is None:
         raise ValueError("not an evapcool lab CSV file (no header)")
     try:
-        parsed = {
-            c: [int(r[i]) if c in INT_COLUMNS else float(r[i]) for r in rows]
-            for i, c in enumerate(COLUMNS)
-        }
+        parsed = {c: [_number(c, r[i]) for r in rows] for i, c in enumerate(header)}
     except ValueError:
         raise ValueError("a row holds something other than numbers") from None
-    return metadata, _checked_arrays(parsed), energies
+    return metadata, _columns_of(metadata, parsed), energies
+
+
+def _lines(text: str) -> Iterator[str]:
+    """The lines of text one at a time (a list of them all could be GBs of short lines)."""
+    start = 0
+    while start < len(text):
+        end = text.find("\n", start)
+        end = len(text) if end < 0 else end
+        yield text[start:end].rstrip("\r")
+        start = end + 1
+
+
+def _number(name: str, text: str) -> int | float:
+    return int(text) if name in INT_COLUMNS and text != "nan" else float(text)
 
 
 __all__ = ["COLUMNS", "check_writable", "output_format", "read_result", "write_result"]

@@ -8,12 +8,13 @@ import re
 from dataclasses import dataclass, field
 from functools import cached_property
 
+from evapcool import limits
 from evapcool.game import autopilot
 from evapcool.lab.theory import truncated_mean_energy, truncation_height
 
 SCHEDULE_HELP = (
     "a height > 0 like 400 (or inf), a ramp like 400@0,60@1800 "
-    "(heights > 0 at frames >= 0, frames increasing), eta=6 (eta > 0), "
+    f"(heights > 0 at frames >= 0, frames increasing), eta=6 (eta {limits.ETA.span()}), "
     "or an autopilot strategy: demo, FILE.json or a policy like feedback:eta0=5"
 )
 
@@ -95,7 +96,7 @@ def parse_schedule(text: str) -> Schedule:
     m = _ETA.match(s)
     if m:
         eta = float(m.group(1))
-        if not (math.isfinite(eta) and eta > 0.0):
+        if not limits.ETA.contains(eta):
             raise _bad(text)
         return Schedule("eta", eta=eta, text=s)
     if s.lower() in ("inf", "+inf", "infinity"):

@@ -31,7 +31,7 @@ from collections.abc import Callable, Mapping
 from dataclasses import asdict, dataclass, fields
 from pathlib import Path
 
-from evapcool.fileio import atomic_write_bytes, atomic_write_text, set_aside
+from evapcool.fileio import atomic_write_bytes, atomic_write_text, locked, set_aside
 from evapcool.lab.experiment import LabConfig
 
 #: Lab parameters a spec may set (the seed comes from [sweep] seeds); 'eta' is short for
@@ -43,6 +43,8 @@ RECORDS_FILE = "records.parquet"
 PARTS_DIR = "parts"
 SPEC_FILE = "spec.toml"
 CHECKPOINT_SECONDS = 10.0
+#: How long a sweep waits for another one merging into the same folder (seconds).
+MERGE_LOCK_SECONDS = 600.0
 #: The spec `evapcool sweep --example FILE` writes (docs/cluster.md shows it).
 EXAMPLE_SPEC = """\
 # rim-or-knife.toml: the game's gas, two escape rules, two schedules, five seeds (20 runs)
@@ -319,14 +321,17 @@ def _read_table(path: Path, notices: list[str]):
 
     try:
         return pd.read_parquet(path)
+    except FileNotFoundError:  # a part another sweep merged meanwhile: its runs are merged
+        return None
     except Exception as exc:  # a damaged file: set aside, never lost, never fatal
         moved = set_aside(path)
         notices.append(f"{path.name} could not be read ({type(exc).__name__}); kept as {moved}")
         return None
 
 
-def _load(out: Path, notices: list[str]) -> tuple:
-    """Runs and records already in the output folder (tables plus unmerged parts)."""
+def _load(out: Path, notices: list[str], parts_read: list[Path] | None = None) -> tuple:
+    """Runs and records already in the output folder (tables plus unmerged parts);
+    the part files read are added to parts_read."""
     import pandas as pd
 
     runs, records = [], []
@@ -341,6 +346,8 @@ def _load(out: Path, notices: list[str]) -> tuple:
             t = _read_table(path, notices)
             if t is not None:
                 (runs if path.name.startswith("runs-") else records).append(t)
+                if parts_read is not None:
+                    parts_read.append(path)
     return _merge(runs, "runs"), _merge(records, "records") if records else pd.DataFrame()
 
 
@@ -392,13 +399,20 @@ class _Writer:
         import pandas as pd
 
         parts = self.out / PARTS_DIR
-        parts.mkdir(parents=True, exist_ok=True)
         tag = f"{os.getpid()}-{time.time_ns()}-{self.serial}"
-        # Records first: a run whose row is on disk always has its records there too.
-        if self.records:
-            data = _parquet_bytes(_records(self.records))
-            atomic_write_bytes(parts / f"records-{tag}.parquet", data)
-        atomic_write_bytes(parts / f"runs-{tag}.parquet", _parquet_bytes(pd.DataFrame(self.rows)))
+        runs = _parquet_bytes(pd.DataFrame(self.rows))
+        records = _parquet_bytes(_records(self.records)) if self.records else None
+        for attempt in range(5):  # another sweep's merge may remove the empty folder
+            parts.mkdir(parents=True, exist_ok=True)
+            try:
+                # Records first: a run whose row is on disk always has its records too.
+                if records is not None:
+                    atomic_write_bytes(parts / f"records-{tag}.parquet", records)
+                atomic_write_bytes(parts / f"runs-{tag}.parquet", runs)
+                break
+            except FileNotFoundError:
+                if attempt == 4:
+                    raise
         self.rows, self.records = [], []
         self.serial += 1
         self.last = time.monotonic()
@@ -413,21 +427,25 @@ def _records(chunks: list[dict]):
 
 
 def _consolidate(out: Path, csv: bool, notices: list[str]) -> tuple:
-    """Merge the part files into runs.parquet and records.parquet (and CSV), then drop parts."""
-    runs, records = _load(out, notices)
-    if len(runs):
-        runs = _ordered(runs)
-    atomic_write_bytes(out / RUNS_FILE, _parquet_bytes(runs))
-    atomic_write_bytes(out / RECORDS_FILE, _parquet_bytes(records))
-    if csv:
-        atomic_write_text(out / "runs.csv", runs.to_csv(index=False))
-        atomic_write_text(out / "records.csv", records.to_csv(index=False))
-    parts = out / PARTS_DIR
-    if parts.is_dir():
-        for path in parts.glob("*.parquet"):
-            path.unlink()
+    """Merge the part files into runs.parquet and records.parquet (and CSV), then drop them.
+
+    Under the folder's lock, and only the parts it read are dropped: another sweep into
+    the same folder may write parts meanwhile, and merges after this one (issue 18).
+    """
+    with locked(out / RUNS_FILE, timeout=MERGE_LOCK_SECONDS):
+        parts_read: list[Path] = []
+        runs, records = _load(out, notices, parts_read)
+        if len(runs):
+            runs = _ordered(runs)
+        atomic_write_bytes(out / RUNS_FILE, _parquet_bytes(runs))
+        atomic_write_bytes(out / RECORDS_FILE, _parquet_bytes(records))
+        if csv:
+            atomic_write_text(out / "runs.csv", runs.to_csv(index=False))
+            atomic_write_text(out / "records.csv", records.to_csv(index=False))
+        for path in parts_read:
+            path.unlink(missing_ok=True)
         with contextlib.suppress(OSError):  # another process's parts may still be there
-            parts.rmdir()
+            (out / PARTS_DIR).rmdir()
     return runs, records
 
 

@@ -30,6 +30,8 @@ RERANK_START = 2_000_000
 HOLDOUT_START = 1_000_000
 DEFAULT_FINALISTS = 5
 DEFAULT_VALIDATE = 200
+#: A study with fewer linear-ramp trials also re-ranks a grid of linear ramps as baseline.
+MIN_LINEAR_TRIALS = 20
 
 
 def linear_grid(budget: int) -> list[str]:
@@ -134,10 +136,10 @@ def choose(
     linear = [t for t in trials if result_of(t).get("family") == "linear"]
     if baseline is not None:
         base = [Choice("baseline", baseline, None, None)]
-    elif linear:
-        base = _choices(_top(linear, finalists), problem)
     else:
-        base = [Choice("linear", text, None, None) for text in linear_grid(problem.budget)]
+        base = _choices(_top(linear, finalists), problem)
+        if len(linear) < MIN_LINEAR_TRIALS:  # too few to stand for the best linear ramp
+            base += [Choice("linear", text, None, None) for text in linear_grid(problem.budget)]
     info: dict = {"finalists": len(top), "baseline_candidates": len(base)}
     if validate <= 0:
         return top[0], base[0], info
