@@ -10,6 +10,7 @@ from __future__ import annotations
 import importlib.util
 import os
 
+import ownprocess
 import pytest
 from hypothesis import settings
 
@@ -88,3 +89,17 @@ def make_app(tmp_path):
 @pytest.fixture
 def app(make_app):
     return make_app()
+
+
+def pytest_configure(config: pytest.Config) -> None:
+    ownprocess.configure(config)
+
+
+@pytest.hookimpl(tryfirst=True)
+def pytest_runtest_protocol(item: pytest.Item, nextitem: pytest.Item | None) -> bool | None:
+    """Tests marked own_process run in a child pytest with a time limit (ownprocess.py)."""
+    mark = ownprocess.wanted(item)
+    if mark is None:
+        return None
+    ownprocess.run(item, mark)
+    return True

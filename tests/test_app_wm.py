@@ -1,8 +1,8 @@
 """The applet in a real window under a window manager (Xvfb + openbox), driven by xdotool.
 
-Each module run starts its own X servers on free display numbers: a 1024 x 768 screen
-(a classroom laptop or projector) and a large 2560 x 1600 one. Skipped, saying why,
-where Xvfb, openbox or xdotool are missing (CI has them).
+Each test runs in a child pytest of its own with a time limit (conftest, ownprocess.py) and
+starts its own X servers: a 1024 x 768 screen (a classroom laptop or projector) and a large
+2560 x 1600 one. Skipped, saying why, where Xvfb, openbox or xdotool are missing (CI has them).
 """
 
 from __future__ import annotations
@@ -24,7 +24,9 @@ from evapcool.view import panels
 from evapcool.view.fonts import text_image
 from evapcool.view.scene import BORDER, SLIDER_RECT
 
-pytestmark = pytest.mark.usefixtures("own_folders")
+# Each test in a fresh process with a time limit (ownprocess.py): SDL waits for the window
+# manager's answers without a timeout, and a lost one must fail a test, not hang the suite.
+pytestmark = [pytest.mark.usefixtures("own_folders"), pytest.mark.own_process(timeout=120)]
 
 
 def _server(width: int, height: int):

@@ -1,6 +1,6 @@
 """A private X server with a window manager for tests: Xvfb plus openbox.
 
-`XServer(width, height)` starts Xvfb on a free display number and openbox on it;
+`XServer(width, height)` starts Xvfb on a display number it picks and openbox on it;
 `stop()` ends both (only the processes it started). Tests drive the applet in a
 real window there (SDL_VIDEODRIVER=x11) and read window geometry with xdotool.
 """
@@ -8,23 +8,40 @@ real window there (SDL_VIDEODRIVER=x11) and read window geometry with xdotool.
 from __future__ import annotations
 
 import os
+import select
 import shutil
 import subprocess
 import time
-from pathlib import Path
 
-NEEDED = ("Xvfb", "openbox", "xdotool", "xprop")
+NEEDED = ("Xvfb", "openbox", "xdotool", "xprop", "xmessage")
 
 
 def missing_tools() -> list[str]:
     return [tool for tool in NEEDED if shutil.which(tool) is None]
 
 
-def _free_display(start: int = 70) -> int:
-    for n in range(start, start + 200):
-        if not Path(f"/tmp/.X{n}-lock").exists() and not Path(f"/tmp/.X11-unix/X{n}").exists():
-            return n
-    raise RuntimeError("no free X display number")
+def _start_xvfb(width: int, height: int, seconds: float = 15.0) -> tuple[subprocess.Popen, str]:
+    """Xvfb on a display number it picks itself (-displayfd: no race with another test run
+    taking the same free-looking number), once it accepts clients; (process, ":N")."""
+    read, write = os.pipe()
+    screen = f"{width}x{height}x24"
+    try:
+        xvfb = subprocess.Popen(
+            ["Xvfb", "-displayfd", str(write), "-screen", "0", screen, "-nolisten", "tcp"],
+            pass_fds=(write,),
+            stdout=subprocess.DEVNULL,
+            stderr=subprocess.DEVNULL,
+        )
+    finally:
+        os.close(write)
+    with os.fdopen(read) as pipe:
+        ready = select.select([pipe], [], [], seconds)[0]
+        number = pipe.readline().strip() if ready else ""
+    if not number.isdigit():
+        xvfb.kill()
+        xvfb.wait()
+        raise RuntimeError("Xvfb did not start")
+    return xvfb, f":{number}"
 
 
 class XServer:
@@ -33,21 +50,8 @@ class XServer:
     def __init__(self, width: int, height: int) -> None:
         self.size = (width, height)
         self._procs: list[subprocess.Popen] = []
-        for _ in range(5):  # another server may take a number between the check and the start
-            n = _free_display()
-            xvfb = subprocess.Popen(
-                ["Xvfb", f":{n}", "-screen", "0", f"{width}x{height}x24", "-nolisten", "tcp"],
-                stdout=subprocess.DEVNULL,
-                stderr=subprocess.DEVNULL,
-            )
-            self.display = f":{n}"
-            if self._wait(self._accepting, xvfb):
-                self._procs.append(xvfb)
-                break
-            xvfb.kill()
-            xvfb.wait()
-        else:
-            raise RuntimeError("Xvfb did not start")
+        xvfb, self.display = _start_xvfb(width, height)
+        self._procs.append(xvfb)
         for _ in range(3):
             wm = subprocess.Popen(
                 ["openbox", "--sm-disable"],
@@ -55,7 +59,7 @@ class XServer:
                 stdout=subprocess.DEVNULL,
                 stderr=subprocess.DEVNULL,
             )
-            if self._wait(self._wm_running, wm):
+            if self._wait(self._wm_running, wm) and self._wm_manages(wm):
                 self._procs.append(wm)
                 break
             wm.kill()
@@ -67,11 +71,6 @@ class XServer:
     def env(self, **extra: str) -> dict[str, str]:
         return {**os.environ, "DISPLAY": self.display, **extra}
 
-    def _accepting(self) -> bool:
-        """The server answers a client (its socket alone may come before that)."""
-        probe = subprocess.run(["xprop", "-root"], env=self.env(), capture_output=True)
-        return probe.returncode == 0
-
     def _wm_running(self) -> bool:
         out = subprocess.run(
             ["xprop", "-root", "_NET_SUPPORTING_WM_CHECK"],
@@ -80,6 +79,31 @@ class XServer:
             text=True,
         ).stdout
         return "window id" in out
+
+    def _client_list(self) -> str:
+        return subprocess.run(
+            ["xprop", "-root", "_NET_CLIENT_LIST"], env=self.env(), capture_output=True, text=True
+        ).stdout
+
+    def _wm_manages(self, wm: subprocess.Popen, tries: int = 5) -> bool:
+        """openbox names itself on the root window early in its start; a window mapped
+        before its start is done may never be managed, and SDL then waits forever for it
+        to appear. So a probe window (xmessage) must be managed, and gone again, first."""
+        for _ in range(tries):
+            probe = subprocess.Popen(
+                ["xmessage", "-geometry", "+0+0", "window manager probe"],
+                env=self.env(),
+                stdout=subprocess.DEVNULL,
+                stderr=subprocess.DEVNULL,
+            )
+            managed = self._wait(lambda: "0x" in self._client_list(), probe, 3.0)
+            probe.terminate()
+            probe.wait()
+            if managed and self._wait(lambda: "0x" not in self._client_list(), wm):
+                return True
+            if wm.poll() is not None:
+                return False
+        return False
 
     @staticmethod
     def _wait(ready, proc: subprocess.Popen, seconds: float = 15.0) -> bool:
