@@ -180,9 +180,14 @@ def test_the_score_stays_visible_when_the_table_opens(big_screen, on):
 # -- item 8: real mouse and keys, interleaved ------------------------------------------------------
 
 
-def _mouse(server: XServer, app: App, *steps: str) -> None:
+def _mouse(server: XServer, app: App, *steps: str, until=None) -> None:
+    """xdotool steps, then frames for 0.3 s; with until, on until it holds (at most 10 s):
+    on a loaded machine the X server's events can take longer than 0.3 s to arrive."""
     server.xdotool(*steps)
     settle(app, 0.3)
+    end = time.monotonic() + 10.0
+    while until is not None and not until() and time.monotonic() < end:
+        settle(app, 0.05)
 
 
 def _at(app: App, logical: tuple[float, float]) -> list[str]:
@@ -195,7 +200,8 @@ def test_r_during_a_real_drag_and_a_chart_click_after_it(big_screen, on):
     app = on(big_screen)
     big_screen.xdotool("windowactivate", "--sync", str(app.window.win.handle))
     y = SLIDER_RECT.centery
-    _mouse(big_screen, app, *_at(app, (SLIDER_RECT.left + 68, y)), "mousedown", "1")
+    grabbed = lambda: app.input.mode is Mode.DRAG  # noqa: E731
+    _mouse(big_screen, app, *_at(app, (SLIDER_RECT.left + 68, y)), "mousedown", "1", until=grabbed)
     assert app.input.mode is Mode.DRAG
     assert app.game.trap_height == pytest.approx(25 + 0.25 * 425, abs=2)
     _mouse(big_screen, app, "key", "r")
