@@ -103,3 +103,15 @@ def pytest_runtest_protocol(item: pytest.Item, nextitem: pytest.Item | None) -> 
         return None
     ownprocess.run(item, mark)
     return True
+
+
+#: Modules that start servers, clusters, windows or whole command runs: part of the whole suite
+#: (`-m "slow or not slow"`, scripts/test-all.sh, CI's main run) but not of the quick part that
+#: CI runs again on the other Pythons (issue 16: long runs marked slow).
+SLOW_MODULES = {"test_cluster.py", "test_sweep.py", "test_app_wm.py", "test_docs.py"}
+
+
+def pytest_collection_modifyitems(config: pytest.Config, items: list[pytest.Item]) -> None:
+    for item in items:
+        if item.path.name in SLOW_MODULES:
+            item.add_marker(pytest.mark.slow)

@@ -308,6 +308,7 @@ def _check_invariants(sim: Simulation, e0: float, size: float) -> None:
     assert abs(sim.total_energy() - e0) / e0 < 1e-9, "energy drift"
 
 
+@pytest.mark.slow  # minutes on the reference engine
 @pytest.mark.parametrize("seed", [1, 2, 3])
 def test_long_run_is_exact(engine: str, seed: int) -> None:
     sim = Simulation.classic(seed=seed, engine=engine, trap_height=math.inf)
