@@ -20,7 +20,7 @@ from evapcool.physics.trace import (
     trace_text,
 )
 
-ROOT = Path(__file__).resolve().parents[1]
+ROOT = Path(__file__).resolve().parents[2]
 GOLDEN = ROOT / "web" / "test" / "golden"
 CASES = {case.name: case for case in GOLDEN_CASES}
 

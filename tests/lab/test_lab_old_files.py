@@ -1,7 +1,7 @@
 """Lab result files written before the ledger columns (evaporated, spilled and their
 energies) still load: `evapcool lab --from` and load_result, with a one-line note.
 
-The files in tests/data were written by the lab as it was at commit 4e02312^ (version
+The files in tests/lab/data were written by the lab as it was at commit 4e02312^ (version
 0.1.0, eleven columns): a knife at a constant height (ledger derived) and a ramp (NaN).
 """
 

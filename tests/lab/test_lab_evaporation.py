@@ -3,7 +3,7 @@
 The default run has the quick checks: the ledger of evaporated and spilled atoms, both
 engines alike, and one short constant-eta measurement. The statistics (eta = 4, 5, 6, 7,
 24 seeds of 300 atoms each; the quench; the tail below the cut) are marked slow:
-`python -m pytest -m slow tests/test_lab_evaporation.py` (about ten minutes, fast engine).
+`python -m pytest -m slow tests/lab/test_lab_evaporation.py` (about ten minutes, fast engine).
 """
 
 from __future__ import annotations

@@ -22,7 +22,7 @@ pytest.importorskip("numba")
 
 from evapcool.physics.fast import driver, jit  # driver: every compiled function registered
 
-SRC = Path(__file__).resolve().parents[1] / "src"
+SRC = Path(__file__).resolve().parents[2] / "src"
 FAST = SRC / "evapcool" / "physics" / "fast"
 
 

@@ -319,5 +319,5 @@ def test_the_example_spec_is_valid_and_doc_cluster_shows_it(tmp_path):
     assert len(expand(load_spec(tmp_path / "ex.toml"))) == 20
     r = evapcool("sweep", "--example", "ex.toml", cwd=tmp_path)
     assert r.returncode == 2 and "exists" in r.stderr
-    doc = (Path(__file__).parents[1] / "docs" / "cluster.md").read_text()
+    doc = (Path(__file__).parents[2] / "docs" / "cluster.md").read_text()
     assert "```text\n" + EXAMPLE_SPEC + "```" in doc
