@@ -1,0 +1,74 @@
+/**
+ * The WebAssembly engine core's build (issue 24): compiles web/wasm/*.c with Debian's clang
+ * and lld for wasm32 and serves the module as base64 text to `import "virtual:evapcool-wasm"`
+ * (src/physics/wasm.ts), so the page stays one file. Used by vite.config.ts,
+ * vitest.config.ts and the scripts' own builds.
+ */
+import { spawnSync } from "node:child_process";
+import { mkdtempSync, readdirSync, readFileSync, rmSync } from "node:fs";
+import { tmpdir } from "node:os";
+import { join, resolve } from "node:path";
+import type { Plugin } from "vite";
+
+const VIRTUAL = "virtual:evapcool-wasm";
+const RESOLVED = "\0evapcool-wasm";
+export const WASM_SOURCES = resolve(import.meta.dirname, "../wasm");
+
+/**
+ * IEEE arithmetic as written: no contraction into fused multiply-adds, no fast-math; link-time
+ * optimisation so the kernels inline across the room files.
+ */
+export const CLANG_FLAGS = [
+  "--target=wasm32",
+  "-nostdlib",
+  "-std=c11",
+  "-O3",
+  "-flto",
+  "-ffp-contract=off",
+  "-fno-fast-math",
+  "-Wall",
+  "-Wextra",
+  "-Werror",
+  "-Wl,--no-entry",
+  "-Wl,--lto-O3",
+];
+
+const NO_CLANG =
+  "evapcool: building the WebAssembly core needs clang and lld (Debian: apt-get install clang lld)";
+
+/** The core's bytes, freshly compiled from web/wasm/. */
+export function compileCore(): Uint8Array {
+  const sources = readdirSync(WASM_SOURCES)
+    .filter((f) => f.endsWith(".c"))
+    .sort()
+    .map((f) => join(WASM_SOURCES, f));
+  const dir = mkdtempSync(join(tmpdir(), "evapcool-wasm-"));
+  try {
+    const out = join(dir, "core.wasm");
+    const run = spawnSync("clang", [...CLANG_FLAGS, "-o", out, ...sources], { encoding: "utf8" });
+    if (run.error) throw new Error(NO_CLANG);
+    if (run.status !== 0) {
+      const lld = /wasm-ld|lld/.test(run.stderr) && /not found|No such file/.test(run.stderr);
+      throw new Error(
+        lld ? NO_CLANG : `evapcool: the WebAssembly core did not compile:\n${run.stderr}`,
+      );
+    }
+    return new Uint8Array(readFileSync(out));
+  } finally {
+    rmSync(dir, { recursive: true, force: true });
+  }
+}
+
+/** The Vite plugin: `virtual:evapcool-wasm` is the compiled core as base64 text. */
+export function wasmCore(): Plugin {
+  return {
+    name: "evapcool-wasm-core",
+    resolveId: (id) => (id === VIRTUAL ? RESOLVED : null),
+    load(id) {
+      if (id !== RESOLVED) return null;
+      for (const f of readdirSync(WASM_SOURCES)) this.addWatchFile(join(WASM_SOURCES, f));
+      const bytes = compileCore();
+      return `export default ${JSON.stringify(Buffer.from(bytes).toString("base64"))};`;
+    },
+  };
+}
