@@ -1,6 +1,6 @@
 /** Vitest runs the unit tests (Node); the browser tests under test/e2e run with node --test. */
 import { defineConfig } from "vitest/config";
-import { wasmCore } from "./scripts/wasm-plugin";
+import { wasmCore } from "./scripts/wasm-plugin.mjs";
 
 export default defineConfig({
   plugins: [wasmCore()],

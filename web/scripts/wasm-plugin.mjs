@@ -2,13 +2,13 @@
  * The WebAssembly engine core's build (issue 24): compiles web/wasm/*.c with Debian's clang
  * and lld for wasm32 and serves the module as base64 text to `import "virtual:evapcool-wasm"`
  * (src/physics/wasm.ts), so the page stays one file. Used by vite.config.ts,
- * vitest.config.ts and the scripts' own builds.
+ * vitest.config.ts and the scripts' own builds (plain JavaScript: scripts/run.mjs loads it
+ * in Node 20; types in wasm-plugin.d.mts).
  */
 import { spawnSync } from "node:child_process";
 import { mkdtempSync, readdirSync, readFileSync, rmSync } from "node:fs";
 import { tmpdir } from "node:os";
 import { join, resolve } from "node:path";
-import type { Plugin } from "vite";
 
 const VIRTUAL = "virtual:evapcool-wasm";
 const RESOLVED = "\0evapcool-wasm";
@@ -37,7 +37,7 @@ const NO_CLANG =
   "evapcool: building the WebAssembly core needs clang and lld (Debian: apt-get install clang lld)";
 
 /** The core's bytes, freshly compiled from web/wasm/. */
-export function compileCore(): Uint8Array {
+export function compileCore() {
   const sources = readdirSync(WASM_SOURCES)
     .filter((f) => f.endsWith(".c"))
     .sort()
@@ -60,7 +60,7 @@ export function compileCore(): Uint8Array {
 }
 
 /** The Vite plugin: `virtual:evapcool-wasm` is the compiled core as base64 text. */
-export function wasmCore(): Plugin {
+export function wasmCore() {
   return {
     name: "evapcool-wasm-core",
     resolveId: (id) => (id === VIRTUAL ? RESOLVED : null),
