@@ -12,7 +12,8 @@ import { join, resolve } from "node:path";
 
 const VIRTUAL = "virtual:evapcool-wasm";
 const RESOLVED = "\0evapcool-wasm";
-export const WASM_SOURCES = resolve(import.meta.dirname, "../wasm");
+/** web/wasm/ seen from web/ (the Vite root). */
+export const WASM_FOLDER = "wasm";
 
 /**
  * IEEE arithmetic as written: no contraction into fused multiply-adds, no fast-math; link-time
@@ -36,15 +37,15 @@ export const CLANG_FLAGS = [
 const NO_CLANG =
   "evapcool: building the WebAssembly core needs clang and lld (Debian: apt-get install clang lld)";
 
-/** The core's bytes, freshly compiled from web/wasm/. */
-export function compileCore() {
-  const sources = readdirSync(WASM_SOURCES)
+/** The core's bytes, freshly compiled from the C sources in folder `dir`. */
+export function compileCore(dir) {
+  const sources = readdirSync(dir)
     .filter((f) => f.endsWith(".c"))
     .sort()
-    .map((f) => join(WASM_SOURCES, f));
-  const dir = mkdtempSync(join(tmpdir(), "evapcool-wasm-"));
+    .map((f) => join(dir, f));
+  const tmp = mkdtempSync(join(tmpdir(), "evapcool-wasm-"));
   try {
-    const out = join(dir, "core.wasm");
+    const out = join(tmp, "core.wasm");
     const run = spawnSync("clang", [...CLANG_FLAGS, "-o", out, ...sources], { encoding: "utf8" });
     if (run.error) throw new Error(NO_CLANG);
     if (run.status !== 0) {
@@ -55,19 +56,23 @@ export function compileCore() {
     }
     return new Uint8Array(readFileSync(out));
   } finally {
-    rmSync(dir, { recursive: true, force: true });
+    rmSync(tmp, { recursive: true, force: true });
   }
 }
 
 /** The Vite plugin: `virtual:evapcool-wasm` is the compiled core as base64 text. */
 export function wasmCore() {
+  let dir = "";
   return {
     name: "evapcool-wasm-core",
+    configResolved(config) {
+      dir = resolve(config.root, WASM_FOLDER);
+    },
     resolveId: (id) => (id === VIRTUAL ? RESOLVED : null),
     load(id) {
       if (id !== RESOLVED) return null;
-      for (const f of readdirSync(WASM_SOURCES)) this.addWatchFile(join(WASM_SOURCES, f));
-      const bytes = compileCore();
+      for (const f of readdirSync(dir)) this.addWatchFile(join(dir, f));
+      const bytes = compileCore(dir);
       return `export default ${JSON.stringify(Buffer.from(bytes).toString("base64"))};`;
     },
   };
