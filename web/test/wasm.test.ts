@@ -67,6 +67,18 @@ describe("the WebAssembly core beside the TypeScript engine", () => {
         new Simulation({ nAtoms: 400, radius: 3, seed: 5, escape: "knife", recordEvents: true }),
       120,
     ],
+    [
+      "20 000 atoms, the next events' rows asked for ahead",
+      () =>
+        new Simulation({
+          nAtoms: 20_000,
+          radius: 0.7,
+          seed: 2,
+          trapHeight: 450,
+          recordEvents: true,
+        }),
+      4,
+    ],
     ["the classic start to the win", () => Simulation.classic(7, { recordEvents: true }), 1500],
   ];
   for (const [name, make, frames] of cases)
