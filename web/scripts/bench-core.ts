@@ -6,8 +6,8 @@
  * interleaved repeats and medians.
  */
 import { Simulation } from "../src/physics/index";
+import { Engine } from "../src/physics/engine";
 import { setEngineCore } from "../src/physics/simulation";
-import { WasmEngine } from "../src/physics/wasm";
 
 /** The engine cores compared: engine.ts's TypeScript and the WebAssembly core (web/wasm/). */
 export const CORES = ["ts", "wasm"] as const;
@@ -15,7 +15,7 @@ export type Core = (typeof CORES)[number];
 
 /** Simulations made from now on run on this core. */
 export function useCore(core: Core): void {
-  setEngineCore(core === "wasm" ? (setup, atoms) => new WasmEngine(setup, atoms) : null);
+  setEngineCore(core === "ts" ? (setup, atoms) => new Engine(setup, atoms) : null);
 }
 
 export interface Throughput {

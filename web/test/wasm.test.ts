@@ -1,9 +1,11 @@
-// The WebAssembly engine core (web/wasm/, src/physics/wasm.ts): every golden trace replayed
-// through it, events and end state bit for bit, the same text as the Python engines wrote;
-// and beside the TypeScript engine on runs longer than the traces.
+// The two engine cores: the WebAssembly core (web/wasm/, src/physics/wasm.ts; the page's and
+// Simulation's default) and the TypeScript engine (src/physics/engine.ts). Every golden trace
+// replayed through each, the same text as the Python engines wrote, bit for bit; and the two
+// side by side on runs longer than the traces (renumbering, the knife, the win, 20 000 atoms).
 import { readdirSync, readFileSync } from "node:fs";
-import { afterAll, beforeAll, describe, expect, it } from "vitest";
-import { Simulation, setEngineCore } from "../src/physics/simulation";
+import { afterEach, describe, expect, it } from "vitest";
+import { Engine, type EngineAtoms, type EngineSetup } from "../src/physics/engine";
+import { Simulation, setEngineCore, type EngineFactory } from "../src/physics/simulation";
 import { readTrace, replayTrace, traceText } from "../src/physics/trace";
 import { WasmEngine } from "../src/physics/wasm";
 
@@ -12,48 +14,59 @@ const FILES = readdirSync(DIR)
   .filter((f) => f.endsWith(".json"))
   .sort();
 
-const wasm = (
-  setup: ConstructorParameters<typeof WasmEngine>[0],
-  atoms: ConstructorParameters<typeof WasmEngine>[1],
-) => new WasmEngine(setup, atoms);
+const CORES: [string, EngineFactory, Function][] = [
+  ["wasm", (s: EngineSetup, a: EngineAtoms) => new WasmEngine(s, a), WasmEngine],
+  ["ts", (s: EngineSetup, a: EngineAtoms) => new Engine(s, a), Engine],
+];
 
-describe("the WebAssembly core replays the golden traces", () => {
-  beforeAll(() => setEngineCore(wasm));
-  afterAll(() => setEngineCore(null));
+afterEach(() => setEngineCore(null));
 
-  it("is the engine in use", () => {
-    const sim = Simulation.classic(1);
-    expect((sim as unknown as { engine: unknown }).engine).toBeInstanceOf(WasmEngine);
+describe("Simulation's engine core", () => {
+  it("is the WebAssembly core unless another is set", () => {
+    const engineOf = (sim: Simulation) => (sim as unknown as { engine: unknown }).engine;
+    expect(engineOf(Simulation.classic(1))).toBeInstanceOf(WasmEngine);
+    setEngineCore(CORES[1][1]);
+    expect(engineOf(Simulation.classic(1))).toBeInstanceOf(Engine);
+    setEngineCore(null);
+    expect(engineOf(Simulation.classic(1))).toBeInstanceOf(WasmEngine);
   });
-
-  for (const file of FILES)
-    it(`${file}: the same text, bit for bit`, () => {
-      const text = readFileSync(new URL(file, DIR), "utf8");
-      const mine = replayTrace(readTrace(text));
-      expect(traceText(mine)).toBe(text);
-    });
 });
 
-/** A run's events and end state as text, on the engine core given. */
-function run(core: typeof wasm | null, make: () => Simulation, frames: number): string {
-  setEngineCore(core);
-  try {
-    const sim = make();
-    const lines: string[] = [];
-    for (let f = 0; f < frames; f++) {
-      sim.advance(1);
-      if (f === frames >> 1) sim.trapHeight = 0.6 * sim.trapHeight;
-    }
-    for (let k = 0; k < sim.eventCount; k++) lines.push(JSON.stringify(sim.eventAt(k)));
-    lines.push(JSON.stringify(sim.toState()));
-    lines.push(JSON.stringify(sim.engineStats));
-    return lines.join("\n");
-  } finally {
-    setEngineCore(null);
+for (const [name, core, kind] of CORES)
+  describe(`the ${name} core replays the golden traces`, () => {
+    for (const file of FILES)
+      it(`${file}: the same text, bit for bit`, () => {
+        setEngineCore(core);
+        const text = readFileSync(new URL(file, DIR), "utf8");
+        const golden = readTrace(text);
+        const sim = Simulation.fromState(golden.start);
+        expect((sim as unknown as { engine: unknown }).engine).toBeInstanceOf(kind);
+        expect(traceText(replayTrace(golden))).toBe(text);
+      });
+  });
+
+/** Frames of a run with the rim lowered from H to H / 5 over its first 1 000 frames. */
+function lowering(sim: Simulation, frames: number): void {
+  const start = sim.trapHeight;
+  for (let f = 0; f < frames; f++) {
+    sim.advance(1);
+    sim.trapHeight = start * (1 - 0.8 * Math.min(1, f / 1000));
   }
 }
 
-describe("the WebAssembly core beside the TypeScript engine", () => {
+/** A run's events, end state and statistics as text, on the engine core given. */
+function run(core: EngineFactory, make: () => Simulation, frames: number): string {
+  setEngineCore(core);
+  const sim = make();
+  lowering(sim, frames);
+  const lines: string[] = [];
+  for (let k = 0; k < sim.eventCount; k++) lines.push(JSON.stringify(sim.eventAt(k)));
+  lines.push(JSON.stringify(sim.toState()));
+  lines.push(JSON.stringify(sim.engineStats));
+  return lines.join("\n");
+}
+
+describe("the two cores side by side", () => {
   const cases: [string, () => Simulation, number][] = [
     [
       "2 000 atoms, renumbered many times",
@@ -83,9 +96,15 @@ describe("the WebAssembly core beside the TypeScript engine", () => {
   ];
   for (const [name, make, frames] of cases)
     it(`${name}: the same events, state and statistics`, () => {
-      const ts = run(null, make, frames);
-      const mine = run(wasm, make, frames);
-      expect(mine.length).toBeGreaterThan(1000);
-      expect(mine === ts).toBe(true);
+      const ts = run(CORES[1][1], make, frames);
+      const wasm = run(CORES[0][1], make, frames);
+      expect(wasm.length).toBeGreaterThan(1000);
+      expect(wasm === ts).toBe(true);
     });
+
+  it("the classic start reaches the win within the run compared", () => {
+    const sim = Simulation.classic(7);
+    lowering(sim, 1500);
+    expect(sim.won).toBe(true);
+  });
 });
