@@ -5,6 +5,7 @@
 import { copyFileSync } from "node:fs";
 import { resolve } from "node:path";
 import { defineConfig, type Plugin } from "vite";
+import { wasmCore } from "./scripts/wasm-plugin.mjs";
 
 /** The copy shipped in the Python package (`evapcool web`); CI checks it equals a fresh build. */
 const PACKAGE_COPY = resolve(import.meta.dirname, "../src/evapcool/web/evapcool.html");
@@ -62,6 +63,7 @@ export default defineConfig({
     },
   },
   plugins: [
+    wasmCore(),
     singleFile(),
     {
       name: "evapcool-page-name",

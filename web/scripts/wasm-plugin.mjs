@@ -47,13 +47,12 @@ export function compileCore(dir) {
   try {
     const out = join(tmp, "core.wasm");
     const run = spawnSync("clang", [...CLANG_FLAGS, "-o", out, ...sources], { encoding: "utf8" });
-    if (run.error) throw new Error(NO_CLANG);
-    if (run.status !== 0) {
-      const lld = /wasm-ld|lld/.test(run.stderr) && /not found|No such file/.test(run.stderr);
-      throw new Error(
-        lld ? NO_CLANG : `evapcool: the WebAssembly core did not compile:\n${run.stderr}`,
-      );
+    if (run.error || /wasm-ld.*(not found|doesn't exist|No such file)/.test(run.stderr)) {
+      console.error(NO_CLANG); // one clear line, not a stack trace
+      process.exit(1);
     }
+    if (run.status !== 0)
+      throw new Error(`evapcool: the WebAssembly core did not compile:\n${run.stderr}`);
     return new Uint8Array(readFileSync(out));
   } finally {
     rmSync(tmp, { recursive: true, force: true });
@@ -63,17 +62,31 @@ export function compileCore(dir) {
 /** The Vite plugin: `virtual:evapcool-wasm` is the compiled core as base64 text. */
 export function wasmCore() {
   let dir = "";
+  let bytes = 0;
   return {
     name: "evapcool-wasm-core",
     configResolved(config) {
       dir = resolve(config.root, WASM_FOLDER);
     },
+    buildStart() {
+      if (spawnSync("clang", ["--version"]).error) {
+        console.error(NO_CLANG); // one clear line, not a stack trace
+        process.exit(1);
+      }
+    },
     resolveId: (id) => (id === VIRTUAL ? RESOLVED : null),
     load(id) {
       if (id !== RESOLVED) return null;
       for (const f of readdirSync(dir)) this.addWatchFile(join(dir, f));
-      const bytes = compileCore(dir);
-      return `export default ${JSON.stringify(Buffer.from(bytes).toString("base64"))};`;
+      const core = compileCore(dir);
+      bytes = core.length;
+      return `export default ${JSON.stringify(Buffer.from(core).toString("base64"))};`;
+    },
+    generateBundle() {
+      if (bytes > 0)
+        console.log(
+          `evapcool: the WebAssembly core inlined: ${bytes} bytes, ${4 * Math.ceil(bytes / 3)} as base64`,
+        );
     },
   };
 }
