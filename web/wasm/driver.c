@@ -187,20 +187,31 @@ EXPORT(set_trap_height) void set_trap_height(double height) {
 extern unsigned char __heap_base;
 static uintptr_t heap_top = (uintptr_t)&__heap_base;
 
-/* n bytes on a 64-byte line, zeroed (fresh pages are). */
+/* Set when the memory could not grow: the wrapper then reports it (RangeError). */
+static int32_t out_of_memory;
+
+/* n bytes on a 64-byte line, zeroed (fresh pages are); scratch page 0 if none are left. */
 static void *take(uintptr_t bytes) {
   uintptr_t at = (heap_top + 63) & ~(uintptr_t)63;
-  heap_top = at + bytes;
   uintptr_t have = __builtin_wasm_memory_size(0) * 65536;
-  if (heap_top > have) {
-    uintptr_t pages = (heap_top - have + 65535) / 65536;
-    if (__builtin_wasm_memory_grow(0, pages) == (uintptr_t)-1) __builtin_trap();
+  if (out_of_memory || bytes > 0xffffffffu - at) {
+    out_of_memory = 1;
+    return 0;
   }
+  if (at + bytes > have) {
+    uintptr_t pages = (at + bytes - have + 65535) / 65536;
+    if (__builtin_wasm_memory_grow(0, pages) == (uintptr_t)-1) {
+      out_of_memory = 1;
+      return 0;
+    }
+  }
+  heap_top = at + bytes;
   return (void *)at;
 }
 
 /* The tables of n atoms; returns the inputs' place: x, y, vx, vy, t, radius, mass (n
- * doubles each), then the status (n int32). The wrapper fills them, then calls load. */
+ * doubles each), then the status (n int32), or 0 if the memory cannot hold them. The
+ * wrapper fills them, then calls load. */
 EXPORT(allocate) double *allocate(int32_t n, int32_t log_capacity) {
   run.n_atoms = n;
   state = take(sizeof(State) * n);
@@ -217,7 +228,8 @@ EXPORT(allocate) double *allocate(int32_t n, int32_t log_capacity) {
   event_log = take(sizeof(LogLine) * log_capacity);
   calendar_init(n);
   bins = take(sizeof(int32_t) * (run.n_bins + 2));
-  return take(sizeof(double) * 8 * n);
+  double *inputs = take(sizeof(double) * 8 * n);
+  return out_of_memory ? 0 : inputs;
 }
 
 /* Copy the inputs into the tables and set the fixed parameters and the clock. */
@@ -258,8 +270,9 @@ EXPORT(load) void load(const double *in, double gravity, double curvature, doubl
   }
 }
 
-/* The grid, the cells and every prediction; the energy sum and the Tc table are set. */
-EXPORT(start) void start(double energy_sum, double trap_height) {
+/* The grid, the cells and every prediction; the energy sum and the Tc table are set. 0 if
+ * the memory cannot hold the cells. */
+EXPORT(start) int32_t start(double energy_sum, double trap_height) {
   run.energy_sum = energy_sum;
   run.trap_height = trap_height;
   run.x_rim = __builtin_sqrt(trap_height / run.curvature);
@@ -267,6 +280,8 @@ EXPORT(start) void start(double energy_sum, double trap_height) {
   run.deep = run.n_atoms >= DEEP_FROM_ATOMS;
   int32_t nc = grid_shape();
   cells = take(sizeof(int32_t) * (nc + run.n_atoms));
+  if (out_of_memory) return 0;
   for (int32_t c = 0; c < nc + run.n_atoms; c++) cells[c] = -1;
   setup();
+  return 1;
 }

@@ -65,7 +65,7 @@ interface CoreExports {
     pairs: number,
     walls: number,
   ): void;
-  start(energySum: number, trapHeight: number): void;
+  start(energySum: number, trapHeight: number): number;
   advance_to(tEnd: number): number;
   set_trap_height(height: number): void;
   force_win(): void;
@@ -101,6 +101,10 @@ const LOG_FULL = 1;
 const LOG_LINE_BYTES = 24;
 /** Log lines the core buffers between two copies (at least the atom count + 8). */
 const LOG_BUFFER = 4096;
+
+/** The WebAssembly memory (at most 4 GB) could not hold the engine's tables. */
+const OUT_OF_MEMORY = (n: number) =>
+  `nAtoms must fit the engine core's memory (${n} atoms did not: not enough memory)`;
 
 let compiled: WebAssembly.Module | null = null;
 
@@ -157,6 +161,7 @@ export class WasmEngine implements EngineCore {
     this.core = core;
     const logCapacity = setup.recordEvents ? Math.max(LOG_BUFFER, n + 8) : 0;
     const inputs = core.allocate(n, logCapacity);
+    if (inputs === 0) throw new RangeError(OUT_OF_MEMORY(n));
     const f64 = new Float64Array(core.memory.buffer, inputs, 7 * n);
     const columns = [atoms.x, atoms.y, atoms.vx, atoms.vy, atoms.t, atoms.radius, atoms.mass];
     columns.forEach((column, k) => {
@@ -186,7 +191,7 @@ export class WasmEngine implements EngineCore {
     this.tc0 = 0.75 * this.initialTemperature;
     const table = new Float64Array(core.memory.buffer, core.tc_table_address(), n + 1);
     for (let k = 0; k <= n; k++) table[k] = this.criticalTemperatureOf(k);
-    core.start(energySum, setup.trapHeight);
+    if (!core.start(energySum, setup.trapHeight)) throw new RangeError(OUT_OF_MEMORY(n));
     this.nx = core.nx();
     this.ny = core.ny();
     this.cs = core.cell();
