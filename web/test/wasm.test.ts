@@ -45,6 +45,38 @@ for (const [name, core, kind] of CORES)
       });
   });
 
+describe("bad states", () => {
+  const start = () =>
+    JSON.parse(
+      JSON.stringify(readTrace(readFileSync(new URL("classic-1.json", DIR), "utf8")).start),
+    );
+  const message = (core: EngineFactory, state: unknown): string => {
+    setEngineCore(core);
+    try {
+      Simulation.fromState(state as Parameters<typeof Simulation.fromState>[0]);
+    } catch (e) {
+      expect(e).toBeInstanceOf(RangeError);
+      return (e as Error).message;
+    }
+    throw new Error("no RangeError");
+  };
+  it("the same RangeError on both cores: a wrong energy sum (checked by the core's sum)", () => {
+    const s = start();
+    s.energy_sum *= 1.5;
+    const m = message(CORES[0][1], s);
+    expect(m).toMatch(/state\.energy_sum/);
+    expect(message(CORES[1][1], s)).toBe(m);
+  });
+  it("the same RangeError on both cores: overlapping atoms", () => {
+    const s = start();
+    s.atoms.x[1] = s.atoms.x[0];
+    s.atoms.y[1] = s.atoms.y[0];
+    const m = message(CORES[0][1], s);
+    expect(m).toMatch(/state\.atoms/);
+    expect(message(CORES[1][1], s)).toBe(m);
+  });
+});
+
 /** Frames of a run with the rim lowered from H to H / 5 over its first 1 000 frames. */
 function lowering(sim: Simulation, frames: number): void {
   const start = sim.trapHeight;
