@@ -17,7 +17,7 @@ export const WASM_FOLDER = "wasm";
 
 /**
  * IEEE arithmetic as written: no contraction into fused multiply-adds, no fast-math; link-time
- * optimisation so the kernels inline across the room files.
+ * optimisation so the kernels inline across the room files; no libc (-nostdlib).
  */
 export const CLANG_FLAGS = [
   "--target=wasm32",
@@ -27,6 +27,7 @@ export const CLANG_FLAGS = [
   "-flto",
   "-ffp-contract=off",
   "-fno-fast-math",
+  "-mbulk-memory", // struct copies as memory.copy: no libc memcpy to link
   "-Wall",
   "-Wextra",
   "-Werror",
