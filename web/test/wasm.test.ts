@@ -113,7 +113,7 @@ describe("the two cores side by side", () => {
       120,
     ],
     [
-      "20 000 atoms, the next events' rows asked for ahead",
+      "20 000 atoms",
       () =>
         new Simulation({
           nAtoms: 20_000,

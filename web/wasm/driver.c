@@ -12,8 +12,6 @@
 #define RENUMBER_EVENTS_PER_ATOM 8
 /* The most log lines one event writes (a pair and two knives), with room to spare. */
 #define LOG_ROOM 4
-/* From this many atoms on, the next events' rows are asked for ahead (touch_ahead). */
-#define DEEP_FROM_ATOMS 20000
 
 Run run;
 State *state;
@@ -58,7 +56,7 @@ static volatile double touch_sink;
  * Ask for the lines of the rows of the next few events (the heap's root's children) while
  * this event is processed: wasm has no prefetch instruction, but a load nobody waits for
  * lets the CPU fetch them in the shadow of the work (physics/fast/lookahead.py's idea).
- * Only for large tables, which outgrow the caches.
+ * Measured faster at every size on a shared machine (docs/benchmarks.md), so always on.
  */
 static inline void touch_ahead(void) {
   int32_t end = run.heap_size < 5 ? run.heap_size : 5;
@@ -83,7 +81,7 @@ EXPORT(advance_to) int32_t advance_to(double t_end) {
     if (i < 0) break;
     double te = queued[i].key_t;
     if (!(te <= t_end)) break;
-    if (run.deep) touch_ahead();
+    touch_ahead();
     int32_t kind = event_kind(i);
     int32_t first = i, second = -1, full = 1;
     if (kind == KIND_PAIR)
@@ -277,7 +275,6 @@ EXPORT(start) int32_t start(double energy_sum, double trap_height) {
   run.trap_height = trap_height;
   run.x_rim = __builtin_sqrt(trap_height / run.curvature);
   run.maintain_every = RENUMBER_EVENTS_PER_ATOM * run.n_atoms;
-  run.deep = run.n_atoms >= DEEP_FROM_ATOMS;
   int32_t nc = grid_shape();
   cells = take(sizeof(int32_t) * (nc + run.n_atoms));
   if (out_of_memory) return 0;

@@ -76,7 +76,6 @@ typedef struct {
   int32_t nx, ny, n_cells, n_atoms;
   int32_t knife, record, win_rule;
   int32_t maintain_every; /* events between two renumberings */
-  int32_t deep;           /* 1: ask for the next events' rows ahead (driver.c) */
   /* shared with the wrapper */
   double time, energy_sum, x_rim, trap_height;
   int32_t won, n_trapped;
