@@ -119,9 +119,16 @@ function coreModule(): WebAssembly.Module {
   return compiled;
 }
 
-/** Size of the core in bytes (for the build's and the benchmark's notes). */
-export function wasmCoreBytes(): number {
-  return Math.floor((wasmBase64.length * 3) / 4);
+/** The atoms' columns where allocate() placed the inputs: 7 columns of doubles, then status. */
+function writeInputs(buffer: ArrayBuffer, at: number, atoms: EngineAtoms): void {
+  const n = atoms.x.length;
+  const f64 = new Float64Array(buffer, at, 7 * n);
+  const columns = [atoms.x, atoms.y, atoms.vx, atoms.vy, atoms.t, atoms.radius, atoms.mass];
+  columns.forEach((column, k) => {
+    for (let i = 0; i < n; i++) f64[k * n + i] = column[i];
+  });
+  const status = new Int32Array(buffer, at + 8 * 7 * n, n);
+  for (let i = 0; i < n; i++) status[i] = atoms.status[i];
 }
 
 export class WasmEngine implements EngineCore {
@@ -162,13 +169,7 @@ export class WasmEngine implements EngineCore {
     const logCapacity = setup.recordEvents ? Math.max(LOG_BUFFER, n + 8) : 0;
     const inputs = core.allocate(n, logCapacity);
     if (inputs === 0) throw new RangeError(OUT_OF_MEMORY(n));
-    const f64 = new Float64Array(core.memory.buffer, inputs, 7 * n);
-    const columns = [atoms.x, atoms.y, atoms.vx, atoms.vy, atoms.t, atoms.radius, atoms.mass];
-    columns.forEach((column, k) => {
-      for (let i = 0; i < n; i++) f64[k * n + i] = column[i];
-    });
-    const status = new Int32Array(core.memory.buffer, inputs + 56 * n, n);
-    for (let i = 0; i < n; i++) status[i] = atoms.status[i];
+    writeInputs(core.memory.buffer, inputs, atoms);
     core.load(
       inputs,
       setup.gravity,
