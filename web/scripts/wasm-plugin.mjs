@@ -35,8 +35,39 @@ export const CLANG_FLAGS = [
   "-Wl,--lto-O3",
 ];
 
-const NO_CLANG =
-  "evapcool: building the WebAssembly core needs clang and lld (Debian: apt-get install clang lld)";
+/** The compiler: `clang`, or another name (e.g. clang-14) from EVAPCOOL_CLANG. */
+const CLANG = process.env.EVAPCOOL_CLANG || "clang";
+
+const NO_CLANG = `evapcool: building the WebAssembly core needs ${CLANG} and lld (Debian: apt-get install clang lld)`;
+
+/** An unsigned LEB128 number at bytes[at]: [value, the place after it]. */
+function leb128(bytes, at) {
+  let value = 0;
+  for (let shift = 0; ; shift += 7) {
+    const b = bytes[at++];
+    value += (b & 0x7f) * 2 ** shift;
+    if (b < 0x80) return [value, at];
+  }
+}
+
+/**
+ * The module without its "producers" section, which names the compiler's build ("Debian
+ * clang version ..."): the page's bytes then depend on the compiler's code, not its vendor.
+ */
+function withoutProducers(bytes) {
+  const kept = [bytes.subarray(0, 8)]; // magic and version
+  for (let at = 8; at < bytes.length;) {
+    const start = at;
+    const [size, body] = leb128(bytes, at + 1);
+    at = body + size;
+    if (bytes[start] === 0) {
+      const [length, name] = leb128(bytes, body);
+      if (Buffer.from(bytes.subarray(name, name + length)).toString() === "producers") continue;
+    }
+    kept.push(bytes.subarray(start, at));
+  }
+  return new Uint8Array(Buffer.concat(kept));
+}
 
 /** The core's bytes, freshly compiled from the C sources in folder `dir`. */
 export function compileCore(dir) {
@@ -47,14 +78,14 @@ export function compileCore(dir) {
   const tmp = mkdtempSync(join(tmpdir(), "evapcool-wasm-"));
   try {
     const out = join(tmp, "core.wasm");
-    const run = spawnSync("clang", [...CLANG_FLAGS, "-o", out, ...sources], { encoding: "utf8" });
+    const run = spawnSync(CLANG, [...CLANG_FLAGS, "-o", out, ...sources], { encoding: "utf8" });
     if (run.error || /wasm-ld.*(not found|doesn't exist|No such file)/.test(run.stderr)) {
       console.error(NO_CLANG); // one clear line, not a stack trace
       process.exit(1);
     }
     if (run.status !== 0)
       throw new Error(`evapcool: the WebAssembly core did not compile:\n${run.stderr}`);
-    return new Uint8Array(readFileSync(out));
+    return withoutProducers(new Uint8Array(readFileSync(out)));
   } finally {
     rmSync(tmp, { recursive: true, force: true });
   }
@@ -70,7 +101,7 @@ export function wasmCore() {
       dir = resolve(config.root, WASM_FOLDER);
     },
     buildStart() {
-      if (spawnSync("clang", ["--version"]).error) {
+      if (spawnSync(CLANG, ["--version"]).error) {
         console.error(NO_CLANG); // one clear line, not a stack trace
         process.exit(1);
       }
