@@ -49,16 +49,16 @@ export function exposeApi(app: App): void {
         score: g.score,
         time: s.time,
         overlay: app.overlay,
-        nameBox: app.nameBoxOpen,
-        confirmReset: app.confirmReset,
-        readyForNext: app.readyForNext,
-        showEnergy: app.showEnergy,
-        showPath: app.showPath,
+        nameBox: app.scores.nameBoxOpen,
+        confirmReset: app.scores.confirmReset,
+        readyForNext: app.scores.readyForNext,
+        showEnergy: app.charts.showEnergy,
+        showPath: app.charts.showPath,
         layout: app.layout.mode,
         scale: app.layout.scale,
-        table: app.table.entries,
-        notices: app.visibleNotices,
-        errors: app.errors.slice(),
+        table: app.scores.table.entries,
+        notices: app.notices.visible,
+        errors: app.loop.errors.slice(),
         fullscreen: document.fullscreenElement !== null,
       };
     },
@@ -69,10 +69,10 @@ export function exposeApi(app: App): void {
     },
     /** Frame work (physics + drawing) median / p95 in ms and the display rate, last n frames. */
     frameStats(n = 600) {
-      return app.stats.summary(n);
+      return app.loop.stats.summary(n);
     },
     resetStats(): void {
-      app.stats.reset();
+      app.loop.stats.reset();
     },
   };
   (window as unknown as { evapcool: typeof api }).evapcool = api;
