@@ -6,8 +6,9 @@
  * applet's state, its actions and the frame's picture.
  */
 import { FPS } from "../game/constants";
+import { forceWin, replayGolden } from "../game/engine";
 import { NAME_MAX } from "../game/highscores";
-import { Game, type GameConfig, type SimFactory } from "../game/rules";
+import { DEFAULT_CONFIG, Game, type GameConfig, type SimFactory } from "../game/rules";
 import { describe, type Settings } from "../game/settings";
 import { emptyAtoms, type AtomArrays } from "../game/sim";
 import type { KeyValue } from "../game/store";
@@ -21,7 +22,9 @@ import {
   drawTable,
   type Target,
 } from "../view/overlays";
+import * as C from "../view/colors";
 import { Scene } from "../view/scene";
+import { drawText } from "../view/text";
 import { helpRows, HEIGHT_STEP, type Action } from "./bindings";
 import { Charts } from "./charts";
 import { Controls } from "./controls";
@@ -30,6 +33,8 @@ import { Screen, type Zoom } from "./layout";
 import { FrameLoop, type Animated } from "./loop";
 import { Notices, StatusLine } from "./notices";
 import { configFor, SettingsEditor } from "./options";
+import { PaceMeter } from "./pace";
+import { RemoteGame, type GameLike } from "./remote";
 import { describeRun, NAME_PROMPT, Scoreboard } from "./scoring";
 
 export { pickTarget } from "./input";
@@ -52,12 +57,27 @@ export interface AppOptions {
   overrides?: Partial<Settings>;
   config?: Partial<GameConfig>;
   notices?: string[];
+  /** The physics worker to play in (absent: the page's own loop plays). */
+  worker?: Worker | null;
 }
 
 export type Overlay = null | "help" | "table" | "settings";
 
+/** What the last drawn frame showed of the controls (tests count frames from a key to it). */
+export interface DrawnControls {
+  /** The display frame (FrameLoop.frames) it was drawn in. */
+  frame: number;
+  trapHeight: number;
+  paused: boolean;
+  speed: number;
+  energy: boolean;
+  overlay: Overlay;
+}
+
 export class App implements Animated {
-  readonly game: Game;
+  /** The game: in the physics worker, or the page's own (no worker, or it failed). */
+  game: GameLike;
+  readonly pace = new PaceMeter();
   readonly scene = new Scene();
   readonly condensate = new Condensate();
   readonly charts = new Charts();
@@ -76,11 +96,20 @@ export class App implements Animated {
   dirty = true;
   /** The drawn panels' tap targets, in the panel's own coordinates (last frame drawn). */
   targets: Target[] = [];
+  readonly drawn: DrawnControls = {
+    frame: -1,
+    trapHeight: 0,
+    paused: true,
+    speed: 1,
+    energy: false,
+    overlay: null,
+  };
   private ctx: CanvasRenderingContext2D;
   private atoms: AtomArrays = emptyAtoms();
   private lastHeightSpoken = 400;
   private heightTimer: ReturnType<typeof setTimeout> | null = null;
   private saidTooFew: string | null = null;
+  private saidSlow: string | null = null;
   private readonly reducedMotion: boolean;
   private readonly coarse: boolean;
 
@@ -112,8 +141,11 @@ export class App implements Animated {
       opts.overrides ?? {},
     );
     this.game = this.firstGame();
+    const app = this;
     this.scores = new Scoreboard({
-      game: this.game,
+      get game() {
+        return app.game;
+      },
       storage: opts.storage,
       screen: this.screen,
       nameInput: el.nameInput,
@@ -123,7 +155,6 @@ export class App implements Animated {
       quiet: () => this.quietHeight(),
       showTable: (shown) => (this.overlay = shown ? "table" : null),
     });
-    this.game.onWin.push(() => this.scores.onWin());
     this.scores.openTable(this.options.runSettings());
     this.controls.build(el.root);
     this.resize();
@@ -131,17 +162,70 @@ export class App implements Animated {
   }
 
   /** The first game: the address's settings, or the saved ones if the physics refuses those. */
-  private firstGame(): Game {
-    const config = this.opts.config ?? {};
+  private firstGame(): GameLike {
     const options = this.options;
     try {
-      return new Game(this.opts.factory, { ...config, ...configFor(options.runSettings()) });
+      return this.makeGame(configFor(options.runSettings()));
     } catch (err) {
       if (!(err instanceof RangeError) || !Object.keys(options.overrides).length) throw err;
       this.notify(`Address: ${err.message}; playing the saved settings.`);
       options.overrides = {};
-      return new Game(this.opts.factory, { ...config, ...configFor(options.runSettings()) });
+      return this.makeGame(configFor(options.runSettings()));
     }
+  }
+
+  /** A game in the worker if there is one, else on the page (RangeError if refused). */
+  private makeGame(settings: Partial<GameConfig>): GameLike {
+    const config = { ...DEFAULT_CONFIG, ...this.opts.config, ...settings };
+    const worker = this.opts.worker;
+    if (worker)
+      return new RemoteGame(worker, this.opts.factory, config, {
+        won: () => this.scores.onWin(),
+        failed: (message) => this.workerFailed(message),
+      });
+    return this.pageGame(config);
+  }
+
+  private pageGame(config: GameConfig): Game {
+    const game = new Game(this.opts.factory, config);
+    game.onWin.push(() => this.scores.onWin());
+    return game;
+  }
+
+  /** The worker stopped: the same game's settings go on in the page's own loop. */
+  private workerFailed(message: string): void {
+    if (!(this.game instanceof RemoteGame)) return;
+    console.warn(`evapcool: the physics worker failed (${message}); playing without it.`);
+    const remote = this.game;
+    remote.stop();
+    this.opts.worker = null;
+    this.game = this.pageGame(remote.config);
+    this.loop.resetClock();
+    this.dirty = true;
+  }
+
+  /** Resolves once the game has a first state to draw (the worker's first frame). */
+  ready(): Promise<void> {
+    return this.game instanceof RemoteGame ? this.game.ready() : Promise.resolve();
+  }
+
+  /** The physics' own switch to the won state (tests of the condensate). */
+  forceWin(): Promise<void> {
+    const g = this.game;
+    if (g instanceof RemoteGame) return g.forceWin();
+    forceWin(g.sim);
+    return Promise.resolve();
+  }
+
+  /** A golden trace's text replayed by the engine the game plays with (tests). */
+  replay(text: string): Promise<string> {
+    const g = this.game;
+    return g instanceof RemoteGame ? g.replay(text) : Promise.resolve(replayGolden(text));
+  }
+
+  /** "worker" or "page": where the physics runs. */
+  get engine(): string {
+    return this.game instanceof RemoteGame ? "worker" : "page";
   }
 
   // -- what the rooms share ---------------------------------------------------------------
@@ -301,8 +385,20 @@ export class App implements Animated {
   }
 
   advance(dt: number): void {
-    this.game.update(dt);
+    const g = this.game;
+    g.update(dt);
     this.animTime += Math.min(dt, 0.25);
+    this.pace.add(performance.now(), g.sim.time, g.speed, !g.paused, `${g.speed}|${g.generation}`);
+    const note = this.slowNote();
+    if (note !== this.saidSlow) {
+      this.saidSlow = note;
+      if (note) this.say(note);
+    }
+  }
+
+  /** The slow-motion line while playing below real time, else null. */
+  slowNote(): string | null {
+    return this.game.paused ? null : this.pace.note();
   }
 
   /**
@@ -334,12 +430,19 @@ export class App implements Animated {
   }
 
   /** Advance n display frames of one physics frame x speed each, drawing each (tests). */
-  runFrames(n: number): void {
+  async runFrames(n: number): Promise<void> {
+    const g = this.game;
     for (let k = 0; k < n; k++) {
-      this.game.runFrames(1);
+      if (g instanceof RemoteGame) await g.runFrames(1);
+      else (g as Game).runFrames(1);
       this.animTime += 1 / FPS;
       this.draw();
     }
+  }
+
+  /** Resolves once the worker (if any) has applied all input so far and posted the result. */
+  settled(): Promise<void> {
+    return this.game instanceof RemoteGame ? this.game.settled() : Promise.resolve();
   }
 
   draw(): void {
@@ -357,13 +460,31 @@ export class App implements Animated {
     ctx.setTransform(s, 0, 0, s, Math.round(l.offsetX * dpr), Math.round(l.offsetY * dpr));
     this.scene.deviceScale = s;
     this.drawScene(ctx);
-    this.scene.drawFrame(ctx, g, l.sceneHeight);
+    this.scene.drawFrame(ctx, sceneGame(g), l.sceneHeight);
     this.controls.draw(ctx);
     this.drawMessages(ctx);
     this.drawOverlay(ctx);
     drawNotices(ctx, this.notices.visible);
     this.charts.draw(ctx, l);
+    const slow = this.slowNote();
+    if (slow)
+      drawText(
+        ctx,
+        slow,
+        20,
+        C.DIM_TEXT,
+        PLAY_RECT.x + PLAY_RECT.w - 8,
+        PLAY_RECT.y + 14,
+        "midright",
+      );
     if (this.statusLine.update(g)) this.dirty = true;
+    const d = this.drawn;
+    d.frame = this.loop.frames;
+    d.trapHeight = g.trapHeight;
+    d.paused = g.paused;
+    d.speed = g.speed;
+    d.energy = this.charts.showEnergy;
+    d.overlay = this.overlay;
   }
 
   /** The atoms, and the condensate fading in over them. */
@@ -371,7 +492,7 @@ export class App implements Animated {
     const g = this.game;
     const sim = g.sim;
     const fade = this.condensate.update(sim, this.atoms, g.generation, this.animTime);
-    this.scene.draw(ctx, g, this.atoms, 1 - fade);
+    this.scene.draw(ctx, sceneGame(g), this.atoms, 1 - fade);
     if (fade <= 0) return;
     ctx.save();
     ctx.beginPath();
@@ -441,6 +562,11 @@ export class App implements Animated {
     for (let i = 0; i < a.count; i++) m = Math.min(m, a.mass[i]);
     return Number.isFinite(m) ? m : 1;
   }
+}
+
+/** The scene reads only a game's sim and speed, which the worker's game has as the page's. */
+function sceneGame(g: GameLike): Game {
+  return g as Game;
 }
 
 export function speedText(s: number): string {

@@ -22,6 +22,8 @@ const ERRORS_KEPT = 20;
 export class FrameLoop {
   readonly stats = new FrameStats();
   readonly errors: string[] = [];
+  /** Display frames run so far. */
+  frames = 0;
   private lastTime: number | null = null;
   private rafId = 0;
   private lastPicture = "";
@@ -49,6 +51,7 @@ export class FrameLoop {
   /** One display frame at time `now` (ms): physics to now, then drawing. */
   frame(now: number): void {
     const t0 = performance.now();
+    this.frames += 1;
     const dt = this.lastTime === null ? 0 : Math.max(0, (now - this.lastTime) / 1000);
     this.lastTime = now;
     const target = this.target;

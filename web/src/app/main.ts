@@ -5,6 +5,7 @@ import { drawPageIcon } from "../view/icons";
 import { App } from "./app";
 import { exposeApi } from "./api";
 import { parseParams } from "./params";
+import PhysicsWorker from "./physics.worker?worker&inline";
 import { pageStorage, ReadOnly } from "./storage";
 
 function byId<T extends HTMLElement>(id: string): T {
@@ -13,7 +14,21 @@ function byId<T extends HTMLElement>(id: string): T {
   return el as T;
 }
 
+/** The physics worker, from the page's own code (no file, no server), or null if none runs here. */
+function startWorker(): Worker | null {
+  try {
+    if (typeof Worker !== "function") return null;
+    return new PhysicsWorker({ name: "evapcool physics" });
+  } catch (err) {
+    console.warn(
+      `evapcool: no physics worker here (${(err as Error).message}); playing without it.`,
+    );
+    return null;
+  }
+}
+
 async function main(): Promise<void> {
+  const worker = startWorker();
   const notices: string[] = [];
   const kv = pageStorage(notices);
   // Read the saved settings once here only to size address options against them.
@@ -39,8 +54,10 @@ async function main(): Promise<void> {
       overrides: params.overrides,
       config: { seed: params.seed, speed: params.speed },
       notices: [...notices, ...params.notices],
+      worker,
     },
   );
+  await app.ready();
   exposeApi(app);
   setIcon();
   app.draw();

@@ -2,7 +2,7 @@
  * Short messages shown for a few seconds at the bottom of the play area, what a screen
  * reader is told (a polite live region) and the canvas's text alternative (the status).
  */
-import type { Game } from "../game/rules";
+import type { GameLike } from "./remote";
 
 /** How long a notice stays on screen, s of the applet's own clock. */
 export const NOTICE_SECONDS = 8;
@@ -54,7 +54,7 @@ export class StatusLine {
   constructor(private readonly el: HTMLElement) {}
 
   /** Write the game's state; true if a change waits to be written (draw again). */
-  update(g: Game): boolean {
+  update(g: GameLike): boolean {
     const sim = g.sim;
     const state = g.won
       ? `Condensed. Score ${g.score}.`

@@ -1,10 +1,10 @@
 /** The win's name entry and the high-score table, for one visit of the page. */
 import { HighScoreTable, scoresKey } from "../game/highscores";
-import type { Game } from "../game/rules";
 import { settingsKey, type Settings } from "../game/settings";
 import type { KeyValue } from "../game/store";
 import { nameField } from "../view/overlays";
 import type { Screen } from "./layout";
+import type { GameLike } from "./remote";
 
 const WON = (score: number) => `Temperature below Tc: ${score} atoms, score ${score}`;
 const NOT_TOP = (score: number) =>
@@ -15,7 +15,7 @@ const CLEARED = "The high-score table was cleared.";
 export const NAME_PROMPT = "Top 10! Type your name:";
 
 export interface ScoringHost {
-  readonly game: Game;
+  readonly game: GameLike;
   readonly storage: KeyValue;
   readonly screen: Screen;
   readonly nameInput: HTMLInputElement;

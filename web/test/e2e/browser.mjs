@@ -71,7 +71,8 @@ export async function openPage(
   });
   page.on("pageerror", (e) => log.errors.push(`pageerror: ${e.message}`));
   page.on("request", (r) => {
-    if (r.url() !== PAGE_URL + query) log.requests.push(r.url());
+    // A blob: URL (the physics worker made from the page's own code) is not a request.
+    if (r.url() !== PAGE_URL + query && !r.url().startsWith("blob:")) log.requests.push(r.url());
   });
   await page.goto(PAGE_URL + query);
   await page.waitForFunction(() => window.evapcool !== undefined);
