@@ -22,7 +22,6 @@ import {
   drawTable,
   type Target,
 } from "../view/overlays";
-import * as C from "../view/colors";
 import { Scene } from "../view/scene";
 import { drawText } from "../view/text";
 import { helpRows, HEIGHT_STEP, type Action } from "./bindings";
@@ -39,6 +38,8 @@ import { describeRun, NAME_PROMPT, Scoreboard } from "./scoring";
 
 export { pickTarget } from "./input";
 
+/** The slow-motion line's colour: dark on the play area's grey. */
+const SLOW_TEXT = "rgb(30,30,30)";
 /** Wait this long after the last trap move before speaking the height, ms. */
 const HEIGHT_SPEECH_MS = 400;
 
@@ -472,7 +473,7 @@ export class App implements Animated {
         ctx,
         slow,
         20,
-        C.DIM_TEXT,
+        SLOW_TEXT,
         PLAY_RECT.x + PLAY_RECT.w - 8,
         PLAY_RECT.y + 14,
         "midright",

@@ -31,7 +31,8 @@ export class PaceMeter {
   add(nowMs: number, time: number, speed: number, running: boolean, key: string): void {
     const gap = nowMs - this.lastMs;
     this.lastMs = nowMs;
-    if (!running || key !== this.key || !(gap < GAP_MS) || time < this.startTime) {
+    const fresh = Number.isNaN(this.startMs) || time < this.startTime;
+    if (!running || key !== this.key || !(gap < GAP_MS) || fresh) {
       this.key = key;
       this.startMs = running ? nowMs : NaN;
       this.startTime = time;

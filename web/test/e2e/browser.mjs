@@ -51,9 +51,12 @@ export async function openPage(
     touch = false,
     query = "",
     reducedMotion,
+    initScript,
   } = {},
 ) {
   const page = await browser.context.newPage();
+  // Runs before the page's own script (e.g. to take Worker away).
+  if (initScript) await page.addInitScript(initScript);
   await page.setViewportSize(viewport);
   const cdp = await browser.context.newCDPSession(page);
   await cdp.send("Emulation.setDeviceMetricsOverride", {
