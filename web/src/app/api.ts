@@ -34,6 +34,8 @@ export interface PageState {
   pace: number;
   /** The slow-motion line shown, or null. */
   slowNote: string | null;
+  /** The worker's ms spent on the physics for its newest frame (NaN without a worker). */
+  physicsMs: number;
 }
 
 export function exposeApi(app: App): void {
@@ -75,12 +77,21 @@ export function exposeApi(app: App): void {
         engine: app.engine,
         pace: app.pace.pace,
         slowNote: app.slowNote(),
+        physicsMs: app.physicsMs,
       };
     },
     /** Play n frames of 1/30 s x speed now, drawn (unpauses); resolves once shown. */
     runFrames(n: number): Promise<void> {
       app.game.paused = false;
       return app.runFrames(n);
+    },
+    /**
+     * n frames of 1 physics frame x speed at once in the worker (no drawing between), for
+     * timing the physics: its ms are then `stateNow().physicsMs`. Unpauses.
+     */
+    physicsFrames(n: number): Promise<void> {
+      app.game.paused = false;
+      return app.physicsFrames(n);
     },
     /** The physics' own switch to the won state (tests of the condensate). */
     forceWin(): Promise<void> {

@@ -224,6 +224,12 @@ export class App implements Animated {
     return g instanceof RemoteGame ? g.replay(text) : Promise.resolve(replayGolden(text));
   }
 
+  /** The worker's ms spent on the physics for its newest frame (NaN without a worker). */
+  get physicsMs(): number {
+    const g = this.game;
+    return g instanceof RemoteGame ? g.physicsMs : NaN;
+  }
+
   /** "worker" or "page": where the physics runs. */
   get engine(): string {
     return this.game instanceof RemoteGame ? "worker" : "page";
@@ -439,6 +445,14 @@ export class App implements Animated {
       this.animTime += 1 / FPS;
       this.draw();
     }
+  }
+
+  /** n physics frames at once, not drawn between (benchmarks); the page's own game draws none. */
+  physicsFrames(n: number): Promise<void> {
+    const g = this.game;
+    if (g instanceof RemoteGame) return g.runFrames(n);
+    (g as Game).runFrames(n);
+    return Promise.resolve();
   }
 
   /** Resolves once the worker (if any) has applied all input so far and posted the result. */

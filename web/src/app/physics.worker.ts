@@ -68,9 +68,12 @@ function apply(command: Command): void {
     case "step":
       g.step();
       break;
-    case "frames":
+    case "frames": {
+      const t0 = performance.now();
       g.runFrames(command.n);
+      physicsMs = performance.now() - t0;
       break;
+    }
     case "restart":
       makeRoom(command.config.nAtoms);
       g.restart(command.config);

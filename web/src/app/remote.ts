@@ -382,6 +382,11 @@ export class RemoteGame implements GameLike {
     );
   }
 
+  /** The worker's ms spent on the physics for its newest frame. */
+  get physicsMs(): number {
+    return this.frame ? this.frame.header[HEADER.physicsMs] : NaN;
+  }
+
   /** The physics' own switch to the won state (tests of the condensate). */
   forceWin(): Promise<void> {
     this.command({ kind: "forceWin" });
