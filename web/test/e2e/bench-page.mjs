@@ -47,7 +47,8 @@ try {
           `${r.fps.toFixed(1)} animation frames/s, worst frame ${r.worstMs.toFixed(1)} ms, ` +
           `frames over 50 ms: ${r.over50}, key to drawn effect: median ${r.keyMedian} frames, worst ${r.keyWorst} (${r.keys} keys), ` +
           `key to the physics' trap: median ${r.physicsKeyMedian} frames, worst ${r.physicsKeyWorst}, ` +
-          `pace ${r.pace.toFixed(2)} of real time (${r.playS.toFixed(1)} s played), note: ${r.note ?? "none"}` +
+          `pace ${r.pace.toFixed(2)} of real time (${r.playS.toFixed(1)} s played; ${r.slowSeconds} of ${r.seconds} s below 0.95), ` +
+          `slow-motion line on ${(100 * r.notedShare).toFixed(0)} % of frames, at the end: ${r.note ?? "none"}` +
           (r.engine === "worker"
             ? `, worker physics ${r.physicsPerFrame.toFixed(1)} ms per physics frame`
             : "") +
@@ -116,7 +117,14 @@ async function play(browser, query, initScript, secs) {
   await page.waitForTimeout(500);
   await page.evaluate(() => {
     const api = window.evapcool;
-    const rec = (window.__bench = { gaps: [], keys: [], physics: [], start: null });
+    const rec = (window.__bench = {
+      gaps: [],
+      keys: [],
+      physics: [],
+      start: null,
+      samples: [],
+      noted: 0,
+    });
     let last = null;
     let lastTime = api.stateNow().time;
     const frame = (now) => {
@@ -124,6 +132,8 @@ async function play(browser, query, initScript, secs) {
       last = now;
       const s = api.stateNow();
       if (s.time !== lastTime) rec.physics.push([s.physicsMs, s.time - lastTime]);
+      rec.samples.push([now, s.time]);
+      if (s.slowNote !== null) rec.noted++;
       lastTime = s.time;
       if (!rec.stopped) requestAnimationFrame(frame);
     };
@@ -169,6 +179,17 @@ async function play(browser, query, initScript, secs) {
   const physMs = r.rec.physics.map(([ms]) => ms).filter((x) => Number.isFinite(x));
   const physFrames = r.rec.physics.reduce((a, [, d]) => a + d, 0);
   const playS = (r.s.time - r.rec.start.time) / 30;
+  // Seconds of wall clock whose pace was below 0.95 (where the line should show).
+  let slowSeconds = 0;
+  let seconds = 0;
+  const sm = r.rec.samples;
+  for (let a = 0, b = 0; b < sm.length; b++) {
+    if (sm[b][0] - sm[a][0] < 1000) continue;
+    seconds++;
+    if ((sm[b][1] - sm[a][1]) / 30 / ((sm[b][0] - sm[a][0]) / 1000) / r.s.speed < 0.95)
+      slowSeconds++;
+    a = b;
+  }
   return {
     engine: r.s.engine,
     fps: gaps.length / (gaps.reduce((a, b) => a + b, 0) / 1000),
@@ -182,6 +203,9 @@ async function play(browser, query, initScript, secs) {
     playS,
     pace: playS / (r.wall * r.s.speed),
     note: r.s.slowNote,
+    notedShare: r.rec.noted / Math.max(1, sm.length),
+    slowSeconds,
+    seconds,
     physicsPerFrame: physFrames > 0 ? physMs.reduce((a, b) => a + b, 0) / physFrames : NaN,
     errors: log.errors,
   };
