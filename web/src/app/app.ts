@@ -343,7 +343,7 @@ export class App implements Animated {
     this.charts.reset();
     this.scores.openTable(s);
     this.controls.slider.setValue(this.game.trapHeight);
-    this.say(`Restarted: ${this.game.sim.nAtoms} atoms, trap height 400, paused`);
+    this.say(`Restarted: ${this.game.config.nAtoms} atoms, trap height 400, paused`);
   }
 
   heightChanged(): void {

@@ -160,6 +160,7 @@ export class RemoteGame implements GameLike {
   private replies = new Map<number, (text: string) => void>();
   private readonly checked = new Set<string>();
   private alive = false;
+  private winScore: number | null = null;
 
   constructor(
     private readonly worker: Worker,
@@ -246,7 +247,10 @@ export class RemoteGame implements GameLike {
       const wonAt = h[HEADER.wonAt];
       if (this.wonAtNow === null && !Number.isNaN(wonAt)) {
         this.wonAtNow = wonAt;
+        // The win is told with the score it had then, as the page's own game tells it.
+        this.winScore = h[HEADER.scoreAtWin];
         this.hooks.won();
+        this.winScore = null;
       }
     }
     if (this.applied >= this.seq) {
@@ -308,6 +312,7 @@ export class RemoteGame implements GameLike {
   }
 
   get score(): number | null {
+    if (this.winScore !== null) return this.winScore;
     return this.won ? this.sim.nTrapped : null;
   }
 

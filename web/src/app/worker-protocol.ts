@@ -40,6 +40,8 @@ export const HEADER = {
   capacity: 22,
   /** Worker ms spent advancing the physics for this frame. */
   physicsMs: 23,
+  /** Atoms in the cup at the moment of the win (NaN before). */
+  scoreAtWin: 24,
 } as const;
 export const HEADER_SLOTS = 32;
 
