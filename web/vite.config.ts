@@ -62,6 +62,8 @@ export default defineConfig({
       input: "index.html",
     },
   },
+  // The physics worker's own bundle (src/app/main.ts imports it inline) holds the core too.
+  worker: { plugins: () => [wasmCore()] },
   plugins: [
     wasmCore(),
     singleFile(),

@@ -2,7 +2,7 @@
  * `window.evapcool`: the applet's state and a few commands for scripts, lecturers' consoles
  * and the end-to-end tests (which check the page through it, and pixels through screenshots).
  */
-import type { App } from "./app";
+import type { App, DrawnControls } from "./app";
 
 export interface PageState {
   paused: boolean;
@@ -28,12 +28,26 @@ export interface PageState {
   notices: string[];
   errors: string[];
   fullscreen: boolean;
+  /** Where the physics runs: "worker" or "page". */
+  engine: string;
+  /** The game's pace against real time over the last second of play (1 = real time). */
+  pace: number;
+  /** The slow-motion line shown, or null. */
+  slowNote: string | null;
+  /** The worker's ms spent on the physics for its newest frame (NaN without a worker). */
+  physicsMs: number;
 }
 
 export function exposeApi(app: App): void {
   const api = {
     app,
-    state(): PageState {
+    /** The state once the worker (if any) has applied every input so far. */
+    async state(): Promise<PageState> {
+      await app.settled();
+      return this.stateNow();
+    },
+    /** The state as the page has it now (the worker's newest frame). */
+    stateNow(): PageState {
       const g = app.game;
       const s = g.sim;
       return {
@@ -49,30 +63,54 @@ export function exposeApi(app: App): void {
         score: g.score,
         time: s.time,
         overlay: app.overlay,
-        nameBox: app.nameBoxOpen,
-        confirmReset: app.confirmReset,
-        readyForNext: app.readyForNext,
-        showEnergy: app.showEnergy,
-        showPath: app.showPath,
+        nameBox: app.scores.nameBoxOpen,
+        confirmReset: app.scores.confirmReset,
+        readyForNext: app.scores.readyForNext,
+        showEnergy: app.charts.showEnergy,
+        showPath: app.charts.showPath,
         layout: app.layout.mode,
         scale: app.layout.scale,
-        table: app.table.entries,
-        notices: app.visibleNotices,
-        errors: app.errors.slice(),
+        table: app.scores.table.entries,
+        notices: app.notices.visible,
+        errors: app.loop.errors.slice(),
         fullscreen: document.fullscreenElement !== null,
+        engine: app.engine,
+        pace: app.pace.pace,
+        slowNote: app.slowNote(),
+        physicsMs: app.physicsMs,
       };
     },
-    /** Play n frames of 1/30 s x speed now, each drawn (unpauses). */
-    runFrames(n: number): void {
+    /** Play n frames of 1/30 s x speed now, drawn (unpauses); resolves once shown. */
+    runFrames(n: number): Promise<void> {
       app.game.paused = false;
-      app.runFrames(n);
+      return app.runFrames(n);
+    },
+    /**
+     * n frames of 1 physics frame x speed at once in the worker (no drawing between), for
+     * timing the physics: its ms are then `stateNow().physicsMs`. Unpauses.
+     */
+    physicsFrames(n: number): Promise<void> {
+      app.game.paused = false;
+      return app.physicsFrames(n);
+    },
+    /** The physics' own switch to the won state (tests of the condensate). */
+    forceWin(): Promise<void> {
+      return app.forceWin();
+    },
+    /** A golden trace's text replayed by the engine the page plays with (in the worker if any). */
+    replay(text: string): Promise<string> {
+      return app.replay(text);
+    },
+    /** Display frames run so far, and what the last drawn frame showed of the controls. */
+    frames(): { frames: number; drawn: DrawnControls } {
+      return { frames: app.loop.frames, drawn: app.drawn };
     },
     /** Frame work (physics + drawing) median / p95 in ms and the display rate, last n frames. */
     frameStats(n = 600) {
-      return app.stats.summary(n);
+      return app.loop.stats.summary(n);
     },
     resetStats(): void {
-      app.stats.reset();
+      app.loop.stats.reset();
     },
   };
   (window as unknown as { evapcool: typeof api }).evapcool = api;

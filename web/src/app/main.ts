@@ -1,26 +1,12 @@
 /** The page's entry: storage, address options, the applet, and `window.evapcool` for scripts. */
 import { makeSimulation } from "../game/engine";
 import { loadSettings } from "../game/settingsStore";
-import { MemoryStore, reason, type KeyValue } from "../game/store";
 import { drawPageIcon } from "../view/icons";
 import { App } from "./app";
 import { exposeApi } from "./api";
 import { parseParams } from "./params";
-
-function storage(notices: string[]): KeyValue {
-  try {
-    const ls = window.localStorage;
-    const probe = "evapcool.probe";
-    ls.setItem(probe, "1");
-    ls.removeItem(probe);
-    return ls;
-  } catch (err) {
-    notices.push(
-      `This browser keeps no data for this page (${reason(err)}); scores and settings last this visit.`,
-    );
-    return new MemoryStore();
-  }
-}
+import PhysicsWorker from "./physics.worker?worker&inline";
+import { pageStorage, ReadOnly } from "./storage";
 
 function byId<T extends HTMLElement>(id: string): T {
   const el = document.getElementById(id);
@@ -28,9 +14,23 @@ function byId<T extends HTMLElement>(id: string): T {
   return el as T;
 }
 
+/** The physics worker, from the page's own code (no file, no server), or null if none runs here. */
+function startWorker(): Worker | null {
+  try {
+    if (typeof Worker !== "function") return null;
+    return new PhysicsWorker({ name: "evapcool physics" });
+  } catch (err) {
+    console.warn(
+      `evapcool: no physics worker here (${(err as Error).message}); playing without it.`,
+    );
+    return null;
+  }
+}
+
 async function main(): Promise<void> {
+  const worker = startWorker();
   const notices: string[] = [];
-  const kv = storage(notices);
+  const kv = pageStorage(notices);
   // Read the saved settings once here only to size address options against them.
   const [saved] = loadSettings(new ReadOnly(kv));
   const params = parseParams(location.search, saved);
@@ -54,8 +54,10 @@ async function main(): Promise<void> {
       overrides: params.overrides,
       config: { seed: params.seed, speed: params.speed },
       notices: [...notices, ...params.notices],
+      worker,
     },
   );
+  await app.ready();
   exposeApi(app);
   setIcon();
   app.draw();
@@ -72,20 +74,6 @@ function setIcon(): void {
   if (!ctx || !link) return;
   drawPageIcon(ctx, 64);
   link.href = c.toDataURL("image/png");
-}
-
-/** Storage seen through a read-only window (loading twice must not set aside twice). */
-class ReadOnly implements KeyValue {
-  constructor(private readonly kv: KeyValue) {}
-  getItem(key: string): string | null {
-    return this.kv.getItem(key);
-  }
-  setItem(): void {
-    throw new Error("read only");
-  }
-  removeItem(): void {
-    throw new Error("read only");
-  }
 }
 
 const sleep = (ms: number) => new Promise((resolve) => setTimeout(resolve, ms));

@@ -1,5 +1,6 @@
 /** The simulation the game plays: the exact engine of `../physics`, seen as a SimLike. */
 import { Simulation, type AtomSnapshot } from "../physics/index";
+import { readTrace, replayTrace, traceText } from "../physics/trace";
 import type { GameConfig } from "./rules";
 import type { AtomArrays, SimLike } from "./sim";
 
@@ -90,4 +91,14 @@ export function makeSimulation(config: GameConfig): SimLike {
     ...(config.seed === null ? {} : { seed: config.seed }),
   });
   return new EngineSim(sim);
+}
+
+/** The text this engine writes for a golden trace's start and steps (the same, if it agrees). */
+export function replayGolden(text: string): string {
+  return traceText(replayTrace(readTrace(text)));
+}
+
+/** The physics' own switch to the won state, for a game's sim (tests of the condensate). */
+export function forceWin(sim: SimLike): void {
+  if (sim instanceof EngineSim) sim.sim.forceWin();
 }

@@ -114,9 +114,33 @@ function wideLayout(charts: ChartsShown): Omit<Layout, "scale" | "offsetX" | "of
   };
 }
 
-function tallLayout(charts: ChartsShown): Omit<Layout, "scale" | "offsetX" | "offsetY"> {
-  const top = TALL_SCENE_H;
-  const strip = rect(0, top, SCENE_W, STRIP_H);
+/** Charts below the scene in the tall layout: logical height each, least and most. */
+const TALL_CHART_MIN = 300;
+const TALL_CHART_MAX = 420;
+
+/**
+ * Portrait screens: the scene at the top, the controls at the bottom edge (within the
+ * thumb's reach), the charts between them when shown. The layout is as tall as the screen
+ * is at the scene's width (`viewAspect` = height / width), so no band is left empty: without
+ * charts the strip of controls grows upward to meet the scene.
+ */
+function tallLayout(
+  charts: ChartsShown,
+  viewAspect: number,
+): Omit<Layout, "scale" | "offsetX" | "offsetY"> {
+  const shown = (["energy", "path"] as const).filter((k) => charts[k]);
+  const least = TALL_SCENE_H + STRIP_H + shown.length * TALL_CHART_MIN;
+  const height = Math.max(least, Math.floor(SCENE_W * viewAspect));
+  const room = height - TALL_SCENE_H - STRIP_H;
+  const chartH = shown.length ? Math.min(TALL_CHART_MAX, room / shown.length) : 0;
+  const chartRects: Layout["charts"] = {};
+  shown.forEach((name, k) => {
+    chartRects[name] = rect(0, TALL_SCENE_H + k * chartH, SCENE_W, chartH);
+  });
+  const stripTop = TALL_SCENE_H + shown.length * chartH;
+  const strip = rect(0, stripTop, SCENE_W, height - stripTop);
+  // The slider and the buttons keep their places from the strip's bottom edge.
+  const top = height - STRIP_H;
   const names: ControlName[] = ["pause", "restart", "chart", "help", "table", "settings"];
   names.push("fullscreen");
   const size = 80;
@@ -125,16 +149,10 @@ function tallLayout(charts: ChartsShown): Omit<Layout, "scale" | "offsetX" | "of
   names.forEach((name, k) => {
     buttons[name] = rect(gap + k * (size + gap), top + 136, size, size);
   });
-  const shown = (["energy", "path"] as const).filter((k) => charts[k]);
-  const chartRects: Layout["charts"] = {};
-  const chartH = 400;
-  shown.forEach((name, k) => {
-    chartRects[name] = rect(0, top + STRIP_H + k * chartH, SCENE_W, chartH);
-  });
   return {
     mode: "tall",
     width: SCENE_W,
-    height: top + STRIP_H + shown.length * chartH,
+    height,
     sceneHeight: TALL_SCENE_H,
     buttons,
     slider: rect(56, top + 46, SCENE_W - 112, 12),
@@ -146,12 +164,12 @@ function tallLayout(charts: ChartsShown): Omit<Layout, "scale" | "offsetX" | "of
 
 /**
  * The layout for a viewport (CSS px): the desktop's scene with the charts to its right
- * when the window is wide enough for it, else (portrait phones) the scene above a strip
- * of big controls, the charts below that.
+ * when the window is wide enough for it, else (portrait phones) the scene above the
+ * charts, a strip of big controls at the bottom edge.
  */
 export function layoutFor(viewW: number, viewH: number, charts: ChartsShown): Layout {
   const wide = wideLayout(charts);
-  const tall = tallLayout(charts);
+  const tall = tallLayout(charts, viewH / viewW);
   const fw = fit(wide.width, wide.height, viewW, viewH);
   const ft = fit(tall.width, tall.height, viewW, viewH);
   // Portrait screens: the tall layout when it draws the scene at least as large and the

@@ -51,9 +51,12 @@ export async function openPage(
     touch = false,
     query = "",
     reducedMotion,
+    initScript,
   } = {},
 ) {
   const page = await browser.context.newPage();
+  // Runs before the page's own script (e.g. to take Worker away).
+  if (initScript) await page.addInitScript(initScript);
   await page.setViewportSize(viewport);
   const cdp = await browser.context.newCDPSession(page);
   await cdp.send("Emulation.setDeviceMetricsOverride", {
@@ -71,7 +74,8 @@ export async function openPage(
   });
   page.on("pageerror", (e) => log.errors.push(`pageerror: ${e.message}`));
   page.on("request", (r) => {
-    if (r.url() !== PAGE_URL + query) log.requests.push(r.url());
+    // A blob: URL (the physics worker made from the page's own code) is not a request.
+    if (r.url() !== PAGE_URL + query && !r.url().startsWith("blob:")) log.requests.push(r.url());
   });
   await page.goto(PAGE_URL + query);
   await page.waitForFunction(() => window.evapcool !== undefined);

@@ -452,11 +452,11 @@ describe("the page", () => {
   test("the condensate's glow breathes, and stands still for prefers-reduced-motion", async () => {
     const glowChanges = async (reducedMotion) => {
       const { page, log } = await openPage(browser, { query: "?seed=6", reducedMotion });
-      const changed = await page.evaluate(() => {
+      const changed = await page.evaluate(async () => {
         const api = window.evapcool;
         api.app.stop();
-        api.app.game.sim.sim.forceWin(); // the physics' own switch: settle now
-        api.runFrames(400);
+        await api.forceWin(); // the physics' own switch: settle now
+        await api.runFrames(400);
         const c = document.getElementById("scene");
         const l = api.app.layout;
         const grab = () => {

@@ -1,0 +1,191 @@
+/**
+ * The page's input: the key table applied in the applet's modes (a question pending, the
+ * name box, the settings screen, play), taps on the drawn panels, and the window's events
+ * (resize, pixel ratio, another tab's scores, hiding, full screen).
+ */
+import { NAME_MAX } from "../game/highscores";
+import { atLeast, contains, MIN_TARGET_CSS } from "../view/geometry";
+import type { Target } from "../view/overlays";
+import type { App } from "./app";
+import { actionFor } from "./bindings";
+
+const HIDDEN_PAUSE = "Paused while the page was hidden. Space or play: go on.";
+
+export class Input {
+  private pausedByHiding = false;
+
+  constructor(private readonly app: App) {}
+
+  /** A key press (KeyboardEvent.key); true if the applet used it. */
+  key(rawKey: string): boolean {
+    const app = this.app;
+    const scores = app.scores;
+    const key = rawKey.toLowerCase();
+    if (scores.confirmReset) {
+      if (key === "y") scores.clearTable(true);
+      else if (key === "n" || key === "escape") scores.clearTable(false);
+      return true; // nothing else happens until the question is answered
+    }
+    if (scores.nameBoxOpen) return false; // the input field has the keyboard
+    if (app.overlay === "settings") {
+      app.options.key(key);
+      return true;
+    }
+    const action = actionFor(rawKey);
+    if (!action) return false;
+    app.act(action);
+    return true;
+  }
+
+  wire(): void {
+    const app = this.app;
+    for (const type of ["keydown", "keyup", "pointerdown", "pointermove", "pointerup", "input"]) {
+      window.addEventListener(type, () => (app.dirty = true), { capture: true, passive: true });
+    }
+    window.addEventListener("resize", () => app.resize());
+    // Another tab stored a score: show the table as it is now.
+    window.addEventListener("storage", (ev) => {
+      if (ev.key !== null && ev.key !== app.scores.table.key) return;
+      app.scores.reload();
+      app.dirty = true;
+    });
+    window.visualViewport?.addEventListener("resize", () => app.resize());
+    this.watchRatio();
+    this.wireKeys();
+    app.el.canvas.addEventListener("pointerdown", (ev) => this.tap(ev));
+    document.addEventListener("visibilitychange", () => this.visibility());
+    document.addEventListener("fullscreenchange", () => app.resize());
+  }
+
+  /** A window moved to a screen of another pixel ratio: redraw sharp for that one. */
+  private watchRatio(): void {
+    if (typeof matchMedia !== "function") return;
+    matchMedia(`(resolution: ${window.devicePixelRatio}dppx)`).addEventListener(
+      "change",
+      () => {
+        this.app.resize();
+        this.watchRatio();
+      },
+      { once: true },
+    );
+  }
+
+  private wireKeys(): void {
+    const app = this.app;
+    const nameInput = app.el.nameInput;
+    window.addEventListener("keydown", (ev) => {
+      if (ev.ctrlKey || ev.metaKey || ev.altKey) return;
+      const target = ev.target as HTMLElement | null;
+      if (target === nameInput) return;
+      // Enter on a focused button presses that button (its own click).
+      if (ev.key === "Enter" && target instanceof HTMLButtonElement && !app.scores.readyForNext)
+        return;
+      if (this.key(ev.key)) ev.preventDefault();
+    });
+    nameInput.maxLength = NAME_MAX * 2; // code points are cut by the table; this bounds typing
+    nameInput.addEventListener("keydown", (ev) => {
+      if (ev.isComposing) return;
+      if (ev.key === "Enter") {
+        ev.preventDefault();
+        app.scores.storeName(nameInput.value);
+      } else if (ev.key === "Escape") {
+        ev.preventDefault();
+        app.scores.skipName();
+      }
+      ev.stopPropagation();
+    });
+    nameInput.addEventListener("input", () => {
+      const chars = Array.from(nameInput.value);
+      if (chars.length > NAME_MAX) nameInput.value = chars.slice(0, NAME_MAX).join("");
+    });
+  }
+
+  /** Hidden: pause (and say so on return); the clock restarts either way. */
+  private visibility(): void {
+    const app = this.app;
+    if (document.hidden && !app.game.paused) {
+      app.game.paused = true;
+      this.pausedByHiding = true;
+    } else if (!document.hidden && this.pausedByHiding) {
+      this.pausedByHiding = false;
+      app.say(HIDDEN_PAUSE);
+    }
+    app.loop.resetClock();
+  }
+
+  /** A tap or click on the canvas: overlay targets first, then closing the help. */
+  private tap(ev: PointerEvent): void {
+    const app = this.app;
+    const [lx, ly] = app.screen.toLogical(ev.clientX, ev.clientY);
+    const z = app.screen.overlayZoom();
+    const [x, y] = [z.cx + (lx - z.x) / z.k, z.cy + (ly - z.y) / z.k];
+    const hit = pickTarget(app.targets, x, y, MIN_TARGET_CSS / (app.screen.layout.scale * z.k));
+    if (hit) {
+      ev.preventDefault();
+      this.target(hit.action);
+    } else if (app.overlay === "help") {
+      app.overlay = null;
+    }
+  }
+
+  /** A drawn panel's target ("name" or "name:row") was tapped. */
+  private target(action: string): void {
+    const app = this.app;
+    const [name, arg] = action.split(":");
+    const row = Number(arg);
+    switch (name) {
+      case "close":
+        app.overlay = null;
+        break;
+      case "dec":
+      case "inc":
+        app.options.change(row, name === "inc" ? 1 : -1);
+        break;
+      case "row":
+        app.options.select(row);
+        break;
+      case "save":
+        app.options.close(true);
+        break;
+      case "cancel":
+        app.options.close(false);
+        break;
+      case "clear":
+        app.act("clear");
+        break;
+      case "yes":
+        app.scores.clearTable(true);
+        break;
+      case "no":
+        app.scores.clearTable(false);
+        break;
+      case "next":
+        app.restart();
+        break;
+      case "tableclose":
+        app.overlay = null;
+        app.scores.confirmReset = false;
+        break;
+    }
+  }
+}
+
+/**
+ * The target under a tap: one drawn under the point first (the first listed wins), else
+ * the nearest whose area grown to `min` logical px (44 CSS px) holds the point, so small
+ * targets on a phone can still be hit with a finger.
+ */
+export function pickTarget(targets: Target[], x: number, y: number, min: number): Target | null {
+  const exact = targets.find((t) => contains(t.rect, x, y));
+  if (exact) return exact;
+  let best: Target | null = null;
+  let bestD = Infinity;
+  for (const t of targets) {
+    if (!contains(atLeast(t.rect, min), x, y)) continue;
+    const cx = Math.max(t.rect.x, Math.min(x, t.rect.x + t.rect.w));
+    const cy = Math.max(t.rect.y, Math.min(y, t.rect.y + t.rect.h));
+    const d = Math.hypot(x - cx, y - cy);
+    if (d < bestD) [best, bestD] = [t, d];
+  }
+  return best;
+}

@@ -1,0 +1,82 @@
+/**
+ * Short messages shown for a few seconds at the bottom of the play area, what a screen
+ * reader is told (a polite live region) and the canvas's text alternative (the status).
+ */
+import type { GameLike } from "./remote";
+
+/** How long a notice stays on screen, s of the applet's own clock. */
+export const NOTICE_SECONDS = 8;
+/** Notices at once (a damaged store can give several, each must be seen). */
+export const NOTICE_MAX = 5;
+/** The status line is rewritten at most this often, ms (screen readers read it on change). */
+const STATUS_EVERY_MS = 500;
+
+export class Notices {
+  private list: Array<[string, number]> = [];
+
+  constructor(
+    private readonly live: HTMLElement,
+    /** The applet's clock, s. */
+    private readonly clock: () => number,
+    /** Called when the picture changes (a new notice must be drawn). */
+    private readonly changed: () => void,
+  ) {}
+
+  notify(text: string): void {
+    this.changed();
+    this.list.push([text, this.clock() + NOTICE_SECONDS]);
+    this.list.splice(0, Math.max(0, this.list.length - NOTICE_MAX));
+    this.say(text);
+  }
+
+  get visible(): string[] {
+    const now = this.clock();
+    return this.list.filter(([, until]) => until > now).map(([t]) => t);
+  }
+
+  /** Tell a screen reader (politely: after what it is reading). */
+  say(text: string): void {
+    const live = this.live;
+    // A changed text node is announced even when the words repeat.
+    live.textContent = "";
+    const node = document.createElement("p");
+    node.textContent = text;
+    live.append(node);
+    while (live.childNodes.length > 1) live.firstChild?.remove();
+  }
+}
+
+/** The canvas's text alternative: what is on screen, in words (updated when it changes). */
+export class StatusLine {
+  private last = "";
+  private at = -Infinity;
+
+  constructor(private readonly el: HTMLElement) {}
+
+  /** Write the game's state; true if a change waits to be written (draw again). */
+  update(g: GameLike): boolean {
+    const sim = g.sim;
+    const state = g.won
+      ? `Condensed. Score ${g.score}.`
+      : g.allEscaped
+        ? "All the atoms escaped."
+        : g.paused
+          ? "Paused."
+          : "Playing.";
+    const text =
+      `${state} ${sim.nTrapped} atoms in the cup, trap height ${Math.round(g.trapHeight)} px, ` +
+      `temperature ${fmt(sim.temperature)}, critical temperature ${fmt(sim.criticalTemperature)} ` +
+      `(${sim.temperature < sim.criticalTemperature ? "below" : "above"} Tc).`;
+    if (text === this.last) return false;
+    const now = performance.now();
+    if (now - this.at < STATUS_EVERY_MS) return true;
+    this.at = now;
+    this.last = text;
+    this.el.textContent = text;
+    return false;
+  }
+}
+
+function fmt(v: number): string {
+  return Number.isFinite(v) ? v.toFixed(1) : "-";
+}

@@ -1,0 +1,53 @@
+/**
+ * The game's pace against real time: physics frames advanced per second of wall clock,
+ * over the speed's 30 frames a second. Below 1 the device cannot keep up and the game
+ * runs in slow motion (it never takes bigger steps, see MAX_WALL_STEP); the page says so.
+ */
+import { FPS } from "../game/constants";
+
+/** The note while the pace is below real time (pace as "0.87"). */
+export const SLOW_NOTE = (pace: string) => `slow motion ${pace}x: this device`;
+/** Pace measured over windows of this much wall clock, ms. */
+const WINDOW_MS = 1000;
+/** A gap longer than this between frames (a hidden tab) starts a new window, ms. */
+const GAP_MS = 250;
+/** Slow below ENTER, real time again from LEAVE (no flicker near the line). */
+const ENTER = 0.95;
+const LEAVE = 0.98;
+
+export class PaceMeter {
+  /** The last full window's pace (1 = real time). */
+  pace = 1;
+  slow = false;
+  private startMs = NaN;
+  private startTime = 0;
+  private lastMs = NaN;
+  private key = "";
+
+  /**
+   * A frame at wall `nowMs` with the physics at `time` frames; `key` names what a window
+   * must keep (speed, game, pause): a change starts a new window.
+   */
+  add(nowMs: number, time: number, speed: number, running: boolean, key: string): void {
+    const gap = nowMs - this.lastMs;
+    this.lastMs = nowMs;
+    const fresh = Number.isNaN(this.startMs) || time < this.startTime;
+    if (!running || key !== this.key || !(gap < GAP_MS) || fresh) {
+      this.key = key;
+      this.startMs = running ? nowMs : NaN;
+      this.startTime = time;
+      return;
+    }
+    const span = nowMs - this.startMs;
+    if (!(span >= WINDOW_MS)) return;
+    this.pace = (time - this.startTime) / ((span / 1000) * FPS * speed);
+    this.slow = this.slow ? this.pace < LEAVE : this.pace < ENTER;
+    this.startMs = nowMs;
+    this.startTime = time;
+  }
+
+  /** The line to show, or null at real time. */
+  note(): string | null {
+    return this.slow ? SLOW_NOTE(this.pace.toFixed(2)) : null;
+  }
+}

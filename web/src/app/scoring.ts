@@ -1,0 +1,165 @@
+/** The win's name entry and the high-score table, for one visit of the page. */
+import { HighScoreTable, scoresKey } from "../game/highscores";
+import { settingsKey, type Settings } from "../game/settings";
+import type { KeyValue } from "../game/store";
+import { nameField } from "../view/overlays";
+import type { Screen } from "./layout";
+import type { GameLike } from "./remote";
+
+const WON = (score: number) => `Temperature below Tc: ${score} atoms, score ${score}`;
+const NOT_TOP = (score: number) =>
+  `Score ${score} is not in the top 10 this time. Enter: next player.`;
+const STORED = (rank: number) => `Stored at place ${rank}. Enter: next player`;
+const NOT_STORED = "Score not stored. Enter: next player.";
+const CLEARED = "The high-score table was cleared.";
+export const NAME_PROMPT = "Top 10! Type your name:";
+
+export interface ScoringHost {
+  readonly game: GameLike;
+  readonly storage: KeyValue;
+  readonly screen: Screen;
+  readonly nameInput: HTMLInputElement;
+  readonly canvas: HTMLCanvasElement;
+  notify(text: string): void;
+  say(text: string): void;
+  /** Drop a trap height still waiting to be spoken. */
+  quiet(): void;
+  /** Show the table (or nothing) over the play area. */
+  showTable(shown: boolean): void;
+}
+
+export class Scoreboard {
+  table!: HighScoreTable;
+  nameBoxOpen = false;
+  storedRank: number | null = null;
+  readyForNext = false;
+  confirmReset = false;
+
+  constructor(private readonly host: ScoringHost) {}
+
+  /** The table of these settings (kept if it is already the open one). */
+  openTable(s: Settings): void {
+    const key = scoresKey(settingsKey(s));
+    if (this.table?.key === key) return;
+    this.table = new HighScoreTable(this.host.storage, key);
+    this.takeNotices();
+  }
+
+  /** Another tab stored a score: show the table as it is now. */
+  reload(): void {
+    this.table.load();
+    this.takeNotices();
+  }
+
+  private takeNotices(): void {
+    this.table.takeNotices().forEach((t) => this.host.notify(t));
+  }
+
+  /** A new game: no name entry, no stored rank, no question pending. */
+  newGame(): void {
+    this.closeNameBox();
+    this.readyForNext = false;
+    this.storedRank = null;
+    this.confirmReset = false;
+  }
+
+  onWin(): void {
+    const g = this.host.game;
+    const score = g.score ?? 0;
+    const seconds = g.wonAt ?? 0;
+    // The win is what matters now: a trap height still waiting to be spoken is dropped.
+    this.host.quiet();
+    this.host.say(WON(score));
+    if (this.table.qualifies(score, seconds)) {
+      this.host.showTable(false); // the name box must be seen
+      this.openNameBox();
+    } else {
+      this.host.notify(NOT_TOP(score));
+      this.readyForNext = true;
+    }
+  }
+
+  private openNameBox(): void {
+    this.nameBoxOpen = true;
+    const input = this.host.nameInput;
+    input.value = "";
+    input.hidden = false;
+    this.placeNameBox();
+    input.focus({ preventScroll: true });
+  }
+
+  closeNameBox(): void {
+    if (!this.nameBoxOpen) return;
+    this.nameBoxOpen = false;
+    const input = this.host.nameInput;
+    const hadFocus = document.activeElement === input;
+    input.hidden = true;
+    if (hadFocus) this.host.canvas.focus({ preventScroll: true });
+  }
+
+  placeNameBox(): void {
+    const screen = this.host.screen;
+    if (!this.nameBoxOpen || !screen.layout) return;
+    const input = this.host.nameInput;
+    screen.place(input, nameField());
+    input.style.fontSize = `${32 * 0.6875 * screen.layout.scale}px`;
+  }
+
+  /** Letters typed in the name box (the frame drawn round it counts them). */
+  nameLength(): number {
+    return Array.from(this.host.nameInput.value).length;
+  }
+
+  storeName(name: string): void {
+    const g = this.host.game;
+    this.closeNameBox();
+    this.storedRank = this.table.add(name, g.score ?? 0, g.wonAt ?? 0);
+    this.takeNotices();
+    this.host.showTable(true);
+    this.readyForNext = true;
+    if (this.storedRank !== null) this.host.say(STORED(this.storedRank));
+  }
+
+  skipName(): void {
+    this.closeNameBox();
+    this.host.notify(NOT_STORED);
+    this.readyForNext = true;
+  }
+
+  clearTable(yes: boolean): void {
+    this.confirmReset = false;
+    if (!yes) return;
+    this.storedRank = null;
+    if (this.table.reset()) this.host.notify(CLEARED);
+    this.takeNotices();
+  }
+
+  footer(): string[] {
+    if (this.confirmReset) return ["Clear all scores?  Y: yes   N or Esc: no"];
+    if (this.readyForNext) return ["Enter: next player"];
+    return ["T: close   Delete or X: clear the table"];
+  }
+
+  buttons(): Array<[string, string]> {
+    if (this.confirmReset)
+      return [
+        ["Yes, clear", "yes"],
+        ["No", "no"],
+      ];
+    if (this.readyForNext)
+      return [
+        ["Next player", "next"],
+        ["Close", "tableclose"],
+      ];
+    return [
+      ["Close", "tableclose"],
+      ["Clear...", "clear"],
+    ];
+  }
+}
+
+/** The settings a table belongs to, in words (its title). */
+export function describeRun(s: Settings): string {
+  const law = s.tcLaw === "seed" ? "Tc ~ N^(2/3)" : "Tc ~ N^(2/5)";
+  return `${s.nAtoms} atoms of radius ${s.radius}, ${law}, ${s.escape === "rim" ? "rim" : "knife"}`;
+}
