@@ -5,6 +5,7 @@
 import { copyFileSync } from "node:fs";
 import { resolve } from "node:path";
 import { defineConfig, type Plugin } from "vite";
+import { wasmCore } from "./scripts/wasm-plugin.mjs";
 
 /** The copy shipped in the Python package (`evapcool web`); CI checks it equals a fresh build. */
 const PACKAGE_COPY = resolve(import.meta.dirname, "../src/evapcool/web/evapcool.html");
@@ -61,7 +62,10 @@ export default defineConfig({
       input: "index.html",
     },
   },
+  // The physics worker's own bundle (src/app/main.ts imports it inline) holds the core too.
+  worker: { plugins: () => [wasmCore()] },
   plugins: [
+    wasmCore(),
     singleFile(),
     {
       name: "evapcool-page-name",

@@ -1,7 +1,9 @@
 /** Vitest runs the unit tests (Node); the browser tests under test/e2e run with node --test. */
 import { defineConfig } from "vitest/config";
+import { wasmCore } from "./scripts/wasm-plugin.mjs";
 
 export default defineConfig({
+  plugins: [wasmCore()],
   test: {
     include: ["test/**/*.test.ts"],
     exclude: ["test/e2e/**", "node_modules/**"],

@@ -6,6 +6,17 @@
  * interleaved repeats and medians.
  */
 import { Simulation } from "../src/physics/index";
+import { Engine } from "../src/physics/engine";
+import { setEngineCore } from "../src/physics/simulation";
+
+/** The engine cores compared: engine.ts's TypeScript and the WebAssembly core (web/wasm/). */
+export const CORES = ["ts", "wasm"] as const;
+export type Core = (typeof CORES)[number];
+
+/** Simulations made from now on run on this core. */
+export function useCore(core: Core): void {
+  setEngineCore(core === "ts" ? (setup, atoms) => new Engine(setup, atoms) : null);
+}
 
 export interface Throughput {
   n: number;
@@ -19,12 +30,17 @@ export interface Throughput {
   msPerFrame: number;
 }
 
-export interface BenchReport {
-  clock: string;
+/** One core's figures. */
+export interface CoreReport {
   classic: { frames: number; medianMs: number; p95Ms: number; block: number };
   big: Throughput;
   scaling: { n: number; runs: Throughput[]; medianCollPerS: number; medianEventsPerS: number }[];
   maxOverMin: number;
+}
+
+export interface BenchReport {
+  clock: string;
+  cores: Record<Core, CoreReport>;
 }
 
 function median(xs: number[]): number {
@@ -68,10 +84,14 @@ export function classicTimes(frames: number, now: () => number): number[] {
   return times;
 }
 
-/** The JIT's warm-up: every hot path compiled (the knife's too) before anything is timed. */
+/** The JIT's warm-up: every hot path of both cores compiled (the knife's too). */
 export function warmUp(): void {
-  new Simulation({ nAtoms: 400, radius: 3, seed: 0, escape: "knife" }).advance(20);
-  work(prepare(10_000), 3);
+  for (const core of CORES) {
+    useCore(core);
+    new Simulation({ nAtoms: 400, radius: 3, seed: 0, escape: "knife" }).advance(20);
+    work(prepare(10_000), 3);
+  }
+  useCore("ts");
 }
 
 /** Where the figures are measured: here (Node) or in a page (driven from Node). */
@@ -82,12 +102,13 @@ export interface Runner {
   throughput(
     n: number,
     frames: number,
+    core: Core,
   ): Promise<{ collisions: number; events: number; ms: number }>;
-  classicTimes(frames: number): Promise<number[]>;
+  classicTimes(frames: number, core: Core): Promise<number[]>;
 }
 
-async function measure(runner: Runner, n: number, frames: number): Promise<Throughput> {
-  const r = await runner.throughput(n, frames);
+async function measure(runner: Runner, n: number, frames: number, core: Core): Promise<Throughput> {
+  const r = await runner.throughput(n, frames, core);
   return {
     n,
     radius: Math.sqrt(10_000 / n),
@@ -100,43 +121,63 @@ async function measure(runner: Runner, n: number, frames: number): Promise<Throu
   };
 }
 
-/** Every figure; quick: fewer frames and one run of the table. */
+/**
+ * Every figure, the cores interleaved (each measurement of one core beside the other's);
+ * quick: fewer frames and one run of the table.
+ */
 export async function runAll(runner: Runner, quick = false): Promise<BenchReport> {
   await runner.warmUp();
   const frames = quick ? 10 : 30;
-  const big = await measure(runner, 10_000, frames);
   const sizes = [1_000, 10_000, 100_000];
   const repeats = quick ? 1 : 3;
-  const runs = new Map<number, Throughput[]>(sizes.map((n) => [n, []]));
-  for (let r = 0; r < repeats; r++) {
-    for (const n of sizes) {
-      const fr = Math.max(2, Math.floor((frames * 10_000) / n));
-      runs.get(n)!.push(await measure(runner, n, fr));
-    }
-  }
-  const scaling = sizes.map((n) => ({
-    n,
-    runs: runs.get(n)!,
-    medianCollPerS: median(runs.get(n)!.map((r) => r.collPerS)),
-    medianEventsPerS: median(runs.get(n)!.map((r) => r.eventsPerS)),
-  }));
-  const rates = scaling.map((s) => s.medianCollPerS);
+  const big = new Map<Core, Throughput>();
+  for (const core of CORES) big.set(core, await measure(runner, 10_000, frames, core));
+  const runs = new Map<string, Throughput[]>();
+  for (let r = 0; r < repeats; r++)
+    for (const n of sizes)
+      for (const core of CORES) {
+        const fr = Math.max(2, Math.floor((frames * 10_000) / n));
+        const key = `${core} ${n}`;
+        runs.set(key, [...(runs.get(key) ?? []), await measure(runner, n, fr, core)]);
+      }
   const nf = quick ? 300 : 900;
-  const times = await runner.classicTimes(nf);
-  return {
-    clock: runner.clock,
-    classic: { frames: nf, medianMs: median(times), p95Ms: quantile(times, 0.95), block: 1 },
-    big,
-    scaling,
-    maxOverMin: Math.max(...rates) / Math.min(...rates),
-  };
+  const times = new Map<Core, number[]>(CORES.map((c) => [c, []]));
+  for (let r = 0; r < 3; r++)
+    for (const core of CORES) times.get(core)!.push(...(await runner.classicTimes(nf / 3, core)));
+  const cores = {} as Record<Core, CoreReport>;
+  for (const core of CORES) {
+    const scaling = sizes.map((n) => {
+      const rs = runs.get(`${core} ${n}`)!;
+      return {
+        n,
+        runs: rs,
+        medianCollPerS: median(rs.map((x) => x.collPerS)),
+        medianEventsPerS: median(rs.map((x) => x.eventsPerS)),
+      };
+    });
+    const rates = scaling.map((x) => x.medianCollPerS);
+    const t = times.get(core)!;
+    cores[core] = {
+      classic: { frames: nf, medianMs: median(t), p95Ms: quantile(t, 0.95), block: 1 },
+      big: big.get(core)!,
+      scaling,
+      maxOverMin: Math.max(...rates) / Math.min(...rates),
+    };
+  }
+  return { clock: runner.clock, cores };
 }
 
 /** The report as text lines. */
-export function describe(where: string, r: BenchReport): string[] {
+export function describe(where: string, report: BenchReport): string[] {
+  const out = [`[${where}] timing: ${report.clock}`];
+  for (const core of CORES) out.push(...describeCore(core, report.cores[core]));
+  return out;
+}
+
+function describeCore(core: Core, r: CoreReport): string[] {
   const M = (x: number) => (x / 1e6).toFixed(3) + " M";
   const out = [
-    `[${where}] timing: ${r.clock}`,
+    ` ${core} engine core:`,
     `  classic start (49 atoms, R = 12, H = 450): median ${r.classic.medianMs.toFixed(4)} ms, ` +
       `p95 ${r.classic.p95Ms.toFixed(4)} ms physics per frame over ${r.classic.frames} frames` +
       "",

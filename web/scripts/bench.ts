@@ -1,11 +1,13 @@
 /**
  * npm run bench [-- --quick] [-- --numba] [-- --node-only | --browser-only]
  *
- * The web engine's figures (scripts/bench-core.ts) in Node, then in headless Chromium
+ * The web engine's figures (scripts/bench-core.ts) for both engine cores, the TypeScript
+ * engine and the WebAssembly core, interleaved: in Node, then in headless Chromium
  * (/usr/bin/chromium through playwright-core, a fresh profile, the page served with
  * cross-origin isolation so performance.now() is fine-grained). Rates are per second of CPU
  * time in both (the machine is shared), frame times by the wall clock. --numba also measures
- * the Numba engine in this session (the project's .venv, or EVAPCOOL_PYTHON) for the ratio.
+ * the Numba engine in this session (the project's .venv, or EVAPCOOL_PYTHON) at 1 000,
+ * 10 000 and 100 000 atoms for the ratios.
  */
 import { spawnSync } from "node:child_process";
 import { existsSync, mkdtempSync, rmSync } from "node:fs";
@@ -15,15 +17,18 @@ import { fileURLToPath } from "node:url";
 import { chromium } from "playwright-core";
 import { build } from "vite";
 import {
+  CORES,
   classicTimes,
   describe,
   prepare,
   runAll,
+  useCore,
   warmUp,
   work,
   type BenchReport,
   type Runner,
 } from "./bench-core";
+import { wasmCore } from "./wasm-plugin.mjs";
 
 const WEB = process.env.EVAPCOOL_WEB ?? fileURLToPath(new URL("..", import.meta.url));
 const CHROMIUM = "/usr/bin/chromium";
@@ -38,12 +43,18 @@ const CHROMIUM_FLAGS = [
   "--disable-sync",
 ];
 const NUMBA_SNIPPET = `
-import json
+import json, statistics
 from evapcool import Simulation
 from evapcool.bench.fast import throughput
 Simulation(n_atoms=50, radius=3.0, seed=0, engine="fast", escape="knife").advance(2.0)
-print(json.dumps(throughput(10_000, FRAMES)))
+runs = {n: [] for n in SIZES}
+for _ in range(REPEATS):
+    for n in SIZES:
+        runs[n].append(throughput(n, max(2, FRAMES * 10_000 // n))["coll_per_s"])
+print(json.dumps([statistics.median(runs[n]) for n in SIZES]))
 `;
+/** Numba's sizes: the scaling table's. */
+const NUMBA_SIZES = [1_000, 10_000, 100_000];
 
 /** Node: rates per second of this process's CPU time, frame times by the wall clock. */
 function nodeRunner(): Runner {
@@ -54,13 +65,17 @@ function nodeRunner(): Runner {
   return {
     clock: `Node ${process.version}; rates per second of process CPU time, frames by the wall clock`,
     warmUp: async () => warmUp(),
-    throughput: async (n, frames) => {
+    throughput: async (n, frames, core) => {
+      useCore(core);
       const sim = prepare(n);
       const t0 = cpu();
       const r = work(sim, frames);
       return { ...r, ms: cpu() - t0 };
     },
-    classicTimes: async (frames) => classicTimes(frames, () => performance.now()),
+    classicTimes: async (frames, core) => {
+      useCore(core);
+      return classicTimes(frames, () => performance.now());
+    },
   };
 }
 
@@ -76,6 +91,7 @@ async function browserReport(quick: boolean): Promise<{ report: BenchReport; ver
     configFile: false,
     logLevel: "error",
     root: WEB,
+    plugins: [wasmCore()],
     build: {
       write: false,
       minify: false,
@@ -122,11 +138,15 @@ async function browserReport(quick: boolean): Promise<{ report: BenchReport; ver
         "(DevTools ThreadTime), frames by performance.now() (cross-origin isolated)",
       warmUp: () =>
         page.evaluate(() => (globalThis as unknown as BenchGlobal).EvapcoolBench.warmUp()),
-      throughput: async (n, frames) => {
-        await page.evaluate((n) => {
-          const g = globalThis as unknown as BenchGlobal;
-          g.benchSim = g.EvapcoolBench.prepare(n);
-        }, n);
+      throughput: async (n, frames, core) => {
+        await page.evaluate(
+          ([n, core]) => {
+            const g = globalThis as unknown as BenchGlobal;
+            g.EvapcoolBench.useCore(core);
+            g.benchSim = g.EvapcoolBench.prepare(n);
+          },
+          [n, core] as const,
+        );
         const t0 = await threadMs();
         const r = await page.evaluate((frames) => {
           const g = globalThis as unknown as BenchGlobal;
@@ -135,13 +155,14 @@ async function browserReport(quick: boolean): Promise<{ report: BenchReport; ver
         const ms = (await threadMs()) - t0;
         return { ...r, ms };
       },
-      classicTimes: (frames) =>
+      classicTimes: (frames, core) =>
         page.evaluate(
-          (frames) =>
-            (globalThis as unknown as BenchGlobal).EvapcoolBench.classicTimes(frames, () =>
-              performance.now(),
-            ),
-          frames,
+          ([frames, core]) => {
+            const bench = (globalThis as unknown as BenchGlobal).EvapcoolBench;
+            bench.useCore(core);
+            return bench.classicTimes(frames, () => performance.now());
+          },
+          [frames, core] as const,
         ),
     };
     const report = await runAll(runner, quick);
@@ -152,25 +173,27 @@ async function browserReport(quick: boolean): Promise<{ report: BenchReport; ver
   }
 }
 
-function numbaCollisionsPerS(frames: number): number | null {
+/** The Numba engine's collisions/s at NUMBA_SIZES (process CPU time; medians), or null. */
+function numbaCollisionsPerS(frames: number, repeats: number): number[] | null {
   const python =
     process.env.EVAPCOOL_PYTHON ??
     [resolve(WEB, "../.venv/bin/python"), "python3"].find((p) => p === "python3" || existsSync(p))!;
-  const run = spawnSync(python, ["-c", NUMBA_SNIPPET.replace("FRAMES", String(frames))], {
-    encoding: "utf8",
-  });
+  const code = NUMBA_SNIPPET.replace("FRAMES", String(frames))
+    .replace("REPEATS", String(repeats))
+    .replaceAll("SIZES", JSON.stringify(NUMBA_SIZES));
+  const run = spawnSync(python, ["-c", code], { encoding: "utf8" });
   if (run.status !== 0) {
     console.error(`[numba] could not run the Numba engine with ${python}:\n${run.stderr.trim()}`);
     return null;
   }
-  const r = JSON.parse(run.stdout.trim().split("\n").pop()!) as {
-    coll_per_s: number;
-    collisions: number;
-  };
-  console.log(
-    `[numba] same session, ${python}: 10 000 atoms, R = 1, H = 450: ${Math.round(r.coll_per_s).toLocaleString("en")} collisions/s (process CPU time)`,
+  const rs = JSON.parse(run.stdout.trim().split("\n").pop()!) as number[];
+  const text = rs.map(
+    (r, k) => `${NUMBA_SIZES[k].toLocaleString("en")}: ${Math.round(r).toLocaleString("en")}`,
   );
-  return r.coll_per_s;
+  console.log(
+    `[numba] same session, ${python}: collisions/s (process CPU time, median of ${repeats}) at constant packing, atoms ${text.join(", ")}`,
+  );
+  return rs;
 }
 
 export async function main(args: string[]): Promise<number> {
@@ -181,13 +204,19 @@ export async function main(args: string[]): Promise<number> {
       return 2;
     }
   const quick = args.includes("--quick");
-  const rates: [string, number][] = [];
-  if (!args.includes("--browser-only")) {
-    const r = await runAll(nodeRunner(), quick);
-    for (const line of describe("node", r)) console.log(line);
-    rates.push(["node", r.big.collPerS]);
-  }
-  const numba = args.includes("--numba") ? numbaCollisionsPerS(quick ? 10 : 30) : null;
+  // where, collisions/s at 10 000 atoms, the scaling table's medians
+  const rates: [string, number, number[]][] = [];
+  const note = (where: string, r: BenchReport) => {
+    for (const line of describe(where, r)) console.log(line);
+    for (const core of CORES) {
+      const c = r.cores[core];
+      rates.push([`${where} ${core}`, c.big.collPerS, c.scaling.map((x) => x.medianCollPerS)]);
+    }
+  };
+  if (!args.includes("--browser-only")) note("node", await runAll(nodeRunner(), quick));
+  const numba = args.includes("--numba")
+    ? numbaCollisionsPerS(quick ? 10 : 30, quick ? 1 : 3)
+    : null;
   if (!args.includes("--node-only")) {
     if (!existsSync(CHROMIUM)) {
       console.error(
@@ -196,13 +225,15 @@ export async function main(args: string[]): Promise<number> {
       return 1;
     }
     const { report, version } = await browserReport(quick);
-    for (const line of describe(`chromium ${version}`, report)) console.log(line);
-    rates.push(["chromium", report.big.collPerS]);
+    note(`chromium ${version}`, report);
   }
   if (numba !== null)
-    for (const [where, rate] of rates)
+    for (const [where, rate, table] of rates) {
+      const each = table.map((x, k) => (x / numba[k]).toFixed(2)).join(" / ");
       console.log(
-        `  ${where} / numba at 10 000 atoms: ${(rate / numba).toFixed(2)} (target >= 0.5)`,
+        `  ${where} / numba at 10 000 atoms: ${(rate / numba[1]).toFixed(2)} (target >= 0.9); ` +
+          `the table's 1 000 / 10 000 / 100 000 atoms: ${each}`,
       );
+    }
   return 0;
 }

@@ -2,6 +2,7 @@
 // Node into node_modules/.cache/evapcool-scripts/ (packages stay external), then
 // node scripts/run.mjs scripts/NAME.ts ARGS... calls the script's main(ARGS).
 import { build } from "vite";
+import { wasmCore } from "./wasm-plugin.mjs";
 import { basename, resolve } from "node:path";
 import { fileURLToPath, pathToFileURL } from "node:url";
 
@@ -17,6 +18,7 @@ await build({
   configFile: false,
   logLevel: "error",
   root: web,
+  plugins: [wasmCore()],
   build: {
     ssr: resolve(web, script),
     outDir,

@@ -23,7 +23,7 @@ import {
   type EscapeRule,
   type EventName,
 } from "./constants";
-import { Engine, type EngineAtoms } from "./engine";
+import type { EngineAtoms, EngineSetup } from "./engine";
 import { loadCup } from "./loading";
 import { Xoshiro128, randomSeed } from "./rng";
 import {
@@ -36,6 +36,7 @@ import {
   type SimulationState,
   type StateInput,
 } from "./state";
+import { WasmEngine, type EngineCore } from "./wasm";
 
 /** Points as interleaved numbers [x0, y0, x1, y1, ...] or as pairs [[x0, y0], ...]. */
 export type Points = ArrayLike<number> | ReadonlyArray<readonly [number, number]>;
@@ -218,9 +219,22 @@ export function pairwiseSum(a: Float64Array, start: number, n: number): number {
   return pairwiseSum(a, start, n2) + pairwiseSum(a, start + n2, n - n2);
 }
 
+/**
+ * Builds an engine core: wasm.ts's WebAssembly core, the page's (the faster of the two,
+ * docs/benchmarks.md), or engine.ts's Engine (the same events, bit for bit).
+ */
+export type EngineFactory = (setup: EngineSetup, atoms: EngineAtoms) => EngineCore;
+const wasmCore: EngineFactory = (setup, atoms) => new WasmEngine(setup, atoms);
+let makeEngine = wasmCore;
+
+/** Simulations made from now on run on this engine core (null: the WebAssembly core). */
+export function setEngineCore(factory: EngineFactory | null): void {
+  makeEngine = factory ?? wasmCore;
+}
+
 /** Hard disks in a parabolic cup under gravity, advanced event by event, exactly. */
 export class Simulation {
-  private engine!: Engine;
+  private engine!: EngineCore;
   private windowSize!: [number, number];
   private origin!: [number, number];
   private seedUsed!: number | null;
@@ -325,7 +339,7 @@ export class Simulation {
     this.scratch = new Float64Array(4);
     this.windowSize = [window[0], window[1]];
     this.origin = [vxScreen, originSy];
-    this.engine = new Engine(
+    this.engine = makeEngine(
       {
         curvature: rules.curvature,
         gravity: rules.gravity,

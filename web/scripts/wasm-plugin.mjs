@@ -1,0 +1,124 @@
+/**
+ * The WebAssembly engine core's build (issue 24): compiles web/wasm/*.c with Debian's clang
+ * and lld for wasm32 and serves the module as base64 text to `import "virtual:evapcool-wasm"`
+ * (src/physics/wasm.ts), so the page stays one file. Used by vite.config.ts,
+ * vitest.config.ts and the scripts' own builds (plain JavaScript: scripts/run.mjs loads it
+ * in Node 20; types in wasm-plugin.d.mts).
+ */
+import { spawnSync } from "node:child_process";
+import { mkdtempSync, readdirSync, readFileSync, rmSync } from "node:fs";
+import { tmpdir } from "node:os";
+import { join, resolve } from "node:path";
+
+const VIRTUAL = "virtual:evapcool-wasm";
+const RESOLVED = "\0evapcool-wasm";
+/** web/wasm/ seen from web/ (the Vite root). */
+export const WASM_FOLDER = "wasm";
+
+/**
+ * IEEE arithmetic as written: no contraction into fused multiply-adds, no fast-math; link-time
+ * optimisation so the kernels inline across the room files; no libc (-nostdlib).
+ */
+export const CLANG_FLAGS = [
+  "--target=wasm32",
+  "-nostdlib",
+  "-std=c11",
+  "-O3",
+  "-flto",
+  "-ffp-contract=off",
+  "-fno-fast-math",
+  "-mbulk-memory", // struct copies as memory.copy: no libc memcpy to link
+  "-Wall",
+  "-Wextra",
+  "-Werror",
+  "-Wl,--no-entry",
+  "-Wl,--lto-O3",
+];
+
+/** The compiler: `clang`, or another name (e.g. clang-14) from EVAPCOOL_CLANG. */
+const CLANG = process.env.EVAPCOOL_CLANG || "clang";
+
+const NO_CLANG = `evapcool: building the WebAssembly core needs ${CLANG} and lld (Debian: apt-get install clang lld)`;
+
+/** An unsigned LEB128 number at bytes[at]: [value, the place after it]. */
+function leb128(bytes, at) {
+  let value = 0;
+  for (let shift = 0; ; shift += 7) {
+    const b = bytes[at++];
+    value += (b & 0x7f) * 2 ** shift;
+    if (b < 0x80) return [value, at];
+  }
+}
+
+/**
+ * The module without its "producers" section, which names the compiler's build ("Debian
+ * clang version ..."): the page's bytes then depend on the compiler's code, not its vendor.
+ */
+function withoutProducers(bytes) {
+  const kept = [bytes.subarray(0, 8)]; // magic and version
+  for (let at = 8; at < bytes.length;) {
+    const start = at;
+    const [size, body] = leb128(bytes, at + 1);
+    at = body + size;
+    if (bytes[start] === 0) {
+      const [length, name] = leb128(bytes, body);
+      if (Buffer.from(bytes.subarray(name, name + length)).toString() === "producers") continue;
+    }
+    kept.push(bytes.subarray(start, at));
+  }
+  return new Uint8Array(Buffer.concat(kept));
+}
+
+/** The core's bytes, freshly compiled from the C sources in folder `dir`. */
+export function compileCore(dir) {
+  const sources = readdirSync(dir)
+    .filter((f) => f.endsWith(".c"))
+    .sort()
+    .map((f) => join(dir, f));
+  const tmp = mkdtempSync(join(tmpdir(), "evapcool-wasm-"));
+  try {
+    const out = join(tmp, "core.wasm");
+    const run = spawnSync(CLANG, [...CLANG_FLAGS, "-o", out, ...sources], { encoding: "utf8" });
+    if (run.error || /wasm-ld.*(not found|doesn't exist|No such file)/.test(run.stderr)) {
+      console.error(NO_CLANG); // one clear line, not a stack trace
+      process.exit(1);
+    }
+    if (run.status !== 0)
+      throw new Error(`evapcool: the WebAssembly core did not compile:\n${run.stderr}`);
+    return withoutProducers(new Uint8Array(readFileSync(out)));
+  } finally {
+    rmSync(tmp, { recursive: true, force: true });
+  }
+}
+
+/** The Vite plugin: `virtual:evapcool-wasm` is the compiled core as base64 text. */
+export function wasmCore() {
+  let dir = "";
+  let bytes = 0;
+  return {
+    name: "evapcool-wasm-core",
+    configResolved(config) {
+      dir = resolve(config.root, WASM_FOLDER);
+    },
+    buildStart() {
+      if (spawnSync(CLANG, ["--version"]).error) {
+        console.error(NO_CLANG); // one clear line, not a stack trace
+        process.exit(1);
+      }
+    },
+    resolveId: (id) => (id === VIRTUAL ? RESOLVED : null),
+    load(id) {
+      if (id !== RESOLVED) return null;
+      for (const f of readdirSync(dir)) this.addWatchFile(join(dir, f));
+      const core = compileCore(dir);
+      bytes = core.length;
+      return `export default ${JSON.stringify(Buffer.from(core).toString("base64"))};`;
+    },
+    generateBundle() {
+      if (bytes > 0)
+        console.log(
+          `evapcool: the WebAssembly core inlined: ${bytes} bytes, ${4 * Math.ceil(bytes / 3)} as base64`,
+        );
+    },
+  };
+}

@@ -1,0 +1,150 @@
+/*
+ * Scalar event kernels: free flight, contact times and collision rules.
+ *
+ * Each performs the floating-point operations of its namesake in
+ * src/evapcool/physics/kernels.py and web/src/physics/kernels.ts in the same order.
+ * Compiled with -ffp-contract=off (no fused multiply-add; wasm32 has none anyway) and
+ * __builtin_sqrt (f64.sqrt, correctly rounded), so all three compute the same bits.
+ */
+#include "tables.h"
+
+/* Horizontal free flight, seed Eq. (3). */
+double flight_x(double x, double vx, double dt) { return x + vx * dt; }
+
+/* Vertical free flight under gravity -g (y up), seed Eq. (3). */
+double flight_y(double y, double vy, double half_g, double dt) {
+  return y + vy * dt - half_g * dt * dt;
+}
+
+/* Vertical velocity after free flight, seed Eq. (4). */
+double flight_vy(double vy, double g, double dt) { return vy - g * dt; }
+
+/* 1/2 m v^2 + m g y, the summand of seed Eq. (1). */
+double atom_energy_of(double m, double y, double vx, double vy, double g) {
+  return 0.5 * m * (vx * vx + vy * vy) + m * g * y;
+}
+
+/*
+ * Absolute time when two centres reach distance sigma = R1 + R2 (seed Eqs. 15-19). Both
+ * states are carried to the later of their times; only approaching pairs collide; an
+ * overlapping approaching pair collides at that time.
+ */
+double pair_contact_time(const State *p, const State *q, double sigma, double g) {
+  double half_g = 0.5 * g;
+  double t1 = p->t, t2 = q->t;
+  double tr = t1 >= t2 ? t1 : t2;
+  double d1 = tr - t1;
+  double d2 = tr - t2;
+  double rx = p->x + p->vx * d1 - (q->x + q->vx * d2);
+  double ry = p->y + p->vy * d1 - half_g * d1 * d1 - (q->y + q->vy * d2 - half_g * d2 * d2);
+  double vx = p->vx - q->vx;
+  double vy = p->vy - g * d1 - (q->vy - g * d2);
+  double b = rx * vx + ry * vy;
+  if (b >= 0.0) return INF;
+  double c = rx * rx + ry * ry - sigma * sigma;
+  if (c <= 0.0) return tr;
+  double vv = vx * vx + vy * vy;
+  double disc = b * b - vv * c;
+  if (disc <= 0.0) return INF;
+  return tr + c / (__builtin_sqrt(disc) - b);
+}
+
+/*
+ * Absolute time when a trapped centre meets the wall y = a x^2 (SPEC 2.1): the one
+ * non-negative root of A s^2 + B s + C, cancellation-free; C < 0 is round-off, read as 0.
+ */
+double wall_contact_time(const State *s, double a, double g) {
+  double x = s->x, vx = s->vx;
+  double A = -(0.5 * g + a * vx * vx);
+  double B = s->vy - 2.0 * a * x * vx;
+  double C = s->y - a * x * x;
+  if (C < 0.0) C = 0.0;
+  double sq = __builtin_sqrt(B * B - 4.0 * A * C);
+  return B >= 0.0 ? s->t + (-0.5 * (B + sq)) / A : s->t + C / (0.5 * (sq - B));
+}
+
+/* Absolute time when a falling centre crosses the window bounds (with its radius). */
+double exit_time(const State *s, double x_left, double x_right, double y_bottom, double g) {
+  double x = s->x, y = s->y, vx = s->vx, vy = s->vy;
+  if (x <= x_left || x >= x_right || y <= y_bottom) return s->t;
+  double dt = INF;
+  if (vx < 0.0)
+    dt = (x_left - x) / vx;
+  else if (vx > 0.0)
+    dt = (x_right - x) / vx;
+  double h = y - y_bottom;
+  double sq = __builtin_sqrt(vy * vy + 2.0 * g * h);
+  double dy = vy > 0.0 ? (vy + sq) / g : (2.0 * h) / (sq - vy);
+  if (dy < dt) dt = dy;
+  return s->t + dt;
+}
+
+/* Elastic hard-disk collision along r = r2 - r1 at contact, seed Eqs. (10)-(12). */
+void collide_pair(double rx, double ry, State *p, double m1, State *q, double m2) {
+  double vx1 = p->vx, vy1 = p->vy, vx2 = q->vx, vy2 = q->vy;
+  double d = __builtin_sqrt(rx * rx + ry * ry);
+  double nx = rx / d;
+  double ny = ry / d;
+  double dv = nx * (vx1 - vx2) + ny * (vy1 - vy2);
+  double k1 = ((2.0 * m2) / (m1 + m2)) * dv;
+  double k2 = ((2.0 * m1) / (m1 + m2)) * dv;
+  p->vx = vx1 - k1 * nx;
+  p->vy = vy1 - k1 * ny;
+  q->vx = vx2 + k2 * nx;
+  q->vy = vy2 + k2 * ny;
+}
+
+/* Reflect v about the tangent of y = a x^2 at x, scaled by keep = 1 - damping. */
+static void reflect_wall(double x, double vx, double vy, double a, double keep, double *ux,
+                         double *uy) {
+  double sx = -2.0 * a * x;
+  double nn = sx * sx + 1.0;
+  double vn = vx * sx + vy;
+  double f = (2.0 * vn) / nn;
+  *ux = keep * (vx - f * sx);
+  *uy = keep * (vy - f);
+}
+
+/*
+ * Elastic bounce that leaves the wall at least v_min along the normal (docs/model.md,
+ * "Grazing and resting atoms"): a slower bounce is turned, energy kept.
+ */
+void bounce_wall(State *s, double a, double v_min) {
+  double x = s->x, ux, uy;
+  reflect_wall(x, s->vx, s->vy, a, 1.0, &ux, &uy);
+  double sx = -2.0 * a * x;
+  double nn = __builtin_sqrt(sx * sx + 1.0);
+  double nx = sx / nn; /* inward unit normal (nx, ny); unit tangent (ny, -nx) */
+  double ny = 1.0 / nn;
+  double un = ux * nx + uy * ny;
+  if (un >= v_min) {
+    s->vx = ux;
+    s->vy = uy;
+    return;
+  }
+  double ut = ux * ny - uy * nx;
+  double rest = ux * ux + uy * uy - v_min * v_min;
+  double wt = 0.0;
+  if (rest > 0.0) {
+    wt = __builtin_sqrt(rest);
+    if (ut < 0.0) wt = -wt;
+  }
+  s->vx = v_min * nx + wt * ny;
+  s->vy = v_min * ny - wt * nx;
+}
+
+/* Damped bounce after the win (seed Eq. 34) with a floor v_floor on the normal speed. */
+void settle_wall(State *s, double a, double keep, double v_floor) {
+  double x = s->x, ux, uy;
+  reflect_wall(x, s->vx, s->vy, a, keep, &ux, &uy);
+  double sx = -2.0 * a * x;
+  double nn = __builtin_sqrt(sx * sx + 1.0);
+  double vn = (ux * sx + uy) / nn;
+  if (vn < v_floor) {
+    double d = (v_floor - vn) / nn;
+    ux = ux + d * sx;
+    uy = uy + d;
+  }
+  s->vx = ux;
+  s->vy = uy;
+}

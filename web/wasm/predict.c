@@ -1,0 +1,184 @@
+/*
+ * Predictions (twin of predict.py): each row keeps only its earliest real event (wall, exit
+ * or pair) and its next cell crossing; the key is the earlier of the two.
+ */
+#include "tables.h"
+
+/*
+ * Pairs of trapped row i with the rows of cells [x0, x1] x [y0, y1] (seed Eqs. 15-19). An
+ * earlier pair replaces i's real event; on a tie the solo event stays and pairs go in
+ * (lower, higher) World index order, as in the reference engine.
+ */
+void scan(int32_t i, int32_t x0, int32_t x1, int32_t y0, int32_t y1) {
+  const State *s = &state[i];
+  const double ri = s->radius, g = run.gravity;
+  const int64_t ii = s->atom;
+  const int32_t nx = run.nx, nc = run.n_cells;
+  Plan *p = &plan[i];
+  double bt = queued[i].real_t;
+  int pair = p->real_rank == RANK_PAIR;
+  int64_t ba = p->real_a, bb = p->real_b;
+  int32_t best = -1;
+  for (int32_t cy = y0; cy <= y1; cy++) {
+    const int32_t row_start = cy * nx;
+    for (int32_t cx = x0; cx <= x1; cx++) {
+      for (int32_t j = cells[row_start + cx]; j >= 0; j = cells[nc + j]) {
+        if (j == i) continue;
+        const State *q = &state[j];
+        double t = pair_contact_time(s, q, ri + q->radius, g);
+        if (t <= bt) {
+          int64_t jj = q->atom; /* rare: only now the partner's World index */
+          int64_t lo = ii < jj ? ii : jj, hi = ii < jj ? jj : ii;
+          if (t < bt || (pair && (lo < ba || (lo == ba && hi < bb)))) {
+            bt = t;
+            pair = 1;
+            ba = lo;
+            bb = hi;
+            best = j;
+          }
+        }
+      }
+    }
+  }
+  if (best >= 0) {
+    queued[i].real_t = bt;
+    p->real_rank = RANK_PAIR;
+    p->real_a = (int32_t)ba;
+    p->real_b = (int32_t)bb;
+    p->real_kind = KIND_PAIR;
+    p->partner = best;
+    p->partner_count = (int32_t)state[best].count;
+  }
+}
+
+/* Row i's real event: wall (SPEC 2.1) or pair if trapped, exit if escaped. */
+void predict_real(int32_t i) {
+  const State *s = &state[i];
+  Plan *p = &plan[i];
+  int32_t st = p->status;
+  double t = INF;
+  int32_t kind = KIND_NONE;
+  if (st == TRAPPED) {
+    t = wall_contact_time(s, run.curvature, run.gravity);
+    kind = KIND_WALL;
+  } else if (st == ESCAPED) {
+    double rad = s->radius;
+    t = exit_time(s, run.x_left - rad, run.x_right + rad, run.y_bottom - rad, run.gravity);
+    kind = KIND_EXIT;
+  }
+  queued[i].real_t = t;
+  p->real_rank = RANK_SOLO;
+  p->real_a = p->atom;
+  p->real_b = 0;
+  p->real_kind = kind;
+  if (st == TRAPPED && !run.won) {
+    int32_t cx = p->cell_x, cy = p->cell_y;
+    scan(i, cx > 0 ? cx - 1 : 0, cx < run.nx - 1 ? cx + 1 : run.nx - 1, cy > 0 ? cy - 1 : 0,
+         cy < run.ny - 1 ? cy + 1 : run.ny - 1);
+  }
+}
+
+/* Time of the next y crossing of row i's arc and the row it enters (inf if none). */
+static double crossing_y(const State *s, int32_t cy, double taken, int32_t *to) {
+  const double g = run.gravity, cs = run.cell;
+  double y = s->y, vy = s->vy, t0 = s->t;
+  double tc = INF;
+  if (vy > 0.0 && cy < run.ny - 1) {
+    double d = run.grid_y0 + (cy + 1) * cs - y;
+    double disc = vy * vy - 2.0 * g * d;
+    if (disc > 0.0) {
+      double sq = __builtin_sqrt(disc);
+      double t1 = t0 + (2.0 * d) / (vy + sq);
+      double t2 = t0 + (vy + sq) / g;
+      if (t2 > t1 && t1 > taken) {
+        tc = t1;
+        *to = cy + 1;
+      }
+    }
+  }
+  if (tc == INF && cy > 0) {
+    double h = y - (run.grid_y0 + cy * cs);
+    double disc = vy * vy + 2.0 * g * h;
+    if (disc < 0.0) disc = 0.0;
+    double sq = __builtin_sqrt(disc);
+    double t2;
+    if (vy > 0.0)
+      t2 = t0 + (vy + sq) / g;
+    else if (sq - vy > 0.0)
+      t2 = t0 + (2.0 * h) / (sq - vy);
+    else
+      t2 = t0;
+    if (t2 > taken) {
+      tc = t2;
+      *to = cy - 1;
+    }
+  }
+  return tc;
+}
+
+/*
+ * Row i's next cell crossing (none unless trapped and the game is on). x: straight to the
+ * next edge along vx. y: up through the top edge (first root, if the arc passes it), else
+ * down through the bottom edge; roots at or before the arc's last y crossing are ones
+ * already taken. Edge cells reach to infinity: no outer edge.
+ */
+void predict_crossing(int32_t i) {
+  Plan *p = &plan[i];
+  double bt = INF;
+  int32_t bk = KIND_NONE, barg = 0;
+  if (p->status == TRAPPED && !run.won) {
+    const State *s = &state[i];
+    const double cs = run.cell;
+    double x = s->x, vx = s->vx, t0 = s->t;
+    int32_t cx = p->cell_x, cy = p->cell_y;
+    if (vx > 0.0 && cx < run.nx - 1) {
+      bt = t0 + (run.grid_x0 + (cx + 1) * cs - x) / vx;
+      bk = KIND_CROSS_X;
+      barg = cx + 1;
+    } else if (vx < 0.0 && cx > 0) {
+      bt = t0 + (run.grid_x0 + cx * cs - x) / vx;
+      bk = KIND_CROSS_X;
+      barg = cx - 1;
+    }
+    int32_t to = 0;
+    double tc = crossing_y(s, cy, queued[i].arc_cross_t, &to);
+    if (tc < bt) {
+      bt = tc;
+      bk = KIND_CROSS_Y;
+      barg = to;
+    }
+  }
+  queued[i].cross_t = bt;
+  p->cross_axis = bk;
+  p->cross_to = barg;
+}
+
+/* Row i's key from the earlier of its crossing and its real event, not filed. */
+void load_key(int32_t i) {
+  Queued *u = &queued[i];
+  Plan *p = &plan[i];
+  if (u->cross_t <= u->real_t) {
+    u->key_t = u->cross_t;
+    p->rank = RANK_CROSS;
+    p->tie_a = p->atom;
+    p->tie_b = p->cross_axis;
+  } else {
+    u->key_t = u->real_t;
+    p->rank = p->real_rank;
+    p->tie_a = p->real_a;
+    p->tie_b = p->real_b;
+  }
+}
+
+/* Row i's key, re-filed. */
+void set_key(int32_t i) {
+  load_key(i);
+  file_atom(i);
+}
+
+/* Everything about row i from its stored state. */
+void predict(int32_t i) {
+  predict_real(i);
+  predict_crossing(i);
+  set_key(i);
+}

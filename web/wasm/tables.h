@@ -1,0 +1,157 @@
+/*
+ * The WebAssembly engine's tables: the web twin of src/evapcool/physics/fast/tables.py,
+ * with its field names. One engine per WebAssembly instance: the tables are globals,
+ * allocated once at the start (no allocation per event).
+ *
+ * Row i of the three per-atom tables belongs to the same atom, but not to atom i of the
+ * World: rows are renumbered in cell order now and then (driver.c), and `atom` holds the
+ * World index. What orders events or is seen outside (tie breaks, the log, the knife's
+ * order) uses that index, never the row.
+ */
+#ifndef EVAPCOOL_TABLES_H
+#define EVAPCOOL_TABLES_H
+
+#include <stdint.h>
+
+#define INF __builtin_inf()
+#define EXPORT(name) __attribute__((export_name(#name)))
+
+/* What the pair scan reads of every neighbour, one 64-byte line. */
+typedef struct {
+  double x, y, vx, vy; /* stored position (trap coordinates, px) and velocity (px/frame) */
+  double t;            /* ... at this time (frames): the atom's own clock */
+  double radius;
+  int64_t count; /* events so far: a partner's pair event is stale once it moved on */
+  int64_t atom;  /* World index */
+} State;
+
+/* What the event calendar reads: the key time and the times it is chosen from. */
+typedef struct {
+  double key_t;       /* time the atom is filed under: min(real_t, cross_t) */
+  double real_t;      /* time of its real event (pair, wall or exit), inf if none */
+  double cross_t;     /* time of its next cell crossing, inf if none */
+  double arc_cross_t; /* last y crossing taken on the current arc (-inf: none) */
+  double mass;
+  int32_t heap_pos; /* place in the heap, -1 if in a list */
+  int32_t bin;      /* list it is filed in (calendar.c), -1 if in the heap */
+  int32_t next;     /* neighbours in that list, -1 at the ends */
+  int32_t prev;
+  int64_t pad;
+} Queued;
+
+/* The atom's pending events (key parts, kinds, partner) and where it is. */
+typedef struct {
+  int32_t rank, tie_a, tie_b;            /* the filed key: (key_t, rank, tie_a, tie_b) */
+  int32_t real_rank, real_a, real_b;     /* the real event's key parts */
+  int32_t real_kind;                     /* KIND_PAIR, KIND_WALL, KIND_EXIT or KIND_NONE */
+  int32_t partner;                       /* row of the partner of a pair event */
+  int32_t partner_count;                 /* the partner's count then (low 32 bits) */
+  int32_t cross_axis;                    /* KIND_CROSS_X, KIND_CROSS_Y or KIND_NONE */
+  int32_t cross_to;                      /* cell column (x) or row (y) the crossing enters */
+  int32_t status;                        /* TRAPPED, ESCAPED or GONE */
+  int32_t cell_x, cell_y;                /* the cell it is filed in (trapped atoms only) */
+  int32_t cell_prev;                     /* previous atom in that cell, -1 if first */
+  int32_t atom;                          /* World index */
+} Plan;
+
+/* An entry of the calendar's heap: a row filed under key time t. */
+typedef struct {
+  double t;
+  int32_t row;
+  int32_t pad;
+} HeapEntry;
+
+/* One line of the event log: (EV_* kind, atom, other atom or -1, time). */
+typedef struct {
+  int32_t kind, a, b, pad;
+  double t;
+} LogLine;
+
+/* The engine's scalars (Python's RUN record). */
+typedef struct {
+  /* fixed for the engine's life */
+  double gravity, curvature;
+  double grid_x0, grid_y0, cell; /* cell column 0's left edge, row 0's bottom, cell edge */
+  double x_left, x_right, y_bottom; /* window edges (exit bounds before the radius) */
+  int32_t nx, ny, n_cells, n_atoms;
+  int32_t knife, record, win_rule;
+  int32_t maintain_every; /* events between two renumberings */
+  /* shared with the wrapper */
+  double time, energy_sum, x_rim, trap_height;
+  int32_t won, n_trapped;
+  double pairs, walls;
+  /* engine-only counts */
+  double crossings, stale, renumbered;
+  int32_t since_maintain, n_log, log_capacity;
+  /* the event calendar */
+  double bin_base, bin_width;
+  int64_t bin, scan_bin; /* the current bin (its atoms are in the heap); the last refiling */
+  int32_t heap_size, n_bins, n_ring, n_over;
+} Run;
+
+/* Lifecycle (SPEC 2.3) and log kinds, as in constants.ts. */
+enum { TRAPPED = 0, ESCAPED = 1, GONE = 2 };
+enum { EV_PAIR = 0, EV_WALL = 1, EV_ESCAPE = 2, EV_GONE = 3, EV_KNIFE = 4 };
+/* Event kinds inside the engine. */
+enum { KIND_NONE = 0, KIND_PAIR, KIND_WALL, KIND_EXIT, KIND_CROSS_X, KIND_CROSS_Y };
+/* Ranks order events of equal time: crossings, then solo events, then pairs. */
+enum { RANK_CROSS = -1, RANK_SOLO = 0, RANK_PAIR = 1 };
+
+/* Everything the engine works on. */
+extern Run run;
+extern State *state;
+extern Queued *queued;
+extern Plan *plan;
+extern HeapEntry *heap;
+extern int32_t *bins;  /* first row of each list: n_bins ring lists, overflow, no event */
+extern int32_t *cells; /* first row of each cell (row-major), then the next row in cell */
+extern int32_t *row_of; /* row of every World atom */
+extern double *tc_table; /* critical temperature for every atom count, seed Eq. (46) */
+extern LogLine *event_log;
+
+/* kernels.c */
+double flight_x(double x, double vx, double dt);
+double flight_y(double y, double vy, double half_g, double dt);
+double flight_vy(double vy, double g, double dt);
+double atom_energy_of(double m, double y, double vx, double vy, double g);
+double pair_contact_time(const State *p, const State *q, double sigma, double g);
+double wall_contact_time(const State *s, double a, double g);
+double exit_time(const State *s, double x_left, double x_right, double y_bottom, double g);
+void collide_pair(double rx, double ry, State *p, double m1, State *q, double m2);
+void bounce_wall(State *s, double a, double v_min);
+void settle_wall(State *s, double a, double keep, double v_floor);
+
+/* calendar.c */
+void calendar_init(int32_t n);
+void file_atom(int32_t i);
+int32_t calendar_top(void);
+void calendar_rebuild(double now);
+
+/* grid.c */
+int32_t grid_shape(void);
+int32_t grid_errors(void);
+int32_t cell_of(double u, double u0, int32_t n);
+void link(int32_t i, int32_t cx, int32_t cy);
+void unlink(int32_t i);
+
+/* predict.c */
+void scan(int32_t i, int32_t x0, int32_t x1, int32_t y0, int32_t y1);
+void predict_real(int32_t i);
+void predict_crossing(int32_t i);
+void set_key(int32_t i);
+void load_key(int32_t i);
+void predict(int32_t i);
+
+/* events.c */
+double energy(int32_t i);
+void move(int32_t i);
+int32_t knife(int32_t i);
+int32_t pair_event(int32_t i, double te, int32_t *second);
+int32_t wall_event(int32_t i, double te);
+void exit_event(int32_t i, double te);
+int32_t crossing_event(int32_t i, double te, int32_t kind);
+
+/* driver.c */
+void renumber(void);
+
+#endif
