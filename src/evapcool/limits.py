@@ -24,8 +24,20 @@ _SHOWN.maxother = 40
 _SHOWN.maxlist = _SHOWN.maxtuple = 4
 
 
+def plain(value: object) -> object:
+    """A NumPy scalar as the Python number it holds (its repr is np.float64(...)); a list
+    or tuple with its first few items so; anything else as it is (issue 25.2)."""
+    if getattr(value, "ndim", None) == 0 and hasattr(value, "item"):
+        return value.item()
+    if isinstance(value, (list, tuple)) and len(value) <= _SHOWN.maxlist:
+        return type(value)(plain(v) for v in value) if type(value) in (list, tuple) else value
+    return value
+
+
 def shown(value: object) -> str:
-    """repr of value, shortened: a 10**6-element list or a megabyte string stays one line."""
+    """repr of value as plain numbers, shortened: a 10**6-element list or a megabyte string
+    stays one line, and np.float64(1.5) shows as 1.5."""
+    value = plain(value)
     if isinstance(value, float):
         return repr(value)
     return _SHOWN.repr(value)

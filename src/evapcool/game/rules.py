@@ -2,10 +2,18 @@
 
 Pure state, no pygame: the view and the app read and drive it, tests drive it
 directly. Time is physics frames (1/30 s) unless a name says seconds.
+
+When the player's trap height takes effect (the page's rule, web/src/game/rules.ts): at
+the next whole physics frame, t = k. The game advances in pieces that stop at each whole
+frame, apply the height asked for since the last one and check the win, so a run depends
+on what the player did in which frame, never on the display's rate. Paused, or standing
+on a whole frame, the height applies at once. (`Simulation.trap_height = H` itself
+applies at once: docs/model.md.)
 """
 
 from __future__ import annotations
 
+import math
 from collections.abc import Callable
 from dataclasses import dataclass
 
@@ -29,7 +37,8 @@ SPEED_MAX = APPLET_SPEED.high
 #: One wall-clock step never advances more than this many seconds of play: when frames
 #: fall behind (a loaded machine, thousands of atoms) the game slows down instead of
 #: taking ever larger steps, each costlier than the last; a stall (window dragged,
-#: laptop asleep) does not jump the game ahead. At 1x: at most 2 physics frames a frame.
+#: laptop asleep) does not jump the game ahead: at most MAX_WALL_STEP x 30 x speed
+#: physics frames a frame (2 at 1x, 8 at 4x).
 MAX_WALL_STEP = 1.0 / 15.0
 
 
@@ -102,6 +111,8 @@ class Game:
             self.config = config
         self.sim = sim
         self.sim.trap_height = HEIGHT_START
+        #: A height asked for since the last whole frame, applied at the next one.
+        self._pending_height: float | None = None
         self.paused = True
         #: Play time (s) at which the win was first seen, None before.
         self.won_at: float | None = None
@@ -124,23 +135,33 @@ class Game:
     # -- the trap ----------------------------------------------------------------------
     @property
     def trap_height(self) -> float:
-        return self.sim.trap_height
+        """The rim's height now, or the one it takes at the next whole frame."""
+        pending = self._pending_height
+        return self.sim.trap_height if pending is None else pending
 
     def set_trap_height(self, height: float) -> bool:
-        """Move the rim (clamped to the slider range); frozen once the gas has condensed.
+        """Ask for a rim height (clamped to the slider range), applied at the next whole
+        frame (at once if paused or on one); frozen once the gas has condensed.
 
-        Returns True if the height changed.
+        Returns True if the height asked for changed.
         """
         if self.won:
             return False  # the score is the atoms left: no evaporating after the win
         h = min(HEIGHT_MAX, max(HEIGHT_MIN, float(height)))
-        if h == self.sim.trap_height:
+        if h == self.trap_height:
             return False
-        self.sim.trap_height = h
+        self._pending_height = h
+        if self.paused or float(self.sim.time).is_integer():
+            self._apply_pending()  # nothing in flight
         return True
 
     def nudge_height(self, delta: float) -> bool:
-        return self.set_trap_height(self.sim.trap_height + delta)
+        return self.set_trap_height(self.trap_height + delta)
+
+    def _apply_pending(self) -> None:
+        if self._pending_height is not None:
+            self.sim.trap_height = self._pending_height
+            self._pending_height = None
 
     # -- time ----------------------------------------------------------------------------
     def update(self, wall_seconds: float) -> float:
@@ -160,13 +181,24 @@ class Game:
         return self._advance(1.0) if self.paused else 0.0
 
     def _advance(self, frames: float) -> float:
-        self.sim.advance(frames)
+        """Advance frames in pieces that stop at each whole frame: the held height applies
+        there, and the win is checked there."""
+        sim = self.sim
+        end = sim.time + frames
+        while sim.time < end:
+            boundary = math.floor(sim.time) + 1.0
+            sim.advance(min(boundary, end) - sim.time)
+            if sim.time >= boundary:
+                self._apply_pending()
+            self._check_win()
+        return frames
+
+    def _check_win(self) -> None:
         if self.sim.won and self.won_at is None:
             self.won_at = self.play_time
             self._won_with = self.sim.n_trapped
             for callback in list(self.on_win):
                 callback(self)
-        return frames
 
     # -- what the player sees ------------------------------------------------------------
     @property

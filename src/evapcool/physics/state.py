@@ -18,6 +18,7 @@ from typing import Any, TypeGuard
 
 import numpy as np
 
+from evapcool.limits import shown
 from evapcool.physics.simulation import (
     CURVATURE,
     GRAVITY,
@@ -45,7 +46,7 @@ _ATOM_KEYS = ("x", "y", "vx", "vy", "t", "radius", "mass", "status")
 
 
 def _bad(name: str, allowed: str, value: object) -> ValueError:
-    text = repr(value)
+    text = shown(value)
     if len(text) > 60:
         text = text[:57] + "..."
     return ValueError(f"{name} must be {allowed} (got {text})")
@@ -55,7 +56,7 @@ def _bad(name: str, allowed: str, value: object) -> ValueError:
 def number_text(v: float) -> str:
     """%.17g: reads back to the same bits (also -0); the web edition writes the same text."""
     if not math.isfinite(v):
-        raise ValueError(f"number must be finite to be written as JSON (got {v!r})")
+        raise ValueError(f"number must be finite to be written as JSON (got {shown(v)})")
     return f"{v:.17g}"
 
 
@@ -214,7 +215,7 @@ def parse_state(state: object) -> ParsedState:
     t = np.full(n, time) if atoms.get("t") is None else _column("state.atoms.t", atoms["t"], n)
     late = np.flatnonzero(t > time)
     if late.size:
-        raise _bad(f"state.atoms.t[{late[0]}]", f"at most the clock {time!r}", float(t[late[0]]))
+        raise _bad(f"state.atoms.t[{late[0]}]", f"at most the clock {float(time)!r}", float(t[late[0]]))
     status = np.zeros(n, dtype=np.int8)
     names = atoms.get("status")
     if names is not None:
@@ -275,8 +276,8 @@ def check_placement(
     if outside.size:
         i = int(outside[0])
         raise ValueError(
-            f"{name}: atom {i} at ({x[i]!r}, {y[i]!r}) is outside the cup; centres must be "
-            f"inside it or on its wall, y >= a x^2 (a = {curvature!r})"
+            f"{name}: atom {i} at ({float(x[i])!r}, {float(y[i])!r}) is outside the cup; centres must be "
+            f"inside it or on its wall, y >= a x^2 (a = {float(curvature)!r})"
         )
     idx = np.flatnonzero(trapped)
     if not overlaps or idx.size < 2:
@@ -288,8 +289,8 @@ def check_placement(
         a, b = best
         d = math.hypot(x[b] - x[a], y[b] - y[a])
         raise ValueError(
-            f"{name}: atoms {a} and {b} overlap (centres {d!r} apart, less than r{a} + r{b} = "
-            f"{radius[a] + radius[b]!r}); atoms must be at least r_i + r_j apart"
+            f"{name}: atoms {a} and {b} overlap (centres {float(d)!r} apart, less than r{a} + r{b} = "
+            f"{float(radius[a] + radius[b])!r}); atoms must be at least r_i + r_j apart"
         )
 
 
@@ -377,7 +378,7 @@ def from_state(
     if p.energy_sum is not None:
         scale = float(np.sum(np.abs(w.energies()[trapped])))
         if not abs(p.energy_sum - total) <= STATE_TOLERANCE * max(1.0, scale):
-            allowed = f"the trapped atoms' energy sum, {total!r}"
+            allowed = f"the trapped atoms' energy sum, {float(total)!r}"
             raise _bad("state.energy_sum", allowed, p.energy_sum)
         total = p.energy_sum
     w.energy_sum = total
