@@ -1,4 +1,4 @@
-"""When the player's trap height takes effect (issue 26.4): at the next whole frame, as on the page."""
+"""When the player's trap height takes effect (issue 26.4): at the next whole frame."""
 
 from __future__ import annotations
 

@@ -17,12 +17,13 @@ from evapcool.game.settings import (
     max_atoms,
     with_overrides,
 )
+from evapcool.limits import ParameterError
 from evapcool.physics.loading import cell_centres
 from evapcool.physics.simulation import CURVATURE, WINDOW, cup_vertex
 from evapcool.physics.world import ESCAPE_RULES
 
 PROG = APP_NAME
-#: Parameter names -> our options, so ValueErrors name what the user typed.
+#: Parameter names -> our options, so errors name what the user typed (ParameterError.render).
 _OPTION_OF = {
     "n_atoms": "--atoms",
     "radius": "--radius",
@@ -124,13 +125,8 @@ def build_parser() -> argparse.ArgumentParser:
 
 
 def _user_message(exc: ValueError) -> str:
-    text = str(exc)
-    if text.startswith("n_atoms:") and "do not fit" in text:
-        return "--atoms and --radius" + text[len("n_atoms") :]  # a joint limit
-    for name, option in _OPTION_OF.items():
-        if text.startswith((name + " ", name + ":")):
-            return option + text[len(name) :]
-    return text
+    """The error's line with our option names (the parameter's name is data, not text)."""
+    return exc.render(_OPTION_OF) if isinstance(exc, ParameterError) else str(exc)
 
 
 def _no_display() -> str | None:

@@ -122,16 +122,17 @@ def _check_n_atoms(value: object, radius: float, cap: Callable[[float], int] = m
         or not 1 <= int(value) <= top
     ):
         where = "below the rim" if cap is max_atoms else "below the window's top"
-        raise ValueError(
-            f"n_atoms must be a whole number from 1 to {top} for radius {radius:g}, "
-            f"what fits {where} (got {limits.shown(value)})"
+        raise limits.ParameterError(
+            "n_atoms",
+            f"must be a whole number from 1 to {top} for radius {radius:g}, "
+            f"what fits {where} (got {limits.shown(value)})",
         )
     return int(value)
 
 
 def _check_choice(name: str, value: object, allowed: tuple[str, ...]) -> str:
     if not isinstance(value, str) or value not in allowed:
-        raise ValueError(f"{name} must be one of {', '.join(allowed)} (got {limits.shown(value)})")
+        raise limits.bad_value(name, "one of " + ", ".join(allowed), value)
     return value
 
 

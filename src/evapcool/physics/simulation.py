@@ -20,7 +20,7 @@ from evapcool.extras import (
     check,
     slow_engine_message,
 )
-from evapcool.limits import Range, shown
+from evapcool.limits import ParameterError, Range, bad_value
 from evapcool.physics.loading import load_cup
 from evapcool.physics.validation import check_start, check_world
 from evapcool.physics.world import (
@@ -61,8 +61,7 @@ def cup_vertex(window: tuple[int, int]) -> tuple[float, float]:
     return BORDER_LEFT + play_w / 2.0, float(h - BORDER_BOTTOM - CUP_DROP)
 
 
-def _bad(name: str, allowed: str, value: object) -> ValueError:
-    return ValueError(f"{name} must be {allowed} (got {shown(value)})")
+_bad = bad_value
 
 
 def _flag(name: str, value: object) -> bool:
@@ -100,7 +99,7 @@ def _per_atom(name: str, value: object, n: int, rng: Range) -> np.ndarray:
     bad = np.flatnonzero((arr < rng.low) | (arr > rng.high))
     if bad.size:
         i = int(bad[0])
-        raise ValueError(f"{name} must be {allowed} (atom {i} has {float(arr[i])!r})")
+        raise ParameterError(name, f"must be {allowed} (atom {i} has {float(arr[i])!r})")
     return arr
 
 
@@ -120,14 +119,16 @@ def _check_engine_size(engine: str, n: int) -> None:
     if n <= limits.REFERENCE_MAX_ATOMS:
         return
     if engine == "reference":
-        raise ValueError(
-            f"n_atoms must be at most {limits.REFERENCE_MAX_ATOMS} with engine='reference' "
-            f"(its pair table grows as N^2; got {n}); use engine='fast' or 'auto'"
+        raise ParameterError(
+            "n_atoms",
+            f"must be at most {limits.REFERENCE_MAX_ATOMS} with engine='reference' "
+            f"(its pair table grows as N^2; got {n}); use engine='fast' or 'auto'",
         )
     if engine == "auto" and not _fast_available():
-        raise ValueError(
-            f"n_atoms must be at most {limits.REFERENCE_MAX_ATOMS} without numba "
-            f"(got {n}); install numba for the fast engine"
+        raise ParameterError(
+            "n_atoms",
+            f"must be at most {limits.REFERENCE_MAX_ATOMS} without numba "
+            f"(got {n}); install numba for the fast engine",
         )
 
 
@@ -188,7 +189,7 @@ class Simulation:
             pos, vel = load_cup(n, r_ref, a, origin_sy, self.rng)
         elif positions is None or velocities is None:
             missing = "positions" if positions is None else "velocities"
-            raise ValueError(f"{missing} must be given together with the other (got None)")
+            raise ParameterError(missing, "must be given together with the other (got None)")
         else:
             pos = _floats("positions", positions, (n, 2), f"a finite array of shape ({n}, 2)")
             vel = _floats("velocities", velocities, (n, 2), f"a finite array of shape ({n}, 2)")

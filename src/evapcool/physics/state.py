@@ -215,7 +215,9 @@ def parse_state(state: object) -> ParsedState:
     t = np.full(n, time) if atoms.get("t") is None else _column("state.atoms.t", atoms["t"], n)
     late = np.flatnonzero(t > time)
     if late.size:
-        raise _bad(f"state.atoms.t[{late[0]}]", f"at most the clock {float(time)!r}", float(t[late[0]]))
+        raise _bad(
+            f"state.atoms.t[{late[0]}]", f"at most the clock {float(time)!r}", float(t[late[0]])
+        )
     status = np.zeros(n, dtype=np.int8)
     names = atoms.get("status")
     if names is not None:
@@ -275,8 +277,9 @@ def check_placement(
     outside = np.flatnonzero(trapped & (y < wall - tol * (1.0 + np.abs(wall))))
     if outside.size:
         i = int(outside[0])
+        xi, yi = float(x[i]), float(y[i])
         raise ValueError(
-            f"{name}: atom {i} at ({float(x[i])!r}, {float(y[i])!r}) is outside the cup; centres must be "
+            f"{name}: atom {i} at ({xi!r}, {yi!r}) is outside the cup; centres must be "
             f"inside it or on its wall, y >= a x^2 (a = {float(curvature)!r})"
         )
     idx = np.flatnonzero(trapped)
@@ -288,9 +291,10 @@ def check_placement(
     if best is not None:
         a, b = best
         d = math.hypot(x[b] - x[a], y[b] - y[a])
+        reach = float(radius[a] + radius[b])
         raise ValueError(
-            f"{name}: atoms {a} and {b} overlap (centres {float(d)!r} apart, less than r{a} + r{b} = "
-            f"{float(radius[a] + radius[b])!r}); atoms must be at least r_i + r_j apart"
+            f"{name}: atoms {a} and {b} overlap (centres {d!r} apart, less than r{a} + r{b} = "
+            f"{reach!r}); atoms must be at least r_i + r_j apart"
         )
 
 
