@@ -18,8 +18,6 @@ from evapcool.game.settings import (
     with_overrides,
 )
 from evapcool.limits import ParameterError
-from evapcool.physics.loading import cell_centres
-from evapcool.physics.simulation import CURVATURE, WINDOW, cup_vertex
 from evapcool.physics.world import ESCAPE_RULES
 
 PROG = APP_NAME
@@ -169,8 +167,6 @@ def main(argv: list[str] | None = None) -> int:
             tc_exponent=run.tc_exponent,
             escape=run.escape,
         )
-        # Whether the atoms fit is the loader's call: asked now, before a window opens.
-        cell_centres(run.n_atoms, run.radius, CURVATURE, cup_vertex(WINDOW)[1] - run.radius)
     except ValueError as exc:
         print(error_line(None, _user_message(exc)), file=sys.stderr)
         return 2

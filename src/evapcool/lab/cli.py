@@ -138,6 +138,8 @@ OPTION_OF = {
     **{name: "--" + name.replace("_", "-") for name in LabConfig.__dataclass_fields__},
     "n_atoms": "--atoms",
     "trap_height": "--schedule",
+    "stop_at_win": "--continue-after-win",
+    "win": "--no-win",
     "out": "--out",
     "plot": "--plot",
 }
