@@ -30,7 +30,7 @@ def test_every_name_in_the_table_is_an_option():
     ],
 )
 def test_a_refused_value_names_its_option(argv, start, capsys, tmp_path, monkeypatch):
-    status, lines = _run(argv + ["--frames", "1"], capsys, tmp_path, monkeypatch)
+    status, lines = _run([*argv, "--frames", "1"], capsys, tmp_path, monkeypatch)
     assert status == 2
     assert len(lines) == 1 and lines[0].startswith(start), lines
     assert "n_atoms" not in lines[0]

@@ -24,7 +24,7 @@ def test_every_name_in_the_table_is_an_option():
     ],
 )
 def test_a_refused_value_names_its_option(argv, start, capsys):
-    status = cli.main(argv + ["--frames", "2"] if "--frames" not in argv else argv)
+    status = cli.main([*argv, "--frames", "2"] if "--frames" not in argv else argv)
     lines = capsys.readouterr().err.strip().splitlines()
     assert status == 2
     assert len(lines) == 1 and lines[0].startswith("evapcool lab: error: " + start), lines
