@@ -19,6 +19,8 @@ from evapcool.game.settings import (
 )
 from evapcool.limits import ParameterError
 from evapcool.physics.world import ESCAPE_RULES
+from evapcool.view.screen import WINDOW as SCENE_SIZE
+from evapcool.view.screen import window_room
 
 PROG = APP_NAME
 #: Parameter names -> our options, so errors name what the user typed (ParameterError.render).
@@ -166,6 +168,7 @@ def main(argv: list[str] | None = None) -> int:
             speed=args.speed,
             tc_exponent=run.tc_exponent,
             escape=run.escape,
+            room=window_room(SCENE_SIZE),  # the room the scene shows
         )
     except ValueError as exc:
         print(error_line(None, _user_message(exc)), file=sys.stderr)

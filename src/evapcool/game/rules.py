@@ -18,6 +18,7 @@ from collections.abc import Callable
 from dataclasses import dataclass
 
 from evapcool.limits import APPLET_SPEED
+from evapcool.physics.room import CLASSIC_ROOM, Room
 from evapcool.physics.simulation import (
     ATOM_RADIUS,
     FPS,
@@ -55,6 +56,8 @@ class GameConfig:
     tc_exponent: float = TC_EXPONENT_SEED
     #: "rim" (atoms fly over the rim) or "knife" (energy above m g H is cut at once).
     escape: str = "rim"
+    #: Where escaped atoms are gone: the view gives the room its window shows (view/screen.py).
+    room: Room = CLASSIC_ROOM
 
 
 def check_speed(speed: object) -> float:
@@ -72,6 +75,7 @@ def make_simulation(config: GameConfig) -> Simulation:
             seed=config.seed,
             tc_exponent=config.tc_exponent,
             escape=config.escape,
+            room=config.room,
             engine=engine,
         )
 

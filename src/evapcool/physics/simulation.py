@@ -22,6 +22,7 @@ from evapcool.extras import (
 )
 from evapcool.limits import ParameterError, Range, bad_value
 from evapcool.physics.loading import load_cup
+from evapcool.physics.room import CLASSIC_ROOM, Room, check_room
 from evapcool.physics.validation import check_start, check_world
 from evapcool.physics.world import (
     ESCAPE_RULES,
@@ -42,9 +43,6 @@ CURVATURE = 0.01  # per px
 ATOM_RADIUS = 12.0
 N_ATOMS = 49
 TRAP_HEIGHT = 400.0
-WINDOW = (640, 672)
-BORDER_LEFT, BORDER_RIGHT, BORDER_TOP, BORDER_BOTTOM = 48, 96, 48, 96
-CUP_DROP = 32  # px between the drawn cup bottom and the play-area bottom
 TC_EXPONENT_SEED = 2.0 / 3.0  # seed Eq. (46), the 3D-box law
 TC_EXPONENT_CUP = 2.0 / 5.0  # ideal Bose gas with g(E) ~ E^(3/2) (SPEC 4)
 #: The Tc laws by name (game settings, the lab's --tc-law): name -> exponent p in Tc ~ N^p.
@@ -52,13 +50,6 @@ TC_LAWS: dict[str, float] = {"seed": TC_EXPONENT_SEED, "cup": TC_EXPONENT_CUP}
 ENGINES = ("auto", "reference", "fast")
 #: engine="auto" uses the fast engine from this many atoms on (docs/benchmarks.md).
 AUTO_FAST_MIN_ATOMS = 100
-
-
-def cup_vertex(window: tuple[int, int]) -> tuple[float, float]:
-    """Screen position of the drawn cup's lowest point: (296, 544) in 640 x 672."""
-    w, h = window
-    play_w = w - BORDER_LEFT - BORDER_RIGHT
-    return BORDER_LEFT + play_w / 2.0, float(h - BORDER_BOTTOM - CUP_DROP)
 
 
 _bad = bad_value
@@ -103,17 +94,6 @@ def _per_atom(name: str, value: object, n: int, rng: Range) -> np.ndarray:
     return arr
 
 
-def _window(value: object) -> tuple[int, int]:
-    allowed = f"two whole numbers (width, height), each {limits.WINDOW_SIDE.span()}"
-    if not isinstance(value, (tuple, list)) or len(value) != 2:
-        raise _bad("window", allowed, value)
-    side = limits.WINDOW_SIDE
-    try:
-        return side.check_int("window", value[0]), side.check_int("window", value[1])
-    except ValueError:
-        raise _bad("window", allowed, value) from None
-
-
 def _check_engine_size(engine: str, n: int) -> None:
     """The reference engine's N x N table must stay small (limits.REFERENCE_MAX_ATOMS)."""
     if n <= limits.REFERENCE_MAX_ATOMS:
@@ -148,7 +128,7 @@ class Simulation:
         curvature: float = CURVATURE,
         gravity: float = GRAVITY,
         trap_height: float = TRAP_HEIGHT,
-        window: tuple[int, int] = WINDOW,
+        room: Room = CLASSIC_ROOM,
         seed: int | None = None,
         engine: str = "auto",
         tc_exponent: float = TC_EXPONENT_SEED,
@@ -164,7 +144,7 @@ class Simulation:
         g = limits.GRAVITY.check("gravity", gravity)
         height = limits.TRAP_HEIGHT.check("trap_height", trap_height)
         tc_p = limits.TC_EXPONENT.check("tc_exponent", tc_exponent)
-        window = _window(window)
+        room = check_room(room)
         if seed is not None:
             seed = limits.SEED.check_int("seed", seed)
         win = _flag("win", win)
@@ -175,18 +155,15 @@ class Simulation:
         radii = _per_atom("radius", radius, n, limits.RADIUS)
         masses = _per_atom("mass", mass, n, limits.MASS)
 
-        r_ref = float(radii[0])
-        vx_screen, vy_screen = cup_vertex(window)
-        origin_sy = vy_screen - r_ref  # screen y of the trap origin
-        self.window = window
-        self.screen_origin = (vx_screen, origin_sy)
+        r_ref = float(radii[0])  # the trap origin lies this far above the wall's lowest point
+        self.room = room
         self.seed = seed
         self.rng = np.random.default_rng(seed)
 
         if positions is None and velocities is None:
             if not np.all(radii == r_ref):
                 raise _bad("radius", "one number unless positions are given", radius)
-            pos, vel = load_cup(n, r_ref, a, origin_sy, self.rng)
+            pos, vel = load_cup(n, r_ref, a, room.top(r_ref), self.rng)
         elif positions is None or velocities is None:
             missing = "positions" if positions is None else "velocities"
             raise ParameterError(missing, "must be given together with the other (got None)")
@@ -195,6 +172,7 @@ class Simulation:
             vel = _floats("velocities", velocities, (n, 2), f"a finite array of shape ({n}, 2)")
             check_start(pos, vel, radii, a)
 
+        x_left, x_right, y_bottom = room.escape_box(r_ref)
         self._world = World(
             pos=pos,
             vel=vel,
@@ -203,9 +181,9 @@ class Simulation:
             curvature=a,
             gravity=g,
             trap_height=height,
-            x_left=-vx_screen,
-            x_right=self.window[0] - vx_screen,
-            y_bottom=origin_sy - self.window[1],
+            x_left=x_left,
+            x_right=x_right,
+            y_bottom=y_bottom,
             tc_exponent=tc_p,
             escape_rule=escape,
             record_events=record_events,
@@ -221,21 +199,20 @@ class Simulation:
 
     @classmethod
     def from_world(
-        cls, world: World, window: tuple[int, int] = WINDOW, engine: str = "auto"
+        cls, world: World, room: Room = CLASSIC_ROOM, engine: str = "auto"
     ) -> Simulation:
-        """A simulation around a ready, validated World (physics/state.py restores states so).
+        """A simulation around a ready, validated World (physics/state.py restores states so);
+        room: the one whose escape box the world has (recorded, for the view and the state).
 
         The parameters are checked against the same ranges as a new Simulation's (the
         placement of the atoms is the caller's check, with its round-off tolerance).
         """
         engine = _choice("engine", engine, ENGINES)
-        window = _window(window)
+        room = check_room(room)
         check_world(world, placement=False)
         _check_engine_size(engine, len(world.radius))
         sim = cls.__new__(cls)
-        vx_screen, vy_screen = cup_vertex(window)
-        sim.window = window
-        sim.screen_origin = (vx_screen, vy_screen - float(world.radius[0]))
+        sim.room = room
         sim.seed = None
         sim.rng = np.random.default_rng()
         sim._world = world
@@ -439,15 +416,12 @@ class Simulation:
         """(kind, i, j, time) of every event if record_events=True, else []."""
         return [(EVENT_NAMES[e[0]], int(e[1]), int(e[2]), float(e[3])) for e in self._world.log]
 
-    # -- for views --------------------------------------------------------------
-    def to_screen(self, xy: np.ndarray) -> np.ndarray:
-        """Trap coordinates to window pixels (y down)."""
-        ox, oy = self.screen_origin
-        xy = np.asarray(xy, dtype=float)
-        out = np.empty_like(xy)
-        out[..., 0] = ox + xy[..., 0]
-        out[..., 1] = oy - xy[..., 1]
-        return out
+    # -- the room (the view places it: view/screen.py) ------------------------------------
+    @property
+    def origin_lift(self) -> float:
+        """Height of the trap origin above the cup wall's lowest point: the first atom's
+        radius (the lowest its centre can reach)."""
+        return float(self._world.radius[0])
 
     def force_win(self) -> None:
         """Declare the gas condensed now (demonstrations and tests)."""

@@ -19,14 +19,13 @@ from typing import Any, TypeGuard
 import numpy as np
 
 from evapcool.limits import shown
+from evapcool.physics.room import Room
 from evapcool.physics.simulation import (
     CURVATURE,
     GRAVITY,
     TC_EXPONENT_SEED,
     TRAP_HEIGHT,
-    WINDOW,
     Simulation,
-    cup_vertex,
 )
 from evapcool.physics.validation import first_overlap
 from evapcool.physics.world import ESCAPE_RULES, TRAPPED, World
@@ -43,6 +42,32 @@ _STATE_KEYS = (
     "wall_collisions", "atoms",
 )  # fmt: skip
 _ATOM_KEYS = ("x", "y", "vx", "vy", "t", "radius", "mass", "status")
+
+
+#: The `window` field (docs/state.md) names the room as the window of the original's layout
+#: that shows it: the cup's lowest point in the middle of a play area inside borders of
+#: 48 px (left) and 96 px (right), and 128 px above the window's bottom.
+WINDOW = (640, 672)
+_LEFT_BORDER, _RIGHT_BORDER, _VERTEX_ABOVE_BOTTOM = 48, 96, 128
+
+
+def room_of_window(window: tuple[int, int]) -> Room:
+    """The room that a state's window field names (view/screen.py places it so too)."""
+    w, h = window
+    x = _LEFT_BORDER + (w - _LEFT_BORDER - _RIGHT_BORDER) / 2.0
+    y = float(h - _VERTEX_ABOVE_BOTTOM)
+    return Room(left=x, right=w - x, below=h - y, above=y)
+
+
+def window_of_room(room: Room) -> list[int]:
+    """The window field for room; ValueError if no window of the layout gives it."""
+    size = (round(room.left + room.right), round(room.below + room.above))
+    if room_of_window(size) != room:
+        raise ValueError(
+            f"room must be one a window gives (view/screen.py) to be written as a state "
+            f"(got {room})"
+        )
+    return [size[0], size[1]]
 
 
 def _bad(name: str, allowed: str, value: object) -> ValueError:
@@ -309,7 +334,7 @@ def to_state(sim: Simulation) -> dict[str, Any]:
         "trap_height": float(w.trap_height) if math.isfinite(w.trap_height) else "inf",
         "curvature": float(w.curvature),
         "gravity": float(w.gravity),
-        "window": [int(sim.window[0]), int(sim.window[1])],
+        "window": window_of_room(sim.room),
         "escape": w.escape_rule,
         "tc_exponent": float(w.tc_exponent),
         "win": bool(w.win_rule),
@@ -353,8 +378,8 @@ def from_state(
     check_placement(
         "state.atoms", xn, yn, p.radius, trapped, p.curvature, STATE_TOLERANCE, not p.won
     )
-    vx_screen, vy_screen = cup_vertex(p.window)
-    origin_sy = vy_screen - float(p.radius[0])
+    room = room_of_window(p.window)
+    x_left, x_right, y_bottom = room.escape_box(float(p.radius[0]))
     w = World(
         pos=np.column_stack((p.x, p.y)),
         vel=np.column_stack((p.vx, p.vy)),
@@ -363,9 +388,9 @@ def from_state(
         curvature=p.curvature,
         gravity=p.gravity,
         trap_height=p.trap_height,
-        x_left=-vx_screen,
-        x_right=p.window[0] - vx_screen,
-        y_bottom=origin_sy - p.window[1],
+        x_left=x_left,
+        x_right=x_right,
+        y_bottom=y_bottom,
         tc_exponent=p.tc_exponent,
         escape_rule=p.escape,
         record_events=bool(record_events),
@@ -391,4 +416,4 @@ def from_state(
     else:
         w.initial_temperature = total / w.n_trapped if w.n_trapped else 0.0
     w.tc0 = 0.75 * w.initial_temperature
-    return Simulation.from_world(w, p.window, engine)
+    return Simulation.from_world(w, room, engine)

@@ -65,7 +65,7 @@ def draw_condensate(
     """Draw the wave packet with opacity `strength` (0..1) at wall-clock time t (s).
 
     to_px maps (k, 2) trap coordinates (y up) to screen pixels, like
-    `Simulation.to_screen` or the applet's scaled version. Returns the rectangle
+    `ScreenMap.to_screen` (view/screen.py) or the applet's scaled version. Returns the rectangle
     drawn, or None if there was nothing to draw.
     """
     strength = min(1.0, max(0.0, float(strength)))
