@@ -9,10 +9,11 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable
-from typing import Protocol
 
 import numpy as np
 import pygame
+
+from evapcool.view.simlike import SimLike
 
 EDGE = np.array([255.0, 120.0, 40.0])  # orange rim: nothing like the cyan atoms
 CORE = np.array([255.0, 250.0, 215.0])  # near-white centre
@@ -23,18 +24,6 @@ FADE_SECONDS = 1.5
 SETTLED_SPEED = 1.0  # px/frame: below this the post-win wall damping stops (SPEC 1)
 
 ToPx = Callable[[np.ndarray], np.ndarray]
-
-
-class SimLike(Protocol):
-    n_trapped: int
-    curvature: float
-    won: bool
-
-    @property
-    def radii(self) -> np.ndarray: ...
-
-    @property
-    def velocities(self) -> np.ndarray: ...
 
 
 def packet_size(n_atoms: int, radius: float, curvature: float) -> tuple[float, float]:
