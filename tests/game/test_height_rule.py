@@ -67,3 +67,25 @@ def test_restart_drops_a_held_height() -> None:
     game.set_trap_height(100.0)
     game.restart()
     assert game.trap_height == game.sim.trap_height == 400.0
+
+
+def test_the_game_checks_a_height_once_and_the_physics_trusts_it(monkeypatch) -> None:
+    """The slider's range is the one check (issue 26.2): no second range check below."""
+    from evapcool import limits
+
+    game = _playing()
+    checked: list[str] = []
+    original = limits.Range.check
+
+    def counting(self, name, value):
+        checked.append(name)
+        return original(self, name, value)
+
+    monkeypatch.setattr(limits.Range, "check", counting)
+    game._advance(0.5)
+    game.set_trap_height(1e9)  # clamped to the slider's top
+    game._advance(1.0)
+    assert game.sim.trap_height == 450.0
+    assert "trap_height" not in checked
+    game.sim.trap_height = 300.0  # the physics API itself still checks, at once
+    assert checked.count("trap_height") == 1

@@ -114,7 +114,7 @@ class Game:
         if config is not None:
             self.config = config
         self.sim = sim
-        self.sim.trap_height = HEIGHT_START
+        self.sim.set_checked_trap_height(HEIGHT_START)
         #: A height asked for since the last whole frame, applied at the next one.
         self._pending_height: float | None = None
         self.paused = True
@@ -151,6 +151,7 @@ class Game:
         """
         if self.won:
             return False  # the score is the atoms left: no evaporating after the win
+        # The slider's range, inside limits.TRAP_HEIGHT: the one check and conversion.
         h = min(HEIGHT_MAX, max(HEIGHT_MIN, float(height)))
         if h == self.trap_height:
             return False
@@ -164,7 +165,7 @@ class Game:
 
     def _apply_pending(self) -> None:
         if self._pending_height is not None:
-            self.sim.trap_height = self._pending_height
+            self.sim.set_checked_trap_height(self._pending_height)
             self._pending_height = None
 
     # -- time ----------------------------------------------------------------------------

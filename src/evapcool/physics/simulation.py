@@ -284,7 +284,13 @@ class Simulation:
 
     @trap_height.setter
     def trap_height(self, value: float) -> None:
-        self._engine.set_trap_height(limits.TRAP_HEIGHT.check("trap_height", value))
+        """Move the rim now (the physics' rule: at once, mid-frame too; docs/model.md)."""
+        self.set_checked_trap_height(limits.TRAP_HEIGHT.check("trap_height", value))
+
+    def set_checked_trap_height(self, height: float) -> None:
+        """Move the rim to height, a float the caller has checked within limits.TRAP_HEIGHT
+        (the game's slider range lies inside it): checked once, at the boundary."""
+        self._engine.set_trap_height(height)
 
     @property
     def rim_half_width(self) -> float:
