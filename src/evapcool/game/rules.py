@@ -15,13 +15,16 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 from evapcool.limits import APPLET_SPEED
+from evapcool.physics.config import SimulationConfig
 from evapcool.physics.room import CLASSIC_ROOM, Room
 from evapcool.physics.simulation import (
     ATOM_RADIUS,
+    CURVATURE,
     FPS,
+    GRAVITY,
     N_ATOMS,
     TC_EXPONENT_SEED,
     TRAP_HEIGHT,
@@ -68,24 +71,29 @@ def check_speed(speed: object) -> float:
 def make_simulation(config: GameConfig) -> Simulation:
     """A fresh simulation for config; the reference engine if the fast one can't load."""
 
-    def simulation(engine: str) -> Simulation:
-        return Simulation(
-            n_atoms=config.n_atoms,
-            radius=config.radius,
-            seed=config.seed,
-            tc_exponent=config.tc_exponent,
-            escape=config.escape,
-            room=config.room,
-            engine=engine,
-        )
-
+    # Checked once, here at the game's boundary; the fallback below is not checked again.
+    checked = SimulationConfig.checked(
+        n_atoms=config.n_atoms,
+        radius=config.radius,
+        mass=1.0,
+        curvature=CURVATURE,
+        gravity=GRAVITY,
+        trap_height=HEIGHT_START,
+        room=config.room,
+        seed=config.seed,
+        engine=config.engine,
+        tc_exponent=config.tc_exponent,
+        escape=config.escape,
+        record_events=False,
+        win=True,
+    )
     try:
-        return simulation(config.engine)
+        return Simulation.from_config(checked)
     except ImportError:
         # numba (or the fast engine) missing, e.g. in the lean executable.
         if config.engine == "fast":
             raise
-        return simulation("reference")
+        return Simulation.from_config(replace(checked, engine="reference"))
 
 
 class Game:

@@ -25,6 +25,8 @@ from evapcool.lab.io import (
 from evapcool.lab.progress import Progress
 from evapcool.lab.schedule import Schedule, parse_schedule
 from evapcool.lab.theory import eta_from_cut, thermal_cloud
+from evapcool.physics.config import SimulationConfig, check_engine_size
+from evapcool.physics.room import CLASSIC_ROOM
 from evapcool.physics.simulation import (
     ATOM_RADIUS,
     CURVATURE,
@@ -279,21 +281,27 @@ def _make_simulation(cfg: LabConfig, schedule: Schedule) -> Simulation:
                 sep=": ",
             ) from None
     h0 = schedule.fixed_height(0.0) if schedule.kind == "ramp" else math.inf
-    return Simulation(
+    check_engine_size(cfg.engine, cfg.atoms)  # the one check LabConfig leaves: auto, no numba
+    # cfg was checked once (LabConfig.checked); the physics trusts it. A thermal start is new
+    # data: its positions are checked (in the cup, apart) as they join the config.
+    config = SimulationConfig(
         n_atoms=cfg.atoms,
-        radius=cfg.radius,
-        mass=MASS,
+        radii=np.full(cfg.atoms, cfg.radius),
+        masses=np.full(cfg.atoms, MASS),
         curvature=cfg.curvature,
         gravity=cfg.gravity,
         trap_height=h0,
+        tc_exponent=TC_LAWS[cfg.tc_law],
+        room=CLASSIC_ROOM,
         seed=cfg.seed,
         engine=cfg.engine,
-        tc_exponent=TC_LAWS[cfg.tc_law],
         escape=cfg.escape,
+        record_events=False,
         win=cfg.win,
-        positions=pos,
-        velocities=vel,
     )
+    if pos is not None and vel is not None:
+        config = config.with_start(pos, vel)
+    return Simulation.from_config(config)
 
 
 def _check_run_options(out, plot, progress, checkpoint_seconds, on_record) -> None:
