@@ -35,6 +35,8 @@ from hypothesis import strategies as st
 from evapcool import limits
 from evapcool.cli import SUBCOMMANDS
 from evapcool.lab.experiment import LabConfig, run_experiment
+from evapcool.physics.room import Room
+from evapcool.physics.state import room_of_window
 
 #: A case whose worker spends more CPU time than this (s) is a hang; the worker is killed.
 #: CPU time, not the clock's: on a loaded machine a niced worker may wait far longer.
@@ -438,7 +440,7 @@ SIM_VALID = {
     "trap_height": _valid(limits.TRAP_HEIGHT),
     "tc_exponent": _valid(limits.TC_EXPONENT),
     "seed": _valid(limits.SEED),
-    "window": st.tuples(_valid(limits.WINDOW_SIDE), _valid(limits.WINDOW_SIDE)),
+    "room": st.tuples(_valid(limits.WINDOW_SIDE), _valid(limits.WINDOW_SIDE)).map(room_of_window),
     "engine": st.sampled_from(["auto", "reference", "fast"]),
     "escape": st.sampled_from(["rim", "knife"]),
     "record_events": st.booleans(),
@@ -451,7 +453,7 @@ SIM_ANY = {
     "trap_height": _param(limits.TRAP_HEIGHT),
     "tc_exponent": _param(limits.TC_EXPONENT),
     "seed": _param(limits.SEED),
-    "window": st.one_of(st.tuples(numbers(limits.WINDOW_SIDE), numbers(limits.WINDOW_SIDE)), ANY),
+    "room": st.one_of(st.builds(Room, *[st.floats(-10.0, 10_000.0)] * 4), ANY),
 }
 
 
@@ -471,7 +473,7 @@ def _named(message: str, names) -> bool:
 def _check_api(kwargs: dict, answer: dict, names) -> None:
     event("refused" if "error" in answer else "ran")
     if "error" in answer:
-        assert answer["error"] in ("ValueError", "TypeError"), answer
+        assert answer["error"] in ("ValueError", "ParameterError", "TypeError"), answer
         assert _named(answer["message"], names), f"{kwargs!r}: {answer['message']}"
     else:
         assert answer["finite"], f"non-finite result: {kwargs!r}"
@@ -585,7 +587,7 @@ def test_fuzz_state_from_a_file(worker: Worker, state: object, dt: object) -> No
     answer = worker.run({"kind": "state", "state": state, "dt": dt})
     event("refused" if "error" in answer else "ran")
     if "error" in answer:
-        assert answer["error"] in ("ValueError", "TypeError"), answer
+        assert answer["error"] in ("ValueError", "ParameterError", "TypeError"), answer
         message = answer["message"]
         known = [*STATE_FIELDS, *ATOM_FIELDS, "state", "positions", "velocities", "dt", "n_atoms"]
         assert _named(message, known) or message.startswith("state"), f"{state!r}: {message}"

@@ -25,6 +25,7 @@ from evapcool.game.settings import DEFAULTS, load_settings
 from evapcool.lab import cli as lab_cli
 from evapcool.lab import experiment
 from evapcool.lab.experiment import run_experiment
+from evapcool.physics.room import Room
 
 FIFO = pytest.mark.skipif(not hasattr(os, "mkfifo"), reason="POSIX FIFOs")
 LINUX = pytest.mark.skipif(not Path("/proc/version").exists(), reason="Linux paths")
@@ -53,7 +54,7 @@ LINUX = pytest.mark.skipif(not Path("/proc/version").exists(), reason="Linux pat
         ({"radius": "12"}, "radius"),
         ({"radius": [1, 2]}, "radius"),
         ({"seed": 2**70}, "seed"),
-        ({"window": (640, 10**9)}, "window"),
+        ({"room": Room(296.0, 344.0, 128.0, 1e9)}, "room"),
         ({"n_atoms": 6000, "radius": 1.0, "engine": "reference"}, "n_atoms"),
     ],
 )

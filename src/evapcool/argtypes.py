@@ -14,7 +14,7 @@ from typing import Any, NoReturn
 
 from evapcool.about import error_line
 from evapcool.fileio import check_writable
-from evapcool.limits import Range
+from evapcool.limits import ParameterError, Range
 
 
 class UsageError(Exception):
@@ -115,9 +115,9 @@ def output_file(suffixes: Sequence[str]) -> Callable[[str], Path]:
                 f"must be a file name ending in {' or '.join(suffixes)} (got {text!r})"
             )
         try:
-            check_writable(path, "it")
-        except ValueError as exc:
-            raise argparse.ArgumentTypeError(str(exc).removeprefix("it ")) from None
+            check_writable(path, "path")
+        except ParameterError as exc:
+            raise argparse.ArgumentTypeError(exc.detail) from None
         return path
 
     parse.suffixes = tuple(suffixes)  # type: ignore[attr-defined]

@@ -22,6 +22,8 @@ import time
 from collections.abc import Iterator
 from pathlib import Path
 
+from evapcool.limits import ParameterError
+
 #: Temporary files are named '.<name>.evapcool-<random>.tmp' beside their target.
 _TMP_TAG = ".evapcool-"
 _TMP_SUFFIX = ".tmp"
@@ -289,25 +291,27 @@ def check_writable(path: str | os.PathLike[str], name: str) -> None:
     where = f"(got {str(p)!r})"
     folder = p.parent if str(p.parent) else Path(".")
     if not p.name or "\x00" in str(p):
-        raise ValueError(f"{name} must name a file {where}")
+        raise ParameterError(name, f"must name a file {where}")
     if len(p.name.encode("utf-8", "surrogateescape")) > _name_max(folder):
-        raise ValueError(f"{name} must be a file name of at most {_name_max(folder)} bytes {where}")
+        raise ParameterError(
+            name, f"must be a file name of at most {_name_max(folder)} bytes {where}"
+        )
     folder_info = _stat(folder, name, where)
     if folder_info is None or not stat.S_ISDIR(folder_info.st_mode):
-        raise ValueError(f"{name} must be in an existing folder {where}")
+        raise ParameterError(name, f"must be in an existing folder {where}")
     info = _stat(p, name, where)
     if info is not None and stat.S_ISDIR(info.st_mode):
-        raise ValueError(f"{name} must be a file path, not a directory {where}")
+        raise ParameterError(name, f"must be a file path, not a directory {where}")
     if info is not None and not stat.S_ISREG(info.st_mode):
-        raise ValueError(f"{name} must be a regular file (this is a device or a pipe) {where}")
+        raise ParameterError(name, f"must be a regular file (this is a device or a pipe) {where}")
     try:
         fd, probe = tempfile.mkstemp(prefix=_tmp_prefix(p), suffix=_TMP_SUFFIX, dir=folder)
         os.close(fd)
         os.unlink(probe)
     except OSError as exc:
         reason = exc.strerror.lower() if exc.strerror else type(exc).__name__
-        raise ValueError(
-            f"{name} cannot be written: {folder} takes no new file ({reason}) {where}"
+        raise ParameterError(
+            name, f"cannot be written: {folder} takes no new file ({reason}) {where}"
         ) from None
 
 
@@ -322,4 +326,4 @@ def _stat(path: Path, name: str, where: str) -> os.stat_result | None:
         if exc.errno == errno.ENOTDIR:
             return None
         reason = exc.strerror.lower() if exc.strerror else type(exc).__name__
-        raise ValueError(f"{name} cannot be written there ({reason}) {where}") from None
+        raise ParameterError(name, f"cannot be written there ({reason}) {where}") from None

@@ -15,6 +15,7 @@ from __future__ import annotations
 import math
 import numbers
 import reprlib
+from collections.abc import Mapping
 from dataclasses import dataclass
 
 #: A value shown in an error message is cut to about this many characters.
@@ -24,11 +25,69 @@ _SHOWN.maxother = 40
 _SHOWN.maxlist = _SHOWN.maxtuple = 4
 
 
+def plain(value: object) -> object:
+    """A NumPy scalar as the Python number it holds (its repr is np.float64(...)); a list
+    or tuple with its first few items so; anything else as it is (issue 25.2)."""
+    if getattr(value, "ndim", None) == 0 and hasattr(value, "item"):
+        return value.item()
+    if isinstance(value, (list, tuple)) and len(value) <= _SHOWN.maxlist:
+        return type(value)(plain(v) for v in value) if type(value) in (list, tuple) else value
+    return value
+
+
 def shown(value: object) -> str:
-    """repr of value, shortened: a 10**6-element list or a megabyte string stays one line."""
+    """repr of value as plain numbers, shortened: a 10**6-element list or a megabyte string
+    stays one line, and np.float64(1.5) shows as 1.5."""
+    value = plain(value)
     if isinstance(value, float):
         return repr(value)
     return _SHOWN.repr(value)
+
+
+class ParameterError(ValueError):
+    """A bad value of one parameter, its name as data (issue 26.2): str() is the Python
+    API's line ("n_atoms must be ..."); a command line renders it with its own option names
+    from a table (`render`), never by rewriting the text.
+
+    joint: further parameters of a limit they share (atoms that do not fit at a radius).
+    """
+
+    def __init__(
+        self, parameter: str, detail: str, joint: tuple[str, ...] = (), sep: str = " "
+    ) -> None:
+        super().__init__(parameter, detail, joint, sep)  # args: pickles through Dask
+        self.parameter = parameter
+        self.detail = detail
+        self.joint = tuple(joint)
+        self.sep = sep
+
+    @property
+    def parameters(self) -> tuple[str, ...]:
+        """Every parameter the line is about, the first one first."""
+        return (self.parameter, *self.joint)
+
+    def render(self, names: Mapping[str, str] | None = None) -> str:
+        """The line with each parameter under its name in names (e.g. n_atoms -> --atoms);
+        a joint parameter missing from names is left out (that command cannot set it)."""
+        if names is None:
+            return str(self)
+        joint = [names[p] for p in self.joint if p in names]
+        shown_names = [names.get(self.parameter, self.parameter), *joint]
+        label = shown_names[0] if len(shown_names) == 1 else _joined(shown_names)
+        return f"{label}{self.sep}{self.detail}"
+
+    def __str__(self) -> str:
+        return f"{self.parameter}{self.sep}{self.detail}"
+
+
+def _joined(names: list[str]) -> str:
+    """'a and b', 'a, b and c'."""
+    return ", ".join(names[:-1]) + " and " + names[-1]
+
+
+def bad_value(name: str, allowed: str, value: object) -> ParameterError:
+    """'name must be allowed (got value)' as a ParameterError."""
+    return ParameterError(name, f"must be {allowed} (got {shown(value)})")
 
 
 @dataclass(frozen=True)
@@ -75,7 +134,7 @@ class Range:
 
     def check(self, name: str, value: object) -> float:
         """value as int (integer ranges) or float; ValueError naming name and the range."""
-        bad = ValueError(f"{name} must be {self.allowed()} (got {shown(value)})")
+        bad = bad_value(name, self.allowed(), value)
         if isinstance(value, bool):
             raise bad
         if self.integer:

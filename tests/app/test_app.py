@@ -23,6 +23,7 @@ from evapcool.view.scene import (
     SLIDER_RECT,
     THERMO_X,
 )
+from evapcool.view.screen import ScreenMap
 
 pytestmark = pytest.mark.usefixtures("own_folders")
 
@@ -346,13 +347,13 @@ def test_screenshot_shows_cup_atoms_and_mercury_at_t_over_1_2_t0(app, tmp_path):
     assert all(tuple(px[296, y]) == (0, 0, 0) for y in range(545, 549))
     assert tuple(px[296, 538]) != (0, 0, 0)
     x_rim = sim.rim_half_width
-    rim_sx, rim_sy = sim.to_screen(np.array([x_rim, sim.trap_height]))
+    rim_sx, rim_sy = ScreenMap.of(sim).to_screen(np.array([x_rim, sim.trap_height]))
     n = np.array([-2 * 0.01 * x_rim, 1.0]) / np.hypot(2 * 0.01 * x_rim, 1.0)
     band = (rim_sx - 15 * n[0] * 1.0, rim_sy + 15 * n[1])  # R + 3 px outside the wall
     assert tuple(px[round(band[0] - 1), round(band[1])]) == (0, 0, 0)
 
     # Every trapped atom: cyan at its centre.
-    centres = sim.to_screen(sim.positions)
+    centres = ScreenMap.of(sim).to_screen(sim.positions)
     inside = [c for c in centres if PLAY_RECT.collidepoint(c)]
     assert len(inside) >= 40
     for cx, cy in inside:

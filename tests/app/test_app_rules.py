@@ -91,7 +91,8 @@ def test_win_latches_once_and_freezes_the_trap():
     g.sim.force_win()
     g.run_frames(2)
     g.run_frames(2)
-    assert calls == [g] and g.won_at == pytest.approx(4 / 30)
+    # The win is checked at each whole frame (issue 26.4): seen at t = 3, not at the step's end.
+    assert calls == [g] and g.won_at == pytest.approx(3 / 30)
     assert g.score == g.sim.n_trapped
     assert not g.set_trap_height(100.0) and g.trap_height == 400.0
 

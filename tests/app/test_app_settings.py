@@ -12,7 +12,8 @@ from apphelp import NOTICE_STRIP, key
 from evapcool.app import applet
 from evapcool.app.cli import main
 from evapcool.game.settings import max_atoms
-from evapcool.physics.simulation import BORDER_TOP, TC_EXPONENT_CUP, TC_EXPONENT_SEED
+from evapcool.physics.simulation import TC_EXPONENT_CUP, TC_EXPONENT_SEED
+from evapcool.view.screen import BORDER_TOP, ScreenMap
 
 
 @pytest.fixture
@@ -172,6 +173,6 @@ def test_the_overlay_caps_the_atoms_so_every_start_fits_below_the_rim(
     assert sim.n_trapped == cap
     tops = sim.positions[:, 1] + float(sim.radii[0])
     assert tops.max() <= sim.trap_height  # no atom above the rim...
-    screen_tops = sim.to_screen(sim.positions)[:, 1] - float(sim.radii[0])
+    screen_tops = ScreenMap.of(sim).to_screen(sim.positions)[:, 1] - float(sim.radii[0])
     assert screen_tops.min() >= BORDER_TOP  # ...or under the top border
     assert np.abs(sim.positions[:, 0]).max() < sim.rim_half_width

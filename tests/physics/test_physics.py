@@ -8,6 +8,7 @@ import numpy as np
 import pytest
 
 from evapcool import Simulation
+from evapcool.physics.room import Room
 from evapcool.physics.simulation import GRAVITY
 
 G = GRAVITY
@@ -363,7 +364,8 @@ def test_mixed_radii_and_masses_stay_exact(engine: str) -> None:
         ({"engine": "warp"}, "engine"),
         ({"escape": "teleport"}, "escape"),
         ({"seed": -1}, "seed"),
-        ({"window": (10, 10)}, "window"),
+        ({"room": (640, 672)}, "room"),
+        ({"room": Room(296.0, 344.0, 128.0, -5.0)}, "room"),
         ({"tc_exponent": 0}, "tc_exponent"),
     ],
 )

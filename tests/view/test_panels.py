@@ -14,6 +14,7 @@ from evapcool.view import panels
 from evapcool.view.condensate import Condensate, draw_condensate, packet_size
 from evapcool.view.panels import EnergyPanel, PathPanel
 from evapcool.view.pen import Pen
+from evapcool.view.screen import ScreenMap
 
 RECT = pygame.Rect(40, 30, 520, 340)
 MAGENTA = (255, 0, 255)
@@ -317,7 +318,7 @@ def test_condensate_appears_only_after_the_win_and_fades_in() -> None:
     surf = pygame.Surface((640, 672))
     surf.fill((159, 159, 159))
     before = pygame.surfarray.array3d(surf).copy()
-    assert effect.draw(surf, sim, sim.to_screen, 0.0) == 0.0
+    assert effect.draw(surf, sim, ScreenMap.of(sim).to_screen, 0.0) == 0.0
     np.testing.assert_array_equal(pygame.surfarray.array3d(surf), before)
 
     sim.force_win()
@@ -329,15 +330,15 @@ def test_condensate_appears_only_after_the_win_and_fades_in() -> None:
     assert np.all(np.diff(levels) >= 0)  # never fades out
     assert levels[-1] == 1.0  # settled: speeds are down where the damping stops
 
-    rect = draw_condensate(surf, sim, sim.to_screen, 3.0)
+    rect = draw_condensate(surf, sim, ScreenMap.of(sim).to_screen, 3.0)
     assert rect is not None
-    bottom = sim.to_screen(np.array([[0.0, -float(sim.radii.mean())]]))[0]
+    bottom = ScreenMap.of(sim).to_screen(np.array([[0.0, -float(sim.radii.mean())]]))[0]
     assert rect.collidepoint(bottom)  # it sits at the bottom of the cup
     arr = pygame.surfarray.array3d(surf)
     cx, cy = rect.center
     assert tuple(arr[cx, cy]) != (159, 159, 159)
     assert arr[cx, cy, 0] > 200  # warm glow, unlike the cyan atoms
-    assert draw_condensate(surf, sim, sim.to_screen, 3.0, strength=0.0) is None
+    assert draw_condensate(surf, sim, ScreenMap.of(sim).to_screen, 3.0, strength=0.0) is None
 
 
 def test_panels_and_scene_text_survive_pygame_quit_and_init() -> None:

@@ -145,3 +145,21 @@ def test_slider_draws_bar_knob_and_label_at_scale():
 def test_slider_needs_a_real_range():
     with pytest.raises(ValueError):
         Slider((0, 0, 10, 4), 1.0, 1.0)
+
+
+def test_slider_follows_the_model_between_drags_and_owns_its_drag():
+    """The knob rests at the model's value, read when drawn; a drag holds it (issue 26.2)."""
+    model = {"height": 400.0}
+    s = Slider((100, 50, 200, 8), 0.0, 400.0, knob_radius=10, follow=lambda: model["height"])
+    assert s.value == 400.0 and s.knob_xy() == (300.0, 54)
+    model["height"] = 100.0  # a key or the autopilot moves the rim: nobody tells the slider
+    assert s.value == 100.0 and s.knob_xy() == (150.0, 54)
+    assert s.press((250, 54)) and s.value == 300.0
+    model["height"] = 50.0  # while dragged, the knob is the pointer's, not the model's
+    s.drag((200, 54))
+    assert s.value == 200.0
+    surf = pygame.Surface((400, 120))
+    s.draw(Pen(surf))
+    assert model["height"] == 50.0  # drawing writes nothing back
+    s.release()
+    assert s.value == 50.0

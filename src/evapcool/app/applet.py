@@ -187,7 +187,7 @@ class App:
         self.input = InputMachine(self, self.scores, self.options, default_bindings())
         self.scene = Scene()
         self.stats = FrameStats()
-        self.controls = SceneControls()
+        self.controls = SceneControls(lambda: self.game.trap_height)
         self.slider = self.controls.slider
 
         self.window = Window(TITLE, SCENE_SIZE, window_icon(64), screen)
@@ -217,7 +217,6 @@ class App:
             self.autopilot = autopilot
             self._say_autopilot()
             autopilot.steer(game)  # the start height it wants, shown before Space
-        self.slider.set_value(game.trap_height)
 
     # -- the autopilot -------------------------------------------------------------------------
     def _say_autopilot(self) -> None:
@@ -364,7 +363,6 @@ class App:
             self.autopilot.steer(self.game)
         self.input.reset()
         self.charts.reset()
-        self.slider.set_value(self.game.trap_height)
 
     def next_player(self) -> bool:
         """Enter after a stored (or skipped) score: a fresh game for the next student."""

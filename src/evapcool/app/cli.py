@@ -17,12 +17,13 @@ from evapcool.game.settings import (
     max_atoms,
     with_overrides,
 )
-from evapcool.physics.loading import cell_centres
-from evapcool.physics.simulation import CURVATURE, WINDOW, cup_vertex
+from evapcool.limits import ParameterError
 from evapcool.physics.world import ESCAPE_RULES
+from evapcool.view.screen import WINDOW as SCENE_SIZE
+from evapcool.view.screen import window_room
 
 PROG = APP_NAME
-#: Parameter names -> our options, so ValueErrors name what the user typed.
+#: Parameter names -> our options, so errors name what the user typed (ParameterError.render).
 _OPTION_OF = {
     "n_atoms": "--atoms",
     "radius": "--radius",
@@ -124,13 +125,8 @@ def build_parser() -> argparse.ArgumentParser:
 
 
 def _user_message(exc: ValueError) -> str:
-    text = str(exc)
-    if text.startswith("n_atoms:") and "do not fit" in text:
-        return "--atoms and --radius" + text[len("n_atoms") :]  # a joint limit
-    for name, option in _OPTION_OF.items():
-        if text.startswith((name + " ", name + ":")):
-            return option + text[len(name) :]
-    return text
+    """The error's line with our option names (the parameter's name is data, not text)."""
+    return exc.render(_OPTION_OF) if isinstance(exc, ParameterError) else str(exc)
 
 
 def _no_display() -> str | None:
@@ -172,9 +168,8 @@ def main(argv: list[str] | None = None) -> int:
             speed=args.speed,
             tc_exponent=run.tc_exponent,
             escape=run.escape,
+            room=window_room(SCENE_SIZE),  # the room the scene shows
         )
-        # Whether the atoms fit is the loader's call: asked now, before a window opens.
-        cell_centres(run.n_atoms, run.radius, CURVATURE, cup_vertex(WINDOW)[1] - run.radius)
     except ValueError as exc:
         print(error_line(None, _user_message(exc)), file=sys.stderr)
         return 2

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+from collections.abc import Callable
+
 from evapcool.app.charts import CHART_BUTTON_RECT, chart_button_looks
 from evapcool.game.rules import HEIGHT_MAX, HEIGHT_MIN, HEIGHT_START, Game
 from evapcool.view.icons import button_looks
@@ -13,7 +15,8 @@ from evapcool.view.widgets import Button, Pointer, Slider, ToggleButton
 class SceneControls:
     """The widgets in the bottom border, at the original's places (logical pixels)."""
 
-    def __init__(self) -> None:
+    def __init__(self, trap_height: Callable[[], float] | None = None) -> None:
+        """trap_height: the game's height asked for, where the knob rests between drags."""
         self.pause = ToggleButton(
             PAUSE_RECT,
             lambda size: button_looks("play", size),
@@ -29,6 +32,7 @@ class SceneControls:
             HEIGHT_START,
             knob_radius=KNOB_RADIUS,
             label="Trap height",
+            follow=trap_height,
         )
 
     def target_at(self, xy: tuple[float, float]) -> str | None:
@@ -47,7 +51,5 @@ class SceneControls:
         """Draw them showing the game's state (paused, trap height, frozen after a win)."""
         self.pause.set_state(game.paused)
         self.slider.enabled = not game.won
-        if not self.slider.sliding:
-            self.slider.set_value(game.trap_height)
         for widget in (self.pause, self.restart, self.slider, self.chart):
             widget.draw(pen, pointer)

@@ -27,7 +27,7 @@ from evapcool.fileio import (
     set_aside,
     warn,
 )
-from evapcool.limits import USER_FILE_MAX_BYTES
+from evapcool.limits import USER_FILE_MAX_BYTES, shown
 
 FILE_NAME = "highscores.json"
 FORMAT_VERSION = 1
@@ -202,14 +202,14 @@ class HighScoreTable:
         ValueError for a negative or non-integer score or a bad time.
         """
         if isinstance(score, bool) or not isinstance(score, numbers.Integral) or score < 0:
-            raise ValueError(f"score must be a whole number >= 0 (got {score!r})")
+            raise ValueError(f"score must be a whole number >= 0 (got {shown(score)})")
         if (
             isinstance(seconds, bool)
             or not isinstance(seconds, numbers.Real)
             or not math.isfinite(seconds)
             or seconds < 0
         ):
-            raise ValueError(f"seconds must be a finite number >= 0 (got {seconds!r})")
+            raise ValueError(f"seconds must be a finite number >= 0 (got {shown(seconds)})")
         when = when or datetime.now()
         # Stored to 0.01 s so the order in memory equals the order after a reload.
         entry = Entry(

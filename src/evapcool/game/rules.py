@@ -2,17 +2,29 @@
 
 Pure state, no pygame: the view and the app read and drive it, tests drive it
 directly. Time is physics frames (1/30 s) unless a name says seconds.
+
+When the player's trap height takes effect (the page's rule, web/src/game/rules.ts): at
+the next whole physics frame, t = k. The game advances in pieces that stop at each whole
+frame, apply the height asked for since the last one and check the win, so a run depends
+on what the player did in which frame, never on the display's rate. Paused, or standing
+on a whole frame, the height applies at once. (`Simulation.trap_height = H` itself
+applies at once: docs/model.md.)
 """
 
 from __future__ import annotations
 
+import math
 from collections.abc import Callable
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 from evapcool.limits import APPLET_SPEED
+from evapcool.physics.config import SimulationConfig
+from evapcool.physics.room import CLASSIC_ROOM, Room
 from evapcool.physics.simulation import (
     ATOM_RADIUS,
+    CURVATURE,
     FPS,
+    GRAVITY,
     N_ATOMS,
     TC_EXPONENT_SEED,
     TRAP_HEIGHT,
@@ -29,7 +41,8 @@ SPEED_MAX = APPLET_SPEED.high
 #: One wall-clock step never advances more than this many seconds of play: when frames
 #: fall behind (a loaded machine, thousands of atoms) the game slows down instead of
 #: taking ever larger steps, each costlier than the last; a stall (window dragged,
-#: laptop asleep) does not jump the game ahead. At 1x: at most 2 physics frames a frame.
+#: laptop asleep) does not jump the game ahead: at most MAX_WALL_STEP x 30 x speed
+#: physics frames a frame (2 at 1x, 8 at 4x).
 MAX_WALL_STEP = 1.0 / 15.0
 
 
@@ -46,6 +59,8 @@ class GameConfig:
     tc_exponent: float = TC_EXPONENT_SEED
     #: "rim" (atoms fly over the rim) or "knife" (energy above m g H is cut at once).
     escape: str = "rim"
+    #: Where escaped atoms are gone: the view gives the room its window shows (view/screen.py).
+    room: Room = CLASSIC_ROOM
 
 
 def check_speed(speed: object) -> float:
@@ -56,23 +71,29 @@ def check_speed(speed: object) -> float:
 def make_simulation(config: GameConfig) -> Simulation:
     """A fresh simulation for config; the reference engine if the fast one can't load."""
 
-    def simulation(engine: str) -> Simulation:
-        return Simulation(
-            n_atoms=config.n_atoms,
-            radius=config.radius,
-            seed=config.seed,
-            tc_exponent=config.tc_exponent,
-            escape=config.escape,
-            engine=engine,
-        )
-
+    # Checked once, here at the game's boundary; the fallback below is not checked again.
+    checked = SimulationConfig.checked(
+        n_atoms=config.n_atoms,
+        radius=config.radius,
+        mass=1.0,
+        curvature=CURVATURE,
+        gravity=GRAVITY,
+        trap_height=HEIGHT_START,
+        room=config.room,
+        seed=config.seed,
+        engine=config.engine,
+        tc_exponent=config.tc_exponent,
+        escape=config.escape,
+        record_events=False,
+        win=True,
+    )
     try:
-        return simulation(config.engine)
+        return Simulation.from_config(checked)
     except ImportError:
         # numba (or the fast engine) missing, e.g. in the lean executable.
         if config.engine == "fast":
             raise
-        return simulation("reference")
+        return Simulation.from_config(replace(checked, engine="reference"))
 
 
 class Game:
@@ -101,7 +122,9 @@ class Game:
         if config is not None:
             self.config = config
         self.sim = sim
-        self.sim.trap_height = HEIGHT_START
+        self.sim.set_checked_trap_height(HEIGHT_START)
+        #: A height asked for since the last whole frame, applied at the next one.
+        self._pending_height: float | None = None
         self.paused = True
         #: Play time (s) at which the win was first seen, None before.
         self.won_at: float | None = None
@@ -124,23 +147,34 @@ class Game:
     # -- the trap ----------------------------------------------------------------------
     @property
     def trap_height(self) -> float:
-        return self.sim.trap_height
+        """The rim's height now, or the one it takes at the next whole frame."""
+        pending = self._pending_height
+        return self.sim.trap_height if pending is None else pending
 
     def set_trap_height(self, height: float) -> bool:
-        """Move the rim (clamped to the slider range); frozen once the gas has condensed.
+        """Ask for a rim height (clamped to the slider range), applied at the next whole
+        frame (at once if paused or on one); frozen once the gas has condensed.
 
-        Returns True if the height changed.
+        Returns True if the height asked for changed.
         """
         if self.won:
             return False  # the score is the atoms left: no evaporating after the win
+        # The slider's range, inside limits.TRAP_HEIGHT: the one check and conversion.
         h = min(HEIGHT_MAX, max(HEIGHT_MIN, float(height)))
-        if h == self.sim.trap_height:
+        if h == self.trap_height:
             return False
-        self.sim.trap_height = h
+        self._pending_height = h
+        if self.paused or float(self.sim.time).is_integer():
+            self._apply_pending()  # nothing in flight
         return True
 
     def nudge_height(self, delta: float) -> bool:
-        return self.set_trap_height(self.sim.trap_height + delta)
+        return self.set_trap_height(self.trap_height + delta)
+
+    def _apply_pending(self) -> None:
+        if self._pending_height is not None:
+            self.sim.set_checked_trap_height(self._pending_height)
+            self._pending_height = None
 
     # -- time ----------------------------------------------------------------------------
     def update(self, wall_seconds: float) -> float:
@@ -160,13 +194,24 @@ class Game:
         return self._advance(1.0) if self.paused else 0.0
 
     def _advance(self, frames: float) -> float:
-        self.sim.advance(frames)
+        """Advance frames in pieces that stop at each whole frame: the held height applies
+        there, and the win is checked there."""
+        sim = self.sim
+        end = sim.time + frames
+        while sim.time < end:
+            boundary = math.floor(sim.time) + 1.0
+            sim.advance(min(boundary, end) - sim.time)
+            if sim.time >= boundary:
+                self._apply_pending()
+            self._check_win()
+        return frames
+
+    def _check_win(self) -> None:
         if self.sim.won and self.won_at is None:
             self.won_at = self.play_time
             self._won_with = self.sim.n_trapped
             for callback in list(self.on_win):
                 callback(self)
-        return frames
 
     # -- what the player sees ------------------------------------------------------------
     @property

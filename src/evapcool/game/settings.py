@@ -29,15 +29,13 @@ from evapcool.fileio import (
     warn,
 )
 from evapcool.physics.loading import capacity
+from evapcool.physics.room import CLASSIC_ROOM
 from evapcool.physics.simulation import (
     ATOM_RADIUS,
-    BORDER_TOP,
     CURVATURE,
     N_ATOMS,
     TC_LAWS,
     TRAP_HEIGHT,
-    WINDOW,
-    cup_vertex,
 )
 from evapcool.physics.world import ESCAPE_RULES
 
@@ -50,6 +48,9 @@ RADIUS_MIN = limits.APPLET_RADIUS.low
 RADIUS_MAX = limits.APPLET_RADIUS.high
 #: Hard cap whatever the radius; max_atoms also caps by what fits in the cup.
 ATOMS_MAX = int(limits.APPLET_ATOMS.high)
+#: The play area's top border (SPEC 1), px: the settings screen's atoms all start below
+#: it, in view (the view draws it: view/screen.BORDER_TOP).
+SHOWN_BELOW_TOP = 48.0
 
 
 @dataclass(frozen=True)
@@ -87,7 +88,7 @@ def cup_capacity(radius: float) -> int:
     The rim starts at TRAP_HEIGHT, below the play area's top border, so every atom of
     such a start is trapped and in view (`loading.capacity`, the loader's own rows).
     """
-    play_top = cup_vertex(WINDOW)[1] - radius - BORDER_TOP  # trap y of the border's edge
+    play_top = CLASSIC_ROOM.top(radius) - SHOWN_BELOW_TOP  # trap y of the border's edge
     return capacity(radius, CURVATURE, min(TRAP_HEIGHT, play_top))
 
 
@@ -99,7 +100,7 @@ def max_atoms(radius: float) -> int:
 @lru_cache(maxsize=64)
 def window_capacity(radius: float) -> int:
     """How many atoms of this radius the loading fits below the window's top (`Simulation`)."""
-    return capacity(radius, CURVATURE, cup_vertex(WINDOW)[1] - radius)
+    return capacity(radius, CURVATURE, CLASSIC_ROOM.top(radius))
 
 
 def command_line_max_atoms(radius: float) -> int:
@@ -122,16 +123,17 @@ def _check_n_atoms(value: object, radius: float, cap: Callable[[float], int] = m
         or not 1 <= int(value) <= top
     ):
         where = "below the rim" if cap is max_atoms else "below the window's top"
-        raise ValueError(
-            f"n_atoms must be a whole number from 1 to {top} for radius {radius:g}, "
-            f"what fits {where} (got {limits.shown(value)})"
+        raise limits.ParameterError(
+            "n_atoms",
+            f"must be a whole number from 1 to {top} for radius {radius:g}, "
+            f"what fits {where} (got {limits.shown(value)})",
         )
     return int(value)
 
 
 def _check_choice(name: str, value: object, allowed: tuple[str, ...]) -> str:
     if not isinstance(value, str) or value not in allowed:
-        raise ValueError(f"{name} must be one of {', '.join(allowed)} (got {limits.shown(value)})")
+        raise limits.bad_value(name, "one of " + ", ".join(allowed), value)
     return value
 
 

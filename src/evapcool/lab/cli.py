@@ -14,6 +14,7 @@ from evapcool.extras import check
 from evapcool.lab.experiment import ESCAPES, START_HELP, TC_LAWS, LabConfig, run_experiment
 from evapcool.lab.io import COLUMNS, read_result, to_csv_text
 from evapcool.lab.schedule import SCHEDULE_HELP
+from evapcool.limits import ParameterError
 from evapcool.physics.simulation import ENGINES
 
 EXIT_USAGE = 2
@@ -132,20 +133,21 @@ def _fail(message: str) -> int:
     return EXIT_USAGE
 
 
-_OPTION_OF = {"n_atoms": "atoms", "trap_height": "schedule"}
+#: Parameter names -> our options, so errors name what the user typed (ParameterError.render).
+OPTION_OF = {
+    **{name: "--" + name.replace("_", "-") for name in LabConfig.__dataclass_fields__},
+    "n_atoms": "--atoms",
+    "trap_height": "--schedule",
+    "stop_at_win": "--continue-after-win",
+    "win": "--no-win",
+    "out": "--out",
+    "plot": "--plot",
+}
 
 
-def _option_message(message: str) -> str:
-    """'tc_law must be ...' -> '--tc-law must be ...' so the line names the CLI option."""
-    if message.startswith("n_atoms:") and "do not fit" in message:
-        return "--atoms, --radius and --curvature" + message[len("n_atoms") :]  # a joint limit
-    head, sep, rest = message.partition(" ")
-    word = head.rstrip(":")
-    word = _OPTION_OF.get(word, word)
-    known = set(LabConfig.__dataclass_fields__) | {"out", "plot"}
-    if word in known:
-        return "--" + word.replace("_", "-") + head[len(head.rstrip(":")) :] + sep + rest
-    return message
+def _option_message(exc: ValueError) -> str:
+    """The error's line naming our options: 'tc_law must be ...' -> '--tc-law must be ...'."""
+    return exc.render(OPTION_OF) if isinstance(exc, ParameterError) else str(exc)
 
 
 def _from_file(path: str) -> dict:
@@ -191,11 +193,10 @@ def main(argv: list[str] | None = None) -> int:
     try:
         result = run_experiment(out=args.out, plot=plot, progress=None, **params)
     except ValueError as exc:
-        message = str(exc)
-        name = message.split(" ", 1)[0].rstrip(":")
+        name = exc.parameter if isinstance(exc, ParameterError) else None
         if name in from_file and name not in given:
-            return _fail(f"--from {args.from_file}: {message}")
-        return _fail(_option_message(message))
+            return _fail(f"--from {args.from_file}: {exc}")
+        return _fail(_option_message(exc))
     except OSError as exc:
         return _fail(f"could not write output: {exc}")
     if args.out is None:

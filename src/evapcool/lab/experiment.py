@@ -25,6 +25,8 @@ from evapcool.lab.io import (
 from evapcool.lab.progress import Progress
 from evapcool.lab.schedule import Schedule, parse_schedule
 from evapcool.lab.theory import eta_from_cut, thermal_cloud
+from evapcool.physics.config import SimulationConfig, check_engine_size
+from evapcool.physics.room import CLASSIC_ROOM
 from evapcool.physics.simulation import (
     ATOM_RADIUS,
     CURVATURE,
@@ -45,7 +47,7 @@ START_HELP = (
 
 def _choice(name: str, value: object, options: tuple[str, ...] | dict) -> str:
     if not isinstance(value, str) or value not in options:
-        raise ValueError(f"{name} must be one of {', '.join(options)} (got {limits.shown(value)})")
+        raise limits.bad_value(name, "one of " + ", ".join(options), value)
     return value
 
 
@@ -60,7 +62,7 @@ def parse_start(text: str) -> float | None:
             kt = math.nan
         if limits.START_KT.contains(kt):
             return kt
-    raise ValueError(f"start must be {START_HELP} (got {limits.shown(text)})")
+    raise limits.bad_value("start", START_HELP, text)
 
 
 @dataclass(frozen=True)
@@ -84,6 +86,10 @@ class LabConfig:
 
     def validated(self) -> LabConfig:
         """A copy with checked, normalised values and a concrete seed; ValueError on bad input."""
+        return self.checked()[0]
+
+    def checked(self) -> tuple[LabConfig, Schedule]:
+        """validated() and the schedule it parsed (a strategy file is read once)."""
         seed = self.seed
         if seed is None:
             # Draw a seed now so that the file records it and the run can be repeated.
@@ -91,32 +97,34 @@ class LabConfig:
         atoms = limits.N_ATOMS.check("atoms", self.atoms)
         _choice("engine", self.engine, ENGINES)
         if self.engine == "reference" and atoms > limits.REFERENCE_MAX_ATOMS:
-            raise ValueError(
-                f"atoms must be at most {limits.REFERENCE_MAX_ATOMS} with engine reference "
-                f"(got {atoms}); use engine fast or auto"
+            raise limits.ParameterError(
+                "atoms",
+                f"must be at most {limits.REFERENCE_MAX_ATOMS} with engine reference "
+                f"(got {atoms}); use engine fast or auto",
             )
         _choice("escape", self.escape, ESCAPES)
         _choice("tc_law", self.tc_law, TC_LAWS)
-        if len(parse_schedule(self.schedule).points) > limits.SCHEDULE_POINTS_MAX:
-            raise ValueError(
-                f"schedule must have at most {limits.SCHEDULE_POINTS_MAX} points "
-                f"(got {limits.shown(self.schedule)})"
+        schedule = parse_schedule(self.schedule)
+        if len(schedule.points) > limits.SCHEDULE_POINTS_MAX:
+            raise limits.ParameterError(
+                "schedule",
+                f"must have at most {limits.SCHEDULE_POINTS_MAX} points "
+                f"(got {limits.shown(self.schedule)})",
             )
         parse_start(self.start)
         if not isinstance(self.stop_at_win, bool):
-            raise ValueError(
-                f"stop_at_win must be True or False (got {limits.shown(self.stop_at_win)})"
-            )
+            raise limits.bad_value("stop_at_win", "True or False", self.stop_at_win)
         if not isinstance(self.win, bool):
-            raise ValueError(f"win must be True or False (got {limits.shown(self.win)})")
+            raise limits.bad_value("win", "True or False", self.win)
         frames = limits.FRAMES.check("frames", self.frames)
         every = limits.EVERY.check("every", self.every)
         if frames // every + 2 > limits.RECORDS_MAX:
-            raise ValueError(
-                f"every must be at least {frames // (limits.RECORDS_MAX - 2) + 1} for "
-                f"{frames} frames: a run keeps at most {limits.RECORDS_MAX} records (got {every})"
+            raise limits.ParameterError(
+                "every",
+                f"must be at least {frames // (limits.RECORDS_MAX - 2) + 1} for "
+                f"{frames} frames: a run keeps at most {limits.RECORDS_MAX} records (got {every})",
             )
-        return LabConfig(
+        config = LabConfig(
             atoms=atoms,
             radius=limits.RADIUS.check("radius", self.radius),
             curvature=limits.CURVATURE.check("curvature", self.curvature),
@@ -132,6 +140,7 @@ class LabConfig:
             stop_at_win=self.stop_at_win,
             win=self.win,
         )
+        return config, schedule
 
 
 class LabResult:
@@ -265,40 +274,50 @@ def _make_simulation(cfg: LabConfig, schedule: Schedule) -> Simulation:
                 rng=rng,
             )
         except ValueError:
-            raise ValueError(
-                f"start: a thermal cloud at kT {kt:g} is too dense for {cfg.atoms} atoms of "
-                f"radius {cfg.radius:g} (a larger kT, fewer or smaller atoms fit)"
+            raise limits.ParameterError(
+                "start",
+                f"a thermal cloud at kT {kt:g} is too dense for {cfg.atoms} atoms of "
+                f"radius {cfg.radius:g} (a larger kT, fewer or smaller atoms fit)",
+                sep=": ",
             ) from None
     h0 = schedule.fixed_height(0.0) if schedule.kind == "ramp" else math.inf
-    return Simulation(
+    check_engine_size(cfg.engine, cfg.atoms)  # the one check LabConfig leaves: auto, no numba
+    # cfg was checked once (LabConfig.checked); the physics trusts it. A thermal start is new
+    # data: its positions are checked (in the cup, apart) as they join the config.
+    config = SimulationConfig(
         n_atoms=cfg.atoms,
-        radius=cfg.radius,
-        mass=MASS,
+        radii=np.full(cfg.atoms, cfg.radius),
+        masses=np.full(cfg.atoms, MASS),
         curvature=cfg.curvature,
         gravity=cfg.gravity,
         trap_height=h0,
+        tc_exponent=TC_LAWS[cfg.tc_law],
+        room=CLASSIC_ROOM,
         seed=cfg.seed,
         engine=cfg.engine,
-        tc_exponent=TC_LAWS[cfg.tc_law],
         escape=cfg.escape,
+        record_events=False,
         win=cfg.win,
-        positions=pos,
-        velocities=vel,
     )
+    if pos is not None and vel is not None:
+        config = config.with_start(pos, vel)
+    return Simulation.from_config(config)
 
 
 def _check_run_options(out, plot, progress, checkpoint_seconds, on_record) -> None:
     """ValueError naming the first bad one of run_experiment's own keywords."""
     for name, path in (("out", out), ("plot", plot)):
         if path is not None and not isinstance(path, (str, os.PathLike)):
-            raise ValueError(f"{name} must be a file path or None (got {limits.shown(path)})")
+            raise limits.bad_value(name, "a file path or None", path)
     if out is not None:
         output_format(out)
         check_writable(out, "out")
     if plot is not None:
         check("matplotlib", "plot")
         if Path(plot).suffix.lower() != ".png":
-            raise ValueError(f"plot must be a file name ending in .png (got {str(plot)!r})")
+            raise limits.ParameterError(
+                "plot", f"must be a file name ending in .png (got {str(plot)!r})"
+            )
         check_writable(plot, "plot")
     if progress is not None and not isinstance(progress, bool):
         raise ValueError(f"progress must be True, False or None (got {limits.shown(progress)})")
@@ -332,8 +351,7 @@ def run_experiment(
             f"unknown parameter {unknown[0]!r}; allowed: "
             + ", ".join(LabConfig.__dataclass_fields__)
         )
-    cfg = LabConfig(**params).validated()  # type: ignore[arg-type]
-    schedule = parse_schedule(cfg.schedule)
+    cfg, schedule = LabConfig(**params).checked()  # type: ignore[arg-type]
     _check_run_options(out, plot, progress, checkpoint_seconds, on_record)
     sim = _make_simulation(cfg, schedule)
 

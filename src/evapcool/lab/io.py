@@ -11,7 +11,7 @@ from pathlib import Path
 import numpy as np
 
 from evapcool.fileio import atomic_write_text, check_writable, read_user_text
-from evapcool.limits import LAB_FILE_MAX_BYTES, N_ATOMS, RECORDS_MAX
+from evapcool.limits import LAB_FILE_MAX_BYTES, N_ATOMS, RECORDS_MAX, ParameterError
 
 #: Output columns, one row per record (docs/lab.md explains each).
 COLUMNS = (
@@ -60,7 +60,9 @@ def output_format(path: str | os.PathLike[str]) -> str:
     """'.csv' or '.json' from the file name; ValueError otherwise."""
     suffix = Path(path).suffix.lower()
     if suffix not in FORMATS:
-        raise ValueError(f"out must be a file name ending in .csv or .json (got {str(path)!r})")
+        raise ParameterError(
+            "out", f"must be a file name ending in .csv or .json (got {str(path)!r})"
+        )
     return suffix
 
 

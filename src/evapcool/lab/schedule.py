@@ -23,8 +23,8 @@ _ETA = re.compile(rf"^eta\s*=\s*({_NUMBER})$", re.IGNORECASE)
 _POINT = re.compile(rf"^({_NUMBER})\s*@\s*({_NUMBER})$")
 
 
-def _bad(text: object) -> ValueError:
-    return ValueError(f"schedule must be {SCHEDULE_HELP} (got {text!r})")
+def _bad(text: object) -> limits.ParameterError:
+    return limits.bad_value("schedule", SCHEDULE_HELP, text)
 
 
 @dataclass(frozen=True)
@@ -91,7 +91,7 @@ def parse_schedule(text: str) -> Schedule:
         try:
             strategy = autopilot.load_strategy(s)
         except ValueError as exc:
-            raise ValueError(f"schedule: {exc}") from None
+            raise limits.ParameterError("schedule", str(exc), sep=": ") from None
         return Schedule("autopilot", text=s, strategy=strategy)
     m = _ETA.match(s)
     if m:

@@ -13,6 +13,8 @@ import math
 
 import numpy as np
 
+from evapcool.limits import ParameterError
+
 V0 = 100.0 / 30.0  # px / frame, speed at the bottom row
 DV = 10.0 / 30.0  # px / frame, speed step per 40 px of height
 ROW_SPACING_ORIGINAL = 40.0  # px, the original's row spacing (R = 12)
@@ -75,9 +77,12 @@ def cell_centres(n: int, radius: float, curvature: float, y_top: float) -> np.nd
     while found < n:
         yc = y0 + k * spacing
         if yc + cell > y_top:
-            raise ValueError(
-                f"n_atoms: {n} atoms of radius {radius:g} do not fit in the cup "
-                f"(curvature {curvature:g}) below the window top (at most {found} fit)"
+            raise ParameterError(
+                "n_atoms",
+                f"{n} atoms of radius {radius:g} do not fit in the cup "
+                f"(curvature {curvature:g}) below the window top (at most {found} fit)",
+                joint=("radius", "curvature"),
+                sep=": ",
             )
         m = int(math.sqrt(yc / curvature) / spacing) + 1
         xs = _row(yc, n - found, m, spacing, jitter, curvature)

@@ -4,7 +4,7 @@ Simple enough to check by reading: after every event the rows of the
 atoms involved are recomputed against all others, and the next event is the
 minimum of the pair table and the per-atom wall/exit times. O(N) work per
 event plus an O(N^2) scan, fine up to a few hundred atoms. The fast engine
-(fast.py) must reproduce its event sequence exactly.
+(physics/fast/) must reproduce its event sequence exactly.
 """
 
 from __future__ import annotations

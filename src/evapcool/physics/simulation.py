@@ -5,7 +5,6 @@ Pure model: NumPy (and Numba through the fast engine), never pygame.
 
 from __future__ import annotations
 
-import numbers
 import warnings
 from typing import TYPE_CHECKING, Any
 
@@ -16,15 +15,20 @@ from evapcool import limits
 from evapcool.extras import (
     SLOW_REFERENCE_ATOMS,
     SlowEngineWarning,
-    available,
     check,
     slow_engine_message,
 )
-from evapcool.limits import Range, shown
+from evapcool.physics.config import (
+    ENGINES,
+    SimulationConfig,
+    check_choice,
+    check_engine_size,
+    fast_available,
+)
 from evapcool.physics.loading import load_cup
-from evapcool.physics.validation import check_start, check_world
+from evapcool.physics.room import CLASSIC_ROOM, Room, check_room
+from evapcool.physics.validation import check_world
 from evapcool.physics.world import (
-    ESCAPE_RULES,
     ESCAPED,
     EVENT_NAMES,
     TRAPPED,
@@ -42,93 +46,12 @@ CURVATURE = 0.01  # per px
 ATOM_RADIUS = 12.0
 N_ATOMS = 49
 TRAP_HEIGHT = 400.0
-WINDOW = (640, 672)
-BORDER_LEFT, BORDER_RIGHT, BORDER_TOP, BORDER_BOTTOM = 48, 96, 48, 96
-CUP_DROP = 32  # px between the drawn cup bottom and the play-area bottom
 TC_EXPONENT_SEED = 2.0 / 3.0  # seed Eq. (46), the 3D-box law
 TC_EXPONENT_CUP = 2.0 / 5.0  # ideal Bose gas with g(E) ~ E^(3/2) (SPEC 4)
 #: The Tc laws by name (game settings, the lab's --tc-law): name -> exponent p in Tc ~ N^p.
 TC_LAWS: dict[str, float] = {"seed": TC_EXPONENT_SEED, "cup": TC_EXPONENT_CUP}
-ENGINES = ("auto", "reference", "fast")
 #: engine="auto" uses the fast engine from this many atoms on (docs/benchmarks.md).
 AUTO_FAST_MIN_ATOMS = 100
-
-
-def cup_vertex(window: tuple[int, int]) -> tuple[float, float]:
-    """Screen position of the drawn cup's lowest point: (296, 544) in 640 x 672."""
-    w, h = window
-    play_w = w - BORDER_LEFT - BORDER_RIGHT
-    return BORDER_LEFT + play_w / 2.0, float(h - BORDER_BOTTOM - CUP_DROP)
-
-
-def _bad(name: str, allowed: str, value: object) -> ValueError:
-    return ValueError(f"{name} must be {allowed} (got {shown(value)})")
-
-
-def _flag(name: str, value: object) -> bool:
-    """A real bool: "no" or 0 is not False here (issue 18)."""
-    if not isinstance(value, (bool, np.bool_)):
-        raise _bad(name, "True or False", value)
-    return bool(value)
-
-
-def _choice(name: str, value: object, options: tuple[str, ...]) -> str:
-    if not isinstance(value, str) or value not in options:
-        raise _bad(name, "one of " + ", ".join(options), value)
-    return value
-
-
-def _floats(name: str, value: object, shape: tuple[int, ...], allowed: str) -> np.ndarray:
-    """value as a new float array of this shape; ValueError naming name otherwise."""
-    try:
-        arr = np.array(value, dtype=float)
-    except (TypeError, ValueError, OverflowError):
-        raise _bad(name, allowed, value) from None
-    if arr.shape != shape or not np.all(np.isfinite(arr)):
-        raise _bad(name, allowed, value)
-    return arr
-
-
-def _per_atom(name: str, value: object, n: int, rng: Range) -> np.ndarray:
-    """One number for every atom, or n of them, each within rng."""
-    if isinstance(value, numbers.Real) and not isinstance(value, bool):
-        return np.full(n, rng.check(name, value))
-    allowed = f"{rng.allowed()}, or {n} such numbers"
-    if isinstance(value, (str, bytes, bool)):
-        raise _bad(name, allowed, value)
-    arr = _floats(name, value, (n,), allowed)
-    bad = np.flatnonzero((arr < rng.low) | (arr > rng.high))
-    if bad.size:
-        i = int(bad[0])
-        raise ValueError(f"{name} must be {allowed} (atom {i} has {float(arr[i])!r})")
-    return arr
-
-
-def _window(value: object) -> tuple[int, int]:
-    allowed = f"two whole numbers (width, height), each {limits.WINDOW_SIDE.span()}"
-    if not isinstance(value, (tuple, list)) or len(value) != 2:
-        raise _bad("window", allowed, value)
-    side = limits.WINDOW_SIDE
-    try:
-        return side.check_int("window", value[0]), side.check_int("window", value[1])
-    except ValueError:
-        raise _bad("window", allowed, value) from None
-
-
-def _check_engine_size(engine: str, n: int) -> None:
-    """The reference engine's N x N table must stay small (limits.REFERENCE_MAX_ATOMS)."""
-    if n <= limits.REFERENCE_MAX_ATOMS:
-        return
-    if engine == "reference":
-        raise ValueError(
-            f"n_atoms must be at most {limits.REFERENCE_MAX_ATOMS} with engine='reference' "
-            f"(its pair table grows as N^2; got {n}); use engine='fast' or 'auto'"
-        )
-    if engine == "auto" and not _fast_available():
-        raise ValueError(
-            f"n_atoms must be at most {limits.REFERENCE_MAX_ATOMS} without numba "
-            f"(got {n}); install numba for the fast engine"
-        )
 
 
 class Simulation:
@@ -147,7 +70,7 @@ class Simulation:
         curvature: float = CURVATURE,
         gravity: float = GRAVITY,
         trap_height: float = TRAP_HEIGHT,
-        window: tuple[int, int] = WINDOW,
+        room: Room = CLASSIC_ROOM,
         seed: int | None = None,
         engine: str = "auto",
         tc_exponent: float = TC_EXPONENT_SEED,
@@ -157,61 +80,62 @@ class Simulation:
         positions: ArrayLike | None = None,
         velocities: ArrayLike | None = None,
     ) -> None:
-        # Every check comes before anything is allocated per atom (issue 18).
-        n = limits.N_ATOMS.check_int("n_atoms", n_atoms)
-        a = limits.CURVATURE.check("curvature", curvature)
-        g = limits.GRAVITY.check("gravity", gravity)
-        height = limits.TRAP_HEIGHT.check("trap_height", trap_height)
-        tc_p = limits.TC_EXPONENT.check("tc_exponent", tc_exponent)
-        window = _window(window)
-        if seed is not None:
-            seed = limits.SEED.check_int("seed", seed)
-        win = _flag("win", win)
-        record_events = _flag("record_events", record_events)
-        engine = _choice("engine", engine, ENGINES)
-        escape = _choice("escape", escape, ESCAPE_RULES)
-        _check_engine_size(engine, n)
-        radii = _per_atom("radius", radius, n, limits.RADIUS)
-        masses = _per_atom("mass", mass, n, limits.MASS)
+        self._build(
+            SimulationConfig.checked(
+                n_atoms=n_atoms,
+                radius=radius,
+                mass=mass,
+                curvature=curvature,
+                gravity=gravity,
+                trap_height=trap_height,
+                room=room,
+                seed=seed,
+                engine=engine,
+                tc_exponent=tc_exponent,
+                escape=escape,
+                record_events=record_events,
+                win=win,
+                positions=positions,
+                velocities=velocities,
+            )
+        )
 
-        r_ref = float(radii[0])
-        vx_screen, vy_screen = cup_vertex(window)
-        origin_sy = vy_screen - r_ref  # screen y of the trap origin
-        self.window = window
-        self.screen_origin = (vx_screen, origin_sy)
-        self.seed = seed
-        self.rng = np.random.default_rng(seed)
+    @classmethod
+    def from_config(cls, config: SimulationConfig) -> Simulation:
+        """A simulation of a config checked once at the boundary (SimulationConfig.checked);
+        nothing is checked again here, but whether the atoms fit the cup (the loader's)."""
+        sim = cls.__new__(cls)
+        sim._build(config)
+        return sim
 
-        if positions is None and velocities is None:
-            if not np.all(radii == r_ref):
-                raise _bad("radius", "one number unless positions are given", radius)
-            pos, vel = load_cup(n, r_ref, a, origin_sy, self.rng)
-        elif positions is None or velocities is None:
-            missing = "positions" if positions is None else "velocities"
-            raise ValueError(f"{missing} must be given together with the other (got None)")
+    def _build(self, c: SimulationConfig) -> None:
+        r_ref = float(c.radii[0])  # the trap origin lies this far above the wall's lowest point
+        self.room = c.room
+        self.seed = c.seed
+        self.rng = np.random.default_rng(c.seed)
+        if c.positions is None or c.velocities is None:
+            pos, vel = load_cup(c.n_atoms, r_ref, c.curvature, c.room.top(r_ref), self.rng)
         else:
-            pos = _floats("positions", positions, (n, 2), f"a finite array of shape ({n}, 2)")
-            vel = _floats("velocities", velocities, (n, 2), f"a finite array of shape ({n}, 2)")
-            check_start(pos, vel, radii, a)
-
+            pos, vel = c.positions.copy(), c.velocities.copy()
+        x_left, x_right, y_bottom = c.room.escape_box(r_ref)
         self._world = World(
             pos=pos,
             vel=vel,
-            radius=radii,
-            mass=masses,
-            curvature=a,
-            gravity=g,
-            trap_height=height,
-            x_left=-vx_screen,
-            x_right=self.window[0] - vx_screen,
-            y_bottom=origin_sy - self.window[1],
-            tc_exponent=tc_p,
-            escape_rule=escape,
-            record_events=record_events,
-            win_rule=win,
+            radius=c.radii.copy(),
+            mass=c.masses.copy(),
+            curvature=c.curvature,
+            gravity=c.gravity,
+            trap_height=c.trap_height,
+            x_left=x_left,
+            x_right=x_right,
+            y_bottom=y_bottom,
+            tc_exponent=c.tc_exponent,
+            escape_rule=c.escape,
+            record_events=c.record_events,
+            win_rule=c.win,
         )
-        self._engine = self._make_engine(engine, n)
-        self._engine.set_trap_height(height)
+        self._engine = self._make_engine(c.engine, c.n_atoms)
+        self._engine.set_trap_height(c.trap_height)
 
     @classmethod
     def classic(cls, seed: int | None = None, **overrides: Any) -> Simulation:
@@ -220,21 +144,20 @@ class Simulation:
 
     @classmethod
     def from_world(
-        cls, world: World, window: tuple[int, int] = WINDOW, engine: str = "auto"
+        cls, world: World, room: Room = CLASSIC_ROOM, engine: str = "auto"
     ) -> Simulation:
-        """A simulation around a ready, validated World (physics/state.py restores states so).
+        """A simulation around a ready, validated World (physics/state.py restores states so);
+        room: the one whose escape box the world has (recorded, for the view and the state).
 
         The parameters are checked against the same ranges as a new Simulation's (the
         placement of the atoms is the caller's check, with its round-off tolerance).
         """
-        engine = _choice("engine", engine, ENGINES)
-        window = _window(window)
+        engine = check_choice("engine", engine, ENGINES)
+        room = check_room(room)
         check_world(world, placement=False)
-        _check_engine_size(engine, len(world.radius))
+        check_engine_size(engine, len(world.radius))
         sim = cls.__new__(cls)
-        vx_screen, vy_screen = cup_vertex(window)
-        sim.window = window
-        sim.screen_origin = (vx_screen, vy_screen - float(world.radius[0]))
+        sim.room = room
         sim.seed = None
         sim.rng = np.random.default_rng()
         sim._world = world
@@ -259,9 +182,9 @@ class Simulation:
 
     def _make_engine(self, engine: str, n: int) -> ReferenceEngine | FastEngine:
         if engine == "auto":
-            engine = "fast" if n >= AUTO_FAST_MIN_ATOMS and _fast_available() else "reference"
+            engine = "fast" if n >= AUTO_FAST_MIN_ATOMS and fast_available() else "reference"
             if engine == "reference" and n >= SLOW_REFERENCE_ATOMS:
-                warnings.warn(slow_engine_message(n), SlowEngineWarning, stacklevel=3)
+                warnings.warn(slow_engine_message(n), SlowEngineWarning, stacklevel=4)
         if engine == "fast":
             check("numba", "the fast engine")
             from evapcool.physics.fast import FastEngine
@@ -306,7 +229,13 @@ class Simulation:
 
     @trap_height.setter
     def trap_height(self, value: float) -> None:
-        self._engine.set_trap_height(limits.TRAP_HEIGHT.check("trap_height", value))
+        """Move the rim now (the physics' rule: at once, mid-frame too; docs/model.md)."""
+        self.set_checked_trap_height(limits.TRAP_HEIGHT.check("trap_height", value))
+
+    def set_checked_trap_height(self, height: float) -> None:
+        """Move the rim to height, a float the caller has checked within limits.TRAP_HEIGHT
+        (the game's slider range lies inside it): checked once, at the boundary."""
+        self._engine.set_trap_height(height)
 
     @property
     def rim_half_width(self) -> float:
@@ -438,20 +367,13 @@ class Simulation:
         """(kind, i, j, time) of every event if record_events=True, else []."""
         return [(EVENT_NAMES[e[0]], int(e[1]), int(e[2]), float(e[3])) for e in self._world.log]
 
-    # -- for views --------------------------------------------------------------
-    def to_screen(self, xy: np.ndarray) -> np.ndarray:
-        """Trap coordinates to window pixels (y down)."""
-        ox, oy = self.screen_origin
-        xy = np.asarray(xy, dtype=float)
-        out = np.empty_like(xy)
-        out[..., 0] = ox + xy[..., 0]
-        out[..., 1] = oy - xy[..., 1]
-        return out
+    # -- the room (the view places it: view/screen.py) ------------------------------------
+    @property
+    def origin_lift(self) -> float:
+        """Height of the trap origin above the cup wall's lowest point: the first atom's
+        radius (the lowest its centre can reach)."""
+        return float(self._world.radius[0])
 
     def force_win(self) -> None:
         """Declare the gas condensed now (demonstrations and tests)."""
         self._world.won = True
-
-
-def _fast_available() -> bool:
-    return available("numba")

@@ -18,14 +18,14 @@ from typing import Any, TypeGuard
 
 import numpy as np
 
+from evapcool.limits import shown
+from evapcool.physics.room import Room
 from evapcool.physics.simulation import (
     CURVATURE,
     GRAVITY,
     TC_EXPONENT_SEED,
     TRAP_HEIGHT,
-    WINDOW,
     Simulation,
-    cup_vertex,
 )
 from evapcool.physics.validation import first_overlap
 from evapcool.physics.world import ESCAPE_RULES, TRAPPED, World
@@ -44,8 +44,34 @@ _STATE_KEYS = (
 _ATOM_KEYS = ("x", "y", "vx", "vy", "t", "radius", "mass", "status")
 
 
+#: The `window` field (docs/state.md) names the room as the window of the original's layout
+#: that shows it: the cup's lowest point in the middle of a play area inside borders of
+#: 48 px (left) and 96 px (right), and 128 px above the window's bottom.
+WINDOW = (640, 672)
+_LEFT_BORDER, _RIGHT_BORDER, _VERTEX_ABOVE_BOTTOM = 48, 96, 128
+
+
+def room_of_window(window: tuple[int, int]) -> Room:
+    """The room that a state's window field names (view/screen.py places it so too)."""
+    w, h = window
+    x = _LEFT_BORDER + (w - _LEFT_BORDER - _RIGHT_BORDER) / 2.0
+    y = float(h - _VERTEX_ABOVE_BOTTOM)
+    return Room(left=x, right=w - x, below=h - y, above=y)
+
+
+def window_of_room(room: Room) -> list[int]:
+    """The window field for room; ValueError if no window of the layout gives it."""
+    size = (round(room.left + room.right), round(room.below + room.above))
+    if room_of_window(size) != room:
+        raise ValueError(
+            f"room must be one a window gives (view/screen.py) to be written as a state "
+            f"(got {room})"
+        )
+    return [size[0], size[1]]
+
+
 def _bad(name: str, allowed: str, value: object) -> ValueError:
-    text = repr(value)
+    text = shown(value)
     if len(text) > 60:
         text = text[:57] + "..."
     return ValueError(f"{name} must be {allowed} (got {text})")
@@ -55,7 +81,7 @@ def _bad(name: str, allowed: str, value: object) -> ValueError:
 def number_text(v: float) -> str:
     """%.17g: reads back to the same bits (also -0); the web edition writes the same text."""
     if not math.isfinite(v):
-        raise ValueError(f"number must be finite to be written as JSON (got {v!r})")
+        raise ValueError(f"number must be finite to be written as JSON (got {shown(v)})")
     return f"{v:.17g}"
 
 
@@ -214,7 +240,9 @@ def parse_state(state: object) -> ParsedState:
     t = np.full(n, time) if atoms.get("t") is None else _column("state.atoms.t", atoms["t"], n)
     late = np.flatnonzero(t > time)
     if late.size:
-        raise _bad(f"state.atoms.t[{late[0]}]", f"at most the clock {time!r}", float(t[late[0]]))
+        raise _bad(
+            f"state.atoms.t[{late[0]}]", f"at most the clock {float(time)!r}", float(t[late[0]])
+        )
     status = np.zeros(n, dtype=np.int8)
     names = atoms.get("status")
     if names is not None:
@@ -274,9 +302,10 @@ def check_placement(
     outside = np.flatnonzero(trapped & (y < wall - tol * (1.0 + np.abs(wall))))
     if outside.size:
         i = int(outside[0])
+        xi, yi = float(x[i]), float(y[i])
         raise ValueError(
-            f"{name}: atom {i} at ({x[i]!r}, {y[i]!r}) is outside the cup; centres must be "
-            f"inside it or on its wall, y >= a x^2 (a = {curvature!r})"
+            f"{name}: atom {i} at ({xi!r}, {yi!r}) is outside the cup; centres must be "
+            f"inside it or on its wall, y >= a x^2 (a = {float(curvature)!r})"
         )
     idx = np.flatnonzero(trapped)
     if not overlaps or idx.size < 2:
@@ -287,9 +316,10 @@ def check_placement(
     if best is not None:
         a, b = best
         d = math.hypot(x[b] - x[a], y[b] - y[a])
+        reach = float(radius[a] + radius[b])
         raise ValueError(
             f"{name}: atoms {a} and {b} overlap (centres {d!r} apart, less than r{a} + r{b} = "
-            f"{radius[a] + radius[b]!r}); atoms must be at least r_i + r_j apart"
+            f"{reach!r}); atoms must be at least r_i + r_j apart"
         )
 
 
@@ -304,7 +334,7 @@ def to_state(sim: Simulation) -> dict[str, Any]:
         "trap_height": float(w.trap_height) if math.isfinite(w.trap_height) else "inf",
         "curvature": float(w.curvature),
         "gravity": float(w.gravity),
-        "window": [int(sim.window[0]), int(sim.window[1])],
+        "window": window_of_room(sim.room),
         "escape": w.escape_rule,
         "tc_exponent": float(w.tc_exponent),
         "win": bool(w.win_rule),
@@ -348,8 +378,8 @@ def from_state(
     check_placement(
         "state.atoms", xn, yn, p.radius, trapped, p.curvature, STATE_TOLERANCE, not p.won
     )
-    vx_screen, vy_screen = cup_vertex(p.window)
-    origin_sy = vy_screen - float(p.radius[0])
+    room = room_of_window(p.window)
+    x_left, x_right, y_bottom = room.escape_box(float(p.radius[0]))
     w = World(
         pos=np.column_stack((p.x, p.y)),
         vel=np.column_stack((p.vx, p.vy)),
@@ -358,9 +388,9 @@ def from_state(
         curvature=p.curvature,
         gravity=p.gravity,
         trap_height=p.trap_height,
-        x_left=-vx_screen,
-        x_right=p.window[0] - vx_screen,
-        y_bottom=origin_sy - p.window[1],
+        x_left=x_left,
+        x_right=x_right,
+        y_bottom=y_bottom,
         tc_exponent=p.tc_exponent,
         escape_rule=p.escape,
         record_events=bool(record_events),
@@ -377,7 +407,7 @@ def from_state(
     if p.energy_sum is not None:
         scale = float(np.sum(np.abs(w.energies()[trapped])))
         if not abs(p.energy_sum - total) <= STATE_TOLERANCE * max(1.0, scale):
-            allowed = f"the trapped atoms' energy sum, {total!r}"
+            allowed = f"the trapped atoms' energy sum, {float(total)!r}"
             raise _bad("state.energy_sum", allowed, p.energy_sum)
         total = p.energy_sum
     w.energy_sum = total
@@ -386,4 +416,4 @@ def from_state(
     else:
         w.initial_temperature = total / w.n_trapped if w.n_trapped else 0.0
     w.tc0 = 0.75 * w.initial_temperature
-    return Simulation.from_world(w, p.window, engine)
+    return Simulation.from_world(w, room, engine)

@@ -9,10 +9,11 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable
-from typing import Protocol
 
 import numpy as np
 import pygame
+
+from evapcool.view.simlike import SimLike
 
 EDGE = np.array([255.0, 120.0, 40.0])  # orange rim: nothing like the cyan atoms
 CORE = np.array([255.0, 250.0, 215.0])  # near-white centre
@@ -23,18 +24,6 @@ FADE_SECONDS = 1.5
 SETTLED_SPEED = 1.0  # px/frame: below this the post-win wall damping stops (SPEC 1)
 
 ToPx = Callable[[np.ndarray], np.ndarray]
-
-
-class SimLike(Protocol):
-    n_trapped: int
-    curvature: float
-    won: bool
-
-    @property
-    def radii(self) -> np.ndarray: ...
-
-    @property
-    def velocities(self) -> np.ndarray: ...
 
 
 def packet_size(n_atoms: int, radius: float, curvature: float) -> tuple[float, float]:
@@ -65,7 +54,7 @@ def draw_condensate(
     """Draw the wave packet with opacity `strength` (0..1) at wall-clock time t (s).
 
     to_px maps (k, 2) trap coordinates (y up) to screen pixels, like
-    `Simulation.to_screen` or the applet's scaled version. Returns the rectangle
+    `ScreenMap.to_screen` (view/screen.py) or the applet's scaled version. Returns the rectangle
     drawn, or None if there was nothing to draw.
     """
     strength = min(1.0, max(0.0, float(strength)))

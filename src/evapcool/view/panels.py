@@ -19,12 +19,12 @@ import math
 from collections import deque
 from collections.abc import Sequence
 from dataclasses import dataclass
-from typing import Protocol
 
 import numpy as np
 import pygame
 
 from evapcool.view.fonts import text_image, text_size
+from evapcool.view.simlike import SimLike
 
 # Light background, dark ink: what survives a washed-out classroom projector.
 BG = (244, 243, 238)
@@ -43,25 +43,6 @@ KT_FRACTION = 0.4  # kT = 2/5 of the mean energy per atom in this cup (SPEC 4)
 _GAMMA_5_2 = 0.75 * math.sqrt(math.pi)
 
 
-class SimLike(Protocol):
-    """What the panels read from `evapcool.Simulation`."""
-
-    n_atoms: int
-    n_trapped: int
-    temperature: float
-    initial_temperature: float
-    critical_temperature: float
-    tc_exponent: float
-    trap_height: float
-    gravity: float
-    won: bool
-
-    @property
-    def masses(self) -> np.ndarray: ...
-
-    def energies(self) -> np.ndarray: ...
-
-
 # -- layout shared by both panels ------------------------------------------------------
 @dataclass(frozen=True)
 class LegendItem:
@@ -73,7 +54,7 @@ class LegendItem:
 
 
 @dataclass(frozen=True)
-class Layout:
+class PanelLayout:
     """Where everything of a panel goes, in surface pixels, for one rect and scale."""
 
     rect: pygame.Rect
@@ -98,7 +79,7 @@ def _font_size(rect: pygame.Rect, scale: float = 1.0) -> int:
 
 def layout(
     rect: pygame.Rect, scale: float, title: str, items: Sequence[LegendItem], readout: str
-) -> Layout:
+) -> PanelLayout:
     """Title on top, the legend flowing in rows below it, then the plot with its margins."""
     rect = pygame.Rect(rect)
     fs = _font_size(rect, scale)
@@ -133,12 +114,12 @@ def layout(
     top = y + row_h + pad
     bottom = rect.bottom - int(2.1 * fs)
     plot = pygame.Rect(left, top, max(10, right - left), max(10, bottom - top))
-    return Layout(
+    return PanelLayout(
         rect, scale, title, title_size, small, title_rect, tuple(placed), readout_rect, plot
     )
 
 
-def _blank(lay: Layout) -> pygame.Surface:
+def _blank(lay: PanelLayout) -> pygame.Surface:
     """The static layer: background, title, legend, empty plot (panel-local pixels)."""
     surf = pygame.Surface(lay.rect.size)
     surf.fill(BG)
@@ -160,7 +141,7 @@ def _blank(lay: Layout) -> pygame.Surface:
     return surf
 
 
-def _draw_frame(surf: pygame.Surface, lay: Layout) -> None:
+def _draw_frame(surf: pygame.Surface, lay: PanelLayout) -> None:
     ox, oy = lay.rect.topleft
     pygame.draw.rect(surf, INK, lay.plot.move(-ox, -oy), lay.px(2))
 
@@ -216,9 +197,9 @@ class _Panel:
         self.scale = 1.0
         #: Every text drawn at the last draw (surface pixels): none lies in the plot.
         self.label_rects: list[pygame.Rect] = []
-        self._layouts: dict[tuple, Layout] = {}
+        self._layouts: dict[tuple, PanelLayout] = {}
 
-    def layout(self, rect: pygame.Rect, scale: float | None = None) -> Layout:
+    def layout(self, rect: pygame.Rect, scale: float | None = None) -> PanelLayout:
         s = self.scale if scale is None else float(scale)
         rect = pygame.Rect(rect)
         key = (rect.x, rect.y, rect.w, rect.h, s)
@@ -248,14 +229,14 @@ class _Panel:
         finally:
             surface.set_clip(old_clip)
 
-    def _draw(self, surface: pygame.Surface, lay: Layout) -> None:
+    def _draw(self, surface: pygame.Surface, lay: PanelLayout) -> None:
         raise NotImplementedError
 
-    def _readout(self, surface: pygame.Surface, lay: Layout, text: str) -> None:
+    def _readout(self, surface: pygame.Surface, lay: PanelLayout, text: str) -> None:
         r = _blit_text(surface, text, lay.small, INK, midleft=lay.readout.midleft)
         self.label_rects.append(r)
 
-    def _label(self, surface: pygame.Surface, lay: Layout, text: str, **anchor) -> pygame.Rect:
+    def _label(self, surface: pygame.Surface, lay: PanelLayout, text: str, **anchor) -> pygame.Rect:
         r = _blit_text(surface, text, lay.small, INK, **anchor)
         self.label_rects.append(r)
         return r
@@ -410,7 +391,7 @@ class EnergyPanel(_Panel):
         return plot.bottom - plot.h * float(count) / self._y_max
 
     # -- drawing ----------------------------------------------------------------
-    def _static_layer(self, lay: Layout) -> pygame.Surface:
+    def _static_layer(self, lay: PanelLayout) -> pygame.Surface:
         key = (lay.rect.size, lay.scale, id(self.bin_edges))
         if self._static is not None and self._static[0] == key:
             return self._static[1]
@@ -431,7 +412,7 @@ class EnergyPanel(_Panel):
         self._static = (key, surf)
         return surf
 
-    def _draw(self, surface: pygame.Surface, lay: Layout) -> None:
+    def _draw(self, surface: pygame.Surface, lay: PanelLayout) -> None:
         surface.blit(self._static_layer(lay), lay.rect)
         plot = lay.plot
         rect = lay.rect
@@ -451,7 +432,7 @@ class EnergyPanel(_Panel):
             self._label(surface, lay, _tick_text(v), midright=(plot.x - lay.px(6), y))
         self._readout(surface, lay, f"N = {self.n_trapped}   T = {self.temperature:.3g}")
 
-    def _draw_data(self, surface: pygame.Surface, lay: Layout) -> None:
+    def _draw_data(self, surface: pygame.Surface, lay: PanelLayout) -> None:
         """Tint, bars, curve and cut, all clipped to the inside of the frame."""
         plot = lay.plot
         inner = plot.inflate(-2 * lay.px(2), -2 * lay.px(2))
@@ -606,7 +587,7 @@ class PathPanel(_Panel):
         return plot.collidepoint(px, py) and self.in_condensate(*self.from_pixel(px, py, rect))
 
     # -- drawing ----------------------------------------------------------------
-    def _static_layer(self, lay: Layout) -> pygame.Surface:
+    def _static_layer(self, lay: PanelLayout) -> pygame.Surface:
         key = (lay.rect.topleft, lay.rect.size, lay.scale, self.n_range, self.t_range)
         key += (self.tc0, self.exponent, self.n0)
         if self._static is not None and self._static[0] == key:
@@ -645,7 +626,7 @@ class PathPanel(_Panel):
         self._static = (key, surf)
         return surf
 
-    def _path_pixels(self, lay: Layout) -> list[tuple[int, int]]:
+    def _path_pixels(self, lay: PanelLayout) -> list[tuple[int, int]]:
         """Recorded points as pixels, consecutive repeats dropped (cached, incremental)."""
         key = (lay.rect.x, lay.rect.y, lay.rect.w, lay.rect.h, lay.scale)
         if key != self._px_key:
@@ -664,7 +645,7 @@ class PathPanel(_Panel):
         """Texts inside the plot: none (every label sits outside it)."""
         return []
 
-    def _draw(self, surface: pygame.Surface, lay: Layout) -> None:
+    def _draw(self, surface: pygame.Surface, lay: PanelLayout) -> None:
         surface.blit(self._static_layer(lay), lay.rect)
         plot, rect = lay.plot, lay.rect
         self._label(

@@ -16,20 +16,21 @@ import pygame
 
 from evapcool.game.highscores import Entry, format_seconds
 from evapcool.game.rules import Game
-from evapcool.physics.simulation import (
+from evapcool.view.condensate import Condensate, draw_condensate
+from evapcool.view.fonts import text_size
+from evapcool.view.pen import Pen
+from evapcool.view.screen import (
     BORDER_BOTTOM,
     BORDER_LEFT,
     BORDER_RIGHT,
     BORDER_TOP,
-    cup_vertex,
+    WINDOW,
+    ScreenMap,
 )
-from evapcool.view.condensate import Condensate, draw_condensate
-from evapcool.view.fonts import text_size
-from evapcool.view.pen import Pen
 from evapcool.view.sprites import draw_atoms
 from evapcool.view.text_input import TextInput
 
-SCENE_SIZE = (640, 672)
+SCENE_SIZE = WINDOW
 PLAY_RECT = pygame.Rect(
     BORDER_LEFT,
     BORDER_TOP,
@@ -157,12 +158,13 @@ class Scene:
 
     def _cup_points(self, game: Game) -> tuple[list, list]:
         sim = game.sim
-        radius = cup_vertex(sim.window)[1] - sim.screen_origin[1]
-        key = (sim.trap_height, sim.curvature, radius, *sim.screen_origin)
+        screen = ScreenMap.of(sim)
+        radius = screen.origin_lift
+        key = (sim.trap_height, sim.curvature, screen)
         if key != self._cup_key:
             x_rim = sim.rim_half_width
-            inner = sim.to_screen(cup_outline(sim.curvature, x_rim, radius))
-            outer = sim.to_screen(cup_outline(sim.curvature, x_rim, radius + CUP_WIDTH))
+            inner = screen.to_screen(cup_outline(sim.curvature, x_rim, radius))
+            outer = screen.to_screen(cup_outline(sim.curvature, x_rim, radius + CUP_WIDTH))
             self._cup_inner = [tuple(p) for p in inner.tolist()]
             self._cup_outer = [tuple(p) for p in outer.tolist()]
             self._cup_key = key
@@ -179,12 +181,13 @@ class Scene:
         """Atoms; after the win the trapped ones fade out under the condensate."""
         sim = game.sim
         s = pen.scale
+        to_screen = ScreenMap.of(sim).to_screen
         if sim.n_escaped:
-            xy = to_pixels(pen, sim.to_screen, sim.escaped_positions)
+            xy = to_pixels(pen, to_screen, sim.escaped_positions)
             draw_atoms(pen.surface, xy, sim.escaped_radii * s)
         fade = self.fade = self.condensate.update(sim, t)
         if sim.n_trapped and fade <= 0.0:
-            draw_atoms(pen.surface, to_pixels(pen, sim.to_screen, sim.positions), sim.radii * s)
+            draw_atoms(pen.surface, to_pixels(pen, to_screen, sim.positions), sim.radii * s)
         elif sim.n_trapped and fade < 1.0:
             # Sprites carry per-pixel alpha, so dim them as one layer with a surface alpha.
             play = pen.rect(PLAY_RECT)
@@ -192,12 +195,12 @@ class Scene:
                 self._atom_layer = pygame.Surface(play.size, pygame.SRCALPHA)
             layer = self._atom_layer
             layer.fill((0, 0, 0, 0))
-            xy = to_pixels(pen, sim.to_screen, sim.positions) - np.array(play.topleft)
+            xy = to_pixels(pen, to_screen, sim.positions) - np.array(play.topleft)
             draw_atoms(layer, xy, sim.radii * s)
             layer.set_alpha(round(255 * (1.0 - fade)))
             pen.surface.blit(layer, play)
         if fade > 0.0:
-            draw_condensate(pen.surface, sim, lambda xy: to_pixels(pen, sim.to_screen, xy), t, fade)
+            draw_condensate(pen.surface, sim, lambda xy: to_pixels(pen, to_screen, xy), t, fade)
 
     def draw_thermometer(self, pen: Pen, game: Game) -> None:
         sim = game.sim

@@ -93,6 +93,10 @@ class Slider:
     A press anywhere on the bar (a hit box as tall as the knob) moves the knob there
     and starts a drag; the knob then follows the pointer, even off the bar, until
     `release()`. A disabled slider ignores presses and draws its knob grey.
+
+    follow: where the knob rests when no drag holds it (e.g. the game's trap height),
+    read when asked; the slider owns its drag, and nobody writes the model's value back
+    into it. Without follow the knob stays where `set_value` or the last drag left it.
     """
 
     def __init__(
@@ -108,6 +112,7 @@ class Slider:
         bar_color: Color = WHITE,
         knob_color: Color = YELLOW,
         outline_color: Color = BLACK,
+        follow: Callable[[], float] | None = None,
     ) -> None:
         if not max_value > min_value:
             raise ValueError("max_value must be greater than min_value")
@@ -122,7 +127,8 @@ class Slider:
         self.outline_color = outline_color
         self.sliding = False
         self.enabled = True
-        self.activation = 0.0
+        self.follow = follow
+        self._activation = 0.0
         self.set_value(self.min_value if value is None else value)
 
     # -- value <-> knob position -------------------------------------------------------
@@ -133,6 +139,21 @@ class Slider:
     def value_at(self, x: float) -> float:
         return self.min_value + self.activation_at(x) * (self.max_value - self.min_value)
 
+    @property
+    def activation(self) -> float:
+        """Knob position in [0, 1]: the drag's while one holds it, else follow's value."""
+        if self.sliding or self.follow is None:
+            return self._activation
+        return self._clamped(self.follow())
+
+    @activation.setter
+    def activation(self, a: float) -> None:
+        self._activation = a
+
+    def _clamped(self, value: float) -> float:
+        span = self.max_value - self.min_value
+        return min(1.0, max(0.0, (float(value) - self.min_value) / span))
+
     def knob_xy(self) -> tuple[float, float]:
         return (self.rect.left + self.activation * self.rect.width, self.rect.centery)
 
@@ -142,8 +163,7 @@ class Slider:
 
     def set_value(self, value: float) -> None:
         """Place the knob so the slider returns value (clamped to the range)."""
-        span = self.max_value - self.min_value
-        self.activation = min(1.0, max(0.0, (float(value) - self.min_value) / span))
+        self._activation = self._clamped(value)
 
     # -- the pointer ----------------------------------------------------------------------
     def hit_box(self) -> pygame.Rect:

@@ -1,0 +1,91 @@
+"""When the player's trap height takes effect (issue 26.4): at the next whole frame."""
+
+from __future__ import annotations
+
+from evapcool.game.rules import Game, GameConfig
+
+
+def _playing(seed: int = 3) -> Game:
+    game = Game(GameConfig(seed=seed, engine="reference"))
+    game.toggle_pause()
+    return game
+
+
+def test_height_set_mid_frame_takes_effect_at_the_next_whole_frame() -> None:
+    game = _playing()
+    game._advance(0.5)
+    assert game.sim.time == 0.5
+    assert game.set_trap_height(300.0)
+    assert game.trap_height == 300.0  # what the slider shows: the height asked for
+    assert game.sim.trap_height == 400.0  # the physics still has the old rim
+    seen: list[tuple[float, float]] = []
+    advance = game.sim.advance
+
+    def watch(dt: float) -> None:
+        advance(dt)
+        seen.append((game.sim.time, game.sim.trap_height))
+
+    game.sim.advance = watch  # type: ignore[method-assign]
+    game._advance(1.25)  # from 0.5 to 1.75: pieces 0.5 -> 1 -> 1.75
+    assert [t for t, _ in seen] == [1.0, 1.75]
+    assert seen[0][1] == 400.0  # the piece up to t = 1 ran with the old rim
+    assert seen[1][1] == 300.0  # applied at t = 1, before the next piece
+    assert game.sim.trap_height == 300.0
+
+
+def test_same_heights_in_the_same_frames_give_the_same_run_at_any_step() -> None:
+    """A run depends on what was asked in which frame, not on the display's step."""
+    late, early = _playing(), _playing()
+    early.set_trap_height(200.0)
+    early._advance(2.0)
+    late._advance(0.5)
+    late.set_trap_height(200.0)
+    late._advance(1.5)
+    # early: 200 from t = 0; late: 200 from t = 1, as if asked at frame 1
+    again = _playing()
+    again._advance(1.0)
+    again.set_trap_height(200.0)
+    again._advance(1.0)
+    assert late.sim.to_state() == again.sim.to_state()
+    assert early.sim.time == late.sim.time == 2.0
+
+
+def test_paused_or_whole_frame_applies_at_once() -> None:
+    game = Game(GameConfig(seed=1, engine="reference"))
+    assert game.paused
+    game.set_trap_height(250.0)
+    assert game.sim.trap_height == 250.0
+    game.toggle_pause()
+    game._advance(2.0)
+    game.set_trap_height(200.0)
+    assert game.sim.trap_height == 200.0
+
+
+def test_restart_drops_a_held_height() -> None:
+    game = _playing()
+    game._advance(0.5)
+    game.set_trap_height(100.0)
+    game.restart()
+    assert game.trap_height == game.sim.trap_height == 400.0
+
+
+def test_the_game_checks_a_height_once_and_the_physics_trusts_it(monkeypatch) -> None:
+    """The slider's range is the one check (issue 26.2): no second range check below."""
+    from evapcool import limits
+
+    game = _playing()
+    checked: list[str] = []
+    original = limits.Range.check
+
+    def counting(self, name, value):
+        checked.append(name)
+        return original(self, name, value)
+
+    monkeypatch.setattr(limits.Range, "check", counting)
+    game._advance(0.5)
+    game.set_trap_height(1e9)  # clamped to the slider's top
+    game._advance(1.0)
+    assert game.sim.trap_height == 450.0
+    assert "trap_height" not in checked
+    game.sim.trap_height = 300.0  # the physics API itself still checks, at once
+    assert checked.count("trap_height") == 1
