@@ -61,10 +61,18 @@ def plan_steps(
     n_events: int,
     height_of_frame: Callable[[int], float] | None = None,
     engine: str = "reference",
+    phase: float = 0.0,
 ) -> list[Step]:
-    """Whole frames, then a last step that ends at the time of the n-th event."""
+    """Whole frames, then a last step that ends at the time of the n-th event.
+
+    phase > 0 puts a first step of that length in front, so each new height of the schedule
+    lands at t = k + phase: mid-frame, where the physics applies it at once (docs/model.md).
+    """
     sim = from_state(state, engine=engine, record_events=True)
     steps: list[Step] = []
+    if phase > 0.0:
+        sim.advance(phase)
+        steps.append((phase, sim.trap_height))
     for k in range(MAX_FRAMES):
         height = sim.trap_height if height_of_frame is None else float(height_of_frame(k))
         sim.trap_height = height
@@ -107,9 +115,10 @@ def make_trace(
     n_events: int,
     height_of_frame: Callable[[int], float] | None = None,
     engine: str = "reference",
+    phase: float = 0.0,
 ) -> dict[str, Any]:
     """The trace of engine from state over the schedule that reaches n_events."""
-    steps = plan_steps(state, n_events, height_of_frame, engine)
+    steps = plan_steps(state, n_events, height_of_frame, engine, phase)
     sim = run_steps(state, steps, engine)
     return {
         "format": TRACE_FORMAT,
@@ -154,6 +163,8 @@ class GoldenCase:
     start: Callable[[], dict[str, Any]]
     height_of_frame: Callable[[int], float] | None = None
     events: int = 2000
+    #: Frames before the first whole step: the heights then change mid-frame.
+    phase: float = 0.0
 
 
 def _one_atom(x: float, y: float, vx: float, vy: float, height: float = 450.0) -> dict[str, Any]:
@@ -268,6 +279,13 @@ GOLDEN_CASES: tuple[GoldenCase, ...] = (
         lambda k: 400.0 if k < 20 else 100.0,
     ),
     GoldenCase(
+        "height-mid-frame",
+        "the rim lowered at t = k + 0.37: the physics applies each height at once, mid-frame",
+        _classic(8),
+        lambda k: max(60.0, 400.0 - 4.0 * k),
+        phase=0.37,
+    ),
+    GoldenCase(
         "dense-1000",
         "1000 atoms of radius 3, H = 450: the cell grid in earnest",
         lambda: to_state(
@@ -279,5 +297,11 @@ GOLDEN_CASES: tuple[GoldenCase, ...] = (
 
 def golden_trace(case: GoldenCase, engine: str = "reference") -> dict[str, Any]:
     return make_trace(
-        case.name, case.description, case.start(), case.events, case.height_of_frame, engine
+        case.name,
+        case.description,
+        case.start(),
+        case.events,
+        case.height_of_frame,
+        engine,
+        case.phase,
     )
