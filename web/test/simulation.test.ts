@@ -352,7 +352,9 @@ describe("bad input", () => {
         vel,
       );
     expect(overlap).toThrow(RangeError);
-    expect(overlap).toThrow("positions: atoms 0 and 3 overlap");
+    expect(overlap).toThrow(
+      "positions must not overlap: every pair at least r_i + r_j apart (atoms 0 and 3 are",
+    );
     const outside = () =>
       make(
         [
@@ -363,7 +365,7 @@ describe("bad input", () => {
         ],
         vel,
       );
-    expect(outside).toThrow("positions: atom 1 at (50, 24) is outside the cup");
+    expect(outside).toThrow("(atom 1 at (50, 24) is below the wall y = 25)");
     // touching is allowed, and so is a centre on the wall
     expect(() =>
       make(

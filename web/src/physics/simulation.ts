@@ -37,6 +37,18 @@ import {
   type StateInput,
 } from "./state";
 import { WasmEngine, type EngineCore } from "./wasm";
+import { checkStart, checkWorld } from "./validation";
+import {
+  CURVATURE as CURVATURE_RANGE,
+  GRAVITY as GRAVITY_RANGE,
+  MASS as MASS_RANGE,
+  N_ATOMS as N_ATOMS_RANGE,
+  RADIUS as RADIUS_RANGE,
+  TC_EXPONENT as TC_EXPONENT_RANGE,
+  TRAP_HEIGHT as TRAP_HEIGHT_RANGE,
+  pyFloat,
+  type Range,
+} from "../limits";
 
 /** Points as interleaved numbers [x0, y0, x1, y1, ...] or as pairs [[x0, y0], ...]. */
 export type Points = ArrayLike<number> | ReadonlyArray<readonly [number, number]>;
@@ -115,28 +127,30 @@ const OPTION_KEYS = new Set([
 /** Mid-run states may have atoms touching or on the wall up to round-off: this much, relative. */
 const STATE_TOLERANCE = 1e-9;
 
-function positive(name: string, v: unknown, fallback: number, allowInf = false): number {
-  if (v === undefined) return fallback;
-  if (typeof v !== "number" || Number.isNaN(v) || v <= 0 || (!allowInf && !Number.isFinite(v)))
-    throw bad(
-      name,
-      allowInf ? "a positive number (Infinity allowed)" : "a positive finite number",
-      v,
-    );
-  return v;
+/** v within range (limits.py's table, issue 25.1), or fallback when not given. */
+function inRange(range: Range, name: string, v: unknown, fallback: number): number {
+  return v === undefined ? fallback : range.check(name, v);
 }
 
-function perAtom(name: string, v: unknown, n: number, fallback: number): Float64Array {
+function perAtom(
+  range: Range,
+  name: string,
+  v: unknown,
+  n: number,
+  fallback: number,
+): Float64Array {
   if (v === undefined || typeof v === "number")
-    return new Float64Array(n).fill(positive(name, v, fallback));
+    return new Float64Array(n).fill(inRange(range, name, v, fallback));
   const arr = v as ArrayLike<number>;
   if (typeof arr !== "object" || arr === null || arr.length !== n)
-    throw bad(name, `a positive finite number or ${n} of them`, v);
+    throw bad(name, `${range.allowed()}, or ${n} such numbers`, v);
   const out = new Float64Array(n);
   for (let i = 0; i < n; i++) {
     const e = arr[i];
-    if (typeof e !== "number" || !Number.isFinite(e) || e <= 0)
-      throw bad(`${name}[${i}]`, "a positive finite number", e);
+    if (typeof e !== "number" || !range.contains(e))
+      throw new RangeError(
+        `${name} must be ${range.allowed()} (atom ${i} has ${typeof e === "number" ? pyFloat(e) : String(e)})`,
+      );
     out[i] = e;
   }
   return out;
@@ -251,14 +265,13 @@ export class Simulation {
       throw bad("velocities", "given together with positions", given);
     let n = o.nAtoms;
     if (n === undefined) n = o.positions !== undefined ? pointCount(o.positions) : N_ATOMS;
-    if (typeof n !== "number" || !Number.isSafeInteger(n) || n < 1)
-      throw bad("nAtoms", "a whole number >= 1", n);
-    const radius = perAtom("radius", o.radius, n, ATOM_RADIUS);
-    const mass = perAtom("mass", o.mass, n, 1);
-    const a = positive("curvature", o.curvature, CURVATURE);
-    const g = positive("gravity", o.gravity, GRAVITY);
-    const height = positive("trapHeight", o.trapHeight, TRAP_HEIGHT, true);
-    const tcExponent = positive("tcExponent", o.tcExponent, TC_EXPONENT_SEED);
+    N_ATOMS_RANGE.check("nAtoms", n);
+    const radius = perAtom(RADIUS_RANGE, "radius", o.radius, n, ATOM_RADIUS);
+    const mass = perAtom(MASS_RANGE, "mass", o.mass, n, 1);
+    const a = inRange(CURVATURE_RANGE, "curvature", o.curvature, CURVATURE);
+    const g = inRange(GRAVITY_RANGE, "gravity", o.gravity, GRAVITY);
+    const height = inRange(TRAP_HEIGHT_RANGE, "trapHeight", o.trapHeight, TRAP_HEIGHT);
+    const tcExponent = inRange(TC_EXPONENT_RANGE, "tcExponent", o.tcExponent, TC_EXPONENT_SEED);
     const window =
       o.window === undefined ? [WINDOW[0], WINDOW[1]] : checkWindow("window", o.window);
     const seed = o.seed;
@@ -291,7 +304,7 @@ export class Simulation {
     } else {
       [xs, ys] = points("positions", o.positions, n);
       [vxs, vys] = points("velocities", o.velocities, n);
-      checkPlacement("positions", xs, ys, radius, () => true, a, 0);
+      checkStart(xs, ys, vxs, vys, radius, a);
     }
     this.init(
       window as [number, number],
@@ -393,6 +406,7 @@ export class Simulation {
       STATE_TOLERANCE,
       !p.won, // the condensate's atoms no longer collide: they may overlap
     );
+    checkWorld({ ...p, trapped: (i) => p.status[i] === TRAPPED });
     const sim = Object.create(Simulation.prototype) as Simulation;
     sim.seedUsed = null;
     sim.init(
@@ -499,7 +513,7 @@ export class Simulation {
   }
 
   set trapHeight(value: number) {
-    this.engine.setTrapHeight(positive("trapHeight", value, NaN, true));
+    this.engine.setTrapHeight(TRAP_HEIGHT_RANGE.check("trapHeight", value));
   }
 
   /** x_rim = sqrt(H / a): the wall ends at |x| = x_rim. */

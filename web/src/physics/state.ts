@@ -6,6 +6,7 @@
  * the trap, the rules, and what the win needs (the starting temperature; N0 is the number
  * of atoms listed, gone ones included, so indices stay those of the run).
  */
+import { pyFloat } from "../limits";
 import {
   CURVATURE,
   ESCAPE_RULES,
@@ -326,12 +327,32 @@ export function checkPlacement(
     const wall = curvature * x[i] * x[i];
     if (y[i] < wall - tol * (1 + Math.abs(wall))) {
       throw new RangeError(
-        `${name}: atom ${i} at (${x[i]}, ${y[i]}) is outside the cup; centres must be inside ` +
-          `it or on its wall, y >= a x^2 (a = ${curvature})`,
+        `${name}: atom ${i} at (${pyFloat(x[i])}, ${pyFloat(y[i])}) is outside the cup; centres must ` +
+          `be inside it or on its wall, y >= a x^2 (a = ${pyFloat(curvature)})`,
       );
     }
   }
   if (!overlaps) return;
+  const pair = firstOverlap(x, y, radius, trapped, tol);
+  if (pair !== null) {
+    const [bi, bj] = pair;
+    const d = Math.hypot(x[bj] - x[bi], y[bj] - y[bi]);
+    throw new RangeError(
+      `${name}: atoms ${bi} and ${bj} overlap (centres ${pyFloat(d)} apart, less than ` +
+        `r${bi} + r${bj} = ${pyFloat(radius[bi] + radius[bj])}); atoms must be at least r_i + r_j apart`,
+    );
+  }
+}
+
+/** The overlapping pair of trapped atoms with the least index, then the least partner. */
+export function firstOverlap(
+  x: Float64Array,
+  y: Float64Array,
+  radius: Float64Array,
+  trapped: (i: number) => boolean,
+  tol: number,
+): [number, number] | null {
+  const n = x.length;
   // Sweep along x: only atoms closer than the largest contact distance in x can overlap.
   const order: number[] = [];
   let rMax = 0;
@@ -362,11 +383,5 @@ export function checkPlacement(
       }
     }
   }
-  if (bi >= 0) {
-    const d = Math.hypot(x[bj] - x[bi], y[bj] - y[bi]);
-    throw new RangeError(
-      `${name}: atoms ${bi} and ${bj} overlap (centres ${d} apart, less than r${bi} + r${bj} = ` +
-        `${radius[bi] + radius[bj]}); atoms must be at least r_i + r_j apart`,
-    );
-  }
+  return bi >= 0 ? [bi, bj] : null;
 }
