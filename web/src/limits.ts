@@ -67,6 +67,27 @@ function trimZeros(s: string): string {
   return s.includes(".") ? s.replace(/\.?0+$/, "") : s;
 }
 
+/**
+ * A bad value of one parameter with its name as data, the twin of Python's
+ * `limits.ParameterError` (issue 26.2): `message` is the API's line ("nAtoms: ..."); a page
+ * renders it with its own option names from a table (`render`), never by rewriting text.
+ */
+export class ParameterError extends RangeError {
+  constructor(
+    readonly parameter: string,
+    readonly detail: string,
+    readonly sep: string = " ",
+  ) {
+    super(`${parameter}${sep}${detail}`);
+    this.name = "RangeError";
+  }
+
+  /** The line with the parameter under its name in names (e.g. nAtoms -> atoms). */
+  render(names: Readonly<Record<string, string>>): string {
+    return `${names[this.parameter] ?? this.parameter}${this.sep}${this.detail}`;
+  }
+}
+
 /** A closed interval [low, high] (open at low if lowOpen), whole numbers if integer. */
 export class Range {
   readonly low: number;

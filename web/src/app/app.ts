@@ -5,6 +5,8 @@
  * the win and the scores (scoring.ts) and the charts (charts.ts). This file holds the
  * applet's state, its actions and the frame's picture.
  */
+import { ParameterError } from "../limits";
+import { ADDRESS_NAMES } from "./params";
 import { FPS } from "../game/constants";
 import { forceWin, replayGolden } from "../game/engine";
 import { NAME_MAX } from "../game/highscores";
@@ -169,7 +171,8 @@ export class App implements Animated {
       return this.makeGame(configFor(options.runSettings()));
     } catch (err) {
       if (!(err instanceof RangeError) || !Object.keys(options.overrides).length) throw err;
-      this.notify(`Address: ${err.message}; playing the saved settings.`);
+      const line = err instanceof ParameterError ? err.render(ADDRESS_NAMES) : err.message;
+      this.notify(`Address: ${line}; playing the saved settings.`);
       options.overrides = {};
       return this.makeGame(configFor(options.runSettings()));
     }

@@ -8,11 +8,18 @@ import type { GameLike } from "./remote";
 export const NOTICE_SECONDS = 8;
 /** Notices at once (a damaged store can give several, each must be seen). */
 export const NOTICE_MAX = 5;
+/** Notices shown at once; the rest follow page by page, counted on the last line. */
+const NOTICE_PAGE = NOTICE_MAX - 1;
+/** Notices kept at most (older ones are dropped, each was spoken when it came). */
+const NOTICE_KEPT = 100;
+/** The last line while more notices wait for their turn. */
+export const moreNotices = (n: number): string => `…and ${n} more`;
 /** The status line is rewritten at most this often, ms (screen readers read it on change). */
 const STATUS_EVERY_MS = 500;
 
 export class Notices {
-  private list: Array<[string, number]> = [];
+  /** [text, shown from, shown until] (applet clock, s). */
+  private list: Array<[string, number, number]> = [];
 
   constructor(
     private readonly live: HTMLElement,
@@ -22,16 +29,25 @@ export class Notices {
     private readonly changed: () => void,
   ) {}
 
+  /** Show text for NOTICE_SECONDS; when a page of notices is full, after the ones before it. */
   notify(text: string): void {
     this.changed();
-    this.list.push([text, this.clock() + NOTICE_SECONDS]);
-    this.list.splice(0, Math.max(0, this.list.length - NOTICE_MAX));
+    const now = this.clock();
+    this.list = this.list.filter(([, , until]) => until > now);
+    const page = Math.floor(this.list.length / NOTICE_PAGE);
+    const from = page === 0 ? now : Math.max(now, this.list[page * NOTICE_PAGE - 1][2]);
+    this.list.push([text, from, from + NOTICE_SECONDS]);
+    this.list.splice(0, Math.max(0, this.list.length - NOTICE_KEPT));
     this.say(text);
   }
 
+  /** The notices showing now, oldest first, and a line counting those still to come. */
   get visible(): string[] {
     const now = this.clock();
-    return this.list.filter(([, until]) => until > now).map(([t]) => t);
+    const shown = this.list.filter(([, from, until]) => from <= now && until > now);
+    const waiting = this.list.filter(([, from]) => from > now).length;
+    const lines = shown.map(([text]) => text);
+    return waiting > 0 ? [...lines, moreNotices(waiting)] : lines;
   }
 
   /** Tell a screen reader (politely: after what it is reading). */

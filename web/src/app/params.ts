@@ -1,19 +1,14 @@
 /**
  * Settings from the page address, e.g. `?atoms=10000&radius=1&seed=3&speed=2`: for this
- * visit only, never saved (like the desktop's command-line options). One message per bad
- * value, naming it and what is allowed; the value is then ignored.
+ * visit only, never saved (like the desktop's command-line options). One notice per bad
+ * option, naming the option as typed, what is allowed and what was typed (shortened, like
+ * the desktop's); the option is then ignored. Only plain decimal numbers count as numbers
+ * (not `0x20`, not `Infinity`), and an option given twice is refused, not half-read.
  */
-import { checkSpeed } from "../game/rules";
-import {
-  checkEscape,
-  checkNAtoms,
-  checkRadius,
-  checkTcLaw,
-  maxAtoms,
-  RADIUS_MAX,
-  RADIUS_MIN,
-  type Settings,
-} from "../game/settings";
+import { RADIUS, SEED } from "../limits";
+import { SPEED_MAX, SPEED_MIN } from "../game/rules";
+import { ESCAPE_RULES } from "../game/constants";
+import { TC_LAWS, maxAtoms, RADIUS_MAX, RADIUS_MIN, type Settings } from "../game/settings";
 
 export interface PageParams {
   overrides: Partial<Settings>;
@@ -24,74 +19,100 @@ export interface PageParams {
 
 /** Physics' own limit on a count in the browser: beyond this a frame cannot keep up. */
 export const URL_ATOMS_MAX = 100_000;
+/** The options the address knows, in the order the notices name them. */
+export const ADDRESS_OPTIONS = ["atoms", "radius", "seed", "speed", "tc-law", "escape"] as const;
+/** The game's parameter names as the address spells them (for the physics' refusals). */
+export const ADDRESS_NAMES: Readonly<Record<string, string>> = {
+  nAtoms: "atoms",
+  radius: "radius",
+  tcExponent: "tc-law",
+  escape: "escape",
+};
+/** A typed value or option name is shown up to this many characters. */
+const SHOWN_CHARS = 24;
+/** The seed the page's generator takes (32 bits), within limits.py's SEED range. */
+const SEED_MAX = Math.min(SEED.high, 0xffffffff);
 
-function num(text: string): number {
-  return text.trim() === "" ? NaN : Number(text);
+const DECIMAL = /^[+-]?(\d+\.?\d*|\.\d+)([eE][+-]?\d+)?$/;
+
+/** What the person typed, quoted and shortened: "abc", "99999999999999999999…" (400 characters). */
+export function typed(text: string): string {
+  const chars = [...text];
+  if (chars.length <= SHOWN_CHARS) return JSON.stringify(text);
+  return `${JSON.stringify(chars.slice(0, SHOWN_CHARS - 4).join("") + "…")} (${chars.length} characters)`;
 }
 
+/** A plain decimal number, or null (hex, words, empty, Infinity are not numbers here). */
+function decimal(text: string): number | null {
+  const t = text.trim();
+  if (!DECIMAL.test(t)) return null;
+  const v = Number(t);
+  return Number.isFinite(v) ? v : null;
+}
+
+const refusal = (option: string, allowed: string, raw: string): string =>
+  `Address: ${option} must be ${allowed} (got ${typed(raw)}); ignored.`;
+
+/** The address's options, each checked once; bad ones named in notices and ignored. */
 export function parseParams(search: string, saved: Settings): PageParams {
   const q = new URLSearchParams(search);
   const out: PageParams = { overrides: {}, seed: null, speed: 1, notices: [] };
-  const bad = (name: string, err: unknown) =>
-    out.notices.push(`Address: ${name} ${(err as Error).message.replace(/^\S+ /, "")}; ignored.`);
-  const known = new Set(["atoms", "radius", "seed", "speed", "tc-law", "escape"]);
+  const known = new Set<string>(ADDRESS_OPTIONS);
+  const seen = new Set<string>();
   for (const key of q.keys()) {
+    if (seen.has(key)) continue;
+    seen.add(key);
     if (!known.has(key))
-      out.notices.push(`Address: unknown option ${key}; known: ${[...known].join(", ")}.`);
+      out.notices.push(
+        `Address: unknown option ${typed(key)}; known: ${ADDRESS_OPTIONS.join(", ")}.`,
+      );
+    else if (q.getAll(key).length > 1)
+      out.notices.push(
+        `Address: ${key} is given ${q.getAll(key).length} times; give it once. Ignored.`,
+      );
   }
+  const value = (key: string): string | null =>
+    q.getAll(key).length === 1 ? (q.get(key) as string) : null;
+
   let radius = saved.radius;
-  if (q.has("radius")) {
-    try {
-      radius = checkRadius(num(q.get("radius")!), false);
-      out.overrides.radius = radius;
-    } catch (err) {
-      bad("radius", err);
-    }
+  const r = value("radius");
+  if (r !== null) {
+    const v = decimal(r);
+    if (v !== null && RADIUS.contains(v)) radius = out.overrides.radius = v;
+    else out.notices.push(refusal("radius", RADIUS.allowed(), r));
   }
-  if (q.has("atoms")) {
-    try {
-      const n = checkNAtoms(num(q.get("atoms")!), radius, false);
-      if (n > URL_ATOMS_MAX) {
-        throw new RangeError(
-          `n_atoms must be a whole number from 1 to ${URL_ATOMS_MAX} (got ${n})`,
-        );
-      }
-      out.overrides.nAtoms = n;
-    } catch (err) {
-      bad("atoms", err);
-    }
+  const n = value("atoms");
+  if (n !== null) {
+    // Whether they fit the cup at this radius is the loader's word (named by ADDRESS_NAMES).
+    const v = decimal(n);
+    if (v !== null && Number.isInteger(v) && v >= 1 && v <= URL_ATOMS_MAX) out.overrides.nAtoms = v;
+    else out.notices.push(refusal("atoms", `a whole number from 1 to ${URL_ATOMS_MAX}`, n));
   } else if (out.overrides.radius !== undefined && radius >= RADIUS_MIN && radius <= RADIUS_MAX) {
     // Bigger atoms than saved: the saved count may not fit; take what does.
     out.overrides.nAtoms = Math.min(saved.nAtoms, maxAtoms(radius));
   }
-  if (q.has("tc-law")) {
-    try {
-      out.overrides.tcLaw = checkTcLaw(q.get("tc-law"));
-    } catch (err) {
-      bad("tc-law", err);
-    }
+  const law = value("tc-law");
+  if (law !== null) {
+    if (law in TC_LAWS) out.overrides.tcLaw = law as keyof typeof TC_LAWS;
+    else out.notices.push(refusal("tc-law", `one of ${Object.keys(TC_LAWS).join(", ")}`, law));
   }
-  if (q.has("escape")) {
-    try {
-      out.overrides.escape = checkEscape(q.get("escape"));
-    } catch (err) {
-      bad("escape", err);
-    }
+  const escape = value("escape");
+  if (escape !== null) {
+    const rule = ESCAPE_RULES.find((e) => e === escape);
+    if (rule !== undefined) out.overrides.escape = rule;
+    else out.notices.push(refusal("escape", `one of ${ESCAPE_RULES.join(", ")}`, escape));
   }
-  if (q.has("seed")) {
-    const s = num(q.get("seed")!);
-    if (Number.isInteger(s) && s >= 0 && s <= 0xffffffff) out.seed = s;
-    else
-      out.notices.push(
-        `Address: seed must be a whole number from 0 to 4294967295 (got ${q.get("seed")}); ignored.`,
-      );
+  const s = value("seed");
+  if (s !== null) {
+    const v = decimal(s);
+    if (v !== null && Number.isInteger(v) && v >= 0 && v <= SEED_MAX) out.seed = v;
+    else out.notices.push(refusal("seed", `a whole number from 0 to ${SEED_MAX}`, s));
   }
-  if (q.has("speed")) {
-    try {
-      out.speed = checkSpeed(num(q.get("speed")!));
-    } catch (err) {
-      bad("speed", err);
-    }
+  const speed = value("speed");
+  if (speed !== null) {
+    const v = decimal(speed);
+    if (v !== null && v >= SPEED_MIN && v <= SPEED_MAX) out.speed = v;
+    else out.notices.push(refusal("speed", `a number from ${SPEED_MIN} to ${SPEED_MAX}`, speed));
   }
   return out;
 }

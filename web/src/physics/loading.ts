@@ -3,6 +3,7 @@
  * from the bottom, centre-out within a row, one atom at a random point of each cell.
  * The same cells as src/evapcool/physics/loading.py; random numbers from Xoshiro128.
  */
+import { ParameterError, pyG } from "../limits";
 import { Xoshiro128 } from "./rng";
 
 /** Speed at the bottom row and its step per 40 px of height, px / frame. */
@@ -43,9 +44,11 @@ export function cellCentres(
   for (let k = 0; count < n; k++) {
     const yc = y0 + k * spacing;
     if (yc + cell > yTop) {
-      throw new RangeError(
-        `nAtoms: ${n} atoms of radius ${radius} do not fit in the cup below the window top ` +
+      throw new ParameterError(
+        "nAtoms",
+        `${n} atoms of radius ${pyG(radius)} do not fit in the cup below the window top ` +
           `(at most ${count} fit)`,
+        ": ",
       );
     }
     const m = Math.floor(Math.sqrt(yc / curvature) / spacing) + 1;

@@ -336,12 +336,35 @@ describe("address options", () => {
     const q = parseParams("?atoms=2.5&speed=8&escape=door&zoom=2", DEFAULTS);
     expect(q.overrides).toEqual({});
     expect(q.notices).toEqual([
-      "Address: unknown option zoom; known: atoms, radius, seed, speed, tc-law, escape.",
-      "Address: atoms must be a whole number >= 1 (got 2.5); ignored.",
-      "Address: escape must be one of rim, knife (got 'door'); ignored.",
-      "Address: speed must be a number from 0.25 to 4 (got 8); ignored.",
+      'Address: unknown option "zoom"; known: atoms, radius, seed, speed, tc-law, escape.',
+      'Address: atoms must be a whole number from 1 to 100000 (got "2.5"); ignored.',
+      'Address: escape must be one of rim, knife (got "door"); ignored.',
+      'Address: speed must be a number from 0.25 to 4 (got "8"); ignored.',
     ]);
     expect(parseParams("?radius=20", DEFAULTS).overrides).toEqual({ radius: 20, nAtoms: 20 });
+  });
+
+  test("notices name what was typed, shortened; hex, words and repeats are refused (issues 25.6, 27.10)", () => {
+    const long = "9".repeat(5000);
+    expect(parseParams(`?radius=abc&atoms=${long}`, DEFAULTS).notices).toEqual([
+      'Address: radius must be a number from 0.01 to 1000 px (got "abc"); ignored.',
+      'Address: atoms must be a whole number from 1 to 100000 (got "99999999999999999999…" (5000 characters)); ignored.',
+    ]);
+    const hex = parseParams("?atoms=0x20&seed=1e3&speed=Infinity", DEFAULTS);
+    expect(hex.overrides).toEqual({});
+    expect(hex.seed).toBe(1000);
+    expect(hex.notices).toEqual([
+      'Address: atoms must be a whole number from 1 to 100000 (got "0x20"); ignored.',
+      'Address: speed must be a number from 0.25 to 4 (got "Infinity"); ignored.',
+    ]);
+    const twice = parseParams("?atoms=50&atoms=7&seed=2", DEFAULTS);
+    expect(twice.overrides).toEqual({});
+    expect(twice.seed).toBe(2);
+    expect(twice.notices).toEqual(["Address: atoms is given 2 times; give it once. Ignored."]);
+    const name = "x".repeat(3000);
+    const [notice] = parseParams(`?${name}=1`, DEFAULTS).notices;
+    expect(notice.length).toBeLessThan(120);
+    expect(notice).toContain("(3000 characters)");
   });
 
   test("any radius and count in range is accepted or named", () => {
