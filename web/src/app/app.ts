@@ -5,6 +5,7 @@
  * the win and the scores (scoring.ts) and the charts (charts.ts). This file holds the
  * applet's state, its actions and the frame's picture.
  */
+import { MIN_TARGET_CSS } from "../view/geometry";
 import { ParameterError } from "../limits";
 import { ADDRESS_NAMES } from "./params";
 import { FPS } from "../game/constants";
@@ -99,6 +100,8 @@ export class App implements Animated {
   dirty = true;
   /** The drawn panels' tap targets, in the panel's own coordinates (last frame drawn). */
   targets: Target[] = [];
+  /** Whether those targets were drawn zoomed with the panels (overlayZoom) or on the scene. */
+  targetsZoomed = false;
   readonly drawn: DrawnControls = {
     frame: -1,
     trapHeight: 0,
@@ -537,9 +540,17 @@ export class App implements Animated {
       this.scene.drawStartHint(ctx, this.coarse);
     }
     this.targets = [];
+    this.targetsZoomed = false;
     this.saidTooFew = tooFew;
     if (this.scores.nameBoxOpen)
-      drawNameFrame(ctx, NAME_PROMPT, this.scores.nameLength(), NAME_MAX);
+      this.targets = drawNameFrame(
+        ctx,
+        NAME_PROMPT,
+        this.scores.nameLength(),
+        NAME_MAX,
+        this.coarse,
+        this.coarse ? Math.max(34, MIN_TARGET_CSS / this.layout.scale) : 34,
+      );
   }
 
   /** Help, scores or settings over the play area (zoomed in the tall layout). */
@@ -549,6 +560,7 @@ export class App implements Animated {
     ctx.translate(zoom.x, zoom.y);
     ctx.scale(zoom.k, zoom.k);
     ctx.translate(-zoom.cx, -zoom.cy);
+    if (this.overlay !== null) this.targetsZoomed = true;
     if (this.overlay === "help") {
       this.targets = drawHelp(ctx, helpRows(), this.fpsLine());
     } else if (this.overlay === "table") {

@@ -11,6 +11,9 @@ import { actionFor } from "./bindings";
 
 const HIDDEN_PAUSE = "Paused while the page was hidden. Space or play: go on.";
 
+/** Targets drawn on the scene itself (the name box's buttons) are not zoomed. */
+const NO_ZOOM = { k: 1, cx: 0, cy: 0, x: 0, y: 0 };
+
 export class Input {
   private pausedByHiding = false;
 
@@ -113,11 +116,11 @@ export class Input {
     app.loop.resetClock();
   }
 
-  /** A tap or click on the canvas: overlay targets first, then closing the help. */
+  /** A tap or click on the canvas: the drawn targets first, then closing the help. */
   private tap(ev: PointerEvent): void {
     const app = this.app;
     const [lx, ly] = app.screen.toLogical(ev.clientX, ev.clientY);
-    const z = app.screen.overlayZoom();
+    const z = app.targetsZoomed ? app.screen.overlayZoom() : NO_ZOOM;
     const [x, y] = [z.cx + (lx - z.x) / z.k, z.cy + (ly - z.y) / z.k];
     const hit = pickTarget(app.targets, x, y, MIN_TARGET_CSS / (app.screen.layout.scale * z.k));
     if (hit) {
@@ -161,6 +164,12 @@ export class Input {
         break;
       case "next":
         app.restart();
+        break;
+      case "store":
+        app.scores.storeName(app.el.nameInput.value);
+        break;
+      case "skip":
+        app.scores.skipName();
         break;
       case "tableclose":
         app.overlay = null;

@@ -35,9 +35,11 @@ function textButton(
   y: number,
   action: string,
   out: Target[],
+  h = 34,
 ): void {
-  const w = textWidth(ctx, label, 24) + 28;
-  const r = rect(cx - w / 2, y, w, 34);
+  const size = Math.round((24 * h) / 34);
+  const w = textWidth(ctx, label, size) + (28 * h) / 34;
+  const r = rect(cx - w / 2, y, w, h);
   ctx.fillStyle = C.SELECTED_ROW;
   ctx.beginPath();
   ctx.roundRect(r.x, r.y, r.w, r.h, 6);
@@ -45,23 +47,25 @@ function textButton(
   ctx.strokeStyle = C.ACCENT;
   ctx.lineWidth = 2;
   ctx.stroke();
-  drawText(ctx, label, 24, C.TEXT, cx, y + 17, "center", true);
+  drawText(ctx, label, size, C.TEXT, cx, y + h / 2, "center", true);
   out.push({ rect: r, action });
 }
 
-/** Buttons in a row, centred on cx. */
+/** Buttons in a row, centred on cx, h logical px tall. */
 function buttonRow(
   ctx: CanvasRenderingContext2D,
   buttons: Array<[string, string]>,
   cx: number,
   y: number,
   out: Target[],
+  h = 34,
 ): void {
-  const widths = buttons.map(([label]) => textWidth(ctx, label, 24) + 28);
+  const size = Math.round((24 * h) / 34);
+  const widths = buttons.map(([label]) => textWidth(ctx, label, size) + (28 * h) / 34);
   const gap = 16;
   let x = cx - (widths.reduce((a, b) => a + b, 0) + gap * (buttons.length - 1)) / 2;
   buttons.forEach(([label, action], k) => {
-    textButton(ctx, label, x + widths[k] / 2, y, action, out);
+    textButton(ctx, label, x + widths[k] / 2, y, action, out, h);
     x += widths[k] + gap;
   });
 }
@@ -185,14 +189,27 @@ export function drawSettings(
   return targets;
 }
 
-/** The name box's frame, prompt, length and keys under the score; returns the field. */
+/** The name box's hint for a keyboard; a touch screen gets only the Store and Skip buttons. */
+export const NAME_KEYS_HINT = "Enter: store   Esc: skip";
+export const NAME_BUTTONS: Array<[string, string]> = [
+  ["Store", "store"],
+  ["Skip", "skip"],
+];
+
+/**
+ * The name box's frame, prompt, length, hint and its Store and Skip buttons under the
+ * score; returns the buttons' targets. coarse: a finger, not a keyboard (no key hint);
+ * buttonHeight: logical px (44 CSS px on a touch screen).
+ */
 export function drawNameFrame(
   ctx: CanvasRenderingContext2D,
   prompt: string,
   length: number,
   maxLength: number,
-): Rect {
-  const f = rect(PLAY_RECT.x + 30, UNDER_MESSAGE, PLAY_RECT.w - 60, 136);
+  coarse: boolean,
+  buttonHeight = 34,
+): Target[] {
+  const f = rect(PLAY_RECT.x + 30, UNDER_MESSAGE, PLAY_RECT.w - 60, 142 + buttonHeight);
   frame(ctx, f);
   drawText(ctx, prompt, 26, C.ACCENT, f.x + f.w / 2, f.y + 10, "midtop", true);
   const field = nameField();
@@ -209,8 +226,10 @@ export function drawNameFrame(
     "topright",
     full,
   );
-  drawText(ctx, "Enter: store   Esc: skip", 22, C.TEXT, field.x, below, "topleft");
-  return field;
+  if (!coarse) drawText(ctx, NAME_KEYS_HINT, 22, C.TEXT, field.x, below, "topleft");
+  const targets: Target[] = [];
+  buttonRow(ctx, NAME_BUTTONS, f.x + f.w / 2, below + 34, targets, buttonHeight);
+  return targets;
 }
 
 /** Where the name is typed (an input element over the canvas), logical px. */

@@ -417,8 +417,8 @@ describe("the page", () => {
     assert.equal(s.nAtoms, 49);
     assert.equal(s.speed, 1);
     const notes = s.notices.join("\n");
-    assert.match(notes, /atoms must be a whole number >= 1 \(got -3\)/);
-    assert.match(notes, /radius must be a positive number \(got nan\)/);
+    assert.match(notes, /atoms must be a whole number from 1 to 100000 \(got "-3"\)/);
+    assert.match(notes, /radius must be a number from 0\.01 to 1000 px \(got "nan"\)/);
     assert.deepEqual(log.errors, []);
     await page.close();
   });
