@@ -281,6 +281,13 @@ def _deadline(p: Mapping[str, float]) -> Controller:
     return rule
 
 
+def _gap(r: Reading) -> float:
+    """ln(T/Tc): how far the gas is from condensing (0 or less: it wins)."""
+    if r.n_trapped == 0 or r.temperature <= 0.0 or r.critical_temperature <= 0.0:
+        return 0.0
+    return math.log(r.temperature / r.critical_temperature)
+
+
 def _guarded(p: Mapping[str, float]) -> Controller:
     """A linear ramp with a rescue: when the win is far for the time left, cut lower.
 
@@ -289,18 +296,28 @@ def _guarded(p: Mapping[str, float]) -> Controller:
     a gas still far from Tc late in the game is evaporated faster so that it still wins.
     Never below eta_floor kT/(m g): a cut that low takes atoms of less than the mean energy
     plus Tc's share, and brings the gas no closer to Tc.
+
+    The guard: from frame rescue_from on, the rim never rises again, and while the gas is
+    behind schedule (ln(T/Tc) > rescue_gap (1 - t/budget)) it falls at least rescue_rate
+    px per frame, floor or not, until the win (a demo must not lose; issue 25).
     """
     ramp = Ramp(((0.0, p["h0"]), (max(p["duration"], 1.0), p["h1"])))
+    last = {"h": math.inf, "frame": 0.0}
 
     def rule(r: Reading) -> float:
         h = ramp.height_at(r.frame)
-        if r.n_trapped == 0 or r.temperature <= 0.0 or r.critical_temperature <= 0.0:
-            return h
-        left = max(1.0 - r.frame / p["budget"], 0.01)
-        u = max(math.log(r.temperature / r.critical_temperature), 0.0) / left
-        eta = max(p["eta_lo"], p["eta_cap"] - p["gain"] * u)
-        unit = r.kt / (r.mass * r.gravity)
-        return clamp_height(max(min(h, eta * unit), p["eta_floor"] * unit))
+        if r.n_trapped > 0 and r.temperature > 0.0 and r.critical_temperature > 0.0:
+            left = max(1.0 - r.frame / p["budget"], 0.01)
+            u = max(math.log(r.temperature / r.critical_temperature), 0.0) / left
+            eta = max(p["eta_lo"], p["eta_cap"] - p["gain"] * u)
+            unit = r.kt / (r.mass * r.gravity)
+            h = clamp_height(max(min(h, eta * unit), p["eta_floor"] * unit))
+        if r.frame > p["rescue_from"] and p["rescue_rate"] > 0.0:
+            dt = max(r.frame - max(last["frame"], p["rescue_from"]), 0.0)
+            behind = _gap(r) > p["rescue_gap"] * max(1.0 - r.frame / p["budget"], 0.0)
+            h = clamp_height(min(h, last["h"] - (p["rescue_rate"] * dt if behind else 0.0)))
+        last.update(h=h, frame=r.frame)
+        return h
 
     return rule
 
@@ -345,10 +362,14 @@ POLICIES: dict[str, PolicySpec] = {
             "gain": 10.0,
             "eta_lo": 2.0,
             "eta_floor": 0.0,
+            "rescue_from": 1800.0,
+            "rescue_rate": 0.0,
+            "rescue_gap": 0.0,
             "budget": 1800.0,
         },
         build=_guarded,
-        doc="a linear ramp, cut lower (eta_cap - gain ln(T/Tc)/(1 - t/budget)) when late",
+        doc="a linear ramp, cut lower (eta_cap - gain ln(T/Tc)/(1 - t/budget)) when late; "
+        "from rescue_from on, lowered at least rescue_rate px/frame until the win",
     ),
 }
 
