@@ -21,8 +21,14 @@ from evapcool.optimize.evaluate import Paired, Summary
 
 STRAIGHT_RAMP = "400@0,140@1800"
 SEARCH_BUDGET = 1800
-LINE = "{name:<16} mean {mean:6.2f}  sd {sd:5.2f}  wins {wins}/{n}  within 60 s {fast}/{n}  latest win {late:.1f} s"
-PAIR = "{name:<32} {mean:+.2f} +- {se:.2f} (95 % CI {lo:+.2f} .. {hi:+.2f}); better/worse/equal {b}/{w}/{e}"
+LINE = (
+    "{name:<16} mean {mean:6.2f}  sd {sd:5.2f}  wins {wins}/{n}  within 60 s {fast}/{n}"
+    "  latest win {late:.1f} s"
+)
+PAIR = (
+    "{name:<32} {mean:+.2f} +- {se:.2f} (95 % CI {lo:+.2f} .. {hi:+.2f});"
+    " better/worse/equal {b}/{w}/{e}"
+)
 
 
 def unguarded(demo: Strategy) -> Strategy:

@@ -21,6 +21,24 @@ from evapcool.extras import (
     slow_engine_message,
 )
 from evapcool.limits import Range, shown
+from evapcool.physics.constants import (
+    ATOM_RADIUS,
+    BORDER_BOTTOM,
+    BORDER_LEFT,
+    BORDER_RIGHT,
+    BORDER_TOP,
+    CUP_DROP,
+    CURVATURE,
+    FPS,
+    GRAVITY,
+    N_ATOMS,
+    TC_EXPONENT_CUP,
+    TC_EXPONENT_SEED,
+    TC_LAWS,
+    TRAP_HEIGHT,
+    WINDOW,
+    cup_vertex,
+)
 from evapcool.physics.loading import load_cup
 from evapcool.physics.validation import check_start, check_world
 from evapcool.physics.world import (
@@ -35,30 +53,32 @@ if TYPE_CHECKING:
     from evapcool.physics.fast import FastEngine
     from evapcool.physics.reference import ReferenceEngine
 
-#: The original applet's constants (SPEC section 1).
-FPS = 30
-GRAVITY = 10.0 / 30.0  # px / frame^2
-CURVATURE = 0.01  # per px
-ATOM_RADIUS = 12.0
-N_ATOMS = 49
-TRAP_HEIGHT = 400.0
-WINDOW = (640, 672)
-BORDER_LEFT, BORDER_RIGHT, BORDER_TOP, BORDER_BOTTOM = 48, 96, 48, 96
-CUP_DROP = 32  # px between the drawn cup bottom and the play-area bottom
-TC_EXPONENT_SEED = 2.0 / 3.0  # seed Eq. (46), the 3D-box law
-TC_EXPONENT_CUP = 2.0 / 5.0  # ideal Bose gas with g(E) ~ E^(3/2) (SPEC 4)
-#: The Tc laws by name (game settings, the lab's --tc-law): name -> exponent p in Tc ~ N^p.
-TC_LAWS: dict[str, float] = {"seed": TC_EXPONENT_SEED, "cup": TC_EXPONENT_CUP}
+#: Public names; the applet's constants are defined in physics/constants.py (below
+#: physics/state.py too) and re-exported here, where callers have always found them.
+__all__ = [
+    "ATOM_RADIUS",
+    "AUTO_FAST_MIN_ATOMS",
+    "BORDER_BOTTOM",
+    "BORDER_LEFT",
+    "BORDER_RIGHT",
+    "BORDER_TOP",
+    "CUP_DROP",
+    "CURVATURE",
+    "ENGINES",
+    "FPS",
+    "GRAVITY",
+    "N_ATOMS",
+    "TC_EXPONENT_CUP",
+    "TC_EXPONENT_SEED",
+    "TC_LAWS",
+    "TRAP_HEIGHT",
+    "WINDOW",
+    "Simulation",
+    "cup_vertex",
+]
 ENGINES = ("auto", "reference", "fast")
 #: engine="auto" uses the fast engine from this many atoms on (docs/benchmarks.md).
 AUTO_FAST_MIN_ATOMS = 100
-
-
-def cup_vertex(window: tuple[int, int]) -> tuple[float, float]:
-    """Screen position of the drawn cup's lowest point: (296, 544) in 640 x 672."""
-    w, h = window
-    play_w = w - BORDER_LEFT - BORDER_RIGHT
-    return BORDER_LEFT + play_w / 2.0, float(h - BORDER_BOTTOM - CUP_DROP)
 
 
 def _bad(name: str, allowed: str, value: object) -> ValueError:
@@ -247,9 +267,10 @@ class Simulation:
         cls, state: dict[str, Any] | str, engine: str = "auto", **kw: bool
     ) -> Simulation:
         """Go on exactly from a state (dict or JSON text, docs/state.md); see physics.state."""
-        from evapcool.physics.state import from_state
+        from evapcool.physics.state import world_from_state
 
-        return from_state(state, engine=engine, **kw)
+        world, window = world_from_state(state, **kw)
+        return cls.from_world(world, window, engine)
 
     def to_state(self) -> dict[str, Any]:
         """The state as a JSON-ready dict (docs/state.md), resumable with from_state."""
