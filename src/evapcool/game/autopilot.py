@@ -208,24 +208,36 @@ def _progress(frame: float, budget: float) -> float:
     return min(max(frame / budget, 0.0), 1.0)
 
 
-def _feedback(p: Mapping[str, float]) -> Controller:
-    """H = eta kT / (m g), eta from the clock and the thermometer; optional ratchet."""
+def _eta_rule(eta_of: Callable[[Reading], float | None], ratchet: bool) -> Controller:
+    """The mechanism of the eta families: H = eta kT/(m g), eta from the reading (the cut
+    in units of kT); with ratchet, H never rises. Without a gas to read (no atoms, no T, or
+    eta_of says None), the trap stays where it was."""
     last = [math.inf]
 
     def rule(r: Reading) -> float:
-        if r.n_trapped == 0 or r.temperature <= 0.0:
+        eta = eta_of(r) if r.n_trapped > 0 and r.temperature > 0.0 else None
+        if eta is None:
             return last[0] if math.isfinite(last[0]) else HEIGHT_MAX
-        tau = _progress(r.frame, p["budget"])
-        eta = p["eta0"] + (p["eta1"] - p["eta0"]) * tau
-        if r.critical_temperature > 0.0:
-            eta += p["beta"] * math.log(r.temperature / r.critical_temperature)
         h = clamp_height(eta * r.kt / (r.mass * r.gravity))
-        if p["ratchet"] >= 0.5:
+        if ratchet:
             h = min(h, last[0])
         last[0] = h
         return h
 
     return rule
+
+
+def _feedback(p: Mapping[str, float]) -> Controller:
+    """H = eta kT / (m g), eta from the clock and the thermometer; optional ratchet."""
+
+    def eta(r: Reading) -> float:
+        tau = _progress(r.frame, p["budget"])
+        eta = p["eta0"] + (p["eta1"] - p["eta0"]) * tau
+        if r.critical_temperature > 0.0:
+            eta += p["beta"] * math.log(r.temperature / r.critical_temperature)
+        return eta
+
+    return _eta_rule(eta, p["ratchet"] >= 0.5)
 
 
 def _creep(p: Mapping[str, float]) -> Controller:
@@ -264,21 +276,15 @@ def _deadline(p: Mapping[str, float]) -> Controller:
     rate it must still fall at to win by `finish` of the budget. eta = eta_hi - gain u,
     kept within [eta_lo, eta_hi].
     """
-    last = [math.inf]
 
-    def rule(r: Reading) -> float:
-        if r.n_trapped == 0 or r.temperature <= 0.0 or r.critical_temperature <= 0.0:
-            return last[0] if math.isfinite(last[0]) else HEIGHT_MAX
+    def eta(r: Reading) -> float | None:
+        if r.critical_temperature <= 0.0:
+            return None
         left = max(p["finish"] - r.frame / p["budget"], 0.01)
-        u = max(math.log(r.temperature / r.critical_temperature), 0.0) / left
-        eta = min(p["eta_hi"], max(p["eta_lo"], p["eta_hi"] - p["gain"] * u))
-        h = clamp_height(eta * r.kt / (r.mass * r.gravity))
-        if p["ratchet"] >= 0.5:
-            h = min(h, last[0])
-        last[0] = h
-        return h
+        u = max(_gap(r), 0.0) / left
+        return min(p["eta_hi"], max(p["eta_lo"], p["eta_hi"] - p["gain"] * u))
 
-    return rule
+    return _eta_rule(eta, p["ratchet"] >= 0.5)
 
 
 def _gap(r: Reading) -> float:
