@@ -19,7 +19,7 @@ from typing import Any
 
 from evapcool import Simulation
 from evapcool.fileio import atomic_write_text
-from evapcool.physics.state import from_state, to_state
+from evapcool.physics.state import to_state
 
 FIXTURE = Path(__file__).resolve().parents[1] / "web" / "test" / "cases" / "refusals.json"
 
@@ -90,7 +90,11 @@ def _refusal(make: Any) -> str:
 
 def fixture() -> dict[str, Any]:
     states = [
-        {"case": name, "state": state, "message": _refusal(lambda s=state: from_state(s))}
+        {
+            "case": name,
+            "state": state,
+            "message": _refusal(lambda s=state: Simulation.from_state(s)),
+        }
         for name, state in state_cases()
     ]
     parameters = []

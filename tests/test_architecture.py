@@ -1,4 +1,11 @@
-"""The layers' imports point one way: physics <- game <- view <- app (docs/architecture.md)."""
+"""The layers' imports point one way, and no modules import each other in a circle.
+
+physics <- game <- view <- app, and beside them the lab, the optimizer, the benchmarks and
+the web launcher (docs/architecture.md). Every import form counts: `import evapcool.x`,
+`from evapcool import x`, `from evapcool.x import y`, relative `from . import x` and
+`from ..x import y`, at module level, under TYPE_CHECKING or inside a function. Each
+checker is first shown to catch a violation in a small synthetic tree (tmp_path).
+"""
 
 from __future__ import annotations
 
@@ -7,54 +14,250 @@ from pathlib import Path
 
 import pytest
 
-SRC = Path(__file__).resolve().parents[1] / "src" / "evapcool"
+SRC = Path(__file__).resolve().parents[1] / "src"
+PACKAGE = "evapcool"
 
-# Which evapcool subpackages each layer may import (besides itself).
-ALLOWED = {
-    "physics": {"limits", "extras"},
-    "game": {"physics", "fileio", "limits", "about", "extras"},
-    "view": {"physics", "game", "fileio", "limits", "about", "extras"},
-    "lab": {"physics", "game", "fileio", "argtypes", "limits", "about", "extras"},
-}
-#: Top-level modules below physics (or beside it): what each may import from evapcool.
-BASE_MODULES = {
+#: The top-level modules, lowest first; each may import those before it in its own set.
+BASE = {
     "about": set(),
     "extras": set(),
     "limits": set(),
     "fileio": {"limits"},
     "argtypes": {"limits", "fileio", "about"},
 }
-FORBIDDEN_MODULES = {"physics": {"pygame"}, "game": {"pygame"}, "lab": {"pygame"}}
+_BELOW_PHYSICS = set(BASE)
+#: The package itself ("": evapcool/__init__.py re-exports Simulation and __version__)
+#: is above physics: the layers above the game may import it.
+_ROOT = ""
+#: Which parts of evapcool each layer may import (besides itself). "" is the package itself.
+ALLOWED: dict[str, set[str]] = {
+    **BASE,
+    "physics": {"limits", "extras", "about"},
+    "game": {"physics", "fileio", "limits", "about", "extras"},
+    "view": {"physics", "game", "fileio", "limits", "about", "extras"},
+    "lab": {"physics", "game", *_BELOW_PHYSICS, _ROOT},
+    "optimize": {"physics", "game", "lab", *_BELOW_PHYSICS, _ROOT},
+    "app": {"physics", "game", "view", *_BELOW_PHYSICS, _ROOT},
+    "web": {"about", "argtypes", "extras"},
+    "bench": {"physics", "game", "view", "app", "lab", "optimize", *_BELOW_PHYSICS, _ROOT},
+    "data": set(),
+    "cli": {"app", "lab", "optimize", "bench", "web", *_BELOW_PHYSICS, _ROOT},
+    "__main__": {"cli"},
+    "": {"about", "physics"},
+}
+FORBIDDEN_THIRD_PARTY = {"physics": {"pygame"}, "game": {"pygame"}, "lab": {"pygame"}}
 
 
-def _imports(path: Path) -> set[str]:
-    tree = ast.parse(path.read_text(encoding="utf-8"))
-    names: set[str] = set()
-    for node in ast.walk(tree):
+def modules(root: Path, package: str) -> dict[str, Path]:
+    """Dotted module name -> file, for every .py under root/package."""
+    out = {}
+    for path in sorted((root / package).rglob("*.py")):
+        parts = list(path.relative_to(root).with_suffix("").parts)
+        if parts[-1] == "__init__":
+            parts.pop()
+        out[".".join(parts)] = path
+    return out
+
+
+def _resolve(name: str, known: dict[str, Path]) -> str:
+    """The module a dotted name refers to: itself, or the module that defines it."""
+    while name and name not in known:
+        name = name.rpartition(".")[0]
+    return name
+
+
+def imports_of(module: str, path: Path, known: dict[str, Path]) -> tuple[set[str], set[str]]:
+    """(modules of the package this one imports, other top-level names it imports)."""
+    is_package = path.name == "__init__.py"
+    inside: set[str] = set()
+    outside: set[str] = set()
+    for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"))):
         if isinstance(node, ast.Import):
-            names.update(a.name for a in node.names)
-        elif isinstance(node, ast.ImportFrom) and node.module and node.level == 0:
-            names.add(node.module)
-    return names
+            targets = [a.name for a in node.names]
+        elif isinstance(node, ast.ImportFrom):
+            base = node.module or ""
+            if node.level:
+                anchor = module.split(".")
+                anchor = anchor[: len(anchor) - node.level + (1 if is_package else 0)]
+                base = ".".join([*anchor, *([base] if base else [])])
+            targets = [f"{base}.{a.name}" for a in node.names] if base else []
+            if base and not node.level and base.split(".")[0] != module.split(".")[0]:
+                targets = [base]
+        else:
+            continue
+        for target in targets:
+            if target.split(".")[0] == module.split(".")[0] and _resolve(target, known):
+                inside.add(_resolve(target, known))
+            else:
+                outside.add(target.split(".")[0])
+    inside.discard(module)
+    return inside, outside
 
 
-@pytest.mark.parametrize("layer", sorted(ALLOWED))
-def test_layer_imports_point_one_way(layer: str) -> None:
-    files = list((SRC / layer).rglob("*.py"))
-    if not files:
-        pytest.skip(f"{layer} has no modules yet")
-    for f in files:
-        for name in _imports(f):
-            top = name.split(".")[0]
-            assert top not in FORBIDDEN_MODULES.get(layer, set()), f"{f.name} imports {name}"
-            if top == "evapcool" and "." in name:
-                sub = name.split(".")[1]
-                assert sub == layer or sub in ALLOWED[layer], f"{f.name} imports {name}"
+def graph(root: Path, package: str) -> dict[str, set[str]]:
+    known = modules(root, package)
+    return {m: imports_of(m, p, known)[0] for m, p in known.items()}
 
 
-@pytest.mark.parametrize("module", sorted(BASE_MODULES))
-def test_base_modules_import_only_what_is_below_them(module: str) -> None:
-    for name in _imports(SRC / f"{module}.py"):
-        if name.split(".")[0] == "evapcool":
-            sub = name.split(".")[1] if "." in name else ""
-            assert sub in BASE_MODULES[module], f"{module}.py imports {name}"
+def _part(module: str) -> str:
+    """The layer (or top-level module) a module belongs to: '' for the package itself."""
+    parts = module.split(".")
+    return parts[1] if len(parts) > 1 else ""
+
+
+def layer_violations(root: Path, package: str, allowed: dict[str, set[str]]) -> list[str]:
+    known = modules(root, package)
+    bad = []
+    for module, path in known.items():
+        part = _part(module)
+        inside, outside = imports_of(module, path, known)
+        for target in sorted(inside):
+            other = _part(target)
+            if other != part and other not in allowed.get(part, set()):
+                bad.append(f"{module} imports {target}")
+        for name in sorted(outside & FORBIDDEN_THIRD_PARTY.get(part, set())):
+            bad.append(f"{module} imports {name}")
+    return bad
+
+
+def cycles(edges: dict[str, set[str]]) -> list[list[str]]:
+    """The import circles: strongly connected groups of more than one module (Tarjan)."""
+    index: dict[str, int] = {}
+    low: dict[str, int] = {}
+    stack: list[str] = []
+    on_stack: set[str] = set()
+    found: list[list[str]] = []
+
+    def visit(v: str) -> None:
+        index[v] = low[v] = len(index)
+        stack.append(v)
+        on_stack.add(v)
+        for w in sorted(edges.get(v, ())):
+            if w not in index:
+                visit(w)
+                low[v] = min(low[v], low[w])
+            elif w in on_stack:
+                low[v] = min(low[v], index[w])
+        if low[v] == index[v]:
+            group = []
+            while True:
+                w = stack.pop()
+                on_stack.discard(w)
+                group.append(w)
+                if w == v:
+                    break
+            if len(group) > 1:
+                found.append(sorted(group))
+
+    for v in sorted(edges):
+        if v not in index:
+            visit(v)
+    return found
+
+
+def _package_edges(edges: dict[str, set[str]]) -> dict[str, set[str]]:
+    """Without the edges into a package's own __init__ from its modules (Python runs a
+    parent package first anyway; a circle through it is the package re-exporting)."""
+    return {m: {t for t in ts if not m.startswith(t + ".")} for m, ts in edges.items()}
+
+
+# -- the checkers catch what they should (synthetic trees) --------------------------------
+
+
+def _tree(tmp_path: Path, files: dict[str, str]) -> Path:
+    for name, text in files.items():
+        path = tmp_path / name
+        path.parent.mkdir(parents=True, exist_ok=True)
+        path.write_text(text, encoding="utf-8")
+    return tmp_path
+
+
+@pytest.mark.parametrize(
+    "form",
+    [
+        "import pkg.view.draw",
+        "from pkg import view",
+        "from pkg.view import draw",
+        "from pkg.view.draw import line",
+        "from .. import view",
+        "from ..view import draw",
+        "from ..view.draw import line",
+        "def f():\n    from pkg.view.draw import line\n",
+        "from typing import TYPE_CHECKING\nif TYPE_CHECKING:\n    import pkg.view.draw\n",
+    ],
+)
+def test_every_import_form_is_seen(tmp_path: Path, form: str) -> None:
+    root = _tree(
+        tmp_path,
+        {
+            "pkg/__init__.py": "",
+            "pkg/physics/__init__.py": "",
+            "pkg/physics/model.py": form + "\n",
+            "pkg/view/__init__.py": "",
+            "pkg/view/draw.py": "line = 1\n",
+        },
+    )
+    bad = layer_violations(root, "pkg", {"physics": set(), "view": {"physics"}})
+    assert bad and all(b.startswith("pkg.physics.model imports pkg.view") for b in bad), bad
+    assert not layer_violations(root, "pkg", {"physics": {"view"}, "view": {"physics"}})
+
+
+def test_a_forbidden_third_party_import_is_seen(tmp_path: Path) -> None:
+    root = _tree(tmp_path, {"pkg/__init__.py": "", "pkg/physics/m.py": "import pygame.draw\n"})
+    assert layer_violations(root, "pkg", {"physics": set()}) == ["pkg.physics.m imports pygame"]
+
+
+@pytest.mark.parametrize(
+    ("a", "b"),
+    [
+        ("from pkg.room import b", "def f():\n    from pkg.room.a import X\n"),
+        ("from . import b", "from .a import X\n"),
+        (
+            "import pkg.room.b",
+            "from typing import TYPE_CHECKING\nif TYPE_CHECKING:\n    import pkg.room.a\n",
+        ),
+    ],
+)
+def test_an_import_circle_is_found(tmp_path: Path, a: str, b: str) -> None:
+    root = _tree(
+        tmp_path,
+        {
+            "pkg/__init__.py": "",
+            "pkg/room/__init__.py": "",
+            "pkg/room/a.py": a + "\nX = 1\n",
+            "pkg/room/b.py": b,
+            "pkg/room/c.py": "from pkg.room import a\n",
+        },
+    )
+    assert cycles(_package_edges(graph(root, "pkg"))) == [["pkg.room.a", "pkg.room.b"]]
+
+
+def test_no_circle_in_a_tree_that_points_one_way(tmp_path: Path) -> None:
+    root = _tree(
+        tmp_path,
+        {
+            "pkg/__init__.py": "from pkg.room.a import X\n",
+            "pkg/room/__init__.py": "from .a import X\n",
+            "pkg/room/a.py": "from pkg.room import b\nX = 1\n",
+            "pkg/room/b.py": "import pkg.room.c\n",
+            "pkg/room/c.py": "",
+        },
+    )
+    assert cycles(_package_edges(graph(root, "pkg"))) == []
+
+
+# -- the real package ---------------------------------------------------------------------
+
+
+def test_every_part_of_the_package_has_rules() -> None:
+    parts = {_part(m) for m in modules(SRC, PACKAGE)}
+    assert parts <= set(ALLOWED), sorted(parts - set(ALLOWED))
+    assert {"physics", "game", "view", "app", "lab", "optimize", "bench", "web"} <= parts
+
+
+def test_layer_imports_point_one_way() -> None:
+    assert layer_violations(SRC, PACKAGE, ALLOWED) == []
+
+
+def test_no_import_circles_between_modules() -> None:
+    assert cycles(_package_edges(graph(SRC, PACKAGE))) == []

@@ -11,7 +11,7 @@ from evapcool import limits
 from evapcool.game.highscores import HighScoreTable
 from evapcool.game.settings import Settings, validate
 from evapcool.physics.simulation import Simulation
-from evapcool.physics.state import check_placement, from_state
+from evapcool.physics.state import check_placement
 from evapcool.physics.validation import check_bounds, check_start
 
 f64, i64 = np.float64, np.int64
@@ -59,9 +59,9 @@ CASES = {
         f64(0.01),
         1e-9,
     ),
-    "from_state outside": lambda: from_state(_state([100.0], [1.5])),
-    "from_state overlap": lambda: from_state(_state([0.0, 1.0], [50.0, 50.5])),
-    "from_state numpy value": lambda: from_state(_state([f64(0.0)], [f64(-3.5)])),
+    "from_state outside": lambda: Simulation.from_state(_state([100.0], [1.5])),
+    "from_state overlap": lambda: Simulation.from_state(_state([0.0, 1.0], [50.0, 50.5])),
+    "from_state numpy value": lambda: Simulation.from_state(_state([f64(0.0)], [f64(-3.5)])),
     "settings n_atoms": lambda: validate(Settings(n_atoms=i64(10**6))),
     "settings radius": lambda: validate(Settings(radius=f64(0.5))),
     "high score": lambda: HighScoreTable(_TMP / "scores.json").add("x", i64(-1), 1.0),

@@ -160,13 +160,14 @@ def test_a_world_from_elsewhere_gets_the_same_checks() -> None:
 
 
 def test_a_state_from_a_file_gets_the_same_ranges_and_check() -> None:
-    from evapcool.physics.state import check_placement, from_state
+    from evapcool.physics.simulation import Simulation
+    from evapcool.physics.state import check_placement
 
     atoms = {"x": [0.0], "y": [100.0], "vx": [0.0], "vy": [0.0]}
     with pytest.raises(ValueError, match=r"^gravity must be a number from"):
-        from_state({"gravity": 1e300, "atoms": atoms})
+        Simulation.from_state({"gravity": 1e300, "atoms": atoms})
     with pytest.raises(ValueError, match=r"^velocities must be at most"):
-        from_state({"atoms": {**atoms, "vx": [500.0]}})
+        Simulation.from_state({"atoms": {**atoms, "vx": [500.0]}})
     # A column of atoms (one x): the grid finds the first overlap; a sweep along x was O(N^2).
     n = 50_000
     y = 10.0 + 2.0 * np.arange(n)

@@ -9,7 +9,6 @@ import pytest
 
 from evapcool import Simulation
 from evapcool.physics.state import (
-    from_state,
     json_text,
     number_text,
     parse_state,
@@ -25,7 +24,7 @@ def test_save_load_go_on_is_going_on(engine: str, escape: str) -> None:
     saved = Simulation.classic(seed=4, engine=engine, escape=escape, record_events=True)
     straight.advance(12.5)
     saved.advance(12.5)
-    resumed = from_state(state_text(saved), engine=engine, record_events=True)
+    resumed = Simulation.from_state(state_text(saved), engine=engine, record_events=True)
     assert state_text(resumed) == state_text(saved)
     for sim in (straight, resumed):
         sim.trap_height = 80.0
@@ -62,13 +61,15 @@ def test_infinite_rim_and_negative_zero_survive() -> None:
     sim = Simulation(1, positions=[[0.0, 50.0]], velocities=[[-0.0, 0.0]], trap_height=math.inf)
     state = read_json(state_text(sim))
     assert state["trap_height"] == "inf"
-    back = from_state(state)
+    back = Simulation.from_state(state)
     assert back.trap_height == math.inf
     assert math.copysign(1.0, back.velocities[0, 0]) == -1.0
 
 
 def test_minimal_state_gets_defaults() -> None:
-    sim = from_state({"atoms": {"x": [0, 30], "y": [10, 40], "vx": [1, 0], "vy": [0, 0]}})
+    sim = Simulation.from_state(
+        {"atoms": {"x": [0, 30], "y": [10, 40], "vx": [1, 0], "vy": [0, 0]}}
+    )
     assert sim.n_atoms == 2 and sim.trap_height == 400.0 and sim.escape_rule == "rim"
     assert list(sim.radii) == [12.0, 12.0] and sim.win_rule
     assert sim.initial_temperature == pytest.approx(sim.temperature)
@@ -80,7 +81,7 @@ def test_escaped_and_gone_atoms_keep_their_indices() -> None:
     sim.advance(60.0)
     state = to_state(sim)
     assert "escaped" in state["atoms"]["status"] or "gone" in state["atoms"]["status"]
-    back = from_state(state)
+    back = Simulation.from_state(state)
     assert back.n_atoms == 49 and back.n_trapped == sim.n_trapped
     assert back.n_escaped == sim.n_escaped
     np.testing.assert_array_equal(back.trapped_indices, sim.trapped_indices)
@@ -111,7 +112,7 @@ GOOD = {"x": [0.0], "y": [10.0], "vx": [0.0], "vy": [0.0]}
 )
 def test_bad_state_is_a_value_error_naming_the_field(state: object, name: str) -> None:
     with pytest.raises(ValueError, match=name):
-        from_state(state)
+        Simulation.from_state(state)
 
 
 def test_overlap_names_the_first_offending_atoms() -> None:
@@ -122,19 +123,19 @@ def test_overlap_names_the_first_offending_atoms() -> None:
         "vy": [0.0] * 4,
     }
     with pytest.raises(ValueError, match="atoms 0 and 3 overlap"):
-        parse_state({"atoms": atoms}) and from_state({"atoms": atoms})
+        parse_state({"atoms": atoms}) and Simulation.from_state({"atoms": atoms})
     # escaped atoms may be anywhere; touching atoms and centres on the wall are fine
     atoms["status"] = ["escaped", "trapped", "escaped", "trapped"]
-    assert from_state({"atoms": atoms}).n_trapped == 2
+    assert Simulation.from_state({"atoms": atoms}).n_trapped == 2
 
 
 def test_a_condensate_may_overlap() -> None:
     # after the win, atoms no longer collide with each other: a won state may overlap
     atoms = {"x": [0.0, 5.0], "y": [10.0, 10.0], "vx": [0.0, 0.0], "vy": [0.0, 0.0]}
     with pytest.raises(ValueError, match="atoms 0 and 1 overlap"):
-        from_state({"atoms": atoms})
-    sim = from_state({"won": True, "atoms": atoms}, engine="reference")
+        Simulation.from_state({"atoms": atoms})
+    sim = Simulation.from_state({"won": True, "atoms": atoms}, engine="reference")
     sim.advance(30.0)
     assert sim.won and sim.pair_collision_count == 0
     with pytest.raises(ValueError, match=r"atom 0 .* outside the cup"):
-        from_state({"won": True, "atoms": {**atoms, "y": [-1.0, 10.0]}})
+        Simulation.from_state({"won": True, "atoms": {**atoms, "y": [-1.0, 10.0]}})

@@ -10,7 +10,7 @@ from evapcool.game.rules import Game, GameConfig
 from evapcool.game.settings import SHOWN_BELOW_TOP
 from evapcool.physics.room import CLASSIC_ROOM, Room
 from evapcool.physics.simulation import Simulation
-from evapcool.physics.state import from_state, room_of_window, to_state
+from evapcool.physics.state import room_of_window, to_state
 from evapcool.view.screen import BORDER_TOP, WINDOW, ScreenMap, cup_vertex, window_room
 
 
@@ -65,7 +65,7 @@ def test_a_state_keeps_its_room():
     sim = Simulation(n_atoms=10, seed=3, room=room)
     state = to_state(sim)
     assert state["window"] == [800, 900]
-    assert from_state(state).room == room
+    assert Simulation.from_state(state).room == room
     odd = Simulation(n_atoms=10, seed=3, room=Room(10.0, 400.0, 128.0, 600.0))
     with pytest.raises(ValueError, match=r"^room"):
         to_state(odd)

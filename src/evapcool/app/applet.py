@@ -54,6 +54,8 @@ QUIET_BUILD_S = 0.15
 #: A build slower than this also says why on stderr, once (headless runs).
 SLOW_BUILD_NOTICE_S = 2.0
 _SUBMIT = (pygame.K_RETURN, pygame.K_KP_ENTER)
+#: A folder argument that names no folder (the command line's --data-dir says the same).
+BAD_FOLDER = "{name} must name a folder (got {value!r})"
 
 
 def default_bindings() -> list[Binding]:
@@ -173,6 +175,8 @@ class App:
         log: where a one-line note about a slow start goes (e.g. stderr).
         autopilot: a strategy that plays by itself (`evapcool --autopilot FILE`; key A).
         """
+        for name, value in (("data_dir", data_dir), ("config_dir", config_dir)):
+            _check_folder(name, value)
         pygame.display.init()
         pygame.font.init()
         self.running = True
@@ -555,3 +559,15 @@ __all__ = [
     "StartCancelledError",
     "default_bindings",
 ]
+
+
+def _check_folder(name: str, value: object) -> None:
+    """ValueError naming the argument unless value is None or a usable folder path."""
+    if value is None:
+        return
+    try:
+        text = os.fspath(value)  # type: ignore[call-overload]
+    except TypeError:
+        raise ValueError(BAD_FOLDER.format(name=name, value=value)) from None
+    if not text or (b"\0" if isinstance(text, bytes) else "\0") in text:
+        raise ValueError(BAD_FOLDER.format(name=name, value=value))

@@ -208,24 +208,36 @@ def _progress(frame: float, budget: float) -> float:
     return min(max(frame / budget, 0.0), 1.0)
 
 
-def _feedback(p: Mapping[str, float]) -> Controller:
-    """H = eta kT / (m g), eta from the clock and the thermometer; optional ratchet."""
+def _eta_rule(eta_of: Callable[[Reading], float | None], ratchet: bool) -> Controller:
+    """The mechanism of the eta families: H = eta kT/(m g), eta from the reading (the cut
+    in units of kT); with ratchet, H never rises. Without a gas to read (no atoms, no T, or
+    eta_of says None), the trap stays where it was."""
     last = [math.inf]
 
     def rule(r: Reading) -> float:
-        if r.n_trapped == 0 or r.temperature <= 0.0:
+        eta = eta_of(r) if r.n_trapped > 0 and r.temperature > 0.0 else None
+        if eta is None:
             return last[0] if math.isfinite(last[0]) else HEIGHT_MAX
-        tau = _progress(r.frame, p["budget"])
-        eta = p["eta0"] + (p["eta1"] - p["eta0"]) * tau
-        if r.critical_temperature > 0.0:
-            eta += p["beta"] * math.log(r.temperature / r.critical_temperature)
         h = clamp_height(eta * r.kt / (r.mass * r.gravity))
-        if p["ratchet"] >= 0.5:
+        if ratchet:
             h = min(h, last[0])
         last[0] = h
         return h
 
     return rule
+
+
+def _feedback(p: Mapping[str, float]) -> Controller:
+    """H = eta kT / (m g), eta from the clock and the thermometer; optional ratchet."""
+
+    def eta(r: Reading) -> float:
+        tau = _progress(r.frame, p["budget"])
+        eta = p["eta0"] + (p["eta1"] - p["eta0"]) * tau
+        if r.critical_temperature > 0.0:
+            eta += p["beta"] * math.log(r.temperature / r.critical_temperature)
+        return eta
+
+    return _eta_rule(eta, p["ratchet"] >= 0.5)
 
 
 def _creep(p: Mapping[str, float]) -> Controller:
@@ -264,21 +276,22 @@ def _deadline(p: Mapping[str, float]) -> Controller:
     rate it must still fall at to win by `finish` of the budget. eta = eta_hi - gain u,
     kept within [eta_lo, eta_hi].
     """
-    last = [math.inf]
 
-    def rule(r: Reading) -> float:
-        if r.n_trapped == 0 or r.temperature <= 0.0 or r.critical_temperature <= 0.0:
-            return last[0] if math.isfinite(last[0]) else HEIGHT_MAX
+    def eta(r: Reading) -> float | None:
+        if r.critical_temperature <= 0.0:
+            return None
         left = max(p["finish"] - r.frame / p["budget"], 0.01)
-        u = max(math.log(r.temperature / r.critical_temperature), 0.0) / left
-        eta = min(p["eta_hi"], max(p["eta_lo"], p["eta_hi"] - p["gain"] * u))
-        h = clamp_height(eta * r.kt / (r.mass * r.gravity))
-        if p["ratchet"] >= 0.5:
-            h = min(h, last[0])
-        last[0] = h
-        return h
+        u = max(_gap(r), 0.0) / left
+        return min(p["eta_hi"], max(p["eta_lo"], p["eta_hi"] - p["gain"] * u))
 
-    return rule
+    return _eta_rule(eta, p["ratchet"] >= 0.5)
+
+
+def _gap(r: Reading) -> float:
+    """ln(T/Tc): how far the gas is from condensing (0 or less: it wins)."""
+    if r.n_trapped == 0 or r.temperature <= 0.0 or r.critical_temperature <= 0.0:
+        return 0.0
+    return math.log(r.temperature / r.critical_temperature)
 
 
 def _guarded(p: Mapping[str, float]) -> Controller:
@@ -289,18 +302,28 @@ def _guarded(p: Mapping[str, float]) -> Controller:
     a gas still far from Tc late in the game is evaporated faster so that it still wins.
     Never below eta_floor kT/(m g): a cut that low takes atoms of less than the mean energy
     plus Tc's share, and brings the gas no closer to Tc.
+
+    The guard: from frame rescue_from on, the rim never rises again, and while the gas is
+    behind schedule (ln(T/Tc) > rescue_gap (1 - t/budget)) it falls at least rescue_rate
+    px per frame, floor or not, until the win (a demo must not lose; issue 25).
     """
     ramp = Ramp(((0.0, p["h0"]), (max(p["duration"], 1.0), p["h1"])))
+    last = {"h": math.inf, "frame": 0.0}
 
     def rule(r: Reading) -> float:
         h = ramp.height_at(r.frame)
-        if r.n_trapped == 0 or r.temperature <= 0.0 or r.critical_temperature <= 0.0:
-            return h
-        left = max(1.0 - r.frame / p["budget"], 0.01)
-        u = max(math.log(r.temperature / r.critical_temperature), 0.0) / left
-        eta = max(p["eta_lo"], p["eta_cap"] - p["gain"] * u)
-        unit = r.kt / (r.mass * r.gravity)
-        return clamp_height(max(min(h, eta * unit), p["eta_floor"] * unit))
+        if r.n_trapped > 0 and r.temperature > 0.0 and r.critical_temperature > 0.0:
+            left = max(1.0 - r.frame / p["budget"], 0.01)
+            u = max(math.log(r.temperature / r.critical_temperature), 0.0) / left
+            eta = max(p["eta_lo"], p["eta_cap"] - p["gain"] * u)
+            unit = r.kt / (r.mass * r.gravity)
+            h = clamp_height(max(min(h, eta * unit), p["eta_floor"] * unit))
+        if r.frame > p["rescue_from"] and p["rescue_rate"] > 0.0:
+            dt = max(r.frame - max(last["frame"], p["rescue_from"]), 0.0)
+            behind = _gap(r) > p["rescue_gap"] * max(1.0 - r.frame / p["budget"], 0.0)
+            h = clamp_height(min(h, last["h"] - (p["rescue_rate"] * dt if behind else 0.0)))
+        last.update(h=h, frame=r.frame)
+        return h
 
     return rule
 
@@ -345,10 +368,14 @@ POLICIES: dict[str, PolicySpec] = {
             "gain": 10.0,
             "eta_lo": 2.0,
             "eta_floor": 0.0,
+            "rescue_from": 1800.0,
+            "rescue_rate": 0.0,
+            "rescue_gap": 0.0,
             "budget": 1800.0,
         },
         build=_guarded,
-        doc="a linear ramp, cut lower (eta_cap - gain ln(T/Tc)/(1 - t/budget)) when late",
+        doc="a linear ramp, cut lower (eta_cap - gain ln(T/Tc)/(1 - t/budget)) when late; "
+        "from rescue_from on, lowered at least rescue_rate px/frame until the win",
     ),
 }
 

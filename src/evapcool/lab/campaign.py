@@ -109,6 +109,28 @@ def table(results: dict[float, dict[str, Pooled]]) -> str:
 QUENCH_TIMES = (0.1, 0.2, 0.4, 0.7, 1.0, 1.5)
 
 
+def _thermal_gas(
+    n: int, radius: float, kt: float, seed: int, engine: str, **rules: object
+) -> Simulation:
+    """n unit-mass atoms drawn from the equilibrium cloud at kT (lab.theory) in the classic
+    cup, the trap wide open (H = inf); rules (escape, win) as Simulation takes them."""
+    rng = np.random.default_rng(seed)
+    pos, vel = thermal_cloud(n, radius, kt, gravity=GRAVITY, curvature=CURVATURE, rng=rng)
+    return Simulation(
+        n,
+        radius,
+        1.0,
+        curvature=CURVATURE,
+        gravity=GRAVITY,
+        trap_height=math.inf,
+        seed=seed,
+        engine=engine,
+        positions=pos,
+        velocities=vel,
+        **rules,
+    )
+
+
 def quench(
     eta: float, runs: int, *, times=QUENCH_TIMES, n=1000, radius=0.3, kt=60.0, engine="fast"
 ) -> list[tuple[float, float, int, float]]:
@@ -122,22 +144,7 @@ def quench(
     edges = np.concatenate(([0.0], times)) * tau
     counts = np.zeros((len(times), 2))
     for seed in range(runs):
-        rng = np.random.default_rng(seed)
-        pos, vel = thermal_cloud(n, radius, kt, gravity=GRAVITY, curvature=CURVATURE, rng=rng)
-        sim = Simulation(
-            n,
-            radius,
-            1.0,
-            curvature=CURVATURE,
-            gravity=GRAVITY,
-            trap_height=math.inf,
-            seed=seed,
-            engine=engine,
-            escape="knife",
-            win=False,
-            positions=pos,
-            velocities=vel,
-        )
+        sim = _thermal_gas(n, radius, kt, seed, engine, escape="knife", win=False)
         sim.trap_height = eta * kt / GRAVITY
         for i, dt in enumerate(np.diff(edges)):
             atoms, pairs = sim.n_trapped, sim.pair_collision_count
@@ -158,20 +165,7 @@ def equilibrium(
     cup = Cup(radius=radius, mass=1.0, gravity=GRAVITY, curvature=CURVATURE)
     ratios = []
     for seed in seeds:
-        rng = np.random.default_rng(seed)
-        pos, vel = thermal_cloud(n, radius, kt, gravity=GRAVITY, curvature=CURVATURE, rng=rng)
-        sim = Simulation(
-            n,
-            radius,
-            1.0,
-            curvature=CURVATURE,
-            gravity=GRAVITY,
-            trap_height=math.inf,
-            seed=seed,
-            engine=engine,
-            positions=pos,
-            velocities=vel,
-        )
+        sim = _thermal_gas(n, radius, kt, seed, engine)
         sim.advance(settle)
         pairs, means = sim.pair_collision_count, []
         for _ in range(int(frames / 10)):

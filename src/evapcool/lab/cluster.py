@@ -25,6 +25,8 @@ import time
 from collections.abc import Callable, Iterator, Sequence
 from dataclasses import dataclass
 
+from evapcool.argtypes import whole
+
 INSTALL_HINT = "pip install 'evapcool[cluster]'"
 #: What each command needs from the extra (import names).
 NEEDS = {
@@ -66,6 +68,19 @@ def scheduler_option(text: str) -> str:
         raise argparse.ArgumentTypeError(
             f"must be an address like tcp://host:8786 (got {text!r})"
         ) from None
+
+
+#: The help of the options where games run, shared by `evapcool sweep` and `evapcool optimize`.
+SCHEDULER_HELP = "a running Dask scheduler (default: a local cluster)"
+WORKERS_HELP = "local worker processes (default: one per core)"
+
+
+def add_cluster_options(parser: argparse.ArgumentParser | argparse._ArgumentGroup) -> None:
+    """--scheduler and --workers: where the games run (one definition for every command)."""
+    parser.add_argument(
+        "--scheduler", type=scheduler_option, metavar="tcp://HOST:8786", help=SCHEDULER_HELP
+    )
+    parser.add_argument("--workers", type=whole(1), help=WORKERS_HELP)
 
 
 def check_workers(workers: object) -> int | None:

@@ -11,14 +11,35 @@ import base64
 import html
 import io
 import sys
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, Protocol
 
 from evapcool.about import versions
 from evapcool.extras import check
 
 if TYPE_CHECKING:
-    from evapcool.lab.experiment import LabResult
+    import numpy as np
+
     from evapcool.physics.simulation import Simulation
+
+
+class LabResult(Protocol):
+    """What is shown of a lab result (experiment.LabResult; typed here so that this module
+    need not import the experiment, which calls it)."""
+
+    metadata: dict[str, Any]
+    columns: dict[str, np.ndarray]
+
+    @property
+    def parameters(self) -> dict[str, Any]: ...
+
+    @property
+    def completed(self) -> bool: ...
+
+    def __len__(self) -> int: ...
+
+    def __getattr__(self, name: str) -> np.ndarray: ...
+
+    def plot(self) -> Any: ...
 
 
 def run_info(sim: Simulation) -> dict[str, Any]:

@@ -8,12 +8,12 @@ import time
 from pathlib import Path
 
 from evapcool.about import error_line
-from evapcool.argtypes import Parser, UsageError, whole
+from evapcool.argtypes import Parser, UsageError
 from evapcool.lab.cluster import (
     MissingExtraError,
     VersionMismatchError,
+    add_cluster_options,
     require_extra,
-    scheduler_option,
 )
 
 PROG = "evapcool sweep"
@@ -44,13 +44,7 @@ def build_parser() -> argparse.ArgumentParser:
         "runs already there are skipped",
     )
     p.add_argument("--csv", action="store_true", help="also write runs.csv and records.csv")
-    p.add_argument(
-        "--scheduler",
-        type=scheduler_option,
-        metavar="tcp://HOST:8786",
-        help="a running Dask scheduler (default: a local cluster)",
-    )
-    p.add_argument("--workers", type=whole(1), help="local worker processes (one per core)")
+    add_cluster_options(p)
     p.add_argument(
         "--dry-run", action="store_true", help="check the spec, say how many runs, run nothing"
     )

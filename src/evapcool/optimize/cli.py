@@ -10,7 +10,7 @@ from pathlib import Path
 
 from evapcool.about import error_line
 from evapcool.argtypes import Parser, UsageError, choice, positive, whole
-from evapcool.lab.cluster import MissingExtraError, require_extra, scheduler_option
+from evapcool.lab.cluster import MissingExtraError, add_cluster_options, require_extra
 from evapcool.optimize.families import FAMILY_HELP, parse_families
 from evapcool.optimize.report import DEFAULT_FINALISTS, DEFAULT_VALIDATE
 from evapcool.optimize.study import (
@@ -120,16 +120,7 @@ def build_parser() -> argparse.ArgumentParser:
         type=choice(tuple(TC_LAWS)),
         help="seed (N^2/3, the game) or cup (N^2/5)",
     )
-    c = p.add_argument_group("where games run")
-    c.add_argument(
-        "--scheduler",
-        type=scheduler_option,
-        metavar="tcp://HOST:8786",
-        help="a running Dask scheduler (default: a local cluster)",
-    )
-    c.add_argument(
-        "--workers", type=whole(1), help="local worker processes (default: one per core)"
-    )
+    add_cluster_options(p.add_argument_group("where games run"))
     r = p.add_argument_group("the report")
     r.add_argument(
         "--out",

@@ -21,7 +21,7 @@ from pathlib import Path
 
 from evapcool.fileio import atomic_write_bytes, atomic_write_text
 from evapcool.game.autopilot import GameSetup, parse_strategy, play, save_strategy
-from evapcool.lab.cluster import Engine, TaskError, run_tasks
+from evapcool.lab.cluster import Engine, StopRequest, TaskError, run_tasks
 from evapcool.optimize.evaluate import Paired, Summary, chunks, play_seeds
 from evapcool.optimize.families import params_of
 from evapcool.optimize.study import Problem, completed_trials, result_of
@@ -40,9 +40,17 @@ def linear_grid(budget: int) -> list[str]:
 
 
 def evaluate(
-    engine: Engine, texts: Sequence[str], seeds: Sequence[int], problem: Problem
+    engine: Engine,
+    texts: Sequence[str],
+    seeds: Sequence[int],
+    problem: Problem,
+    stop: StopRequest | None = None,
 ) -> list[Summary]:
-    """Each strategy on every seed (as Dask tasks); Summaries in the order of texts."""
+    """Each strategy on every seed (as Dask tasks); Summaries in the order of texts.
+
+    Ctrl-C or SIGTERM (through stop, or caught here if None) stops at a safe point with
+    KeyboardInterrupt; nothing stored is touched.
+    """
     seed_chunks = chunks(list(seeds), problem.chunk)
     args = [(t, c, problem.budget, problem.setup) for t in texts for c in seed_chunks]
     rows: list[list] = [[] for _ in texts]
@@ -54,7 +62,11 @@ def evaluate(
         else:
             rows[i // len(seed_chunks)].extend(value[0])
 
-    run_tasks(engine, play_seeds, args, got)
+    if stop is None:
+        with StopRequest() as own:
+            run_tasks(engine, play_seeds, args, got, stop=own)
+    else:
+        run_tasks(engine, play_seeds, args, got, stop=stop)
     if errors:
         raise RuntimeError(f"validation games failed: {errors[0]}")
     return [Summary.of(r, problem.budget) for r in rows]
@@ -143,10 +155,27 @@ def choose(
     info: dict = {"finalists": len(top), "baseline_candidates": len(base)}
     if validate <= 0:
         return top[0], base[0], info
+    with StopRequest() as stop:  # Ctrl-C or SIGTERM anywhere in here: KeyboardInterrupt
+        best, baseline = _validate(top, base, problem, engine, validate, stop, log)
+    info["rerank_seeds"] = [RERANK_START, RERANK_START + validate - 1]
+    info["holdout_seeds"] = [HOLDOUT_START, HOLDOUT_START + validate - 1]
+    return best, baseline, info
+
+
+def _validate(
+    top: list[Choice],
+    base: list[Choice],
+    problem: Problem,
+    engine: Engine,
+    validate: int,
+    stop: StopRequest,
+    log,
+) -> tuple[Choice, Choice]:
+    """Re-rank the finalists and the ramps on new seeds, then validate the best two."""
     rerank_seeds = list(range(RERANK_START, RERANK_START + validate))
     log(f"re-ranking {len(top)} finalists and {len(base)} linear ramps on {validate} new seeds")
     texts = list(dict.fromkeys(c.text for c in top + base))  # each strategy once
-    scored = dict(zip(texts, evaluate(engine, texts, rerank_seeds, problem), strict=True))
+    scored = dict(zip(texts, evaluate(engine, texts, rerank_seeds, problem, stop), strict=True))
     for c in top + base:
         c.rerank = scored[c.text]
     best = max(top, key=lambda c: (c.rerank.mean, -c.rerank.time_mean))
@@ -154,11 +183,9 @@ def choose(
     holdout = list(range(HOLDOUT_START, HOLDOUT_START + validate))
     log(f"validating on {validate} held-out seeds {holdout[0]}..{holdout[-1]}")
     texts = list(dict.fromkeys((best.text, baseline.text)))
-    scored = dict(zip(texts, evaluate(engine, texts, holdout, problem), strict=True))
+    scored = dict(zip(texts, evaluate(engine, texts, holdout, problem, stop), strict=True))
     best.holdout, baseline.holdout = scored[best.text], scored[baseline.text]
-    info["rerank_seeds"] = [rerank_seeds[0], rerank_seeds[-1]]
-    info["holdout_seeds"] = [holdout[0], holdout[-1]]
-    return best, baseline, info
+    return best, baseline
 
 
 def _stats(s: Summary | None) -> dict | None:

@@ -25,6 +25,17 @@ from evapcool.physics.config import (
     check_engine_size,
     fast_available,
 )
+from evapcool.physics.constants import (
+    ATOM_RADIUS,
+    CURVATURE,
+    FPS,
+    GRAVITY,
+    N_ATOMS,
+    TC_EXPONENT_CUP,
+    TC_EXPONENT_SEED,
+    TC_LAWS,
+    TRAP_HEIGHT,
+)
 from evapcool.physics.loading import load_cup
 from evapcool.physics.room import CLASSIC_ROOM, Room, check_room
 from evapcool.physics.validation import check_world
@@ -39,17 +50,22 @@ if TYPE_CHECKING:
     from evapcool.physics.fast import FastEngine
     from evapcool.physics.reference import ReferenceEngine
 
-#: The original applet's constants (SPEC section 1).
-FPS = 30
-GRAVITY = 10.0 / 30.0  # px / frame^2
-CURVATURE = 0.01  # per px
-ATOM_RADIUS = 12.0
-N_ATOMS = 49
-TRAP_HEIGHT = 400.0
-TC_EXPONENT_SEED = 2.0 / 3.0  # seed Eq. (46), the 3D-box law
-TC_EXPONENT_CUP = 2.0 / 5.0  # ideal Bose gas with g(E) ~ E^(3/2) (SPEC 4)
-#: The Tc laws by name (game settings, the lab's --tc-law): name -> exponent p in Tc ~ N^p.
-TC_LAWS: dict[str, float] = {"seed": TC_EXPONENT_SEED, "cup": TC_EXPONENT_CUP}
+#: Public names; the applet's constants are defined in physics/constants.py (below
+#: physics/state.py too) and re-exported here, where callers have always found them.
+__all__ = [
+    "ATOM_RADIUS",
+    "AUTO_FAST_MIN_ATOMS",
+    "CURVATURE",
+    "ENGINES",
+    "FPS",
+    "GRAVITY",
+    "N_ATOMS",
+    "TC_EXPONENT_CUP",
+    "TC_EXPONENT_SEED",
+    "TC_LAWS",
+    "TRAP_HEIGHT",
+    "Simulation",
+]
 #: engine="auto" uses the fast engine from this many atoms on (docs/benchmarks.md).
 AUTO_FAST_MIN_ATOMS = 100
 
@@ -170,9 +186,10 @@ class Simulation:
         cls, state: dict[str, Any] | str, engine: str = "auto", **kw: bool
     ) -> Simulation:
         """Go on exactly from a state (dict or JSON text, docs/state.md); see physics.state."""
-        from evapcool.physics.state import from_state
+        from evapcool.physics.state import world_from_state
 
-        return from_state(state, engine=engine, **kw)
+        world, room = world_from_state(state, **kw)
+        return cls.from_world(world, room, engine)
 
     def to_state(self) -> dict[str, Any]:
         """The state as a JSON-ready dict (docs/state.md), resumable with from_state."""

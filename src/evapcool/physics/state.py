@@ -14,19 +14,18 @@ import json
 import math
 import numbers
 from dataclasses import dataclass
-from typing import Any, TypeGuard
+from typing import Any, Protocol, TypeGuard
 
 import numpy as np
 
 from evapcool.limits import shown
-from evapcool.physics.room import Room
-from evapcool.physics.simulation import (
+from evapcool.physics.constants import (
     CURVATURE,
     GRAVITY,
     TC_EXPONENT_SEED,
     TRAP_HEIGHT,
-    Simulation,
 )
+from evapcool.physics.room import Room
 from evapcool.physics.validation import first_overlap
 from evapcool.physics.world import ESCAPE_RULES, TRAPPED, World
 
@@ -324,7 +323,17 @@ def check_placement(
 
 
 # -- to and from a Simulation ------------------------------------------------------------
-def to_state(sim: Simulation) -> dict[str, Any]:
+class SimLike(Protocol):
+    """What to_state reads of a Simulation (typed here so that this module need not import it)."""
+
+    @property
+    def _world(self) -> World: ...
+
+    @property
+    def room(self) -> Room: ...
+
+
+def to_state(sim: SimLike) -> dict[str, Any]:
     """The state of sim as a JSON-ready dict (fields in the order both editions write)."""
     w = sim._world
     return {
@@ -356,15 +365,17 @@ def to_state(sim: Simulation) -> dict[str, Any]:
     }
 
 
-def state_text(sim: Simulation) -> str:
+def state_text(sim: SimLike) -> str:
     """The state as JSON text, exactly as the web edition writes it."""
     return json_text(to_state(sim)) + "\n"
 
 
-def from_state(
-    state: dict[str, Any] | str, engine: str = "auto", *, record_events: bool = False
-) -> Simulation:
-    """A Simulation that goes on exactly from state (dict or JSON text).
+def world_from_state(
+    state: dict[str, Any] | str, *, record_events: bool = False
+) -> tuple[World, Room]:
+    """The World (and the room around its cup) that goes on exactly from state (dict or JSON text).
+
+    `Simulation.from_state` runs it on an engine.
 
     ValueError naming the field if the state is malformed, or if trapped atoms overlap or
     lie outside the cup (up to STATE_TOLERANCE of round-off).
@@ -416,4 +427,4 @@ def from_state(
     else:
         w.initial_temperature = total / w.n_trapped if w.n_trapped else 0.0
     w.tc0 = 0.75 * w.initial_temperature
-    return Simulation.from_world(w, room, engine)
+    return w, room

@@ -22,7 +22,7 @@ import numpy as np
 
 from evapcool.physics.loading import cell_centres
 from evapcool.physics.simulation import Simulation
-from evapcool.physics.state import from_state, json_text, read_json, to_state
+from evapcool.physics.state import json_text, read_json, to_state
 
 TRACE_FORMAT = "evapcool-trace"
 TRACE_VERSION = 1
@@ -49,7 +49,7 @@ def unpacked_steps(packed: list[list[float]]) -> list[Step]:
 
 def run_steps(state: dict[str, Any], steps: list[Step], engine: str = "reference") -> Simulation:
     """Load state with event recording, then set each step's height and advance its dt."""
-    sim = from_state(state, engine=engine, record_events=True)
+    sim = Simulation.from_state(state, engine=engine, record_events=True)
     for dt, height in steps:
         sim.trap_height = height
         sim.advance(dt)
@@ -68,7 +68,7 @@ def plan_steps(
     phase > 0 puts a first step of that length in front, so each new height of the schedule
     lands at t = k + phase: mid-frame, where the physics applies it at once (docs/model.md).
     """
-    sim = from_state(state, engine=engine, record_events=True)
+    sim = Simulation.from_state(state, engine=engine, record_events=True)
     steps: list[Step] = []
     if phase > 0.0:
         sim.advance(phase)

@@ -52,6 +52,8 @@ MERCURY = (220, 20, 20)
 GLASS = (255, 255, 255)
 ACCENT = (250, 215, 40)
 OVERLAY_SHADE = (10, 10, 30, 225)
+#: The high-score table hides the cup under it: the rows must not compete with the gas (issue 25).
+TABLE_SHADE = (10, 10, 30, 255)
 NOTICE_SHADE = (120, 20, 20, 235)
 
 # Thermometer in the right border. The mercury top sits at row
@@ -254,12 +256,21 @@ class Scene:
             center=(PLAY_RECT.centerx, PLAY_RECT.top + 40),
         )
 
-    def _frame(self, pen: Pen, rect: pygame.Rect) -> None:
-        """A translucent dark panel with the accent border."""
-        _shade(pen, rect, OVERLAY_SHADE)
+    def _frame(
+        self, pen: Pen, rect: pygame.Rect, shade: tuple[int, int, int, int] = OVERLAY_SHADE
+    ) -> None:
+        """A dark panel (translucent unless shade says otherwise) with the accent border."""
+        _shade(pen, rect, shade)
         pen.box(ACCENT, rect, width=2, border_radius=4)
 
-    def _overlay(self, pen: Pen, title: str, height: int, top: int | None = None) -> pygame.Rect:
+    def _overlay(
+        self,
+        pen: Pen,
+        title: str,
+        height: int,
+        top: int | None = None,
+        shade: tuple[int, int, int, int] = OVERLAY_SHADE,
+    ) -> pygame.Rect:
         """A framed panel over the play area (centred, or from `top` down); returns it."""
         room = PLAY_RECT.bottom - 4 - (PLAY_RECT.top + 4 if top is None else top)
         panel = pygame.Rect(0, 0, PLAY_RECT.width - 24, min(height, room))
@@ -268,7 +279,7 @@ class Scene:
             panel.centery = PLAY_RECT.centery
         else:
             panel.top = top
-        self._frame(pen, panel)
+        self._frame(pen, panel, shade)
         pen.text(title, 34, ACCENT, True, midtop=(panel.centerx, panel.top + 12))
         return panel
 
@@ -306,7 +317,8 @@ class Scene:
         rows = max(1, len(entries))
         room = PLAY_RECT.bottom - 4 - (PLAY_RECT.top + 4 if top is None else top)
         step = max(20, min(30, (room - 96 - 28 * len(footer)) // rows))
-        panel = self._overlay(pen, "High scores", 96 + step * rows + 28 * len(footer), top)
+        height = 96 + step * rows + 28 * len(footer)
+        panel = self._overlay(pen, "High scores", height, top, TABLE_SHADE)
         cols = (panel.left + 16, panel.left + 50, panel.left + 222, panel.left + 292)
         y = panel.top + 54
         for x, head in zip(cols, ("#", "name", "atoms", "time"), strict=True):

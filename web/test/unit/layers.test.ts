@@ -1,28 +1,100 @@
-import { readdirSync, readFileSync } from "node:fs";
-import { join, resolve } from "node:path";
+import { mkdirSync, mkdtempSync, readdirSync, readFileSync, writeFileSync } from "node:fs";
+import { tmpdir } from "node:os";
+import { dirname, join, relative, resolve, sep } from "node:path";
 import { expect, test } from "vitest";
 
 const SRC = resolve(import.meta.dirname, "../../src");
 const ORDER = ["physics", "game", "view", "app"];
 
-test("web/src layers import one way: physics <- game <- view <- app", () => {
-  for (const layer of ORDER) {
-    const allowed = new Set(ORDER.slice(0, ORDER.indexOf(layer) + 1));
-    for (const file of readdirSync(join(SRC, layer), { recursive: true }) as string[]) {
-      if (!file.endsWith(".ts")) continue;
-      const text = readFileSync(join(SRC, layer, file), "utf8");
-      for (const m of text.matchAll(/from\s+"\.\.\/(\w+)\//g)) {
-        expect(allowed.has(m[1]), `${layer}/${file} imports ${m[1]}`).toBe(true);
-      }
+// Every form a module names another in: static imports (type-only too), side-effect
+// imports, re-exports (`export ... from`), dynamic `import()` and `typeof import()` types.
+const FROM = /\b(?:import|export)\b[^;]*?\bfrom\s*["']([^"']+)["']/g;
+const BARE = /\bimport\s*["']([^"']+)["']/g;
+const DYNAMIC = /\bimport\s*\(\s*["']([^"']+)["']\s*\)/g;
+
+/** The specifiers a TypeScript source imports, in any form (comments ignored). */
+function specifiers(text: string): string[] {
+  const code = text.replace(/\/\*[\s\S]*?\*\//g, "").replace(/(^|[^:])\/\/.*$/gm, "$1");
+  return [FROM, BARE, DYNAMIC].flatMap((re) => [...code.matchAll(re)].map((m) => m[1]));
+}
+
+/** Every .ts file under root, as paths relative to it. */
+function sources(root: string): string[] {
+  return (readdirSync(root, { recursive: true }) as string[]).filter((f) => f.endsWith(".ts"));
+}
+
+/** "a/b.ts imports c/d" for each import that leaves a layer for one it may not use. */
+function violations(root: string, order: string[]): string[] {
+  const bad: string[] = [];
+  for (const file of sources(root)) {
+    const layer = file.split(sep)[0];
+    const allowed = new Set(order.slice(0, order.indexOf(layer) + 1));
+    for (const spec of specifiers(readFileSync(join(root, file), "utf8"))) {
+      if (!spec.startsWith(".")) continue; // a package, not a layer
+      const target = relative(root, resolve(dirname(join(root, file)), spec));
+      const other = target.split(sep)[0];
+      if (order.includes(other) && !allowed.has(other)) bad.push(`${file} imports ${target}`);
     }
   }
+  return bad;
+}
+
+/** The files outside physics that import from it (any form). */
+function physicsOpeners(root: string): string[] {
+  return sources(root).filter((file) => {
+    if (file.startsWith(`physics${sep}`)) return false;
+    return specifiers(readFileSync(join(root, file), "utf8")).some((spec) => {
+      const target = relative(root, resolve(dirname(join(root, file)), spec));
+      return spec.startsWith(".") && target.split(sep)[0] === "physics";
+    });
+  });
+}
+
+function tree(files: Record<string, string>): string {
+  const root = mkdtempSync(join(tmpdir(), "layers-"));
+  for (const [name, text] of Object.entries(files)) {
+    mkdirSync(dirname(join(root, name)), { recursive: true });
+    writeFileSync(join(root, name), text);
+  }
+  return root;
+}
+
+const FORMS = [
+  'import { draw } from "../view/draw";',
+  'import type { Pen } from "../view/draw";',
+  'import {\n  draw,\n  type Pen,\n} from "../view/draw";',
+  'import "../view/draw";',
+  'export { draw } from "../view/draw";',
+  'export * from "../view/draw";',
+  'export type { Pen } from "../view/draw";',
+  'const m = await import("../view/draw");',
+  'let p: typeof import("../view/draw").draw;',
+  'import { x } from "./util/../../view/draw";',
+];
+
+test.each(FORMS)("the checker sees a wrong-way import written as: %s", (form) => {
+  const root = tree({
+    "physics/model.ts": `${form}\n`,
+    "physics/util/x.ts": "export const x = 1;\n",
+    "view/draw.ts": 'import { x } from "../physics/util/x";\nexport const draw = x;\n',
+  });
+  expect(violations(root, ORDER)).toEqual([`physics${sep}model.ts imports view${sep}draw`]);
+  expect(physicsOpeners(root)).toEqual([`view${sep}draw.ts`]);
+});
+
+test("comments and one-way imports are not violations", () => {
+  const root = tree({
+    "physics/model.ts": '// import { draw } from "../view/draw";\n/* import("../view/x") */\n',
+    "game/rules.ts": 'import { model } from "../physics/model";\nimport "pkg";\n',
+  });
+  expect(violations(root, ORDER)).toEqual([]);
+});
+
+test("web/src layers import one way: physics <- game <- view <- app", () => {
+  expect(sources(SRC).length).toBeGreaterThan(20);
+  expect(violations(SRC, ORDER)).toEqual([]);
 });
 
 test("only game/engine.ts opens the physics to the game, view and app", () => {
-  for (const layer of ["game", "view", "app"]) {
-    for (const file of readdirSync(join(SRC, layer), { recursive: true }) as string[]) {
-      const text = readFileSync(join(SRC, layer, file), "utf8");
-      if (/from\s+"\.\.\/physics\//.test(text)) expect(`${layer}/${file}`).toBe("game/engine.ts");
-    }
-  }
+  expect(physicsOpeners(SRC)).toEqual([join("game", "engine.ts")]);
 });

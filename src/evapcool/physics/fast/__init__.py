@@ -47,9 +47,10 @@ def prepare(progress: Callable[[int, int, str], Any] | None = None) -> None:
     goes to the terminal (one updating line on stderr, shown only when stderr is a
     terminal or the wait is long). Idempotent and safe to call from a worker thread.
     """
+    from evapcool.physics.fast.engine import FastEngine
     from evapcool.physics.fast.warmup import prepare as _prepare
 
-    _prepare(progress)
+    _prepare(FastEngine, progress)
 
 
 def __getattr__(name: str) -> Any:

@@ -69,7 +69,7 @@ class FastEngine:
     def __init__(self, world: World) -> None:
         # The first engine of a process compiles (or loads) what its first frame needs,
         # with progress on the terminal if that takes long.
-        warmup.run((*warmup.FIRST_FRAME, *(("knife",) if world.knife else ())), None)
+        warmup.run((*warmup.FIRST_FRAME, *(("knife",) if world.knife else ())), None, FastEngine)
         self.w = world
         self.spares: Spares | None = None
         self.grid = grid.geometry(world, world.trap_height)

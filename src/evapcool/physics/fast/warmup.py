@@ -22,6 +22,8 @@ import numpy as np
 from evapcool.physics.world import World
 
 Progress = Callable[[int, int, str], Any]
+#: Makes an engine on a World (FastEngine; passed in by the engine itself).
+EngineMaker = Callable[[World], Any]
 
 #: Steps: name -> (what the progress line says, the entry points the step compiles).
 STEPS = {
@@ -58,11 +60,9 @@ def _tiny_world(knife: bool) -> World:
     )
 
 
-def _run_step(name: str) -> None:
-    from evapcool.physics.fast.engine import FastEngine
-
+def _run_step(name: str, make_engine: EngineMaker) -> None:
     world = _tiny_world(knife=name == "knife")
-    engine = FastEngine(world)
+    engine = make_engine(world)
     if name == "advance":
         engine.advance_to(1.0)
     elif name == "knife":
@@ -149,11 +149,12 @@ def _listeners(counter: _Counter) -> tuple[Any, Any]:
     return Compiled(), Passes()
 
 
-def run(steps: Iterable[str], progress: Progress | None) -> None:
+def run(steps: Iterable[str], progress: Progress | None, make_engine: EngineMaker) -> None:
     """Run the steps not yet done in this process, reporting progress.
 
     Steps run one thread at a time; a FastEngine made while they run (in the same
-    thread, by a step) does not start them again.
+    thread, by a step) does not start them again. make_engine is the engine's class
+    (passed in, so that this module need not import the engine that calls it).
     """
     global _busy
     with _lock:
@@ -166,12 +167,12 @@ def run(steps: Iterable[str], progress: Progress | None) -> None:
             return
         _busy = True
         try:
-            _run(todo, progress if progress is not None else TerminalProgress())
+            _run(todo, progress if progress is not None else TerminalProgress(), make_engine)
         finally:
             _busy = False
 
 
-def _run(todo: list[str], progress: Progress) -> None:
+def _run(todo: list[str], progress: Progress, make_engine: EngineMaker) -> None:
     from numba.core import event
 
     sets = []
@@ -194,16 +195,16 @@ def _run(todo: list[str], progress: Progress) -> None:
             counter.entries = set(STEPS[name][1])
             end = counter.done + len(funcs) + PASS_UNITS * len(STEPS[name][1])
             counter.limit = end
-            _run_step(name)
+            _run_step(name, make_engine)
             _done.add(name)
             counter.reach(end, counter.what)
     if isinstance(progress, TerminalProgress):
         progress.finish()
 
 
-def prepare(progress: Progress | None = None) -> None:
+def prepare(make_engine: EngineMaker, progress: Progress | None = None) -> None:
     """Every step (see evapcool.physics.fast.prepare)."""
-    run(STEPS, progress)
+    run(STEPS, progress, make_engine)
 
 
 class TerminalProgress:
