@@ -2,12 +2,12 @@
 
 from __future__ import annotations
 
-import argparse
 import json
 import sys
 from pathlib import Path
 
 from evapcool.about import error_line
+from evapcool.argtypes import OneLineParser
 from evapcool.game.replay import DAMAGED, Recording, ReplayError, decode, verify
 
 EXIT_REJECTED = 1
@@ -33,6 +33,8 @@ def _entries(arg: str) -> list[tuple[str, str | dict[str, object]]]:
             return [(f"{arg}:{i}", ln.strip()) for i, ln in lines if ln.strip()]
         docs = doc if isinstance(doc, list) else [doc]
         return [(f"{arg}#{i + 1}", d) for i, d in enumerate(docs)]
+    if path.exists():
+        raise ValueError(f"{arg}: not a file of replay codes or recordings")
     return [(arg if len(arg) <= 24 else arg[:21] + "...", arg)]
 
 
@@ -45,7 +47,8 @@ def _check(item: str | dict[str, object] | object) -> Recording:
 
 
 def main(argv: list[str] | None = None) -> int:
-    parser = argparse.ArgumentParser(
+    parser = OneLineParser(
+        "verify",
         prog="evapcool verify",
         description="Verify replay codes by replaying them; rank them by verified score.",
     )
