@@ -22,7 +22,9 @@ USAGE_NO_INPUT = "give at least one replay code or file"
 def _entries(arg: str) -> list[tuple[str, str | dict[str, object]]]:
     """(source, code or JSON recording) of one argument: a code, or a file of them."""
     path = Path(arg)
-    if not arg.startswith("EC") and path.is_file():
+    if arg.startswith("EC") or len(arg) > 4096:
+        return [(arg if len(arg) <= 24 else arg[:21] + "...", arg)]
+    if path.is_file():
         if path.stat().st_size > MAX_INPUT_BYTES:
             raise ValueError(f"{arg}: larger than {MAX_INPUT_BYTES} bytes")
         text = path.read_text(encoding="utf-8", errors="replace")
