@@ -18,6 +18,7 @@ BAD = {
     "web": [["--bogus"], ["--copy", "{tmp}/no/such/folder/x.html"]],
     "sweep": [["--bogus"]],
     "optimize": [["--bogus"]],
+    "verify": [["--bogus"], [], ["{tmp}"]],
 }
 
 

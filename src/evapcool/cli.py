@@ -19,6 +19,10 @@ SUBCOMMANDS = {
     "web": ("evapcool.web", "open the browser edition (one HTML file), or copy it"),
     "sweep": ("evapcool.lab.sweep_cli", "run a grid of lab experiments, locally or on Dask"),
     "optimize": ("evapcool.optimize.cli", "search the best evaporation ramp (Optuna on Dask)"),
+    "verify": (
+        "evapcool.classroom.verify_cli",
+        "verify replay codes by replay, rank them by score",
+    ),
 }
 EXIT_USAGE = 2
 
