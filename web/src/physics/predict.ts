@@ -27,18 +27,11 @@ import {
 import type { Tables } from "./tables";
 
 /**
- * Pairs of trapped row r with the rows of cells [xlo, xhi] x [ylo, yhi] (seed Eqs. 15-19).
+ * Pairs of trapped row r with the rows of cells [x0, x1] x [y0, y1] (seed Eqs. 15-19).
  * An earlier pair replaces r's real event; on a tie the solo event stays and pairs go in
  * (lower, higher) world index order, as in the reference engine.
  */
-export function scan(
-  tb: Tables,
-  r: number,
-  xlo: number,
-  xhi: number,
-  ylo: number,
-  yhi: number,
-): void {
+export function scan(tb: Tables, r: number, x0: number, x1: number, y0: number, y1: number) {
   const S = tb.state;
   const P = tb.plan;
   const cells = tb.cells;
@@ -60,9 +53,9 @@ export function scan(
   let bestB = P[p + PLAN.realB];
   let best = -1;
   // Integer arithmetic in asm.js style (shifts, | 0): no overflow checks in the hot loop.
-  for (let cy = ylo; cy <= yhi; cy++) {
+  for (let cy = y0; cy <= y1; cy++) {
     const rowStart = (cy * nx) | 0;
-    for (let cx = xlo; cx <= xhi; cx++) {
+    for (let cx = x0; cx <= x1; cx++) {
       for (let j = cells[(rowStart + cx) | 0]; j >= 0; j = cells[(nCells + j) | 0]) {
         if (j === r) continue;
         const sj = j << 3; // STATE_WIDTH = 8: sj | k is sj + k
