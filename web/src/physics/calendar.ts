@@ -18,15 +18,13 @@ const EVENTS_PER_BIN = 8;
 const RING_EVENTS_PER_ATOM = 2;
 
 /** KEYED, 8 integers a row: the key parts after the time, heap place, list and its links. */
-export const KEYED = {
-  rank: 0, // key: (keyT, rank, tieA, tieB), see tables.ts's RANK_*
-  tieA: 1,
-  tieB: 2,
-  heapPos: 3, // place in the heap, -1 if in a list
-  bin: 4, // list it is filed in, -1 if in the heap
-  next: 5, // neighbours in that list, -1 at the ends
-  prev: 6,
-} as const;
+export const KEYED_RANK = 0; // key: (keyT, rank, tieA, tieB), see tables.ts's RANK_*
+export const KEYED_TIE_A = 1;
+export const KEYED_TIE_B = 2;
+export const KEYED_HEAP_POS = 3; // place in the heap, -1 if in a list
+export const KEYED_BIN = 4; // list it is filed in, -1 if in the heap
+export const KEYED_NEXT = 5; // neighbours in that list, -1 at the ends
+export const KEYED_PREV = 6;
 export const KEYED_WIDTH = 8;
 
 export class EventQueue {
@@ -52,8 +50,8 @@ export class EventQueue {
     this.keyT = new Float64Array(n).fill(Infinity);
     this.keyed = new Int32Array(KEYED_WIDTH * n);
     for (let r = 0; r < n; r++) {
-      this.keyed[KEYED_WIDTH * r + KEYED.heapPos] = -1;
-      this.keyed[KEYED_WIDTH * r + KEYED.bin] = -1;
+      this.keyed[KEYED_WIDTH * r + KEYED_HEAP_POS] = -1;
+      this.keyed[KEYED_WIDTH * r + KEYED_BIN] = -1;
     }
     this.heap = new Int32Array(n);
     const want = Math.max(1, Math.floor((RING_EVENTS_PER_ATOM * n) / EVENTS_PER_BIN));
@@ -73,13 +71,13 @@ export class EventQueue {
   /** Row r's key parts beside keyT[r], not filed (rebuild files every row). */
   load(r: number, rank: number, a: number, b: number): void {
     const q = KEYED_WIDTH * r;
-    this.keyed[q + KEYED.rank] = rank;
-    this.keyed[q + KEYED.tieA] = a;
-    this.keyed[q + KEYED.tieB] = b;
+    this.keyed[q + KEYED_RANK] = rank;
+    this.keyed[q + KEYED_TIE_A] = a;
+    this.keyed[q + KEYED_TIE_B] = b;
   }
 
   rankOf(r: number): number {
-    return this.keyed[KEYED_WIDTH * r + KEYED.rank];
+    return this.keyed[KEYED_WIDTH * r + KEYED_RANK];
   }
 
   /** The row with the least key, or -1 if no row has a finite key. */
@@ -100,8 +98,8 @@ export class EventQueue {
     this.heads.fill(-1);
     const K = this.keyed;
     for (let r = 0; r < this.n; r++) {
-      K[KEYED_WIDTH * r + KEYED.heapPos] = -1;
-      K[KEYED_WIDTH * r + KEYED.bin] = -1;
+      K[KEYED_WIDTH * r + KEYED_HEAP_POS] = -1;
+      K[KEYED_WIDTH * r + KEYED_BIN] = -1;
     }
     this.heapSize = 0;
     this.nRing = 0;
@@ -144,9 +142,10 @@ export class EventQueue {
     const K = this.keyed;
     const qx = KEYED_WIDTH * x;
     const qy = KEYED_WIDTH * y;
-    if (K[qx + KEYED.rank] !== K[qy + KEYED.rank]) return K[qx + KEYED.rank] < K[qy + KEYED.rank];
-    if (K[qx + KEYED.tieA] !== K[qy + KEYED.tieA]) return K[qx + KEYED.tieA] < K[qy + KEYED.tieA];
-    return K[qx + KEYED.tieB] < K[qy + KEYED.tieB];
+    if (K[qx + KEYED_RANK] !== K[qy + KEYED_RANK]) return K[qx + KEYED_RANK] < K[qy + KEYED_RANK];
+    if (K[qx + KEYED_TIE_A] !== K[qy + KEYED_TIE_A])
+      return K[qx + KEYED_TIE_A] < K[qy + KEYED_TIE_A];
+    return K[qx + KEYED_TIE_B] < K[qy + KEYED_TIE_B];
   }
 
   /** Move the heap entry at place p up or down to its place (children 4p+1..4p+4). */
@@ -160,7 +159,7 @@ export class EventQueue {
       const j = heap[q];
       if (!this.less(i, j)) break;
       heap[p] = j;
-      K[KEYED_WIDTH * j + KEYED.heapPos] = p;
+      K[KEYED_WIDTH * j + KEYED_HEAP_POS] = p;
       p = q;
     }
     for (;;) {
@@ -177,20 +176,20 @@ export class EventQueue {
       }
       if (!this.less(cj, i)) break;
       heap[p] = cj;
-      K[KEYED_WIDTH * cj + KEYED.heapPos] = p;
+      K[KEYED_WIDTH * cj + KEYED_HEAP_POS] = p;
       p = c;
     }
     heap[p] = i;
-    K[KEYED_WIDTH * i + KEYED.heapPos] = p;
+    K[KEYED_WIDTH * i + KEYED_HEAP_POS] = p;
   }
 
   private listAdd(r: number, l: number): void {
     const K = this.keyed;
     const h = this.heads[l];
-    K[KEYED_WIDTH * r + KEYED.bin] = l;
-    K[KEYED_WIDTH * r + KEYED.next] = h;
-    K[KEYED_WIDTH * r + KEYED.prev] = -1;
-    if (h >= 0) K[KEYED_WIDTH * h + KEYED.prev] = r;
+    K[KEYED_WIDTH * r + KEYED_BIN] = l;
+    K[KEYED_WIDTH * r + KEYED_NEXT] = h;
+    K[KEYED_WIDTH * r + KEYED_PREV] = -1;
+    if (h >= 0) K[KEYED_WIDTH * h + KEYED_PREV] = r;
     this.heads[l] = r;
     if (l < this.nBins) this.nRing++;
     else if (l === this.nBins) this.nOver++;
@@ -198,13 +197,13 @@ export class EventQueue {
 
   private listDel(r: number): void {
     const K = this.keyed;
-    const l = K[KEYED_WIDTH * r + KEYED.bin];
-    const p = K[KEYED_WIDTH * r + KEYED.prev];
-    const q = K[KEYED_WIDTH * r + KEYED.next];
-    if (p >= 0) K[KEYED_WIDTH * p + KEYED.next] = q;
+    const l = K[KEYED_WIDTH * r + KEYED_BIN];
+    const p = K[KEYED_WIDTH * r + KEYED_PREV];
+    const q = K[KEYED_WIDTH * r + KEYED_NEXT];
+    if (p >= 0) K[KEYED_WIDTH * p + KEYED_NEXT] = q;
     else this.heads[l] = q;
-    if (q >= 0) K[KEYED_WIDTH * q + KEYED.prev] = p;
-    K[KEYED_WIDTH * r + KEYED.bin] = -1;
+    if (q >= 0) K[KEYED_WIDTH * q + KEYED_PREV] = p;
+    K[KEYED_WIDTH * r + KEYED_BIN] = -1;
     if (l < this.nBins) this.nRing--;
     else if (l === this.nBins) this.nOver--;
   }
@@ -214,10 +213,10 @@ export class EventQueue {
     const K = this.keyed;
     const t = this.keyT[r];
     const q = (t - this.binBase) / this.binWidth;
-    let p = K[KEYED_WIDTH * r + KEYED.heapPos];
+    let p = K[KEYED_WIDTH * r + KEYED_HEAP_POS];
     if (q < this.bin + 1) {
       if (p < 0) {
-        if (K[KEYED_WIDTH * r + KEYED.bin] >= 0) this.listDel(r);
+        if (K[KEYED_WIDTH * r + KEYED_BIN] >= 0) this.listDel(r);
         p = this.heapSize++;
         this.heap[p] = r;
       }
@@ -227,19 +226,19 @@ export class EventQueue {
     const nb = this.nBins;
     const l = t === Infinity ? nb + 1 : q < this.bin + nb ? Math.floor(q) % nb : nb;
     if (p < 0) {
-      const was = K[KEYED_WIDTH * r + KEYED.bin];
+      const was = K[KEYED_WIDTH * r + KEYED_BIN];
       if (was === l) return; // lists are unordered: nothing to do
       if (was >= 0) this.listDel(r);
       this.listAdd(r, l);
       return;
     }
     this.listAdd(r, l);
-    K[KEYED_WIDTH * r + KEYED.heapPos] = -1;
+    K[KEYED_WIDTH * r + KEYED_HEAP_POS] = -1;
     const last = --this.heapSize;
     if (p === last) return;
     const j = this.heap[last];
     this.heap[p] = j;
-    K[KEYED_WIDTH * j + KEYED.heapPos] = p;
+    K[KEYED_WIDTH * j + KEYED_HEAP_POS] = p;
     this.sift(p);
   }
 
@@ -252,7 +251,7 @@ export class EventQueue {
         if (this.nOver === 0) return false;
         // Nothing in the ring: jump to the overflow's earliest bin.
         let m = Infinity;
-        for (let j = this.heads[nb]; j >= 0; j = K[KEYED_WIDTH * j + KEYED.next])
+        for (let j = this.heads[nb]; j >= 0; j = K[KEYED_WIDTH * j + KEYED_NEXT])
           if (this.keyT[j] < m) m = this.keyT[j];
         if (!(m < Infinity)) return false; // only a NaN could do this: nothing to hand out
         const q = (m - this.binBase) / this.binWidth;
@@ -268,7 +267,7 @@ export class EventQueue {
         // The ring moved on by its length: re-file the overflow list.
         this.scanBin = cb;
         for (let j = this.heads[nb]; j >= 0;) {
-          const k = K[KEYED_WIDTH * j + KEYED.next];
+          const k = K[KEYED_WIDTH * j + KEYED_NEXT];
           this.place(j);
           j = k;
         }
@@ -277,8 +276,8 @@ export class EventQueue {
       let j = this.heads[s];
       this.heads[s] = -1;
       while (j >= 0) {
-        const k = K[KEYED_WIDTH * j + KEYED.next];
-        K[KEYED_WIDTH * j + KEYED.bin] = -1;
+        const k = K[KEYED_WIDTH * j + KEYED_NEXT];
+        K[KEYED_WIDTH * j + KEYED_BIN] = -1;
         this.nRing--;
         const p = this.heapSize++;
         this.heap[p] = j;

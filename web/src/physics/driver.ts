@@ -15,7 +15,13 @@ import {
   KIND_EXIT,
   KIND_PAIR,
   KIND_WALL,
-  PLAN,
+  PLAN_ATOM,
+  PLAN_CELL_X,
+  PLAN_CELL_Y,
+  PLAN_CROSS_AXIS,
+  PLAN_PARTNER,
+  PLAN_REAL_KIND,
+  PLAN_STATUS,
   PLAN_WIDTH,
   QUEUED_WIDTH,
   RANK_CROSS,
@@ -50,7 +56,9 @@ export function advanceTo(tb: Tables, tEnd: number): void {
     if (!(t <= tEnd)) break;
     const p = PLAN_WIDTH * r;
     const kind =
-      calendar.rankOf(r) === RANK_CROSS ? tb.plan[p + PLAN.crossAxis] : tb.plan[p + PLAN.realKind];
+      calendar.rankOf(r) === RANK_CROSS
+        ? tb.plan[p + PLAN_CROSS_AXIS]
+        : tb.plan[p + PLAN_REAL_KIND];
     if (kind === KIND_PAIR) pairEvent(tb, r, t);
     else if (kind === KIND_CROSS_X || kind === KIND_CROSS_Y) crossEvent(tb, r, kind, t);
     else if (kind === KIND_WALL) wallEvent(tb, r, t);
@@ -83,22 +91,22 @@ function renumber(tb: Tables): void {
   for (let c = 0; c < nCells; c++)
     for (let j = cells[c]; j >= 0; j = cells[nCells + j]) order[k++] = j;
   const linked = k;
-  for (let r = 0; r < n; r++) fresh[P[PLAN_WIDTH * r + PLAN.atom]] = -1;
-  for (let q = 0; q < linked; q++) fresh[P[PLAN_WIDTH * order[q] + PLAN.atom]] = q;
-  for (let r = 0; r < n; r++) if (fresh[P[PLAN_WIDTH * r + PLAN.atom]] < 0) order[k++] = r;
-  for (let q = linked; q < n; q++) fresh[P[PLAN_WIDTH * order[q] + PLAN.atom]] = q;
+  for (let r = 0; r < n; r++) fresh[P[PLAN_WIDTH * r + PLAN_ATOM]] = -1;
+  for (let q = 0; q < linked; q++) fresh[P[PLAN_WIDTH * order[q] + PLAN_ATOM]] = q;
+  for (let r = 0; r < n; r++) if (fresh[P[PLAN_WIDTH * r + PLAN_ATOM]] < 0) order[k++] = r;
+  for (let q = linked; q < n; q++) fresh[P[PLAN_WIDTH * order[q] + PLAN_ATOM]] = q;
   moveRows(tb);
   // Partners are rows: relabel them (the old row's world index, then its new row).
   const moved = tb.plan;
   for (let q = 0; q < n; q++) {
     const p = PLAN_WIDTH * q;
-    if (moved[p + PLAN.realKind] === KIND_PAIR)
-      moved[p + PLAN.partner] = fresh[P[PLAN_WIDTH * moved[p + PLAN.partner] + PLAN.atom]];
+    if (moved[p + PLAN_REAL_KIND] === KIND_PAIR)
+      moved[p + PLAN_PARTNER] = fresh[P[PLAN_WIDTH * moved[p + PLAN_PARTNER] + PLAN_ATOM]];
   }
   // Cell lists: linking in descending row order leaves each list ascending.
   cells.fill(-1);
   for (let q = linked - 1; q >= 0; q--)
-    link(tb, q, moved[PLAN_WIDTH * q + PLAN.cellX], moved[PLAN_WIDTH * q + PLAN.cellY]);
+    link(tb, q, moved[PLAN_WIDTH * q + PLAN_CELL_X], moved[PLAN_WIDTH * q + PLAN_CELL_Y]);
   for (let q = 0; q < n; q++) loadKey(tb, q);
   tb.calendar.rebuild(tb.time);
   tb.renumbers++;
@@ -130,6 +138,6 @@ export function setTrapHeight(tb: Tables, height: number): void {
   if (!tb.knife) return;
   for (let i = 0; i < tb.n; i++) {
     const r = tb.row[i];
-    if (tb.plan[PLAN_WIDTH * r + PLAN.status] === TRAPPED) knifeCut(tb, r);
+    if (tb.plan[PLAN_WIDTH * r + PLAN_STATUS] === TRAPPED) knifeCut(tb, r);
   }
 }

@@ -15,12 +15,16 @@ import { criticalTemperature } from "./events";
 import { gridErrors, placeGrid } from "./grid";
 import { flightVy, flightX, flightY } from "./kernels";
 import {
-  PLAN,
+  PLAN_STATUS,
   PLAN_WIDTH,
-  QUEUED,
+  QUEUED_MASS,
   QUEUED_WIDTH,
-  STATE,
+  STATE_T,
+  STATE_VX,
+  STATE_VY,
   STATE_WIDTH,
+  STATE_X,
+  STATE_Y,
   Tables,
   loadAtoms,
   rowEnergy,
@@ -157,13 +161,13 @@ export class Engine {
   }
 
   statusOf(i: number): number {
-    return this.tb.plan[PLAN_WIDTH * this.tb.row[i] + PLAN.status];
+    return this.tb.plan[PLAN_WIDTH * this.tb.row[i] + PLAN_STATUS];
   }
 
   /** Stored value k of world atom i: 0 x, 1 y, 2 vx, 3 vy, 4 t, 5 radius, 6 mass. */
   storedOf(i: number, k: number): number {
     const r = this.tb.row[i];
-    if (k === STORED_MASS) return this.tb.queued[QUEUED_WIDTH * r + QUEUED.mass];
+    if (k === STORED_MASS) return this.tb.queued[QUEUED_WIDTH * r + QUEUED_MASS];
     return this.tb.state[STATE_WIDTH * r + k];
   }
 
@@ -177,11 +181,11 @@ export class Engine {
     const S = this.tb.state;
     const s = STATE_WIDTH * this.tb.row[i];
     const g = this.tb.gravity;
-    const dt = t - S[s + STATE.t];
-    out[0] = flightX(S[s + STATE.x], S[s + STATE.vx], dt);
-    out[1] = flightY(S[s + STATE.y], S[s + STATE.vy], 0.5 * g, dt);
-    out[2] = S[s + STATE.vx];
-    out[3] = flightVy(S[s + STATE.vy], g, dt);
+    const dt = t - S[s + STATE_T];
+    out[0] = flightX(S[s + STATE_X], S[s + STATE_VX], dt);
+    out[1] = flightY(S[s + STATE_Y], S[s + STATE_VY], 0.5 * g, dt);
+    out[2] = S[s + STATE_VX];
+    out[3] = flightVy(S[s + STATE_VY], g, dt);
   }
 
   /** Trapped atoms filed more than one cell away from their cell now (0 if sound). */

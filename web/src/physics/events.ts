@@ -19,10 +19,26 @@ import {
 } from "./constants";
 import { link, unlink } from "./grid";
 import {
-  ATOM_IN,
-  OUT,
-  PAIR_IN,
-  WALL_IN,
+  ATOM_IN_CURVATURE,
+  ATOM_IN_VX,
+  ATOM_IN_VY,
+  ATOM_IN_X,
+  OUT_VX,
+  OUT_VX1,
+  OUT_VX2,
+  OUT_VY,
+  OUT_VY1,
+  OUT_VY2,
+  PAIR_IN_M1,
+  PAIR_IN_M2,
+  PAIR_IN_RX,
+  PAIR_IN_RY,
+  PAIR_IN_VX1,
+  PAIR_IN_VX2,
+  PAIR_IN_VY1,
+  PAIR_IN_VY2,
+  WALL_IN_KEEP,
+  WALL_IN_V_MIN,
   bounceWall,
   collidePair,
   flightVy,
@@ -33,12 +49,25 @@ import {
 import { predict, predictCross, scan, setKey } from "./predict";
 import {
   KIND_CROSS_X,
-  PLAN,
+  PLAN_ATOM,
+  PLAN_CELL_X,
+  PLAN_CELL_Y,
+  PLAN_CROSS_TO,
+  PLAN_PARTNER,
+  PLAN_PARTNER_COUNT,
+  PLAN_STATUS,
   PLAN_WIDTH,
-  QUEUED,
+  QUEUED_ARC_CROSS_T,
+  QUEUED_MASS,
   QUEUED_WIDTH,
-  STATE,
+  STATE_ATOM,
+  STATE_COUNT,
+  STATE_T,
+  STATE_VX,
+  STATE_VY,
   STATE_WIDTH,
+  STATE_X,
+  STATE_Y,
   rowEnergy,
 } from "./tables";
 import type { Tables } from "./tables";
@@ -53,12 +82,12 @@ export function move(tb: Tables, r: number): void {
   const t = tb.time;
   const S = tb.state;
   const s = STATE_WIDTH * r;
-  const dt = t - S[s + STATE.t];
-  S[s + STATE.x] = flightX(S[s + STATE.x], S[s + STATE.vx], dt);
-  S[s + STATE.y] = flightY(S[s + STATE.y], S[s + STATE.vy], 0.5 * tb.gravity, dt);
-  S[s + STATE.vy] = flightVy(S[s + STATE.vy], tb.gravity, dt);
-  S[s + STATE.t] = t;
-  tb.queued[QUEUED_WIDTH * r + QUEUED.arcCrossT] = -Infinity; // a new arc: no y crossing yet
+  const dt = t - S[s + STATE_T];
+  S[s + STATE_X] = flightX(S[s + STATE_X], S[s + STATE_VX], dt);
+  S[s + STATE_Y] = flightY(S[s + STATE_Y], S[s + STATE_VY], 0.5 * tb.gravity, dt);
+  S[s + STATE_VY] = flightVy(S[s + STATE_VY], tb.gravity, dt);
+  S[s + STATE_T] = t;
+  tb.queued[QUEUED_WIDTH * r + QUEUED_ARC_CROSS_T] = -Infinity; // a new arc: no y crossing yet
 }
 
 /** Log an event at the clock's time (world indices; b = -1 for solo events). */
@@ -97,10 +126,10 @@ function checkWin(tb: Tables): void {
 
 /** Row r leaves the trapped set (over the rim or by the knife). */
 function remove(tb: Tables, r: number, status: number): void {
-  tb.plan[PLAN_WIDTH * r + PLAN.status] = status;
+  tb.plan[PLAN_WIDTH * r + PLAN_STATUS] = status;
   tb.nTrapped--;
   tb.energySum -= rowEnergy(tb, r);
-  tb.state[STATE_WIDTH * r + STATE.count] += 1;
+  tb.state[STATE_WIDTH * r + STATE_COUNT] += 1;
   unlink(tb, r);
   predict(tb, r);
   checkWin(tb);
@@ -109,9 +138,9 @@ function remove(tb: Tables, r: number, status: number): void {
 /** Remove trapped row r now if its energy exceeds m g H; true if removed. */
 export function knifeCut(tb: Tables, r: number): boolean {
   if (!tb.knife) return false;
-  const m = tb.queued[QUEUED_WIDTH * r + QUEUED.mass];
+  const m = tb.queued[QUEUED_WIDTH * r + QUEUED_MASS];
   if (rowEnergy(tb, r) > m * tb.gravity * tb.trapHeight) {
-    log(tb, EV_KNIFE, tb.plan[PLAN_WIDTH * r + PLAN.atom], -1);
+    log(tb, EV_KNIFE, tb.plan[PLAN_WIDTH * r + PLAN_ATOM], -1);
     remove(tb, r, GONE);
     return true;
   }
@@ -121,17 +150,17 @@ export function knifeCut(tb: Tables, r: number): boolean {
 /** A pair event at time t: stale if the partner moved on, else the collision (seed Eqs. 10-12). */
 export function pairEvent(tb: Tables, r: number, t: number): void {
   const S = tb.state;
-  const j = tb.plan[PLAN_WIDTH * r + PLAN.partner];
+  const j = tb.plan[PLAN_WIDTH * r + PLAN_PARTNER];
   if (
     tb.won ||
-    (S[STATE_WIDTH * j + STATE.count] | 0) !== tb.plan[PLAN_WIDTH * r + PLAN.partnerCount]
+    (S[STATE_WIDTH * j + STATE_COUNT] | 0) !== tb.plan[PLAN_WIDTH * r + PLAN_PARTNER_COUNT]
   ) {
     tb.stale++; // the partner moved on (or pairs are over)
     predict(tb, r);
     return;
   }
   // lo, hi: the rows of the lower and higher world index
-  const swap = S[STATE_WIDTH * j + STATE.atom] < S[STATE_WIDTH * r + STATE.atom];
+  const swap = S[STATE_WIDTH * j + STATE_ATOM] < S[STATE_WIDTH * r + STATE_ATOM];
   const lo = swap ? j : r;
   const hi = swap ? r : j;
   clockTo(tb, t);
@@ -140,23 +169,23 @@ export function pairEvent(tb: Tables, r: number, t: number): void {
   const sl = STATE_WIDTH * lo;
   const sh = STATE_WIDTH * hi;
   const io = tb.io;
-  io[PAIR_IN.rx] = S[sh + STATE.x] - S[sl + STATE.x];
-  io[PAIR_IN.ry] = S[sh + STATE.y] - S[sl + STATE.y];
-  io[PAIR_IN.vx1] = S[sl + STATE.vx];
-  io[PAIR_IN.vy1] = S[sl + STATE.vy];
-  io[PAIR_IN.vx2] = S[sh + STATE.vx];
-  io[PAIR_IN.vy2] = S[sh + STATE.vy];
-  io[PAIR_IN.m1] = tb.queued[QUEUED_WIDTH * lo + QUEUED.mass];
-  io[PAIR_IN.m2] = tb.queued[QUEUED_WIDTH * hi + QUEUED.mass];
+  io[PAIR_IN_RX] = S[sh + STATE_X] - S[sl + STATE_X];
+  io[PAIR_IN_RY] = S[sh + STATE_Y] - S[sl + STATE_Y];
+  io[PAIR_IN_VX1] = S[sl + STATE_VX];
+  io[PAIR_IN_VY1] = S[sl + STATE_VY];
+  io[PAIR_IN_VX2] = S[sh + STATE_VX];
+  io[PAIR_IN_VY2] = S[sh + STATE_VY];
+  io[PAIR_IN_M1] = tb.queued[QUEUED_WIDTH * lo + QUEUED_MASS];
+  io[PAIR_IN_M2] = tb.queued[QUEUED_WIDTH * hi + QUEUED_MASS];
   collidePair(io);
-  S[sl + STATE.vx] = io[OUT.vx1];
-  S[sl + STATE.vy] = io[OUT.vy1];
-  S[sh + STATE.vx] = io[OUT.vx2];
-  S[sh + STATE.vy] = io[OUT.vy2];
+  S[sl + STATE_VX] = io[OUT_VX1];
+  S[sl + STATE_VY] = io[OUT_VY1];
+  S[sh + STATE_VX] = io[OUT_VX2];
+  S[sh + STATE_VY] = io[OUT_VY2];
   tb.pairs++;
-  S[sl + STATE.count] += 1;
-  S[sh + STATE.count] += 1;
-  log(tb, EV_PAIR, tb.plan[PLAN_WIDTH * lo + PLAN.atom], tb.plan[PLAN_WIDTH * hi + PLAN.atom]);
+  S[sl + STATE_COUNT] += 1;
+  S[sh + STATE_COUNT] += 1;
+  log(tb, EV_PAIR, tb.plan[PLAN_WIDTH * lo + PLAN_ATOM], tb.plan[PLAN_WIDTH * hi + PLAN_ATOM]);
   if (!knifeCut(tb, lo)) predict(tb, lo);
   if (!knifeCut(tb, hi)) predict(tb, hi);
 }
@@ -174,9 +203,9 @@ export function crossEvent(tb: Tables, r: number, kind: number, t: number): void
   }
   const P = tb.plan;
   const p = PLAN_WIDTH * r;
-  const cellX = P[p + PLAN.cellX];
-  const cellY = P[p + PLAN.cellY];
-  const to = P[p + PLAN.crossTo];
+  const cellX = P[p + PLAN_CELL_X];
+  const cellY = P[p + PLAN_CELL_Y];
+  const to = P[p + PLAN_CROSS_TO];
   unlink(tb, r);
   if (kind === KIND_CROSS_X) {
     link(tb, r, to, cellY);
@@ -185,7 +214,7 @@ export function crossEvent(tb: Tables, r: number, kind: number, t: number): void
       scan(tb, r, c, c, cellY > 0 ? cellY - 1 : 0, cellY < tb.ny - 1 ? cellY + 1 : tb.ny - 1);
   } else {
     link(tb, r, cellX, to);
-    tb.queued[QUEUED_WIDTH * r + QUEUED.arcCrossT] = t;
+    tb.queued[QUEUED_WIDTH * r + QUEUED_ARC_CROSS_T] = t;
     const c = 2 * to - cellY;
     if (c >= 0 && c < tb.ny)
       scan(tb, r, cellX > 0 ? cellX - 1 : 0, cellX < tb.nx - 1 ? cellX + 1 : tb.nx - 1, c, c);
@@ -200,37 +229,37 @@ export function wallEvent(tb: Tables, r: number, t: number): void {
   move(tb, r);
   const S = tb.state;
   const s = STATE_WIDTH * r;
-  const x = S[s + STATE.x];
+  const x = S[s + STATE_X];
   if (Math.abs(x) > tb.xRim) {
-    log(tb, EV_ESCAPE, tb.plan[PLAN_WIDTH * r + PLAN.atom], -1);
+    log(tb, EV_ESCAPE, tb.plan[PLAN_WIDTH * r + PLAN_ATOM], -1);
     remove(tb, r, ESCAPED);
     return;
   }
-  const vx = S[s + STATE.vx];
-  const vy = S[s + STATE.vy];
+  const vx = S[s + STATE_VX];
+  const vy = S[s + STATE_VY];
   const speed = Math.sqrt(vx * vx + vy * vy);
   const damped = tb.won && speed >= WIN_DAMPING_MIN_SPEED; // seed Eq. (34)
   const changes = damped || speed < WALL_MIN_NORMAL_SPEED;
   if (changes) tb.energySum -= rowEnergy(tb, r);
   const io = tb.io;
-  io[ATOM_IN.x] = x;
-  io[ATOM_IN.vx] = vx;
-  io[ATOM_IN.vy] = vy;
-  io[ATOM_IN.curvature] = tb.curvature;
+  io[ATOM_IN_X] = x;
+  io[ATOM_IN_VX] = vx;
+  io[ATOM_IN_VY] = vy;
+  io[ATOM_IN_CURVATURE] = tb.curvature;
   if (damped) {
-    io[WALL_IN.keep] = 1.0 - WIN_DAMPING;
-    io[WALL_IN.vMin] = WIN_NORMAL_SPEED_FLOOR;
+    io[WALL_IN_KEEP] = 1.0 - WIN_DAMPING;
+    io[WALL_IN_V_MIN] = WIN_NORMAL_SPEED_FLOOR;
     settleWall(io);
   } else {
-    io[WALL_IN.vMin] = WALL_MIN_NORMAL_SPEED;
+    io[WALL_IN_V_MIN] = WALL_MIN_NORMAL_SPEED;
     bounceWall(io);
   }
-  S[s + STATE.vx] = io[OUT.vx];
-  S[s + STATE.vy] = io[OUT.vy];
+  S[s + STATE_VX] = io[OUT_VX];
+  S[s + STATE_VY] = io[OUT_VY];
   if (changes) tb.energySum += rowEnergy(tb, r);
   tb.walls++;
-  S[s + STATE.count] += 1;
-  log(tb, EV_WALL, tb.plan[PLAN_WIDTH * r + PLAN.atom], -1);
+  S[s + STATE_COUNT] += 1;
+  log(tb, EV_WALL, tb.plan[PLAN_WIDTH * r + PLAN_ATOM], -1);
   predict(tb, r);
 }
 
@@ -238,8 +267,8 @@ export function wallEvent(tb: Tables, r: number, t: number): void {
 export function exitEvent(tb: Tables, r: number, t: number): void {
   clockTo(tb, t);
   move(tb, r);
-  tb.plan[PLAN_WIDTH * r + PLAN.status] = GONE;
-  tb.state[STATE_WIDTH * r + STATE.count] += 1;
-  log(tb, EV_GONE, tb.plan[PLAN_WIDTH * r + PLAN.atom], -1);
+  tb.plan[PLAN_WIDTH * r + PLAN_STATUS] = GONE;
+  tb.state[STATE_WIDTH * r + STATE_COUNT] += 1;
+  log(tb, EV_GONE, tb.plan[PLAN_WIDTH * r + PLAN_ATOM], -1);
   predict(tb, r);
 }

@@ -6,7 +6,23 @@
  */
 import { TRAPPED } from "./constants";
 import { flightX, flightY } from "./kernels";
-import { PLAN, PLAN_WIDTH, QUEUED, QUEUED_WIDTH, STATE, STATE_WIDTH, rowEnergy } from "./tables";
+import {
+  PLAN_CELL_PREV,
+  PLAN_CELL_X,
+  PLAN_CELL_Y,
+  PLAN_STATUS,
+  PLAN_WIDTH,
+  QUEUED_MASS,
+  QUEUED_WIDTH,
+  STATE_RADIUS,
+  STATE_T,
+  STATE_VX,
+  STATE_VY,
+  STATE_WIDTH,
+  STATE_X,
+  STATE_Y,
+  rowEnergy,
+} from "./tables";
 import type { Tables } from "./tables";
 
 /** Cell edge in contact distances; > 1 leaves room for round-off in crossing times. */
@@ -24,10 +40,10 @@ export function gridShape(tb: Tables): { cellSize: number; nx: number; ny: numbe
   let rMax = 0;
   let top = 1;
   for (let r = 0; r < tb.n; r++) {
-    if (tb.plan[PLAN_WIDTH * r + PLAN.status] !== TRAPPED) continue;
-    const radius = tb.state[STATE_WIDTH * r + STATE.radius];
+    if (tb.plan[PLAN_WIDTH * r + PLAN_STATUS] !== TRAPPED) continue;
+    const radius = tb.state[STATE_WIDTH * r + STATE_RADIUS];
     if (radius > rMax) rMax = radius;
-    const h = rowEnergy(tb, r) / (tb.queued[QUEUED_WIDTH * r + QUEUED.mass] * tb.gravity);
+    const h = rowEnergy(tb, r) / (tb.queued[QUEUED_WIDTH * r + QUEUED_MASS] * tb.gravity);
     if (h > top) top = h;
   }
   const cellSize = rMax > 0 ? CELL_FACTOR * 2 * rMax : 1;
@@ -67,13 +83,13 @@ export function clampCell(tb: Tables, u: number, u0: number, n: number): number 
 export function link(tb: Tables, r: number, cellX: number, cellY: number): void {
   const P = tb.plan;
   const cells = tb.cells;
-  P[PLAN_WIDTH * r + PLAN.cellX] = cellX;
-  P[PLAN_WIDTH * r + PLAN.cellY] = cellY;
+  P[PLAN_WIDTH * r + PLAN_CELL_X] = cellX;
+  P[PLAN_WIDTH * r + PLAN_CELL_Y] = cellY;
   const c = cellY * tb.nx + cellX;
   const q = cells[c];
   cells[tb.nCells + r] = q;
-  P[PLAN_WIDTH * r + PLAN.cellPrev] = -1;
-  if (q >= 0) P[PLAN_WIDTH * q + PLAN.cellPrev] = r;
+  P[PLAN_WIDTH * r + PLAN_CELL_PREV] = -1;
+  if (q >= 0) P[PLAN_WIDTH * q + PLAN_CELL_PREV] = r;
   cells[c] = r;
 }
 
@@ -81,14 +97,14 @@ export function link(tb: Tables, r: number, cellX: number, cellY: number): void 
 export function unlink(tb: Tables, r: number): void {
   const P = tb.plan;
   const cells = tb.cells;
-  const p = P[PLAN_WIDTH * r + PLAN.cellPrev];
+  const p = P[PLAN_WIDTH * r + PLAN_CELL_PREV];
   const q = cells[tb.nCells + r];
-  const c = P[PLAN_WIDTH * r + PLAN.cellY] * tb.nx + P[PLAN_WIDTH * r + PLAN.cellX];
+  const c = P[PLAN_WIDTH * r + PLAN_CELL_Y] * tb.nx + P[PLAN_WIDTH * r + PLAN_CELL_X];
   if (p >= 0) cells[tb.nCells + p] = q;
   else if (cells[c] === r) cells[c] = q;
-  if (q >= 0) P[PLAN_WIDTH * q + PLAN.cellPrev] = p;
+  if (q >= 0) P[PLAN_WIDTH * q + PLAN_CELL_PREV] = p;
   cells[tb.nCells + r] = -1;
-  P[PLAN_WIDTH * r + PLAN.cellPrev] = -1;
+  P[PLAN_WIDTH * r + PLAN_CELL_PREV] = -1;
 }
 
 /** Put every trapped row in its cell at the clock's time. */
@@ -96,11 +112,11 @@ export function fileAll(tb: Tables): void {
   const S = tb.state;
   const halfG = 0.5 * tb.gravity;
   for (let r = 0; r < tb.n; r++) {
-    if (tb.plan[PLAN_WIDTH * r + PLAN.status] !== TRAPPED) continue;
+    if (tb.plan[PLAN_WIDTH * r + PLAN_STATUS] !== TRAPPED) continue;
     const s = STATE_WIDTH * r;
-    const dt = tb.time - S[s + STATE.t];
-    const x = flightX(S[s + STATE.x], S[s + STATE.vx], dt);
-    const y = flightY(S[s + STATE.y], S[s + STATE.vy], halfG, dt);
+    const dt = tb.time - S[s + STATE_T];
+    const x = flightX(S[s + STATE_X], S[s + STATE_VX], dt);
+    const y = flightY(S[s + STATE_Y], S[s + STATE_VY], halfG, dt);
     link(tb, r, clampCell(tb, x, tb.gridX0, tb.nx), clampCell(tb, y, tb.gridY0, tb.ny));
   }
 }
@@ -114,14 +130,14 @@ export function gridErrors(tb: Tables): number {
   let bad = 0;
   for (let r = 0; r < tb.n; r++) {
     const p = PLAN_WIDTH * r;
-    if (P[p + PLAN.status] !== TRAPPED) continue;
+    if (P[p + PLAN_STATUS] !== TRAPPED) continue;
     const s = STATE_WIDTH * r;
-    const dt = tb.time - S[s + STATE.t];
-    const x = flightX(S[s + STATE.x], S[s + STATE.vx], dt);
-    const y = flightY(S[s + STATE.y], S[s + STATE.vy], halfG, dt);
+    const dt = tb.time - S[s + STATE_T];
+    const x = flightX(S[s + STATE_X], S[s + STATE_VX], dt);
+    const y = flightY(S[s + STATE_Y], S[s + STATE_VY], halfG, dt);
     const cellX = clampCell(tb, x, tb.gridX0, tb.nx);
     const cellY = clampCell(tb, y, tb.gridY0, tb.ny);
-    if (Math.abs(cellX - P[p + PLAN.cellX]) > 1 || Math.abs(cellY - P[p + PLAN.cellY]) > 1) bad++;
+    if (Math.abs(cellX - P[p + PLAN_CELL_X]) > 1 || Math.abs(cellY - P[p + PLAN_CELL_Y]) > 1) bad++;
   }
   return bad;
 }

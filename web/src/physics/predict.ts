@@ -6,7 +6,22 @@
  * since (lazy invalidation).
  */
 import { ESCAPED, TRAPPED } from "./constants";
-import { ATOM_IN, EXIT_IN, OUT, exitTime, pairContactTime, wallContactTime } from "./kernels";
+import {
+  ATOM_IN_CURVATURE,
+  ATOM_IN_GRAVITY,
+  ATOM_IN_T0,
+  ATOM_IN_VX,
+  ATOM_IN_VY,
+  ATOM_IN_X,
+  ATOM_IN_Y,
+  EXIT_IN_X_LEFT,
+  EXIT_IN_X_RIGHT,
+  EXIT_IN_Y_BOTTOM,
+  OUT_TIME,
+  exitTime,
+  pairContactTime,
+  wallContactTime,
+} from "./kernels";
 import {
   KIND_CROSS_X,
   KIND_CROSS_Y,
@@ -14,15 +29,35 @@ import {
   KIND_NONE,
   KIND_PAIR,
   KIND_WALL,
-  PLAN,
+  PLAN_ATOM,
+  PLAN_CELL_X,
+  PLAN_CELL_Y,
+  PLAN_CROSS_AXIS,
+  PLAN_CROSS_TO,
+  PLAN_PARTNER,
+  PLAN_PARTNER_COUNT,
+  PLAN_REAL_A,
+  PLAN_REAL_B,
+  PLAN_REAL_KIND,
+  PLAN_REAL_RANK,
+  PLAN_STATUS,
   PLAN_WIDTH,
-  QUEUED,
+  QUEUED_ARC_CROSS_T,
+  QUEUED_CROSS_T,
+  QUEUED_REAL_T,
   QUEUED_WIDTH,
   RANK_CROSS,
   RANK_PAIR,
   RANK_SOLO,
-  STATE,
+  STATE_ATOM,
+  STATE_COUNT,
+  STATE_RADIUS,
+  STATE_T,
+  STATE_VX,
+  STATE_VY,
   STATE_WIDTH,
+  STATE_X,
+  STATE_Y,
 } from "./tables";
 import type { Tables } from "./tables";
 
@@ -39,18 +74,18 @@ export function scan(tb: Tables, r: number, x0: number, x1: number, y0: number, 
   const nx = tb.nx;
   const g = tb.gravity;
   const s = STATE_WIDTH * r;
-  const x = S[s + STATE.x];
-  const y = S[s + STATE.y];
-  const vx = S[s + STATE.vx];
-  const vy = S[s + STATE.vy];
-  const t0 = S[s + STATE.t];
-  const radius = S[s + STATE.radius];
-  const atom = S[s + STATE.atom];
+  const x = S[s + STATE_X];
+  const y = S[s + STATE_Y];
+  const vx = S[s + STATE_VX];
+  const vy = S[s + STATE_VY];
+  const t0 = S[s + STATE_T];
+  const radius = S[s + STATE_RADIUS];
+  const atom = S[s + STATE_ATOM];
   const p = PLAN_WIDTH * r;
-  let bestT = tb.queued[QUEUED_WIDTH * r + QUEUED.realT];
-  let pair = P[p + PLAN.realRank] === RANK_PAIR;
-  let bestA = P[p + PLAN.realA];
-  let bestB = P[p + PLAN.realB];
+  let bestT = tb.queued[QUEUED_WIDTH * r + QUEUED_REAL_T];
+  let pair = P[p + PLAN_REAL_RANK] === RANK_PAIR;
+  let bestA = P[p + PLAN_REAL_A];
+  let bestB = P[p + PLAN_REAL_B];
   let best = -1;
   // Integer arithmetic in asm.js style (shifts, | 0): no overflow checks in the hot loop.
   for (let cy = y0; cy <= y1; cy++) {
@@ -66,15 +101,15 @@ export function scan(tb: Tables, r: number, x0: number, x1: number, y0: number, 
           vy,
           t0,
           S[sj],
-          S[sj | STATE.y],
-          S[sj | STATE.vx],
-          S[sj | STATE.vy],
-          S[sj | STATE.t],
-          radius + S[sj | STATE.radius],
+          S[sj | STATE_Y],
+          S[sj | STATE_VX],
+          S[sj | STATE_VY],
+          S[sj | STATE_T],
+          radius + S[sj | STATE_RADIUS],
           g,
         );
         if (t <= bestT) {
-          const other = S[sj | STATE.atom]; // rare: only now the partner's world index
+          const other = S[sj | STATE_ATOM]; // rare: only now the partner's world index
           const lo = atom < other ? atom : other;
           const hi = atom < other ? other : atom;
           if (t < bestT || (pair && (lo < bestA || (lo === bestA && hi < bestB)))) {
@@ -95,13 +130,13 @@ export function scan(tb: Tables, r: number, x0: number, x1: number, y0: number, 
 function takePair(tb: Tables, r: number, j: number, t: number, a: number, b: number): void {
   const P = tb.plan;
   const p = PLAN_WIDTH * r;
-  tb.queued[QUEUED_WIDTH * r + QUEUED.realT] = t;
-  P[p + PLAN.realRank] = RANK_PAIR;
-  P[p + PLAN.realA] = a;
-  P[p + PLAN.realB] = b;
-  P[p + PLAN.realKind] = KIND_PAIR;
-  P[p + PLAN.partner] = j;
-  P[p + PLAN.partnerCount] = tb.state[STATE_WIDTH * j + STATE.count] | 0;
+  tb.queued[QUEUED_WIDTH * r + QUEUED_REAL_T] = t;
+  P[p + PLAN_REAL_RANK] = RANK_PAIR;
+  P[p + PLAN_REAL_A] = a;
+  P[p + PLAN_REAL_B] = b;
+  P[p + PLAN_REAL_KIND] = KIND_PAIR;
+  P[p + PLAN_PARTNER] = j;
+  P[p + PLAN_PARTNER_COUNT] = tb.state[STATE_WIDTH * j + STATE_COUNT] | 0;
 }
 
 /** Row r's solo event time: the wall (SPEC 2.1) if trapped, the exit if escaped. */
@@ -109,44 +144,44 @@ function soloTime(tb: Tables, r: number, trapped: boolean): number {
   const S = tb.state;
   const s = STATE_WIDTH * r;
   const io = tb.io;
-  io[ATOM_IN.x] = S[s + STATE.x];
-  io[ATOM_IN.y] = S[s + STATE.y];
-  io[ATOM_IN.vx] = S[s + STATE.vx];
-  io[ATOM_IN.vy] = S[s + STATE.vy];
-  io[ATOM_IN.t0] = S[s + STATE.t];
-  io[ATOM_IN.gravity] = tb.gravity;
+  io[ATOM_IN_X] = S[s + STATE_X];
+  io[ATOM_IN_Y] = S[s + STATE_Y];
+  io[ATOM_IN_VX] = S[s + STATE_VX];
+  io[ATOM_IN_VY] = S[s + STATE_VY];
+  io[ATOM_IN_T0] = S[s + STATE_T];
+  io[ATOM_IN_GRAVITY] = tb.gravity;
   if (trapped) {
-    io[ATOM_IN.curvature] = tb.curvature;
+    io[ATOM_IN_CURVATURE] = tb.curvature;
     wallContactTime(io);
   } else {
-    const radius = S[s + STATE.radius];
-    io[EXIT_IN.xLeft] = tb.xLeft - radius;
-    io[EXIT_IN.xRight] = tb.xRight + radius;
-    io[EXIT_IN.yBottom] = tb.yBottom - radius;
+    const radius = S[s + STATE_RADIUS];
+    io[EXIT_IN_X_LEFT] = tb.xLeft - radius;
+    io[EXIT_IN_X_RIGHT] = tb.xRight + radius;
+    io[EXIT_IN_Y_BOTTOM] = tb.yBottom - radius;
     exitTime(io);
   }
-  return io[OUT.time];
+  return io[OUT_TIME];
 }
 
 /** Row r's real event: wall or pair if trapped, exit if escaped, none if gone. */
 export function predictReal(tb: Tables, r: number): void {
   const P = tb.plan;
   const p = PLAN_WIDTH * r;
-  const status = P[p + PLAN.status];
+  const status = P[p + PLAN_STATUS];
   let t = Infinity;
   let kind = KIND_NONE;
   if (status === TRAPPED || status === ESCAPED) {
     t = soloTime(tb, r, status === TRAPPED);
     kind = status === TRAPPED ? KIND_WALL : KIND_EXIT;
   }
-  tb.queued[QUEUED_WIDTH * r + QUEUED.realT] = t;
-  P[p + PLAN.realRank] = RANK_SOLO;
-  P[p + PLAN.realA] = P[p + PLAN.atom];
-  P[p + PLAN.realB] = 0;
-  P[p + PLAN.realKind] = kind;
+  tb.queued[QUEUED_WIDTH * r + QUEUED_REAL_T] = t;
+  P[p + PLAN_REAL_RANK] = RANK_SOLO;
+  P[p + PLAN_REAL_A] = P[p + PLAN_ATOM];
+  P[p + PLAN_REAL_B] = 0;
+  P[p + PLAN_REAL_KIND] = kind;
   if (status === TRAPPED && !tb.won) {
-    const cellX = P[p + PLAN.cellX];
-    const cellY = P[p + PLAN.cellY];
+    const cellX = P[p + PLAN_CELL_X];
+    const cellY = P[p + PLAN_CELL_Y];
     scan(
       tb,
       r,
@@ -169,13 +204,13 @@ export function predictCross(tb: Tables, r: number): void {
   let t = Infinity;
   let axis = KIND_NONE;
   let to = 0;
-  if (P[p + PLAN.status] === TRAPPED && !tb.won) {
-    const cellX = P[p + PLAN.cellX];
-    const cellY = P[p + PLAN.cellY];
+  if (P[p + PLAN_STATUS] === TRAPPED && !tb.won) {
+    const cellX = P[p + PLAN_CELL_X];
+    const cellY = P[p + PLAN_CELL_Y];
     t = crossX(tb, r, cellX);
     if (t < Infinity) {
       axis = KIND_CROSS_X;
-      to = tb.state[STATE_WIDTH * r + STATE.vx] > 0.0 ? cellX + 1 : cellX - 1;
+      to = tb.state[STATE_WIDTH * r + STATE_VX] > 0.0 ? cellX + 1 : cellX - 1;
     }
     const ty = crossY(tb, r, cellY);
     if (ty < t) {
@@ -184,20 +219,20 @@ export function predictCross(tb: Tables, r: number): void {
       to = tb.crossYTo;
     }
   }
-  tb.queued[q + QUEUED.crossT] = t;
-  P[p + PLAN.crossAxis] = axis;
-  P[p + PLAN.crossTo] = to;
+  tb.queued[q + QUEUED_CROSS_T] = t;
+  P[p + PLAN_CROSS_AXIS] = axis;
+  P[p + PLAN_CROSS_TO] = to;
 }
 
 /** Time row r reaches the next column edge along vx (Infinity at an edge column). */
 function crossX(tb: Tables, r: number, cellX: number): number {
   const S = tb.state;
   const s = STATE_WIDTH * r;
-  const vx = S[s + STATE.vx];
+  const vx = S[s + STATE_VX];
   if (vx > 0.0 && cellX < tb.nx - 1)
-    return S[s + STATE.t] + (tb.gridX0 + (cellX + 1) * tb.cellSize - S[s + STATE.x]) / vx;
+    return S[s + STATE_T] + (tb.gridX0 + (cellX + 1) * tb.cellSize - S[s + STATE_X]) / vx;
   if (vx < 0.0 && cellX > 0)
-    return S[s + STATE.t] + (tb.gridX0 + cellX * tb.cellSize - S[s + STATE.x]) / vx;
+    return S[s + STATE_T] + (tb.gridX0 + cellX * tb.cellSize - S[s + STATE_X]) / vx;
   return Infinity;
 }
 
@@ -210,10 +245,10 @@ function crossY(tb: Tables, r: number, cellY: number): number {
   const S = tb.state;
   const s = STATE_WIDTH * r;
   const g = tb.gravity;
-  const y = S[s + STATE.y];
-  const vy = S[s + STATE.vy];
-  const t0 = S[s + STATE.t];
-  const taken = tb.queued[QUEUED_WIDTH * r + QUEUED.arcCrossT];
+  const y = S[s + STATE_Y];
+  const vy = S[s + STATE_VY];
+  const t0 = S[s + STATE_T];
+  const taken = tb.queued[QUEUED_WIDTH * r + QUEUED_ARC_CROSS_T];
   if (vy > 0.0 && cellY < tb.ny - 1) {
     const d = tb.gridY0 + (cellY + 1) * tb.cellSize - y;
     const disc = vy * vy - 2.0 * g * d;
@@ -256,15 +291,15 @@ export function setKey(tb: Tables, r: number): void {
   const P = tb.plan;
   const p = PLAN_WIDTH * r;
   const q = QUEUED_WIDTH * r;
-  const crossT = tb.queued[q + QUEUED.crossT];
-  const realT = tb.queued[q + QUEUED.realT];
+  const crossT = tb.queued[q + QUEUED_CROSS_T];
+  const realT = tb.queued[q + QUEUED_REAL_T];
   const calendar = tb.calendar;
   if (crossT <= realT) {
     calendar.keyT[r] = crossT;
-    calendar.file(r, RANK_CROSS, P[p + PLAN.atom], P[p + PLAN.crossAxis]);
+    calendar.file(r, RANK_CROSS, P[p + PLAN_ATOM], P[p + PLAN_CROSS_AXIS]);
   } else {
     calendar.keyT[r] = realT;
-    calendar.file(r, P[p + PLAN.realRank], P[p + PLAN.realA], P[p + PLAN.realB]);
+    calendar.file(r, P[p + PLAN_REAL_RANK], P[p + PLAN_REAL_A], P[p + PLAN_REAL_B]);
   }
 }
 
@@ -273,14 +308,14 @@ export function loadKey(tb: Tables, r: number): void {
   const P = tb.plan;
   const p = PLAN_WIDTH * r;
   const q = QUEUED_WIDTH * r;
-  const crossT = tb.queued[q + QUEUED.crossT];
-  const realT = tb.queued[q + QUEUED.realT];
+  const crossT = tb.queued[q + QUEUED_CROSS_T];
+  const realT = tb.queued[q + QUEUED_REAL_T];
   const calendar = tb.calendar;
   if (crossT <= realT) {
     calendar.keyT[r] = crossT;
-    calendar.load(r, RANK_CROSS, P[p + PLAN.atom], P[p + PLAN.crossAxis]);
+    calendar.load(r, RANK_CROSS, P[p + PLAN_ATOM], P[p + PLAN_CROSS_AXIS]);
   } else {
     calendar.keyT[r] = realT;
-    calendar.load(r, P[p + PLAN.realRank], P[p + PLAN.realA], P[p + PLAN.realB]);
+    calendar.load(r, P[p + PLAN_REAL_RANK], P[p + PLAN_REAL_A], P[p + PLAN_REAL_B]);
   }
 }

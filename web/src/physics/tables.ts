@@ -1,6 +1,8 @@
 /**
  * The engine's tables: what it knows about every atom, and its running scalars
- * (src/evapcool/physics/fast/tables.py, with the same field names in camelCase).
+ * (src/evapcool/physics/fast/tables.py): a field's offset in its row is TABLE_FIELD, e.g.
+ * PLAN_PARTNER_COUNT for PLAN's partner_count (plain constants: V8 reads an object's
+ * field on every access, about a tenth of the hot loop's speed, measured).
  *
  * Three typed arrays hold one row per atom each, a row filling cache lines: STATE (the
  * stored state the pair scan reads), PLAN (the pending events and where the atom is) and
@@ -15,43 +17,37 @@ import { EventQueue } from "./calendar";
 import { IO_SIZE, atomEnergy } from "./kernels";
 
 /** STATE, 8 floats a row: the stored state at the atom's own time (both integers exact). */
-export const STATE = {
-  x: 0, // stored position (trap coordinates, px) ...
-  y: 1,
-  vx: 2, // ... and velocity (px/frame) ...
-  vy: 3,
-  t: 4, // ... at this time (frames): the atom's own clock
-  radius: 5,
-  count: 6, // events so far: a partner's pair event is stale once it moved on
-  atom: 7, // world index
-} as const;
+export const STATE_X = 0; // stored position (trap coordinates, px) ...
+export const STATE_Y = 1;
+export const STATE_VX = 2; // ... and velocity (px/frame) ...
+export const STATE_VY = 3;
+export const STATE_T = 4; // ... at this time (frames): the atom's own clock
+export const STATE_RADIUS = 5;
+export const STATE_COUNT = 6; // events so far: a partner's pair event is stale once it moved on
+export const STATE_ATOM = 7; // world index
 export const STATE_WIDTH = 8;
 
 /** PLAN, 16 integers a row: the atom's pending events (kinds, key parts, partner), its cell. */
-export const PLAN = {
-  status: 0, // TRAPPED, ESCAPED or GONE (constants.ts)
-  partnerCount: 1, // the partner's count when the pair was predicted (low 32 bits)
-  cellX: 2, // the cell it is filed in (trapped atoms only)
-  cellY: 3,
-  cellPrev: 4, // previous row in that cell, -1 if first
-  realKind: 5, // KIND_PAIR, KIND_WALL, KIND_EXIT or KIND_NONE
-  partner: 6, // row of the partner of a pair event
-  realRank: 8, // the real event's key parts (rank, a, b)
-  realA: 9,
-  realB: 10,
-  crossAxis: 11, // KIND_CROSS_X, KIND_CROSS_Y or KIND_NONE
-  crossTo: 12, // cell column (x) or row (y) the crossing enters
-  atom: 13, // world index
-} as const;
+export const PLAN_STATUS = 0; // TRAPPED, ESCAPED or GONE (constants.ts)
+export const PLAN_PARTNER_COUNT = 1; // the partner's count when the pair was predicted (low 32 bits)
+export const PLAN_CELL_X = 2; // the cell it is filed in (trapped atoms only)
+export const PLAN_CELL_Y = 3;
+export const PLAN_CELL_PREV = 4; // previous row in that cell, -1 if first
+export const PLAN_REAL_KIND = 5; // KIND_PAIR, KIND_WALL, KIND_EXIT or KIND_NONE
+export const PLAN_PARTNER = 6; // row of the partner of a pair event
+export const PLAN_REAL_RANK = 8; // the real event's key parts (rank, a, b)
+export const PLAN_REAL_A = 9;
+export const PLAN_REAL_B = 10;
+export const PLAN_CROSS_AXIS = 11; // KIND_CROSS_X, KIND_CROSS_Y or KIND_NONE
+export const PLAN_CROSS_TO = 12; // cell column (x) or row (y) the crossing enters
+export const PLAN_ATOM = 13; // world index
 export const PLAN_WIDTH = 16;
 
 /** QUEUED, 4 floats a row: the times an atom's key is chosen from, and its mass. */
-export const QUEUED = {
-  realT: 0, // time of its real event (pair, wall or exit), Infinity if none
-  crossT: 1, // time of its next cell crossing, Infinity if none
-  arcCrossT: 2, // last y crossing taken on the current arc (-Infinity: none)
-  mass: 3,
-} as const;
+export const QUEUED_REAL_T = 0; // time of its real event (pair, wall or exit), Infinity if none
+export const QUEUED_CROSS_T = 1; // time of its next cell crossing, Infinity if none
+export const QUEUED_ARC_CROSS_T = 2; // last y crossing taken on the current arc (-Infinity: none)
+export const QUEUED_MASS = 3;
 export const QUEUED_WIDTH = 4;
 
 // Event kinds inside the engine (the log uses constants.ts's EV_*).
@@ -194,18 +190,18 @@ export function loadAtoms(tb: Tables, atoms: EngineAtoms): void {
     const s = STATE_WIDTH * i;
     const p = PLAN_WIDTH * i;
     const q = QUEUED_WIDTH * i;
-    S[s + STATE.x] = atoms.x[i];
-    S[s + STATE.y] = atoms.y[i];
-    S[s + STATE.vx] = atoms.vx[i];
-    S[s + STATE.vy] = atoms.vy[i];
-    S[s + STATE.t] = atoms.t[i];
-    S[s + STATE.radius] = atoms.radius[i];
-    S[s + STATE.atom] = i;
-    tb.queued[q + QUEUED.mass] = atoms.mass[i];
-    tb.queued[q + QUEUED.arcCrossT] = -Infinity;
-    tb.plan[p + PLAN.status] = atoms.status[i];
-    tb.plan[p + PLAN.atom] = i;
-    tb.plan[p + PLAN.cellPrev] = -1;
+    S[s + STATE_X] = atoms.x[i];
+    S[s + STATE_Y] = atoms.y[i];
+    S[s + STATE_VX] = atoms.vx[i];
+    S[s + STATE_VY] = atoms.vy[i];
+    S[s + STATE_T] = atoms.t[i];
+    S[s + STATE_RADIUS] = atoms.radius[i];
+    S[s + STATE_ATOM] = i;
+    tb.queued[q + QUEUED_MASS] = atoms.mass[i];
+    tb.queued[q + QUEUED_ARC_CROSS_T] = -Infinity;
+    tb.plan[p + PLAN_STATUS] = atoms.status[i];
+    tb.plan[p + PLAN_ATOM] = i;
+    tb.plan[p + PLAN_CELL_PREV] = -1;
     tb.row[i] = i;
     if (atoms.status[i] === TRAPPED) tb.nTrapped++;
   }
@@ -225,10 +221,10 @@ export function rowEnergy(tb: Tables, r: number): number {
   const S = tb.state;
   const s = STATE_WIDTH * r;
   return atomEnergy(
-    tb.queued[QUEUED_WIDTH * r + QUEUED.mass],
-    S[s + STATE.y],
-    S[s + STATE.vx],
-    S[s + STATE.vy],
+    tb.queued[QUEUED_WIDTH * r + QUEUED_MASS],
+    S[s + STATE_Y],
+    S[s + STATE_VX],
+    S[s + STATE_VY],
     tb.gravity,
   );
 }
@@ -238,7 +234,7 @@ export function sequentialEnergySum(tb: Tables): number {
   let total = 0.0;
   for (let i = 0; i < tb.n; i++) {
     const r = tb.row[i];
-    if (tb.plan[PLAN_WIDTH * r + PLAN.status] === TRAPPED) total += rowEnergy(tb, r);
+    if (tb.plan[PLAN_WIDTH * r + PLAN_STATUS] === TRAPPED) total += rowEnergy(tb, r);
   }
   return total;
 }

@@ -1,18 +1,11 @@
 // The web engine's rooms pair with the Python physics by name (issue 26): every file of
 // web/src/physics has a twin of the same stem in src/evapcool/physics/ or physics/fast/, and
-// the tables' fields carry Python's field names (camelCase for snake_case).
+// the tables' fields carry Python's field names (PLAN_PARTNER_COUNT for partner_count).
 import { readdirSync, readFileSync } from "node:fs";
 import { resolve } from "node:path";
 import { expect, test } from "vitest";
-import { KEYED, KEYED_WIDTH } from "../../src/physics/calendar";
-import {
-  PLAN,
-  PLAN_WIDTH,
-  QUEUED,
-  QUEUED_WIDTH,
-  STATE,
-  STATE_WIDTH,
-} from "../../src/physics/tables";
+import * as calendar from "../../src/physics/calendar";
+import * as tables from "../../src/physics/tables";
 
 const WEB = resolve(import.meta.dirname, "../../src/physics");
 const PY = resolve(import.meta.dirname, "../../../src/evapcool/physics");
@@ -41,7 +34,19 @@ function pythonFields(name: string): string[] {
   return [...block.matchAll(/\("(\w+)", "[a-z]\d"\)/g)].map((m) => m[1]);
 }
 
-const snake = (camel: string) => camel.replace(/[A-Z]/g, (c) => `_${c.toLowerCase()}`);
+/** The fields of a web table: its module's constants TABLE_FIELD (offsets), as field -> offset. */
+function webFields(module: Record<string, unknown>, table: string): Record<string, number> {
+  const out: Record<string, number> = {};
+  for (const [name, value] of Object.entries(module))
+    if (name.startsWith(`${table}_`) && name !== `${table}_WIDTH` && typeof value === "number")
+      out[name.slice(table.length + 1).toLowerCase()] = value;
+  return out;
+}
+
+const STATE = webFields(tables, "STATE");
+const PLAN = webFields(tables, "PLAN");
+const QUEUED = webFields(tables, "QUEUED");
+const KEYED = webFields(calendar, "KEYED");
 
 test("every web physics file has a Python twin of the same stem", () => {
   const python = new Set([...stems(PY, ".py"), ...stems(resolve(PY, "fast"), ".py")]);
@@ -64,17 +69,18 @@ test("the tables' fields carry Python's names", () => {
   ];
   for (const [table, fields, python] of cases) {
     expect(python.length, `${table}: Python fields read`).toBeGreaterThan(3);
+    expect(Object.keys(fields).length, `${table}: web fields read`).toBeGreaterThan(3);
     for (const field of Object.keys(fields))
-      expect(python, `${table}.${field} is ${snake(field)} in tables.py`).toContain(snake(field));
+      expect(python, `${table}_${field.toUpperCase()} in tables.py`).toContain(field);
   }
 });
 
 test("the field offsets of a table are distinct and fit its row", () => {
   const widths: [Record<string, number>, number][] = [
-    [STATE, STATE_WIDTH],
-    [PLAN, PLAN_WIDTH],
-    [QUEUED, QUEUED_WIDTH],
-    [KEYED, KEYED_WIDTH],
+    [STATE, tables.STATE_WIDTH],
+    [PLAN, tables.PLAN_WIDTH],
+    [QUEUED, tables.QUEUED_WIDTH],
+    [KEYED, calendar.KEYED_WIDTH],
   ];
   for (const [fields, width] of widths) {
     const offsets = Object.values(fields);
