@@ -26,7 +26,8 @@ describe("golden traces", () => {
     const names = FILES.map((f) => f.replace(/\.json$/, ""));
     for (const c of ["classic-1", "classic-2", "classic-3", "two-atoms", "grazing", "mixed-200"])
       expect(names).toContain(c);
-    for (const c of ["knife", "falling-height", "win-damping"]) expect(names).toContain(c);
+    for (const c of ["knife", "falling-height", "win-damping", "height-mid-frame"])
+      expect(names).toContain(c);
     expect(names.length).toBeGreaterThanOrEqual(8);
   });
 

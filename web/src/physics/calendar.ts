@@ -4,7 +4,7 @@
  * An event calendar (Paul, J. Comput. Phys. 221, 615 (2007); Smallenburg 2022), as in the
  * Numba engine: time is cut into bins of width dt from a base time. Rows whose key lies in
  * the current bin or earlier sit in a small indexed 4-ary heap ordered by the full key;
- * later ones sit, unordered, in the doubly linked list of their bin (a ring of NB lists),
+ * later ones sit, unordered, in the doubly linked list of their bin (a ring of nBins lists),
  * beyond the ring in an overflow list, and with no event (time infinity) in a list of their
  * own. The bin of a time is monotone in the time, so every heap key comes before every
  * listed key and the heap's root is the least key of all. Most re-filed rows go to a list
@@ -17,46 +17,46 @@ const EVENTS_PER_BIN = 8;
 /** The ring spans about this many events per row into the future. */
 const RING_EVENTS_PER_ATOM = 2;
 
-// Per-row integers, 8 to a row: key parts after the time, heap place, list and its links.
-const Q_RANK = 0;
-const Q_A = 1;
-const Q_B = 2;
-const Q_POS = 3;
-const Q_LST = 4;
-const Q_NXT = 5;
-const Q_PRV = 6;
-const QW = 8;
+/** KEYED, 8 integers a row: the key parts after the time, heap place, list and its links. */
+export const KEYED_RANK = 0; // key: (keyT, rank, tieA, tieB), see tables.ts's RANK_*
+export const KEYED_TIE_A = 1;
+export const KEYED_TIE_B = 2;
+export const KEYED_HEAP_POS = 3; // place in the heap, -1 if in a list
+export const KEYED_BIN = 4; // list it is filed in, -1 if in the heap
+export const KEYED_NEXT = 5; // neighbours in that list, -1 at the ends
+export const KEYED_PREV = 6;
+export const KEYED_WIDTH = 8;
 
 export class EventQueue {
   /** Key time of every row. */
   readonly keyT: Float64Array;
-  /** Rows of (rank, a, b, heap place, list, next, previous, -). */
-  readonly Q: Int32Array;
+  /** KEYED rows. */
+  readonly keyed: Int32Array;
 
   private readonly heap: Int32Array;
-  private hn = 0;
-  /** List heads: NB ring bins, then the overflow list, then the no-event list. */
+  private heapSize = 0;
+  /** List heads: nBins ring bins, then the overflow list, then the no-event list. */
   private readonly heads: Int32Array;
-  private readonly nb: number;
+  private readonly nBins: number;
   private nRing = 0;
   private nOver = 0;
-  private base = 0.5;
-  private dt = Infinity;
+  private binBase = 0.5;
+  private binWidth = Infinity;
   /** The current bin and the bin of the last re-filing of the overflow list. */
-  private cb = 0.5; // doubles from the start: bins outgrow 32-bit integers in long runs
+  private bin = 0.5; // doubles from the start: bins outgrow 32-bit integers in long runs
   private scanBin = 0.5;
 
   constructor(readonly n: number) {
     this.keyT = new Float64Array(n).fill(Infinity);
-    this.Q = new Int32Array(QW * n);
+    this.keyed = new Int32Array(KEYED_WIDTH * n);
     for (let r = 0; r < n; r++) {
-      this.Q[QW * r + Q_POS] = -1;
-      this.Q[QW * r + Q_LST] = -1;
+      this.keyed[KEYED_WIDTH * r + KEYED_HEAP_POS] = -1;
+      this.keyed[KEYED_WIDTH * r + KEYED_BIN] = -1;
     }
     this.heap = new Int32Array(n);
     const want = Math.max(1, Math.floor((RING_EVENTS_PER_ATOM * n) / EVENTS_PER_BIN));
-    this.nb = Math.max(16, 2 ** Math.ceil(Math.log2(want)));
-    this.heads = new Int32Array(this.nb + 2).fill(-1);
+    this.nBins = Math.max(16, 2 ** Math.ceil(Math.log2(want)));
+    this.heads = new Int32Array(this.nBins + 2).fill(-1);
   }
 
   /**
@@ -70,19 +70,19 @@ export class EventQueue {
 
   /** Row r's key parts beside keyT[r], not filed (rebuild files every row). */
   load(r: number, rank: number, a: number, b: number): void {
-    const q = QW * r;
-    this.Q[q + Q_RANK] = rank;
-    this.Q[q + Q_A] = a;
-    this.Q[q + Q_B] = b;
+    const q = KEYED_WIDTH * r;
+    this.keyed[q + KEYED_RANK] = rank;
+    this.keyed[q + KEYED_TIE_A] = a;
+    this.keyed[q + KEYED_TIE_B] = b;
   }
 
   rankOf(r: number): number {
-    return this.Q[QW * r + Q_RANK];
+    return this.keyed[KEYED_WIDTH * r + KEYED_RANK];
   }
 
   /** The row with the least key, or -1 if no row has a finite key. */
   top(): number {
-    if (this.hn === 0 && !this.nextBin()) return -1;
+    if (this.heapSize === 0 && !this.nextBin()) return -1;
     return this.heap[0];
   }
 
@@ -91,22 +91,22 @@ export class EventQueue {
    * the pending events (so that about EVENTS_PER_BIN events fall in a bin).
    */
   rebuild(now: number): void {
-    this.reset(now, this.binWidth(now));
+    this.reset(now, this.fittedBinWidth(now));
   }
 
   private reset(base: number, dt: number): void {
     this.heads.fill(-1);
-    const Q = this.Q;
+    const K = this.keyed;
     for (let r = 0; r < this.n; r++) {
-      Q[QW * r + Q_POS] = -1;
-      Q[QW * r + Q_LST] = -1;
+      K[KEYED_WIDTH * r + KEYED_HEAP_POS] = -1;
+      K[KEYED_WIDTH * r + KEYED_BIN] = -1;
     }
-    this.hn = 0;
+    this.heapSize = 0;
     this.nRing = 0;
     this.nOver = 0;
-    this.base = base;
-    this.dt = dt;
-    this.cb = 0;
+    this.binBase = base;
+    this.binWidth = dt;
+    this.bin = 0;
     this.scanBin = 0;
     for (let r = 0; r < this.n; r++) this.place(r);
   }
@@ -115,7 +115,7 @@ export class EventQueue {
    * Bin width from the event rate of the bulk: the mean time to the pending events, trimmed
    * twice to the bulk (a few atoms far above the cup would dominate it), over their count.
    */
-  private binWidth(now: number): number {
+  private fittedBinWidth(now: number): number {
     let m = Infinity;
     let c = 0;
     for (let pass = 0; pass < 3; pass++) {
@@ -139,26 +139,27 @@ export class EventQueue {
     const tx = this.keyT[x];
     const ty = this.keyT[y];
     if (tx !== ty) return tx < ty;
-    const Q = this.Q;
-    const qx = QW * x;
-    const qy = QW * y;
-    if (Q[qx + Q_RANK] !== Q[qy + Q_RANK]) return Q[qx + Q_RANK] < Q[qy + Q_RANK];
-    if (Q[qx + Q_A] !== Q[qy + Q_A]) return Q[qx + Q_A] < Q[qy + Q_A];
-    return Q[qx + Q_B] < Q[qy + Q_B];
+    const K = this.keyed;
+    const qx = KEYED_WIDTH * x;
+    const qy = KEYED_WIDTH * y;
+    if (K[qx + KEYED_RANK] !== K[qy + KEYED_RANK]) return K[qx + KEYED_RANK] < K[qy + KEYED_RANK];
+    if (K[qx + KEYED_TIE_A] !== K[qy + KEYED_TIE_A])
+      return K[qx + KEYED_TIE_A] < K[qy + KEYED_TIE_A];
+    return K[qx + KEYED_TIE_B] < K[qy + KEYED_TIE_B];
   }
 
   /** Move the heap entry at place p up or down to its place (children 4p+1..4p+4). */
   private sift(p: number): void {
     const heap = this.heap;
-    const Q = this.Q;
-    const n = this.hn;
+    const K = this.keyed;
+    const n = this.heapSize;
     const i = heap[p];
     while (p > 0) {
       const q = (p - 1) >> 2;
       const j = heap[q];
       if (!this.less(i, j)) break;
       heap[p] = j;
-      Q[QW * j + Q_POS] = p;
+      K[KEYED_WIDTH * j + KEYED_HEAP_POS] = p;
       p = q;
     }
     for (;;) {
@@ -175,98 +176,98 @@ export class EventQueue {
       }
       if (!this.less(cj, i)) break;
       heap[p] = cj;
-      Q[QW * cj + Q_POS] = p;
+      K[KEYED_WIDTH * cj + KEYED_HEAP_POS] = p;
       p = c;
     }
     heap[p] = i;
-    Q[QW * i + Q_POS] = p;
+    K[KEYED_WIDTH * i + KEYED_HEAP_POS] = p;
   }
 
   private listAdd(r: number, l: number): void {
-    const Q = this.Q;
+    const K = this.keyed;
     const h = this.heads[l];
-    Q[QW * r + Q_LST] = l;
-    Q[QW * r + Q_NXT] = h;
-    Q[QW * r + Q_PRV] = -1;
-    if (h >= 0) Q[QW * h + Q_PRV] = r;
+    K[KEYED_WIDTH * r + KEYED_BIN] = l;
+    K[KEYED_WIDTH * r + KEYED_NEXT] = h;
+    K[KEYED_WIDTH * r + KEYED_PREV] = -1;
+    if (h >= 0) K[KEYED_WIDTH * h + KEYED_PREV] = r;
     this.heads[l] = r;
-    if (l < this.nb) this.nRing++;
-    else if (l === this.nb) this.nOver++;
+    if (l < this.nBins) this.nRing++;
+    else if (l === this.nBins) this.nOver++;
   }
 
   private listDel(r: number): void {
-    const Q = this.Q;
-    const l = Q[QW * r + Q_LST];
-    const p = Q[QW * r + Q_PRV];
-    const q = Q[QW * r + Q_NXT];
-    if (p >= 0) Q[QW * p + Q_NXT] = q;
+    const K = this.keyed;
+    const l = K[KEYED_WIDTH * r + KEYED_BIN];
+    const p = K[KEYED_WIDTH * r + KEYED_PREV];
+    const q = K[KEYED_WIDTH * r + KEYED_NEXT];
+    if (p >= 0) K[KEYED_WIDTH * p + KEYED_NEXT] = q;
     else this.heads[l] = q;
-    if (q >= 0) Q[QW * q + Q_PRV] = p;
-    Q[QW * r + Q_LST] = -1;
-    if (l < this.nb) this.nRing--;
-    else if (l === this.nb) this.nOver--;
+    if (q >= 0) K[KEYED_WIDTH * q + KEYED_PREV] = p;
+    K[KEYED_WIDTH * r + KEYED_BIN] = -1;
+    if (l < this.nBins) this.nRing--;
+    else if (l === this.nBins) this.nOver--;
   }
 
   /** File row r under its key time: in the heap if its bin has come, else in a list. */
   private place(r: number): void {
-    const Q = this.Q;
+    const K = this.keyed;
     const t = this.keyT[r];
-    const q = (t - this.base) / this.dt;
-    let p = Q[QW * r + Q_POS];
-    if (q < this.cb + 1) {
+    const q = (t - this.binBase) / this.binWidth;
+    let p = K[KEYED_WIDTH * r + KEYED_HEAP_POS];
+    if (q < this.bin + 1) {
       if (p < 0) {
-        if (Q[QW * r + Q_LST] >= 0) this.listDel(r);
-        p = this.hn++;
+        if (K[KEYED_WIDTH * r + KEYED_BIN] >= 0) this.listDel(r);
+        p = this.heapSize++;
         this.heap[p] = r;
       }
       this.sift(p);
       return;
     }
-    const nb = this.nb;
-    const l = t === Infinity ? nb + 1 : q < this.cb + nb ? Math.floor(q) % nb : nb;
+    const nb = this.nBins;
+    const l = t === Infinity ? nb + 1 : q < this.bin + nb ? Math.floor(q) % nb : nb;
     if (p < 0) {
-      const was = Q[QW * r + Q_LST];
+      const was = K[KEYED_WIDTH * r + KEYED_BIN];
       if (was === l) return; // lists are unordered: nothing to do
       if (was >= 0) this.listDel(r);
       this.listAdd(r, l);
       return;
     }
     this.listAdd(r, l);
-    Q[QW * r + Q_POS] = -1;
-    const last = --this.hn;
+    K[KEYED_WIDTH * r + KEYED_HEAP_POS] = -1;
+    const last = --this.heapSize;
     if (p === last) return;
     const j = this.heap[last];
     this.heap[p] = j;
-    Q[QW * j + Q_POS] = p;
+    K[KEYED_WIDTH * j + KEYED_HEAP_POS] = p;
     this.sift(p);
   }
 
   /** Fill the empty heap from the next non-empty bin; false if no row has an event. */
   private nextBin(): boolean {
-    const nb = this.nb;
-    const Q = this.Q;
-    while (this.hn === 0) {
+    const nb = this.nBins;
+    const K = this.keyed;
+    while (this.heapSize === 0) {
       if (this.nRing === 0) {
         if (this.nOver === 0) return false;
         // Nothing in the ring: jump to the overflow's earliest bin.
         let m = Infinity;
-        for (let j = this.heads[nb]; j >= 0; j = Q[QW * j + Q_NXT])
+        for (let j = this.heads[nb]; j >= 0; j = K[KEYED_WIDTH * j + KEYED_NEXT])
           if (this.keyT[j] < m) m = this.keyT[j];
         if (!(m < Infinity)) return false; // only a NaN could do this: nothing to hand out
-        const q = (m - this.base) / this.dt;
+        const q = (m - this.binBase) / this.binWidth;
         if (q > 1e15) {
-          this.reset(m, this.dt); // far beyond: start the bins there
+          this.reset(m, this.binWidth); // far beyond: start the bins there
           continue;
         }
-        this.cb = Math.floor(q) - 1;
-        this.scanBin = this.cb - nb;
+        this.bin = Math.floor(q) - 1;
+        this.scanBin = this.bin - nb;
       }
-      const cb = ++this.cb;
+      const cb = ++this.bin;
       if (cb >= this.scanBin + nb) {
         // The ring moved on by its length: re-file the overflow list.
         this.scanBin = cb;
         for (let j = this.heads[nb]; j >= 0;) {
-          const k = Q[QW * j + Q_NXT];
+          const k = K[KEYED_WIDTH * j + KEYED_NEXT];
           this.place(j);
           j = k;
         }
@@ -275,10 +276,10 @@ export class EventQueue {
       let j = this.heads[s];
       this.heads[s] = -1;
       while (j >= 0) {
-        const k = Q[QW * j + Q_NXT];
-        Q[QW * j + Q_LST] = -1;
+        const k = K[KEYED_WIDTH * j + KEYED_NEXT];
+        K[KEYED_WIDTH * j + KEYED_BIN] = -1;
         this.nRing--;
-        const p = this.hn++;
+        const p = this.heapSize++;
         this.heap[p] = j;
         this.sift(p);
         j = k;
