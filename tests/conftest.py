@@ -102,6 +102,9 @@ def pytest_runtest_protocol(item: pytest.Item, nextitem: pytest.Item | None) -> 
     if mark is None:
         return None
     ownprocess.run(item, mark)
+    # The child did the item's setup and teardown; here, tear down what the next item does
+    # not share (a folder's collectors), as pytest's own protocol does after a teardown.
+    item.session._setupstate.teardown_exact(nextitem)
     return True
 
 
