@@ -44,7 +44,8 @@ def clean_name(raw: object) -> str:
     kept = "".join(
         ch for ch in text if ch not in BIDI_CONTROLS and unicodedata.category(ch)[0] != "C"
     )
-    name = " ".join(kept.split())[:NAME_MAX]
+    # Cut to NAME_MAX, then drop a space the cut left at the end (found by hypothesis).
+    name = " ".join(kept.split())[:NAME_MAX].rstrip()
     if not name:
         raise ValueError(NAME_EMPTY.format(max=NAME_MAX))
     return name
