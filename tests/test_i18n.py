@@ -98,7 +98,7 @@ def test_numbers_follow_the_locale() -> None:
 
 @pytest.mark.parametrize(("wanted", "expected"), MATCH_CASES)
 def test_best_match(wanted: list[str], expected: str) -> None:
-    assert i18n.best_match(wanted, i18n.shipped_locales() + [i18n.PSEUDO]) == expected
+    assert i18n.best_match(wanted, [*i18n.shipped_locales(), i18n.PSEUDO]) == expected
 
 
 def test_choice_order(monkeypatch: pytest.MonkeyPatch) -> None:
@@ -115,7 +115,7 @@ def test_choice_order(monkeypatch: pytest.MonkeyPatch) -> None:
 
 
 def test_unknown_locale_is_one_clear_line() -> None:
-    with pytest.raises(ValueError, match="locale must be one of .* \\(got 'tlh'\\)"):
+    with pytest.raises(ValueError, match=r"locale must be one of .* \(got 'tlh'\)"):
         i18n.Catalog("tlh")
 
 
@@ -125,6 +125,10 @@ def test_missing_key_falls_back_to_english_and_is_recorded() -> None:
     i18n.missing_keys.clear()
     assert catalog.t("lose.too_few") == "Too few atoms left"
     assert i18n.missing_keys == {"de": {"lose.too_few"}}
+
+
+SAMPLE_ARGS = {"n": 2, "p": 0.5, "height": 400, "percent": 80, "problem": "x", "radius": 3}
+SAMPLE_ARGS |= {"mode": "a", "name": "B"}
 
 
 def test_no_locale_misses_keys_in_use() -> None:

@@ -83,7 +83,7 @@ def system_languages() -> list[str]:
 
 def choose_locale(cli: str | None = None, saved: str | None = None) -> str:
     """``--lang`` beats the saved setting beats the system locale; English if none match."""
-    available = shipped_locales() + [PSEUDO]
+    available = [*shipped_locales(), PSEUDO]
     for source in ([cli] if cli else [], [saved] if saved else [], system_languages()):
         match = best_match(source, available)
         if match:
@@ -200,7 +200,7 @@ class Catalog:
     """Translated messages of one locale, English behind every missing key."""
 
     def __init__(self, locale: str = FALLBACK) -> None:
-        available = shipped_locales() + [PSEUDO]
+        available = [*shipped_locales(), PSEUDO]
         tag = best_match([locale], available)
         if tag is None:
             raise ValueError(BAD_LOCALE.format(allowed=", ".join(available), value=locale))
