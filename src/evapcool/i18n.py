@@ -226,8 +226,16 @@ class Catalog:
         return _number(value, self.babel_locale)
 
 
+# CLDR minimumGroupingDigits (Babel does not apply it; Intl does): 1200 but 12 345.
+MIN_GROUPING_DIGITS = {"es": 2, "it": 2, "pl": 2}
+
+
 def _number(value: Any, babel_locale: Locale) -> str:
-    return str(format_decimal(value, format="#,##0.###", locale=babel_locale))
+    """Up to three decimals, the locale's marks, grouping only from the CLDR minimum."""
+    min_grouping = MIN_GROUPING_DIGITS.get(babel_locale.language, 1)
+    grouped = abs(value) >= 10 ** (2 + min_grouping)
+    pattern = "#,##0.###" if grouped else "0.###"
+    return str(format_decimal(value, format=pattern, locale=babel_locale))
 
 
 def _render(nodes: list[Any], args: Mapping[str, Any], loc: Locale, count: Any) -> str:
