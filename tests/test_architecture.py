@@ -24,6 +24,8 @@ BASE = {
     "limits": set(),
     "fileio": {"limits"},
     "argtypes": {"limits", "fileio", "about"},
+    # The message catalogs and their translator (issue 23): words for every layer above.
+    "i18n": set(),
 }
 _BELOW_PHYSICS = set(BASE)
 #: The package itself ("": evapcool/__init__.py re-exports Simulation and __version__)
@@ -33,8 +35,8 @@ _ROOT = ""
 ALLOWED: dict[str, set[str]] = {
     **BASE,
     "physics": {"limits", "extras", "about"},
-    "game": {"physics", "fileio", "limits", "about", "extras"},
-    "view": {"physics", "game", "fileio", "limits", "about", "extras"},
+    "game": {"physics", "fileio", "limits", "about", "extras", "i18n"},
+    "view": {"physics", "game", "fileio", "limits", "about", "extras", "i18n"},
     "lab": {"physics", "game", *_BELOW_PHYSICS, _ROOT},
     "optimize": {"physics", "game", "lab", *_BELOW_PHYSICS, _ROOT},
     "app": {"physics", "game", "view", *_BELOW_PHYSICS, _ROOT},

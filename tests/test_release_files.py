@@ -64,6 +64,7 @@ def test_metadata_licence_urls_and_extras():
     assert set(meta.get_all("Provides-Extra")) >= extras
     base = [r for r in meta.get_all("Requires-Dist") if "extra ==" not in r]
     assert sorted(re.split(r"[<>=;\[ ]", r)[0] for r in base) == [
+        "babel",
         "numpy",
         "platformdirs",
         "pygame-ce",

@@ -194,8 +194,9 @@ VELOCITY_MAX = 100.0
 POSITION_MAX = 1e8
 #: Window sides, px: at 8192 the loader's top rows start at 72 px/frame, under VELOCITY_MAX.
 WINDOW_SIDE = Range(160, 8192, "px", integer=True)
-#: Random seed (numpy's SeedSequence takes any whole number >= 0; 64 bits are plenty).
-SEED = Range(0, 2**64 - 1, integer=True)
+#: Random seed of the shared start generator (physics/start.py): every edition holds it
+#: exactly (a double's whole numbers), so any game can be replayed in the page too.
+SEED = Range(0, 2**53 - 1, integer=True)
 #: Frames in one run or one advance(dt): work is bounded by events per atom-frame
 #: times atoms times frames. 10^8 frames are 39 days of the applet's time; the
 #: clock's round-off is then 1.5e-8 frames.

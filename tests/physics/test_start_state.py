@@ -102,8 +102,7 @@ def test_malformed_states_name_the_array(positions, velocities, word) -> None:
 
 def test_a_hundred_thousand_atoms_are_checked() -> None:
     # The loader's start is valid; moving one atom onto another is found (a grid, not N^2).
-    rng = np.random.default_rng(3)
-    pos, _vel = load_cup(100_000, 0.35, A, 543.0, rng)
+    pos, _vel = load_cup(100_000, 0.35, A, 543.0, seed=3)
     radii = np.full(len(pos), 0.35)
     assert first_overlap(pos, radii) is None
     pos[77_777] = pos[12_345] + (0.1, 0.0)

@@ -21,12 +21,10 @@ from typing import Any
 
 from evapcool.about import __version__
 from evapcool.game.rules import HEIGHT_MAX, HEIGHT_MIN, Game, GameConfig
+from evapcool.physics.start import SEED_PORTABLE_MAX, START_GENERATOR
 
 CODE_PREFIX = "EC1"
 FORMAT_VERSION = 1
-#: Which start generator built the atoms from the seed: 0 = each engine's own (today);
-#: the shared generator of issue 22.1 will be 1.
-START_GENERATOR = 0
 EDITIONS = ("desktop", "web")
 #: Longest game a recording may hold (frames): 20 minutes of play at 30 frames/s.
 MAX_FRAMES = 36_000
@@ -140,7 +138,7 @@ class Recording:
             (not 1.0 <= s.radius <= 40.0, "settings.radius must be 1..40"),
             (s.escape not in ("rim", "knife"), "settings.escape must be rim or knife"),
             (not 0.0 < s.tc_exponent <= 2.0, "settings.tc_exponent must be in (0, 2]"),
-            (not 0 <= self.seed < 2**63, "seed must be 0..2^63-1"),
+            (not 0 <= self.seed <= SEED_PORTABLE_MAX, "seed must be 0..2^53-1"),
             (self.edition not in EDITIONS, "edition must be desktop or web"),
             (any(n < 1 for _, n in self.moves), "moves: each run needs frames >= 1"),
             (

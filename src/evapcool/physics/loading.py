@@ -5,6 +5,8 @@ cells have radius R * 20/12 and each atom sits at a random point within
 R * 8/12 of its cell centre, so neighbouring atoms can never overlap. Speeds
 are uniform in [v0 + k dv, v0 + (k + 1) dv] with k = (height of the row) /
 40 px, the original's row spacing: hotter atoms start higher for every R.
+The random numbers and the arithmetic are the shared start generator's
+(`physics.start`, issue 22.1): the same seed gives the same start in the page.
 """
 
 from __future__ import annotations
@@ -14,12 +16,48 @@ import math
 import numpy as np
 
 from evapcool.limits import ParameterError
+from evapcool.physics.start import STREAM_DIRECTION, STREAM_JITTER, STREAM_SPEED, disk_points
+from evapcool.physics.start import uniforms as _uniforms
 
 V0 = 100.0 / 30.0  # px / frame, speed at the bottom row
 DV = 10.0 / 30.0  # px / frame, speed step per 40 px of height
 ROW_SPACING_ORIGINAL = 40.0  # px, the original's row spacing (R = 12)
-_POLYGON = 64  # vertices of the polygon that certifies a jitter disk fits
 _CELLS_AT_ONCE = 4096  # cells certified per NumPy call (memory: 64 x this floats)
+#: cos(2 pi k / 64) for k = 0..16, as exact literals (no cos at run time, so every
+#: language builds the same polygon); the other vertices follow by symmetry.
+_QUARTER_COS = (
+    1.0,
+    0.9951847266721969,
+    0.9807852804032304,
+    0.9569403357322088,
+    0.9238795325112867,
+    0.881921264348355,
+    0.8314696123025452,
+    0.773010453362737,
+    0.7071067811865476,
+    0.6343932841636455,
+    0.5555702330196023,
+    0.4713967368259978,
+    0.38268343236508984,
+    0.29028467725446233,
+    0.19509032201612833,
+    0.09801714032956077,
+    0.0,
+)
+#: A little above 1 / cos(pi / 64) = 1.00120599647...: the polygon with corners at this
+#: many jitter radii circumscribes the jitter disk.
+_SECANT = 1.00121
+
+
+def _polygon() -> tuple[np.ndarray, np.ndarray]:
+    """The 64 unit vertices (cos, sin) counter-clockwise from (1, 0)."""
+    c = np.array(_QUARTER_COS)
+    cos = np.concatenate((c[:16], -c[16:0:-1], -c[:16], c[16:0:-1]))
+    sin = np.concatenate((c[16:0:-1], c[:16], -c[16:0:-1], -c[:16]))
+    return cos, sin
+
+
+_POLY_COS, _POLY_SIN = _polygon()
 
 
 def _disk_inside_cup(xc: np.ndarray, yc: float, rad: float, a: float) -> np.ndarray:
@@ -28,10 +66,9 @@ def _disk_inside_cup(xc: np.ndarray, yc: float, rad: float, a: float) -> np.ndar
     The region is convex, so a circumscribing polygon with its corners inside
     proves the disk inside.
     """
-    rho = rad / math.cos(math.pi / _POLYGON)
-    ang = np.linspace(0.0, 2.0 * math.pi, _POLYGON, endpoint=False)
-    px = xc[:, None] + rho * np.cos(ang)[None, :]
-    py = yc + rho * np.sin(ang)[None, :]
+    rho = rad * _SECANT
+    px = xc[:, None] + rho * _POLY_COS[None, :]
+    py = yc + rho * _POLY_SIN[None, :]
     inside: np.ndarray = np.all(py > a * px * px, axis=1)
     return inside
 
@@ -97,19 +134,24 @@ def load_cup(
     radius: float,
     curvature: float,
     y_top: float,
-    rng: np.random.Generator,
+    seed: int,
 ) -> tuple[np.ndarray, np.ndarray]:
-    """Positions and velocities of n atoms of equal radius, trap coordinates."""
+    """Positions and velocities of n atoms of equal radius, trap coordinates.
+
+    Each atom sits at a uniform point of the jitter disk round its cell centre and moves
+    in a uniform direction (a point of the ring 1/16 <= r^2 < 1, normalised by sqrt).
+    """
     centres = cell_centres(n, radius, curvature, y_top)
     jitter = radius * 8.0 / 12.0
-    u = rng.random((n, 4))
-    r = jitter * np.sqrt(u[:, 0])
-    phi = 2.0 * math.pi * u[:, 1]
-    pos = centres + np.column_stack((r * np.cos(phi), r * np.sin(phi)))
+    offset = disk_points(seed, STREAM_JITTER, n)
+    pos = np.column_stack(
+        (centres[:, 0] + jitter * offset[:, 0], centres[:, 1] + jitter * offset[:, 1])
+    )
     level = (centres[:, 1] - centres[0, 1]) / ROW_SPACING_ORIGINAL
-    speed = V0 + (level + u[:, 2]) * DV
-    theta = 2.0 * math.pi * u[:, 3]
-    vel = np.column_stack((speed * np.cos(theta), speed * np.sin(theta)))
+    speed = V0 + (level + _uniforms(seed, STREAM_SPEED, np.arange(n))) * DV
+    ring = disk_points(seed, STREAM_DIRECTION, n, inner=1.0 / 16.0)
+    norm = np.sqrt(ring[:, 0] * ring[:, 0] + ring[:, 1] * ring[:, 1])
+    vel = np.column_stack(((speed * ring[:, 0]) / norm, (speed * ring[:, 1]) / norm))
     return pos, vel
 
 

@@ -38,6 +38,7 @@ from evapcool.physics.constants import (
 )
 from evapcool.physics.loading import load_cup
 from evapcool.physics.room import CLASSIC_ROOM, Room, check_room
+from evapcool.physics.start import random_seed
 from evapcool.physics.validation import check_world
 from evapcool.physics.world import (
     ESCAPED,
@@ -128,9 +129,10 @@ class Simulation:
         r_ref = float(c.radii[0])  # the trap origin lies this far above the wall's lowest point
         self.room = c.room
         self.seed = c.seed
-        self.rng = np.random.default_rng(c.seed)
         if c.positions is None or c.velocities is None:
-            pos, vel = load_cup(c.n_atoms, r_ref, c.curvature, c.room.top(r_ref), self.rng)
+            if self.seed is None:
+                self.seed = random_seed()  # drawn here so that every start can be replayed
+            pos, vel = load_cup(c.n_atoms, r_ref, c.curvature, c.room.top(r_ref), self.seed)
         else:
             pos, vel = c.positions.copy(), c.velocities.copy()
         x_left, x_right, y_bottom = c.room.escape_box(r_ref)
@@ -175,7 +177,6 @@ class Simulation:
         sim = cls.__new__(cls)
         sim.room = room
         sim.seed = None
-        sim.rng = np.random.default_rng()
         sim._world = world
         sim._engine = sim._make_engine(engine, len(world.radius))
         sim._engine.set_trap_height(world.trap_height)

@@ -13,6 +13,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from evapcool.physics.kernels import flight_vy, flight_x, flight_y
+from evapcool.physics.portable import power
 
 # Atom lifecycle, SPEC 2.3: trapped -> escaped -> gone.
 TRAPPED = 0
@@ -116,8 +117,7 @@ class World:
 
     def critical_temperature_of(self, n: int) -> float:
         """Tc(N) = Tc0 (N / N0)^p, seed Eq. (46) with exponent p."""
-        tc: float = self.tc0 * (n / self.n_initial) ** self.tc_exponent
-        return tc
+        return self.tc0 * power(n / self.n_initial, self.tc_exponent)
 
     def win_threshold_of(self, n: int) -> float:
         """The temperature below which N atoms have won: Tc(N), or -inf without the win rule."""

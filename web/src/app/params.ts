@@ -30,8 +30,8 @@ export const ADDRESS_NAMES: Readonly<Record<string, string>> = {
 };
 /** A typed value or option name is shown up to this many characters. */
 const SHOWN_CHARS = 24;
-/** The seed the page's generator takes (32 bits), within limits.py's SEED range. */
-const SEED_MAX = Math.min(SEED.high, 0xffffffff);
+/** The seed the shared start generator takes: limits.py's SEED range (up to 2^53 - 1). */
+const SEED_MAX = SEED.high;
 
 const DECIMAL = /^[+-]?(\d+\.?\d*|\.\d+)([eE][+-]?\d+)?$/;
 

@@ -17,6 +17,7 @@ import {
   type GameConfig,
   type SimFactory,
 } from "../game/rules";
+import { randomSeed } from "../game/engine";
 import type { AtomArrays, SimLike } from "../game/sim";
 import {
   frameViews,
@@ -129,13 +130,6 @@ export interface RemoteHooks {
   won(): void;
   /** The worker failed: play on the page's own loop from here. */
   failed(message: string): void;
-}
-
-/** Where a new seed comes from when the config has none (as the physics draws one). */
-function randomSeed(): number {
-  const a = new Uint32Array(1);
-  crypto.getRandomValues(a);
-  return a[0];
 }
 
 /** A worker that has not said hello after this long is taken for failed, ms. */

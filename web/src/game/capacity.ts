@@ -1,27 +1,13 @@
 /**
  * How many atoms of a radius the initial loading fits (SPEC 1 rows of cells) with every
  * disk below the starting rim, computed like the desktop's `loading.capacity` (whole rows
- * of cells, the same 64-gon test), so the settings screen offers the same "1 to N".
+ * of cells, the loader's own 64-gon test), so the settings screen offers the same "1 to N".
  */
 import { BORDER_TOP, CURVATURE, cupVertex } from "./constants";
+import { diskInsideCup } from "./engine";
 
 /** The rim at the start, px: no atom of the start may sit above it (or under the border). */
 const START_HEIGHT = 400;
-
-const POLYGON = 64;
-
-/** Whether the jitter disk around (xc, yc) lies inside y >= a x^2 (its circumscribed 64-gon does). */
-function diskInsideCup(xc: number, yc: number, rad: number, a: number): boolean {
-  const rho = rad / Math.cos(Math.PI / POLYGON);
-  const step = (2 * Math.PI) / POLYGON;
-  for (let k = 0; k < POLYGON; k++) {
-    const ang = k * step;
-    const px = xc + rho * Math.cos(ang);
-    const py = yc + rho * Math.sin(ang);
-    if (!(py > a * px * px)) return false;
-  }
-  return true;
-}
 
 const cache = new Map<number, number>();
 

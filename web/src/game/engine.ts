@@ -1,6 +1,11 @@
 /** The simulation the game plays: the exact engine of `../physics`, seen as a SimLike. */
 import { Simulation, type AtomSnapshot } from "../physics/index";
 import { readTrace, replayTrace, traceText } from "../physics/trace";
+
+/** The loader's own 64-gon test, for the settings' capacity (game/capacity.ts). */
+export { diskInsideCup } from "../physics/loading";
+/** A fresh seed of the shared start generator, for a game that names none. */
+export { randomSeed } from "../physics/start";
 import type { GameConfig } from "./rules";
 import type { AtomArrays, SimLike } from "./sim";
 

@@ -18,6 +18,7 @@ import {
   WIN_NORMAL_SPEED_FLOOR,
 } from "./constants";
 import { link, unlink } from "./grid";
+import { power } from "./portable";
 import {
   ATOM_IN_CURVATURE,
   ATOM_IN_VX,
@@ -114,7 +115,7 @@ export function log(tb: Tables, kind: number, a: number, b: number): void {
 
 /** Tc(N) = Tc0 (N / N0)^p, seed Eq. (46) with exponent p. */
 export function criticalTemperature(tb: Tables, nTrapped: number): number {
-  return tb.tc0 * Math.pow(nTrapped / tb.n, tb.tcExponent);
+  return tb.tc0 * power(nTrapped / tb.n, tb.tcExponent);
 }
 
 /** T < Tc(N) with the running energy sum (seed Eqs. 1 and 46), latched. */

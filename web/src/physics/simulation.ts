@@ -25,7 +25,7 @@ import {
 } from "./constants";
 import type { EngineAtoms, EngineSetup } from "./engine";
 import { loadCup } from "./loading";
-import { Xoshiro128, randomSeed } from "./rng";
+import { randomSeed } from "./start";
 import {
   STATE_FORMAT,
   STATE_VERSION,
@@ -298,7 +298,7 @@ export class Simulation {
           throw bad("radius", "one number unless positions are given", "per-atom radii");
       const s = seed ?? randomSeed();
       this.seedUsed = s;
-      const start = loadCup(n, radius[0], a, originSy, new Xoshiro128(s));
+      const start = loadCup(n, radius[0], a, originSy, s);
       [xs, ys] = points("positions", start.positions, n);
       [vxs, vys] = points("velocities", start.velocities, n);
     } else {

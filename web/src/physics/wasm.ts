@@ -8,6 +8,7 @@
  */
 import wasmBase64 from "virtual:evapcool-wasm";
 import type { Engine, EngineAtoms, EngineSetup } from "./engine";
+import { power } from "./portable";
 
 /** What Simulation uses of an engine (engine.ts's Engine or WasmEngine). */
 export type EngineCore = Pick<
@@ -252,7 +253,7 @@ export class WasmEngine implements EngineCore {
 
   /** Tc(N) = Tc0 (N / N0)^p, seed Eq. (46) with exponent p. */
   criticalTemperatureOf(nTrapped: number): number {
-    return this.tc0 * Math.pow(nTrapped / this.n, this.tcExponent);
+    return this.tc0 * power(nTrapped / this.n, this.tcExponent);
   }
 
   sequentialEnergySum(): number {

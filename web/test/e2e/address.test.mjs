@@ -36,7 +36,7 @@ test("seven bad options: every one is shown, four at a time, the rest counted", 
   }
   assert.deepEqual(second, [
     'Address: escape must be one of rim, knife (got "door"); ignored.',
-    'Address: seed must be a whole number from 0 to 4294967295 (got "-1"); ignored.',
+    'Address: seed must be a whole number from 0 to 9007199254740991 (got "-1"); ignored.',
     'Address: speed must be a number from 0.25 to 4 (got "9"); ignored.',
   ]);
   await page.close();
@@ -64,7 +64,7 @@ test("hex, words, a 5 000-digit count and a repeated option are refused by name"
     "Address: speed is given 2 times; give it once. Ignored.",
     'Address: radius must be a number from 0.01 to 1000 px (got "abc"); ignored.',
     'Address: atoms must be a whole number from 1 to 100000 (got "99999999999999999999…" (5000 characters)); ignored.',
-    'Address: seed must be a whole number from 0 to 4294967295 (got "0x10"); ignored.',
+    'Address: seed must be a whole number from 0 to 9007199254740991 (got "0x10"); ignored.',
   ]);
   const s = await page.evaluate(async () => await window.evapcool.state());
   assert.equal(s.nAtoms ?? s.nTrapped, 49);

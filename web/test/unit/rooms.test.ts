@@ -15,7 +15,6 @@ const NO_TWIN: Record<string, string> = {
   "index.ts": "the package's entry (Python's physics/__init__.py)",
   "constants.ts":
     "the applet's constants; Python keeps them in constants.py, world.py and limits.py",
-  "rng.ts": "the page's seeded xoshiro128**; Python draws its starts with NumPy's generator",
   "wasm.ts": "the WebAssembly core's wrapper; its C rooms in web/wasm/ mirror physics/fast",
   "wasm-core.d.ts": "the type of the core the build inlines (web/scripts/wasm-plugin.mjs)",
 };

@@ -1,0 +1,141 @@
+// The shared start generator and the win (issue 22.1): the starts and the autopilot's won games
+// the Python edition wrote (scripts/golden_starts.py -> golden/starts.json, wins.json) come out
+// of the page's engines bit for bit, on both cores.
+import { readFileSync } from "node:fs";
+import fc from "fast-check";
+import { afterEach, describe, expect, it } from "vitest";
+import { Game } from "../src/game/rules";
+import { makeSimulation } from "../src/game/engine";
+import { Engine, type EngineAtoms, type EngineSetup } from "../src/physics/engine";
+import { power } from "../src/physics/portable";
+import { Simulation, setEngineCore, type EngineFactory } from "../src/physics/simulation";
+import { diskPoints, SEED_PORTABLE_MAX, Stream } from "../src/physics/start";
+import { WasmEngine } from "../src/physics/wasm";
+
+interface StartCase {
+  atoms: number;
+  radius: number;
+  seed: number;
+  positions: number[];
+  velocities: number[];
+  critical_temperature: number;
+}
+interface Recording {
+  settings: { atoms: number; radius: number; escape: "rim" | "knife"; tc_exponent: number };
+  seed: number;
+  moves: [number, number][];
+  won: boolean;
+  score: number;
+  frames: number;
+}
+
+const read = (name: string) =>
+  JSON.parse(readFileSync(new URL(`./golden/${name}`, import.meta.url), "utf8"));
+const STARTS: StartCase[] = read("starts.json").cases;
+const WINS: Recording[] = read("wins.json").recordings;
+const CORES: [string, EngineFactory][] = [
+  ["wasm", (s: EngineSetup, a: EngineAtoms) => new WasmEngine(s, a)],
+  ["ts", (s: EngineSetup, a: EngineAtoms) => new Engine(s, a)],
+];
+
+/** The bits of a float as hex (0 and -0 differ). */
+function bits(x: number): string {
+  const v = new DataView(new ArrayBuffer(8));
+  v.setFloat64(0, x);
+  return v.getBigUint64(0).toString(16);
+}
+
+/** Replay like game/replay.py: hold each frame's height, one whole frame, stop at the win. */
+function replay(rec: Recording): { won: boolean; score: number; frames: number } {
+  const s = rec.settings;
+  const game = new Game(makeSimulation, {
+    nAtoms: s.atoms,
+    radius: s.radius,
+    seed: rec.seed,
+    speed: 1,
+    tcExponent: s.tc_exponent,
+    escape: s.escape,
+  });
+  game.togglePause();
+  let frames = 0;
+  for (const [height, n] of rec.moves)
+    for (let k = 0; k < n; k++) {
+      game.setTrapHeight(height);
+      game.runFrames(1);
+      frames++;
+      if (game.won) return { won: true, score: game.score ?? 0, frames };
+    }
+  return { won: false, score: 0, frames };
+}
+
+afterEach(() => setEngineCore(null));
+
+for (const [core, factory] of CORES)
+  describe(`the ${core} core`, () => {
+    for (const c of STARTS)
+      it(`starts ${c.atoms} atoms of radius ${c.radius} from seed ${c.seed} as Python does`, () => {
+        setEngineCore(factory);
+        const sim = new Simulation({ nAtoms: c.atoms, radius: c.radius, seed: c.seed });
+        expect(Array.from(sim.positions, bits)).toEqual(c.positions.map(bits));
+        expect(Array.from(sim.velocities, bits)).toEqual(c.velocities.map(bits));
+        expect(bits(sim.criticalTemperature)).toBe(bits(c.critical_temperature));
+      });
+    for (const rec of WINS)
+      it(`replays the won game of seed ${rec.seed} (${rec.settings.escape}, p = ${rec.settings.tc_exponent}) to its score`, () => {
+        setEngineCore(factory);
+        expect(replay(rec)).toEqual({ won: rec.won, score: rec.score, frames: rec.frames });
+      });
+  });
+
+describe("the start generator", () => {
+  it("refuses a seed a double cannot hold or a negative one", () => {
+    expect(() => new Stream(2 ** 53, 1)).toThrow(RangeError);
+    expect(() => new Stream(-1, 1)).toThrow(/seed must be a whole number/);
+    expect(() => new Stream(SEED_PORTABLE_MAX, 1)).not.toThrow();
+  });
+
+  it("puts every point in its disk or ring, in [-1, 1)", () => {
+    fc.assert(
+      fc.property(fc.integer({ min: 0, max: SEED_PORTABLE_MAX }), fc.boolean(), (seed, ring) => {
+        const inner = ring ? 1 / 16 : 0;
+        const p = diskPoints(seed, 3, 64, inner);
+        for (let i = 0; i < 64; i++) {
+          const r2 = p[2 * i] * p[2 * i] + p[2 * i + 1] * p[2 * i + 1];
+          if (!(r2 >= inner && r2 < 1)) return false;
+        }
+        return true;
+      }),
+      { numRuns: 200 },
+    );
+  });
+
+  it("gives doubles in [0, 1) whose mean is near 1/2", () => {
+    const s = new Stream(12345, 2);
+    let sum = 0;
+    for (let k = 0; k < 20000; k++) {
+      const u = s.uniform(k);
+      expect(u >= 0 && u < 1).toBe(true);
+      sum += u;
+    }
+    expect(Math.abs(sum / 20000 - 0.5)).toBeLessThan(0.01);
+  });
+});
+
+describe("power from products and square roots", () => {
+  it("is within a few units in the last place of Math.pow", () => {
+    fc.assert(
+      fc.property(
+        fc.double({ min: 1e-6, max: 1, noNaN: true }),
+        fc.double({ min: 0.01, max: 10, noNaN: true }),
+        (x, p) => {
+          const want = Math.pow(x, p);
+          return want === 0 || Math.abs(power(x, p) - want) / want < 64 * Number.EPSILON;
+        },
+      ),
+      { numRuns: 2000 },
+    );
+    expect(power(0, 2 / 3)).toBe(0);
+    expect(power(1, 2 / 5)).toBe(1);
+    expect(power(0.25, 0.5)).toBe(0.5);
+  });
+});
