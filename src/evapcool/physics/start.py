@@ -37,7 +37,8 @@ def _fmix32(h: np.ndarray) -> np.ndarray:
     h = (h * np.uint64(0x85EBCA6B)) & _M32
     h = h ^ (h >> np.uint64(13))
     h = (h * np.uint64(0xC2B2AE35)) & _M32
-    return h ^ (h >> np.uint64(16))
+    mixed: np.ndarray = h ^ (h >> np.uint64(16))
+    return mixed
 
 
 def stream_keys(seed: int, stream: int) -> tuple[int, int]:
