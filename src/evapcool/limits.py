@@ -134,22 +134,21 @@ class Range:
 
     def check(self, name: str, value: object) -> float:
         """value as int (integer ranges) or float; ValueError naming name and the range."""
-        bad = bad_value(name, self.allowed(), value)
         if isinstance(value, bool):
-            raise bad
+            raise bad_value(name, self.allowed(), value)
         if self.integer:
             if not isinstance(value, numbers.Integral):
-                raise bad
+                raise bad_value(name, self.allowed(), value)
             number = int(value)
             if not (self.low <= number <= self.high):
-                raise bad
+                raise bad_value(name, self.allowed(), value)
             return number
         if not isinstance(value, numbers.Real):
-            raise bad
-        number = float(value)
-        if not self.contains(number):
-            raise bad
-        return number
+            raise bad_value(name, self.allowed(), value)
+        real = float(value)
+        if not self.contains(real):  # the message is built only for a refusal (hot path)
+            raise bad_value(name, self.allowed(), value)
+        return real
 
     def check_int(self, name: str, value: object) -> int:
         """check() of a whole-number range, typed as the int it returns."""

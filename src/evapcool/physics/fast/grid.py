@@ -87,9 +87,10 @@ def regrid_for(world: World, grid: Grid, height: float) -> Grid | None:
     new = reach(world, height)
     if new > grid.reach:
         return geometry(world, max(new, min(GROWTH * grid.reach, reach(world, math.inf))))
-    fine = CELL_FACTOR * 2.0 * float(np.max(world.radius))
-    if grid.cell > 1.01 * fine and new < grid.reach / GROWTH**2:
-        return geometry(world, GROWTH * new)  # the cells were widened for a big cup
+    if new < grid.reach / GROWTH**2:  # cheap test first: this runs at every height change
+        fine = CELL_FACTOR * 2.0 * float(np.max(world.radius))
+        if grid.cell > 1.01 * fine:
+            return geometry(world, GROWTH * new)  # the cells were widened for a big cup
     return None
 
 
