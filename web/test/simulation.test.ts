@@ -7,6 +7,8 @@ import {
   type SimulationOptions,
 } from "../src/physics/index";
 import { stateText } from "../src/physics/trace";
+import { CLASSIC_ROOM } from "../src/physics/room";
+import { screenOrigin, toScreen, WINDOW, windowRoom } from "../src/view/screen";
 
 const G = GRAVITY;
 const A = 0.01;
@@ -221,12 +223,18 @@ describe("the start", () => {
     }
   });
 
-  it("maps trap coordinates to the original window", () => {
+  it("knows its room, not the window; the view's screen map places it (issue 26.3)", () => {
     const sim = Simulation.classic(1);
-    expect(sim.screenOrigin).toEqual([296, 532]);
-    expect(Array.from(sim.toScreen([0, 0, 10, 20]))).toEqual([296, 532, 306, 512]);
-    expect(sim.toScreenPoint(-5, 1)).toEqual([291, 531]);
+    expect(sim.room).toEqual(CLASSIC_ROOM);
+    expect(sim.originLift).toBe(12);
+    expect(screenOrigin(sim)).toEqual([296, 532]);
+    expect(Array.from(toScreen(sim, [0, 0, 10, 20]))).toEqual([296, 532, 306, 512]);
+    expect(windowRoom(WINDOW)).toEqual(CLASSIC_ROOM);
     expect(sim.rimHalfWidth).toBe(200);
+    // A room of another size: escaped atoms leave at its edges; the state names it by window.
+    const wide = new Simulation({ nAtoms: 10, room: windowRoom([800, 700]), seed: 3 });
+    expect(wide.toState().window).toEqual([800, 700]);
+    expect(Simulation.fromState(wide.toState()).room).toEqual(windowRoom([800, 700]));
   });
 
   it("hands out per-atom snapshots without allocating when given one", () => {
@@ -320,7 +328,8 @@ describe("bad input", () => {
     [{ gravity: Infinity }, "gravity"],
     [{ trapHeight: NaN }, "trapHeight"],
     [{ tcExponent: -1 }, "tcExponent"],
-    [{ window: [100, 100] as [number, number] }, "window"],
+    [{ room: { left: 10, right: 10, below: 10, above: 10 } }, "room must be a room of sides"],
+    [{ window: [640, 672] } as never, "options must be free of unknown names"],
     [{ seed: -1 }, "seed"],
     [{ seed: 1.5 }, "seed"],
     [{ escape: "net" as never }, "escape"],

@@ -114,8 +114,11 @@ function publish(): void {
   h[HEADER.won] = sim.won ? 1 : 0;
   h[HEADER.winRule] = sim.winRule ? 1 : 0;
   h[HEADER.collisionCount] = sim.collisionCount;
-  h[HEADER.originX] = sim.screenOrigin[0];
-  h[HEADER.originY] = sim.screenOrigin[1];
+  h[HEADER.originLift] = sim.originLift;
+  h[HEADER.roomLeft] = sim.room.left;
+  h[HEADER.roomRight] = sim.room.right;
+  h[HEADER.roomBelow] = sim.room.below;
+  h[HEADER.roomAbove] = sim.room.above;
   h[HEADER.wonAt] = g.wonAt ?? NaN;
   h[HEADER.trappedCount] = v.trapped.count;
   h[HEADER.escapedCount] = v.escaped.count;

@@ -17,7 +17,7 @@ import {
   type GameConfig,
   type SimFactory,
 } from "../game/rules";
-import { randomSeed } from "../game/engine";
+import { CLASSIC_ROOM, randomSeed, type Room } from "../game/engine";
 import type { AtomArrays, SimLike } from "../game/sim";
 import {
   frameViews,
@@ -56,7 +56,7 @@ export type GameLike = Pick<
 /** The physics' state as of the newest frame buffer (a SimLike the view draws). */
 export class MirrorSim implements SimLike {
   frame: FrameViews | null = null;
-  private origin: [number, number] = [0, 0];
+  private roomSeen: Room = CLASSIC_ROOM;
 
   private at(slot: number): number {
     return this.frame ? this.frame.header[slot] : 0;
@@ -109,10 +109,20 @@ export class MirrorSim implements SimLike {
   get collisionCount() {
     return this.at(HEADER.collisionCount);
   }
-  get screenOrigin(): readonly [number, number] {
-    this.origin[0] = this.at(HEADER.originX);
-    this.origin[1] = this.at(HEADER.originY);
-    return this.origin;
+  get room(): Room {
+    const [left, right, below, above] = [
+      this.at(HEADER.roomLeft),
+      this.at(HEADER.roomRight),
+      this.at(HEADER.roomBelow),
+      this.at(HEADER.roomAbove),
+    ];
+    const r = this.roomSeen;
+    if (r.left !== left || r.right !== right || r.below !== below || r.above !== above)
+      this.roomSeen = { left, right, below, above };
+    return this.roomSeen;
+  }
+  get originLift(): number {
+    return this.at(HEADER.originLift);
   }
   advance(): void {
     throw new Error("the worker advances the physics");

@@ -31,8 +31,9 @@ export const HEADER = {
   won: 14,
   winRule: 15,
   collisionCount: 16,
-  originX: 17,
-  originY: 18,
+  /** The trap origin's lift above the wall's lowest point; the room's left and top (view/screen.ts). */
+  originLift: 17,
+  roomLeft: 18,
   wonAt: 19,
   trappedCount: 20,
   escapedCount: 21,
@@ -42,6 +43,9 @@ export const HEADER = {
   physicsMs: 23,
   /** Atoms in the cup at the moment of the win (NaN before). */
   scoreAtWin: 24,
+  roomRight: 25,
+  roomBelow: 26,
+  roomAbove: 27,
 } as const;
 export const HEADER_SLOTS = 32;
 

@@ -3,11 +3,13 @@
  * disk below the starting rim, computed like the desktop's `loading.capacity` (whole rows
  * of cells, the loader's own 64-gon test), so the settings screen offers the same "1 to N".
  */
-import { BORDER_TOP, CURVATURE, cupVertex } from "./constants";
-import { diskInsideCup } from "./engine";
+import { CURVATURE } from "./constants";
+import { CLASSIC_ROOM, diskInsideCup, roomTop } from "./engine";
 
 /** The rim at the start, px: no atom of the start may sit above it (or under the border). */
 const START_HEIGHT = 400;
+/** Atoms this far below the room's top are in view: under the play area's top border, px. */
+const SHOWN_BELOW_TOP = 48;
 
 const cache = new Map<number, number>();
 
@@ -17,7 +19,7 @@ export function cupCapacity(radius: number, curvature = CURVATURE): number {
   const hit = cache.get(key);
   if (hit !== undefined) return hit;
   // The border's edge in trap coordinates, or the rim if that is lower.
-  const yTop = Math.min(START_HEIGHT, cupVertex()[1] - radius - BORDER_TOP);
+  const yTop = Math.min(START_HEIGHT, roomTop(CLASSIC_ROOM, radius) - SHOWN_BELOW_TOP);
   const jitter = (radius * 8) / 12;
   const cell = radius + jitter;
   const spacing = 2 * cell;

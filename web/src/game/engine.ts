@@ -6,6 +6,21 @@ import { readTrace, replayTrace, traceText } from "../physics/trace";
 export { diskInsideCup } from "../physics/loading";
 /** A fresh seed of the shared start generator, for a game that names none. */
 export { randomSeed } from "../physics/start";
+/** The room around the cup (the view places it on screen: view/screen.ts). */
+export { CLASSIC_ROOM, roomTop, type Room } from "../physics/room";
+export type { AtomSnapshot } from "../physics/index";
+/** The physics' constants the game and the view use (game/constants.ts). */
+export {
+  ATOM_RADIUS,
+  CURVATURE,
+  ESCAPE_RULES,
+  FPS,
+  GRAVITY,
+  N_ATOMS,
+  TC_EXPONENT_CUP,
+  TC_EXPONENT_SEED,
+  type EscapeRule,
+} from "../physics/constants";
 import type { GameConfig } from "./rules";
 import type { AtomArrays, SimLike } from "./sim";
 
@@ -73,8 +88,11 @@ export class EngineSim implements SimLike {
   get collisionCount() {
     return this.sim.collisionCount;
   }
-  get screenOrigin() {
-    return this.sim.screenOrigin;
+  get room() {
+    return this.sim.room;
+  }
+  get originLift() {
+    return this.sim.originLift;
   }
   advance(dt: number): void {
     this.sim.advance(dt);

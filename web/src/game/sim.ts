@@ -3,18 +3,14 @@
  * `Simulation` (SPEC section 3). `engine.ts` adapts the engine in `../physics` to it, so
  * nothing else imports the physics directly.
  */
+import type { AtomSnapshot, Room } from "./engine";
 
-/** Per-atom snapshot in trap coordinates (x right, y up, px; velocities px / frame). */
-export interface AtomArrays {
-  x: Float64Array;
-  y: Float64Array;
-  vx: Float64Array;
-  vy: Float64Array;
-  radius: Float64Array;
-  mass: Float64Array;
-  /** How many entries are valid (arrays may be longer and reused). */
-  count: number;
-}
+/**
+ * Per-atom columns in trap coordinates (x right, y up, px; velocities px / frame), `count`
+ * of them valid (arrays may be longer and reused): the physics' AtomSnapshot without its
+ * index and energy columns, one type for both (issue 26.3).
+ */
+export type AtomArrays = Pick<AtomSnapshot, "count" | "x" | "y" | "vx" | "vy" | "radius" | "mass">;
 
 export interface SimLike {
   /** Simulation time in frames (1/30 s). */
@@ -35,8 +31,10 @@ export interface SimLike {
   /** False if the game's win rule is off (the gas stays a gas below Tc). */
   readonly winRule: boolean;
   readonly collisionCount: number;
-  /** Screen position (px, y down) of the trap origin in the 640 x 672 window. */
-  readonly screenOrigin: readonly [number, number];
+  /** The room around the cup (the view places it: view/screen.ts). */
+  readonly room: Room;
+  /** The trap origin's height above the cup wall's lowest point (the first atom's radius). */
+  readonly originLift: number;
   advance(dt: number): void;
   /** The trapped atoms now (a snapshot reused by the next call). */
   trapped(): AtomArrays;

@@ -1,4 +1,7 @@
-/** The original applet's constants (SPEC section 1) and the model's fixed numbers (docs/model.md). */
+/**
+ * The original applet's physical constants (SPEC section 1) and the model's fixed numbers
+ * (docs/model.md); the screen is the view's (view/screen.ts), the room physics/room.ts.
+ */
 
 /** Frames per second of the original; physics time is measured in frames. */
 export const FPS = 30;
@@ -10,14 +13,6 @@ export const ATOM_RADIUS = 12;
 export const N_ATOMS = 49;
 /** The slider's start, px above the lowest centre position. */
 export const TRAP_HEIGHT = 400;
-/** The original window, px. */
-export const WINDOW: readonly [number, number] = [640, 672];
-export const BORDER_LEFT = 48;
-export const BORDER_RIGHT = 96;
-export const BORDER_TOP = 48;
-export const BORDER_BOTTOM = 96;
-/** px between the drawn cup bottom and the play area's bottom. */
-export const CUP_DROP = 32;
 /** p in Tc(N) = Tc0 (N / N0)^p: the seed's 3D-box law (seed Eq. 46)... */
 export const TC_EXPONENT_SEED = 2 / 3;
 /** ...or the ideal Bose gas with this cup's density of states g(E) ~ E^(3/2) (SPEC 4). */
@@ -50,10 +45,3 @@ export const EV_GONE = 3;
 export const EV_KNIFE = 4;
 export const EVENT_NAMES = ["pair", "wall", "escape", "gone", "knife"] as const;
 export type EventName = (typeof EVENT_NAMES)[number];
-
-/** Screen position of the drawn cup's lowest point: (296, 544) in 640 x 672. */
-export function cupVertex(window: readonly [number, number]): [number, number] {
-  const [w, h] = window;
-  const playW = w - BORDER_LEFT - BORDER_RIGHT;
-  return [BORDER_LEFT + playW / 2, h - BORDER_BOTTOM - CUP_DROP];
-}

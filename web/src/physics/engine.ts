@@ -34,8 +34,8 @@ import type { EngineAtoms, EngineSetup } from "./tables";
 
 export type { EngineAtoms, EngineSetup } from "./tables";
 
-/** Stored values of storedOf, in STATE's order, then the mass. */
-const STORED_MASS = 6;
+/** What storedOf(i, k) returns for each k: STATE's fields in its order, then the mass. */
+export const STORED = { x: 0, y: 1, vx: 2, vy: 3, t: 4, radius: 5, mass: 6 } as const;
 
 export class Engine {
   private readonly tb: Tables;
@@ -48,20 +48,14 @@ export class Engine {
   }
 
   // -- fixed for the engine's life ------------------------------------------------------------
-  get n(): number {
+  /** Atoms at the start (N0), gone ones included. */
+  get nAtoms(): number {
     return this.tb.n;
   }
   get gravity(): number {
     return this.tb.gravity;
   }
   get curvature(): number {
-    return this.tb.curvature;
-  }
-  /** Short names simulation.ts reads (kept for it and for a WebAssembly engine alike). */
-  get g(): number {
-    return this.tb.gravity;
-  }
-  get a(): number {
     return this.tb.curvature;
   }
   get knife(): boolean {
@@ -73,16 +67,14 @@ export class Engine {
   get tcExponent(): number {
     return this.tb.tcExponent;
   }
-  get nx(): number {
+  /** The cell grid's columns and rows. */
+  get gridColumns(): number {
     return this.tb.nx;
   }
-  get ny(): number {
+  get gridRows(): number {
     return this.tb.ny;
   }
   get cellSize(): number {
-    return this.tb.cellSize;
-  }
-  get cs(): number {
     return this.tb.cellSize;
   }
 
@@ -164,10 +156,10 @@ export class Engine {
     return this.tb.plan[PLAN_WIDTH * this.tb.row[i] + PLAN_STATUS];
   }
 
-  /** Stored value k of world atom i: 0 x, 1 y, 2 vx, 3 vy, 4 t, 5 radius, 6 mass. */
+  /** Stored value k (STORED) of world atom i. */
   storedOf(i: number, k: number): number {
     const r = this.tb.row[i];
-    if (k === STORED_MASS) return this.tb.queued[QUEUED_WIDTH * r + QUEUED_MASS];
+    if (k === STORED.mass) return this.tb.queued[QUEUED_WIDTH * r + QUEUED_MASS];
     return this.tb.state[STATE_WIDTH * r + k];
   }
 

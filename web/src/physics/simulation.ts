@@ -18,21 +18,20 @@ import {
   TC_EXPONENT_SEED,
   TRAP_HEIGHT,
   TRAPPED,
-  WINDOW,
-  cupVertex,
   type EscapeRule,
   type EventName,
 } from "./constants";
-import type { EngineAtoms, EngineSetup } from "./engine";
+import { STORED, type EngineAtoms, type EngineSetup } from "./engine";
 import { loadCup } from "./loading";
+import { CLASSIC_ROOM, checkRoom, escapeBox, roomTop, type Room } from "./room";
 import { randomSeed } from "./start";
 import {
   STATE_FORMAT,
   STATE_VERSION,
   bad,
   checkPlacement,
-  checkWindow,
   parseState,
+  windowOfRoom,
   type SimulationState,
   type StateInput,
 } from "./state";
@@ -66,8 +65,8 @@ export interface SimulationOptions {
   gravity?: number;
   /** Rim height H, px above the lowest centre position (Infinity allowed). Default 400. */
   trapHeight?: number;
-  /** Window (width, height), px. Default [640, 672]. */
-  window?: readonly [number, number];
+  /** The room around the cup: where escaped atoms are gone, how high the start fills. Default the original's. */
+  room?: Room;
   /** Seed of the start's generator (a whole number >= 0); a random one if absent. */
   seed?: number;
   /** p in Tc(N) = Tc0 (N / N0)^p. Default 2/3 (seed Eq. 46); 2/5 is the cup's Bose gas. */
@@ -114,7 +113,7 @@ const OPTION_KEYS = new Set([
   "curvature",
   "gravity",
   "trapHeight",
-  "window",
+  "room",
   "seed",
   "tcExponent",
   "escape",
@@ -249,8 +248,7 @@ export function setEngineCore(factory: EngineFactory | null): void {
 /** Hard disks in a parabolic cup under gravity, advanced event by event, exactly. */
 export class Simulation {
   private engine!: EngineCore;
-  private windowSize!: [number, number];
-  private origin!: [number, number];
+  private roomAround!: Room;
   private seedUsed!: number | null;
   private scratch!: Float64Array;
 
@@ -272,8 +270,7 @@ export class Simulation {
     const g = inRange(GRAVITY_RANGE, "gravity", o.gravity, GRAVITY);
     const height = inRange(TRAP_HEIGHT_RANGE, "trapHeight", o.trapHeight, TRAP_HEIGHT);
     const tcExponent = inRange(TC_EXPONENT_RANGE, "tcExponent", o.tcExponent, TC_EXPONENT_SEED);
-    const window =
-      o.window === undefined ? [WINDOW[0], WINDOW[1]] : checkWindow("window", o.window);
+    const room = o.room === undefined ? CLASSIC_ROOM : checkRoom("room", o.room);
     const seed = o.seed;
     if (seed !== undefined && (typeof seed !== "number" || !Number.isSafeInteger(seed) || seed < 0))
       throw bad("seed", "a whole number >= 0 (or absent)", seed);
@@ -285,8 +282,6 @@ export class Simulation {
     if (!ESCAPE_RULES.includes(escape))
       throw bad("escape", `one of ${ESCAPE_RULES.join(", ")}`, escape);
 
-    const [vxScreen, vyScreen] = cupVertex(window as [number, number]);
-    const originSy = vyScreen - radius[0];
     let xs: Float64Array;
     let ys: Float64Array;
     let vxs: Float64Array;
@@ -298,7 +293,7 @@ export class Simulation {
           throw bad("radius", "one number unless positions are given", "per-atom radii");
       const s = seed ?? randomSeed();
       this.seedUsed = s;
-      const start = loadCup(n, radius[0], a, originSy, s);
+      const start = loadCup(n, radius[0], a, roomTop(room, radius[0]), s);
       [xs, ys] = points("positions", start.positions, n);
       [vxs, vys] = points("velocities", start.velocities, n);
     } else {
@@ -307,7 +302,7 @@ export class Simulation {
       checkStart(xs, ys, vxs, vys, radius, a);
     }
     this.init(
-      window as [number, number],
+      room,
       {
         curvature: a,
         gravity: g,
@@ -335,7 +330,7 @@ export class Simulation {
   }
 
   private init(
-    window: [number, number],
+    room: Room,
     rules: {
       curvature: number;
       gravity: number;
@@ -347,19 +342,18 @@ export class Simulation {
     },
     atoms: EngineAtoms,
   ): void {
-    const [vxScreen, vyScreen] = cupVertex(window);
-    const originSy = vyScreen - atoms.radius[0];
+    // The trap origin lies the first atom's radius above the wall's lowest point.
+    const [xLeft, xRight, yBottom] = escapeBox(room, atoms.radius[0]);
     this.scratch = new Float64Array(4);
-    this.windowSize = [window[0], window[1]];
-    this.origin = [vxScreen, originSy];
+    this.roomAround = room;
     this.engine = makeEngine(
       {
         curvature: rules.curvature,
         gravity: rules.gravity,
         trapHeight: rules.trapHeight,
-        xLeft: -vxScreen,
-        xRight: window[0] - vxScreen,
-        yBottom: originSy - window[1],
+        xLeft,
+        xRight,
+        yBottom,
         tcExponent: rules.tcExponent,
         knife: rules.escape === "knife",
         winRule: rules.win,
@@ -410,7 +404,7 @@ export class Simulation {
     const sim = Object.create(Simulation.prototype) as Simulation;
     sim.seedUsed = null;
     sim.init(
-      p.window,
+      p.room,
       {
         curvature: p.curvature,
         gravity: p.gravity,
@@ -451,7 +445,7 @@ export class Simulation {
   /** The state as a JSON-ready object (docs/state.md): exact, resumable with fromState. */
   toState(): SimulationState {
     const e = this.engine;
-    const n = e.n;
+    const n = e.nAtoms;
     const col = (k: number): number[] => {
       const out = new Array<number>(n);
       for (let i = 0; i < n; i++) out[i] = e.storedOf(i, k);
@@ -464,9 +458,9 @@ export class Simulation {
       version: STATE_VERSION,
       time: e.time,
       trap_height: Number.isFinite(e.trapHeight) ? e.trapHeight : "inf",
-      curvature: e.a,
-      gravity: e.g,
-      window: [this.windowSize[0], this.windowSize[1]],
+      curvature: e.curvature,
+      gravity: e.gravity,
+      window: windowOfRoom(this.roomAround),
       escape: e.knife ? "knife" : "rim",
       tc_exponent: e.tcExponent,
       win: e.winRule,
@@ -476,13 +470,13 @@ export class Simulation {
       pair_collisions: e.pairCount,
       wall_collisions: e.wallCount,
       atoms: {
-        x: col(0),
-        y: col(1),
-        vx: col(2),
-        vy: col(3),
-        t: col(4),
-        radius: col(5),
-        mass: col(6),
+        x: col(STORED.x),
+        y: col(STORED.y),
+        vx: col(STORED.vx),
+        vy: col(STORED.vy),
+        t: col(STORED.t),
+        radius: col(STORED.radius),
+        mass: col(STORED.mass),
         status,
       },
     };
@@ -522,11 +516,11 @@ export class Simulation {
   }
 
   get curvature(): number {
-    return this.engine.a;
+    return this.engine.curvature;
   }
 
   get gravity(): number {
-    return this.engine.g;
+    return this.engine.gravity;
   }
 
   /** "rim" (fly over the rim) or "knife" (energy above m g H removed at once). */
@@ -539,14 +533,14 @@ export class Simulation {
     return this.escape;
   }
 
-  /** The window (width, height) in px this simulation maps to. */
-  get window(): readonly [number, number] {
-    return this.windowSize;
+  /** The room around the cup: where escaped atoms are gone (physics/room.ts). */
+  get room(): Room {
+    return this.roomAround;
   }
 
-  /** Screen position of the trap origin: (296, 544 - R) in the original window. */
-  get screenOrigin(): readonly [number, number] {
-    return this.origin;
+  /** The trap origin's height above the cup wall's lowest point: the first atom's radius. */
+  get originLift(): number {
+    return this.engine.storedOf(0, STORED.radius);
   }
 
   /** The start's seed (drawn at random if none was given); null for a loaded state. */
@@ -557,7 +551,7 @@ export class Simulation {
   // -- atoms -----------------------------------------------------------------------------
   /** Atoms at the start (N0), gone ones included. */
   get nAtoms(): number {
-    return this.engine.n;
+    return this.engine.nAtoms;
   }
 
   get nTrapped(): number {
@@ -568,17 +562,17 @@ export class Simulation {
   get nEscaped(): number {
     const e = this.engine;
     let k = 0;
-    for (let i = 0; i < e.n; i++) if (e.statusOf(i) === ESCAPED) k++;
+    for (let i = 0; i < e.nAtoms; i++) if (e.statusOf(i) === ESCAPED) k++;
     return k;
   }
 
   private indices(status: number): Int32Array {
     const e = this.engine;
     let k = 0;
-    for (let i = 0; i < e.n; i++) if (e.statusOf(i) === status) k++;
+    for (let i = 0; i < e.nAtoms; i++) if (e.statusOf(i) === status) k++;
     const out = new Int32Array(k);
     k = 0;
-    for (let i = 0; i < e.n; i++) if (e.statusOf(i) === status) out[k++] = i;
+    for (let i = 0; i < e.nAtoms; i++) if (e.statusOf(i) === status) out[k++] = i;
     return out;
   }
 
@@ -598,8 +592,8 @@ export class Simulation {
     const out = new Float64Array(wide ? 2 * idx.length : idx.length);
     for (let k = 0; k < idx.length; k++) {
       const i = idx[k];
-      if (what === "radius") out[k] = e.storedOf(i, 5);
-      else if (what === "mass") out[k] = e.storedOf(i, 6);
+      if (what === "radius") out[k] = e.storedOf(i, STORED.radius);
+      else if (what === "mass") out[k] = e.storedOf(i, STORED.mass);
       else {
         e.stateAt(i, e.time, s);
         out[2 * k] = what === "pos" ? s[0] : s[2];
@@ -649,8 +643,8 @@ export class Simulation {
     const status = which === "trapped" ? TRAPPED : which === "escaped" ? ESCAPED : -1;
     if (status < 0) throw bad("which", `"trapped" or "escaped"`, which);
     let snap = out;
-    if (snap === undefined || snap.index.length < e.n) {
-      const n = e.n;
+    if (snap === undefined || snap.index.length < e.nAtoms) {
+      const n = e.nAtoms;
       snap = {
         count: 0,
         index: new Int32Array(n),
@@ -665,7 +659,7 @@ export class Simulation {
     }
     const s = this.scratch;
     let k = 0;
-    for (let i = 0; i < e.n; i++) {
+    for (let i = 0; i < e.nAtoms; i++) {
       if (e.statusOf(i) !== status) continue;
       e.stateAt(i, e.time, s);
       snap.index[k] = i;
@@ -673,8 +667,8 @@ export class Simulation {
       snap.y[k] = s[1];
       snap.vx[k] = s[2];
       snap.vy[k] = s[3];
-      snap.radius[k] = e.storedOf(i, 5);
-      snap.mass[k] = e.storedOf(i, 6);
+      snap.radius[k] = e.storedOf(i, STORED.radius);
+      snap.mass[k] = e.storedOf(i, STORED.mass);
       snap.energy[k] = e.atomEnergy(i);
       k++;
     }
@@ -687,7 +681,7 @@ export class Simulation {
     const e = this.engine;
     const out = new Float64Array(e.nTrapped);
     let k = 0;
-    for (let i = 0; i < e.n; i++) if (e.statusOf(i) === TRAPPED) out[k++] = e.atomEnergy(i);
+    for (let i = 0; i < e.nAtoms; i++) if (e.statusOf(i) === TRAPPED) out[k++] = e.atomEnergy(i);
     return out;
   }
 
@@ -781,26 +775,9 @@ export class Simulation {
     return {
       crossings: e.crossingCount,
       stale: e.staleCount,
-      cells: [e.nx, e.ny],
-      cellSize: e.cs,
+      cells: [e.gridColumns, e.gridRows],
+      cellSize: e.cellSize,
       gridErrors: e.gridErrors(),
     };
-  }
-
-  // -- for views ---------------------------------------------------------------------------
-  /** Trap coordinates [x0, y0, ...] to window pixels (y down), into out if given. */
-  toScreen(xy: ArrayLike<number>, out?: Float64Array): Float64Array {
-    const [ox, oy] = this.origin;
-    const res = out ?? new Float64Array(xy.length);
-    for (let k = 0; k + 1 < xy.length; k += 2) {
-      res[k] = ox + xy[k];
-      res[k + 1] = oy - xy[k + 1];
-    }
-    return res;
-  }
-
-  /** One point from trap coordinates to window pixels. */
-  toScreenPoint(x: number, y: number): [number, number] {
-    return [this.origin[0] + x, this.origin[1] - y];
   }
 }

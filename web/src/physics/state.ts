@@ -14,10 +14,10 @@ import {
   STATUS_NAMES,
   TC_EXPONENT_SEED,
   TRAP_HEIGHT,
-  WINDOW,
   type EscapeRule,
   type StatusName,
 } from "./constants";
+import type { Room } from "./room";
 
 export const STATE_FORMAT = "evapcool-state";
 export const STATE_VERSION = 1;
@@ -93,7 +93,8 @@ export interface ParsedState {
   trapHeight: number;
   curvature: number;
   gravity: number;
-  window: [number, number];
+  /** The room the state's window field names. */
+  room: Room;
   escape: EscapeRule;
   tcExponent: number;
   win: boolean;
@@ -207,6 +208,43 @@ function perAtom(name: string, v: unknown, n: number, fallback: number): Float64
   return out;
 }
 
+/**
+ * The `window` field (docs/state.md) names the room as the window of the original's layout that
+ * shows it: the cup's lowest point in the middle of a play area inside borders of 48 px (left)
+ * and 96 px (right), and 128 px above the window's bottom (physics/state.py's room_of_window).
+ */
+const WINDOW: readonly [number, number] = [640, 672];
+const LEFT_BORDER = 48;
+const RIGHT_BORDER = 96;
+const VERTEX_ABOVE_BOTTOM = 128;
+
+/** The room that a state's window field names (view/screen.ts places it so too). */
+export function roomOfWindow(window: readonly [number, number]): Room {
+  const [w, h] = window;
+  const x = LEFT_BORDER + (w - LEFT_BORDER - RIGHT_BORDER) / 2;
+  const y = h - VERTEX_ABOVE_BOTTOM;
+  return { left: x, right: w - x, below: h - y, above: y };
+}
+
+/** The window field for a room; RangeError if no window of the layout gives it. */
+export function windowOfRoom(room: Room): [number, number] {
+  const size: [number, number] = [
+    Math.round(room.left + room.right),
+    Math.round(room.below + room.above),
+  ];
+  const back = roomOfWindow(size);
+  if (
+    back.left !== room.left ||
+    back.right !== room.right ||
+    back.below !== room.below ||
+    back.above !== room.above
+  )
+    throw new RangeError(
+      `room must be one a window gives (view/screen.ts) to be written as a state (got ${JSON.stringify(room)})`,
+    );
+  return size;
+}
+
 /** Validate a window (width, height) of whole pixels, at least 160 x 160. */
 export function checkWindow(name: string, v: unknown): [number, number] {
   if (
@@ -280,7 +318,7 @@ export function parseState(input: unknown): ParsedState {
     trapHeight,
     curvature: positive("state.curvature", s.curvature, CURVATURE),
     gravity: positive("state.gravity", s.gravity, GRAVITY),
-    window: s.window === undefined ? [WINDOW[0], WINDOW[1]] : checkWindow("state.window", s.window),
+    room: roomOfWindow(s.window === undefined ? WINDOW : checkWindow("state.window", s.window)),
     escape: escape as EscapeRule,
     tcExponent: positive("state.tc_exponent", s.tc_exponent, TC_EXPONENT_SEED),
     win,

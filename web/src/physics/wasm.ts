@@ -13,9 +13,9 @@ import { power } from "./portable";
 /** What Simulation uses of an engine (engine.ts's Engine or WasmEngine). */
 export type EngineCore = Pick<
   Engine,
-  | "n"
-  | "g"
-  | "a"
+  | "nAtoms"
+  | "gravity"
+  | "curvature"
   | "knife"
   | "winRule"
   | "tcExponent"
@@ -31,9 +31,9 @@ export type EngineCore = Pick<
   | "nLog"
   | "crossingCount"
   | "staleCount"
-  | "nx"
-  | "ny"
-  | "cs"
+  | "gridColumns"
+  | "gridRows"
+  | "cellSize"
   | "sequentialEnergySum"
   | "logEntry"
   | "criticalTemperatureOf"
@@ -133,18 +133,18 @@ function writeInputs(buffer: ArrayBuffer, at: number, atoms: EngineAtoms): void 
 }
 
 export class WasmEngine implements EngineCore {
-  readonly n: number;
-  readonly g: number;
-  readonly a: number;
+  readonly nAtoms: number;
+  readonly gravity: number;
+  readonly curvature: number;
   readonly knife: boolean;
   readonly winRule: boolean;
   readonly tcExponent: number;
   readonly recordEvents: boolean;
   readonly initialTemperature: number;
   readonly tc0: number;
-  readonly nx: number;
-  readonly ny: number;
-  readonly cs: number;
+  readonly gridColumns: number;
+  readonly gridRows: number;
+  readonly cellSize: number;
   private readonly core: CoreExports;
   /** The core's memory as doubles (a new view if the memory grew). */
   private mem: Float64Array;
@@ -157,9 +157,9 @@ export class WasmEngine implements EngineCore {
 
   constructor(setup: EngineSetup, atoms: EngineAtoms) {
     const n = atoms.x.length;
-    this.n = n;
-    this.g = setup.gravity;
-    this.a = setup.curvature;
+    this.nAtoms = n;
+    this.gravity = setup.gravity;
+    this.curvature = setup.curvature;
     this.knife = setup.knife;
     this.winRule = setup.winRule;
     this.tcExponent = setup.tcExponent;
@@ -194,9 +194,9 @@ export class WasmEngine implements EngineCore {
     const table = new Float64Array(core.memory.buffer, core.tc_table_address(), n + 1);
     for (let k = 0; k <= n; k++) table[k] = this.criticalTemperatureOf(k);
     if (!core.start(energySum, setup.trapHeight)) throw new RangeError(OUT_OF_MEMORY(n));
-    this.nx = core.nx();
-    this.ny = core.ny();
-    this.cs = core.cell();
+    this.gridColumns = core.nx();
+    this.gridRows = core.ny();
+    this.cellSize = core.cell();
     this.mem = new Float64Array(core.memory.buffer);
   }
 
@@ -253,7 +253,7 @@ export class WasmEngine implements EngineCore {
 
   /** Tc(N) = Tc0 (N / N0)^p, seed Eq. (46) with exponent p. */
   criticalTemperatureOf(nTrapped: number): number {
-    return this.tc0 * power(nTrapped / this.n, this.tcExponent);
+    return this.tc0 * power(nTrapped / this.nAtoms, this.tcExponent);
   }
 
   sequentialEnergySum(): number {

@@ -4,6 +4,7 @@
  * over 1.5 s and as the atoms settle; with reduced motion it neither breathes nor drifts.
  */
 import type { AtomArrays, SimLike } from "../game/sim";
+import { screenOrigin } from "./screen";
 
 const EDGE = [255, 120, 40];
 const CORE = [255, 250, 215];
@@ -61,7 +62,7 @@ export class Condensate {
     const breathe = still ? 1 : 1 + 0.04 * Math.sin((2 * Math.PI * t) / 1.3);
     halfW *= breathe;
     const halfH = 0.5 * height * breathe;
-    const [ox, oy] = sim.screenOrigin;
+    const [ox, oy] = screenOrigin(sim);
     const cx = ox;
     const cy = oy - (-r + 0.9 * halfH);
     // The image at logical resolution: a soft glow scales up smoothly.

@@ -1,5 +1,5 @@
 /** Rectangles, the scene's fixed positions (SPEC 1) and the two layouts (wide and tall). */
-import { BORDER_BOTTOM, BORDER_LEFT, BORDER_RIGHT, BORDER_TOP, WINDOW } from "../game/constants";
+import { BORDER_BOTTOM, BORDER_LEFT, BORDER_RIGHT, BORDER_TOP, WINDOW } from "./screen";
 
 export interface Rect {
   x: number;

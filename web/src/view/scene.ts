@@ -3,7 +3,7 @@
  * the device's pixel ratio): borders, title, cup, atoms, thermometer, status and the
  * messages over the play area. Positions and colours follow the desktop applet.
  */
-import { BORDER_TOP } from "../game/constants";
+import { BORDER_TOP, screenOrigin } from "./screen";
 import type { Game } from "../game/rules";
 import type { AtomArrays, SimLike } from "../game/sim";
 import * as C from "./colors";
@@ -93,8 +93,8 @@ export class Scene {
   }
 
   drawCup(ctx: CanvasRenderingContext2D, sim: SimLike): void {
-    const [ox, oy] = sim.screenOrigin;
-    const radius = 544 - oy; // the drawn cup bottom is at screen y 544
+    const [ox, oy] = screenOrigin(sim);
+    const radius = sim.originLift; // the drawn cup bottom lies this far below the origin
     const key = `${sim.trapHeight}|${sim.curvature}|${radius}|${ox}|${oy}`;
     if (key !== this.cupKey || !this.cupPath) {
       const xRim = sim.rimHalfWidth;
@@ -119,7 +119,7 @@ export class Scene {
 
   /** The atoms, escaped ones too, from one sprite per radius in one pass. */
   drawAtoms(ctx: CanvasRenderingContext2D, sim: SimLike, atoms: AtomArrays, alpha = 1): void {
-    const [ox, oy] = sim.screenOrigin;
+    const [ox, oy] = screenOrigin(sim);
     const esc = sim.escaped();
     if (atoms.count + esc.count >= Scene.LAYER_MIN_ATOMS) {
       // Device px of the play area's corner; the layer covers the play area.

@@ -204,7 +204,8 @@ class FakeSim implements SimLike {
   won = false;
   winRule = true;
   collisionCount = 0;
-  screenOrigin = [296, 532] as const;
+  room = { left: 296, right: 344, below: 128, above: 544 };
+  originLift = 12;
   heights: Array<[number, number]> = [];
   get temperature() {
     return this.trapHeight / 4;
