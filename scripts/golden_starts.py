@@ -61,7 +61,7 @@ def starts() -> dict:
 def wins() -> dict:
     cases = []
     for strategy, atoms, radius, escape, tc_exponent, seed in WIN_CASES:
-        settings = Settings(atoms=atoms, radius=radius, escape=escape, tc_exponent=tc_exponent)
+        settings = Settings(n_atoms=atoms, radius=radius, escape=escape, tc_exponent=tc_exponent)
         rec = record_autopilot(strategy, settings, seed, engine="reference")
         cases.append(rec.to_json())
     return {"format": "evapcool-wins", "generator": 1, "recordings": cases}

@@ -99,7 +99,7 @@ def test_python_api_raises_missing_extra_error(monkeypatch):
 
 
 def test_result_plot_and_pandas_without_their_packages(monkeypatch):
-    result = run_experiment(atoms=12, radius=8.0, frames=4, every=2, seed=1, engine="reference")
+    result = run_experiment(n_atoms=12, radius=8.0, frames=4, every=2, seed=1, engine="reference")
     _without(monkeypatch, "matplotlib", "pandas")
     with pytest.raises(MissingExtraError, match=r"evapcool\[lab\]"):
         result.plot()

@@ -91,7 +91,7 @@ def test_advance_is_bounded(dt) -> None:
         ({"stop_at_win": "no"}, "stop_at_win"),
         ({"gravity": 1e300}, "gravity"),
         ({"start": "thermal=1e308"}, "start"),
-        ({"atoms": 6000, "radius": 1.0, "engine": "reference"}, "atoms"),
+        ({"n_atoms": 6000, "radius": 1.0, "engine": "reference"}, "n_atoms"),
         ({"frames": 10**7, "every": 1}, "every"),
         ({"schedule": "eta=5e-324"}, "schedule"),  # found by the fuzz: a NaN height
         ({"schedule": "eta=1e308"}, "schedule"),
@@ -281,7 +281,7 @@ def test_lab_from_a_fifo_is_refused_without_blocking(tmp_path, capsys) -> None:
 
 
 def test_lab_from_with_bad_recorded_parameters_names_the_file(tmp_path, capsys) -> None:
-    result = run_experiment(atoms=5, frames=2, seed=1)
+    result = run_experiment(n_atoms=5, frames=2, seed=1)
     path = tmp_path / "run.json"
     result.save(path)
     doc = json.loads(path.read_text())

@@ -43,7 +43,7 @@ def test_empty_or_non_text_names_are_refused(raw: object) -> None:
 def test_entries_survive_reopening_and_csv_is_formula_safe(tmp_path: Path) -> None:
     path = tmp_path / "class.sqlite"
     store = Store(path)
-    challenge = store.open_challenge({"atoms": 49}, seed=7, max_frames=3600, attempts=3)
+    challenge = store.open_challenge({"n_atoms": 49}, seed=7, max_frames=3600, attempts=3)
     tokens = [store.join(name) for name in HOSTILE]
     for i, token in enumerate(tokens):
         store.add_entry(challenge, token, score=20 + i, frames=1000, edition="web")

@@ -131,7 +131,7 @@ def test_the_demo_ships_with_the_package_and_says_where_it_came_from():
     strategy = load_strategy("demo")
     assert strategy == parse_strategy(doc["strategy"])
     assert doc["budget"] == 1800
-    assert doc["game"]["atoms"] == 49
+    assert doc["game"]["n_atoms"] == 49
     # Its validation against the best linear ramp travels with it (docs/cluster.md).
     assert doc["comparison"]["seeds"] >= 100
 

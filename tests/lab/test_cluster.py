@@ -32,7 +32,7 @@ SPEC = """
 [sweep]
 seeds = { from = 1, to = 4 }
 [parameters]
-atoms = [10, 14]
+n_atoms = [10, 14]
 radius = 5
 schedule = ["200@0,40@300", "eta=5"]
 frames = 300

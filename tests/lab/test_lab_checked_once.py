@@ -25,7 +25,7 @@ def test_a_named_strategy_is_read_once(monkeypatch):
         return parse(text)
 
     monkeypatch.setattr("evapcool.lab.experiment.parse_schedule", counting_parse)
-    run_experiment(atoms=20, frames=3, every=1, seed=1, schedule="demo", engine="reference")
+    run_experiment(n_atoms=20, frames=3, every=1, seed=1, schedule="demo", engine="reference")
     assert reads == ["demo"] and parses == ["demo"]
 
 
@@ -38,7 +38,7 @@ def test_each_parameter_is_range_checked_once(monkeypatch):
         return check(self, name, value)
 
     monkeypatch.setattr(limits.Range, "check", counting)
-    run_experiment(atoms=20, frames=2, every=1, seed=1, engine="reference")
+    run_experiment(n_atoms=20, frames=2, every=1, seed=1, engine="reference")
     before_run = [c for c in calls if c != "dt" and c != "trap_height"]
     assert sorted(before_run) == sorted(set(before_run)), calls
-    assert "atoms" in before_run and "n_atoms" not in before_run
+    assert "n_atoms" in before_run and "atoms" not in before_run

@@ -19,7 +19,7 @@ from evapcool.lab.progress import Progress
 from evapcool.physics.simulation import Simulation
 
 # Small and quick: the game's 49 atoms, a falling rim, a few hundred frames.
-SMALL = dict(atoms=49, frames=240, every=20, seed=7, schedule="400@0,150@240", engine="reference")
+SMALL = dict(n_atoms=49, frames=240, every=20, seed=7, schedule="400@0,150@240", engine="reference")
 
 
 def _same(a, b) -> None:
@@ -81,7 +81,7 @@ def test_columns_are_consistent(small_run):
 
 
 def test_seed_is_drawn_and_recorded_when_not_given():
-    r = run_experiment(atoms=3, radius=12.0, frames=2, every=1, engine="reference")
+    r = run_experiment(n_atoms=3, radius=12.0, frames=2, every=1, engine="reference")
     again = run_experiment(**r.parameters)
     assert isinstance(r.parameters["seed"], int)
     assert np.array_equal(r.total_energy, again.total_energy)
@@ -134,7 +134,7 @@ def test_checkpoints_and_callback_see_growing_results(tmp_path):
         out=out,
         checkpoint_seconds=0.0,
         on_record=on_record,
-        atoms=4,
+        n_atoms=4,
         frames=6,
         every=2,
         seed=1,
@@ -205,7 +205,7 @@ def test_unwritable_directory_is_refused_before_running(tmp_path, capsys):
         dict(schedule="-1"),
         dict(escape="up"),
         dict(tc_law="3d"),
-        dict(atoms=0),
+        dict(n_atoms=0),
         dict(frames=1.5),
         dict(gravity=-1.0),
         dict(warp=9),

@@ -57,7 +57,7 @@ def test_knife_removes_exactly_the_atoms_above_mgh():
 def test_rim_keeps_atoms_above_the_rim_energy_and_knife_does_not():
     # Same start, same falling trap: over the rim only atoms that actually reach it go.
     common = dict(
-        atoms=49, frames=300, every=10, seed=4, schedule="400@0,120@300", engine="reference"
+        n_atoms=49, frames=300, every=10, seed=4, schedule="400@0,120@300", engine="reference"
     )
     rim = run_experiment(escape="rim", **common)
     knife = run_experiment(escape="knife", **common)
@@ -99,7 +99,13 @@ def test_constant_eta_schedule_tracks_its_target_while_n_falls():
 
 def test_eta_schedule_in_a_run():
     r = run_experiment(
-        atoms=49, frames=150, every=10, seed=4, schedule="eta=6", escape="knife", engine="reference"
+        n_atoms=49,
+        frames=150,
+        every=10,
+        seed=4,
+        schedule="eta=6",
+        escape="knife",
+        engine="reference",
     )
     np.testing.assert_allclose(r.eta, 6.0, rtol=1e-9)
     assert r.n_trapped[-1] < 49

@@ -76,3 +76,19 @@ def test_lab_from_an_old_file_runs_with_a_note(source, tmp_path, monkeypatch, ca
     assert err[0].startswith(f"evapcool lab: note: --from {source.name}: an older lab file")
     assert len(err) == 2 and "wrote again.csv" in err[1]
     assert "note" not in load_result(tmp_path / "again.csv").metadata  # a new run: full ledger
+
+
+def test_the_old_name_of_the_atom_count_is_read_under_its_name_now() -> None:
+    # Issue 26.2: one name, n_atoms; files, calls and specs of older versions say "atoms".
+    from evapcool.lab import run_experiment
+    from evapcool.lab.sweeps import expand
+
+    params = load_result(CONSTANT).metadata["parameters"]
+    assert params["n_atoms"] == 30 and "atoms" not in params
+    with pytest.warns(DeprecationWarning, match="atoms= is now n_atoms="):
+        old = run_experiment(atoms=5, frames=2, every=1, seed=1, engine="reference")
+    assert old.metadata["parameters"]["n_atoms"] == 5
+    with pytest.raises(ValueError, match="atoms is the old name of n_atoms"):
+        run_experiment(atoms=5, n_atoms=6, frames=2, every=1, seed=1, engine="reference")
+    runs = expand({"sweep": {"seeds": 1}, "parameters": {"atoms": 10}})
+    assert runs[0]["n_atoms"] == 10 and "atoms" not in runs[0]

@@ -8,11 +8,11 @@ import numpy as np
 import pytest
 
 from evapcool.lab import load_result, run_experiment
-from evapcool.lab.cli import main
+from evapcool.lab.cli import OPTION_OF, main
 
 # The game's 49 atoms under a falling knife cross Tc within a few hundred frames.
 CROSSING = dict(
-    atoms=49,
+    n_atoms=49,
     frames=400,
     every=20,
     seed=4,
@@ -22,7 +22,7 @@ CROSSING = dict(
 )
 # A dilute constant-eta run long enough for the model's window (about 2 s).
 EVAPORATION = dict(
-    atoms=300,
+    n_atoms=300,
     radius=0.5,
     escape="knife",
     schedule="eta=6",
@@ -76,7 +76,7 @@ def test_no_win_on_the_command_line_and_from_a_file(tmp_path, capsys):
 
 def test_win_must_be_a_bool():
     with pytest.raises(ValueError, match="win must be True or False"):
-        run_experiment(atoms=3, frames=2, win="no")
+        run_experiment(n_atoms=3, frames=2, win="no")
 
 
 @pytest.fixture(scope="module")
@@ -110,7 +110,7 @@ def test_theory_on_the_command_line_prints_and_draws(tmp_path, capsys):
         if key == "win":
             argv.append("--no-win")
         else:
-            argv += [f"--{key}", str(value)]
+            argv += [OPTION_OF[key], str(value)]  # the command line's own table
     assert main([*argv, "--out", str(out), "--plot", str(png), "--theory"]) == 0
     printed = capsys.readouterr().out  # the table goes to stdout when the CSV is a file
     assert "Gamma_pair" in printed and "alpha" in printed

@@ -17,7 +17,7 @@ from evapcool.lab import COLUMNS, load_result, run_experiment
 @pytest.fixture(scope="module")
 def result():
     return run_experiment(
-        atoms=30, radius=8.0, frames=60, every=20, seed=3, engine="reference", schedule="300"
+        n_atoms=30, radius=8.0, frames=60, every=20, seed=3, engine="reference", schedule="300"
     )
 
 
@@ -76,7 +76,7 @@ def test_to_pandas_has_every_column_and_row(result):
 
 NOTEBOOK_CELLS = [
     "from evapcool.lab import run_experiment\n"
-    "r = run_experiment(atoms=20, radius=8, frames=20, every=10, seed=1, engine='reference')\n"
+    "r = run_experiment(n_atoms=20, radius=8, frames=20, every=10, seed=1, engine='reference')\n"
     "r",
     "r.plot()",
     "r.to_pandas().shape",

@@ -27,7 +27,7 @@ SPEC = """
 [sweep]
 seeds = { from = 1, to = 3 }
 [parameters]
-atoms = [8, 12]
+n_atoms = [8, 12]
 radius = 5
 schedule = ["200@0,40@300", "eta=5"]
 frames = 300
@@ -50,7 +50,7 @@ def test_every_combination_times_every_seed_is_one_run():
         {
             "sweep": {"seeds": [4, 5]},
             "parameters": {
-                "atoms": [10, 20, 30],
+                "n_atoms": [10, 20, 30],
                 "radius": {"from": 4, "to": 6, "step": 1},
                 "eta": [4, 6],
                 "escape": "knife",
@@ -98,8 +98,8 @@ def test_run_id_is_the_parameters():
         ({"sweep": {"seeds": [-1]}}, "sweep.seeds"),
         ({"sweep": {"seeds": 1, "when": 3}}, "sweep.when"),
         ({"sweep": {"seeds": 1}, "parameters": {"atom": 10}}, "parameters.atom"),
-        ({"sweep": {"seeds": 1}, "parameters": {"atoms": 0}}, "parameters.atoms"),
-        ({"sweep": {"seeds": 1}, "parameters": {"atoms": []}}, "parameters.atoms"),
+        ({"sweep": {"seeds": 1}, "parameters": {"n_atoms": 0}}, "parameters.n_atoms"),
+        ({"sweep": {"seeds": 1}, "parameters": {"n_atoms": []}}, "parameters.n_atoms"),
         ({"sweep": {"seeds": 1}, "parameters": {"radius": -2}}, "parameters.radius"),
         ({"sweep": {"seeds": 1}, "parameters": {"schedule": "fast"}}, "parameters.schedule"),
         ({"sweep": {"seeds": 1}, "parameters": {"eta": -3}}, "parameters.eta"),
@@ -131,7 +131,7 @@ def test_bad_specs_name_the_field(spec, named):
 @pytest.mark.parametrize(
     ("text", "named"),
     [
-        ("[sweep]\nseeds = [1]\n[parameters]\natoms = -4\n", "parameters.atoms"),
+        ("[sweep]\nseeds = [1]\n[parameters]\nn_atoms = -4\n", "parameters.n_atoms"),
         ("[sweep]\nseeds = [1\n", "not valid TOML"),
         ("[parameters]\natoms = 4\n", "sweep.seeds"),
     ],
@@ -218,7 +218,7 @@ def test_sweep_returns_tidy_tables_and_writes_them(swept):
 def test_any_row_repeats_bit_for_bit_from_its_parameters(swept):
     result, _, _ = swept
     row = result.runs.iloc[5]
-    params = {k: row[k] for k in ("atoms", "radius", "curvature", "gravity", "seed", "engine",
+    params = {k: row[k] for k in ("n_atoms", "radius", "curvature", "gravity", "seed", "engine",
                                   "frames", "every", "escape", "schedule", "tc_law", "start",
                                   "stop_at_win")}  # fmt: skip
     params = {k: (v.item() if hasattr(v, "item") else v) for k, v in params.items()}
@@ -266,9 +266,9 @@ def test_failed_runs_are_recorded_and_the_others_go_on(cluster, tmp_path):
     runs = pd.read_parquet(tmp_path / "spec-results" / "runs.parquet")
     assert len(runs) == 4
     bad = runs[runs["status"] == "failed"]
-    assert set(bad["atoms"]) == {2000} and len(bad) == 2
+    assert set(bad["n_atoms"]) == {2000} and len(bad) == 2
     assert bad["error"].str.contains("do not fit").all()
-    assert (runs.loc[runs["atoms"] == 6, "status"] == "ok").all()
+    assert (runs.loc[runs["n_atoms"] == 6, "status"] == "ok").all()
     assert "2 failed" in r.stderr
 
 

@@ -15,7 +15,7 @@ from evapcool.optimize.report import pareto
 optuna = pytest.importorskip("optuna")
 optuna.logging.set_verbosity(optuna.logging.WARNING)
 
-SMALL = {"atoms": 12, "engine": "reference"}
+SMALL = {"n_atoms": 12, "engine": "reference"}
 
 
 @pytest.mark.parametrize("name", sorted(families.FAMILIES))

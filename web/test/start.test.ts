@@ -21,7 +21,7 @@ interface StartCase {
   critical_temperature: number;
 }
 interface Recording {
-  settings: { atoms: number; radius: number; escape: "rim" | "knife"; tc_exponent: number };
+  settings: { n_atoms: number; radius: number; escape: "rim" | "knife"; tc_exponent: number };
   seed: number;
   moves: [number, number][];
   won: boolean;
@@ -49,7 +49,7 @@ function bits(x: number): string {
 function replay(rec: Recording): { won: boolean; score: number; frames: number } {
   const s = rec.settings;
   const game = new Game(makeSimulation, {
-    nAtoms: s.atoms,
+    nAtoms: s.n_atoms,
     radius: s.radius,
     seed: rec.seed,
     speed: 1,

@@ -12,7 +12,7 @@ import statistics
 import time
 
 #: A representative lab run: 400 atoms of radius 4, a falling rim, 2400 frames (about 0.3 s).
-RUN = dict(atoms=400, radius=4.0, schedule="400@0,60@2400", frames=2400, every=60,
+RUN = dict(n_atoms=400, radius=4.0, schedule="400@0,60@2400", frames=2400, every=60,
            engine="fast", stop_at_win=False)  # fmt: skip
 RUNS = 40
 GAME = "425@0,162@1788"  # the best linear ramp of the classic game (docs/benchmarks.md)
@@ -63,7 +63,7 @@ def _big_run_seconds() -> float:
     from evapcool.lab.experiment import run_experiment
 
     t = time.process_time()
-    run_experiment(atoms=1500, radius=3.0, schedule="450@0,60@1800", frames=1800, every=60,
+    run_experiment(n_atoms=1500, radius=3.0, schedule="450@0,60@1800", frames=1800, every=60,
                    engine="fast", stop_at_win=False, seed=1)  # fmt: skip
     return time.process_time() - t
 
@@ -97,7 +97,7 @@ def run(args) -> None:
     repeats = 1 if getattr(args, "quick", False) else 3
     runs = _runs()
     load0 = os.getloadavg()
-    print(f"[cluster] {RUNS}-run sweep ({RUN['atoms']} atoms, {RUN['frames']} frames each), "
+    print(f"[cluster] {RUNS}-run sweep ({RUN['n_atoms']} atoms, {RUN['frames']} frames each), "
           f"local cluster of 1 and 2 workers, {repeats} interleaved repeats")  # fmt: skip
     times: dict[int, list[float]] = {1: [], 2: []}
     starts: list[float] = []

@@ -17,10 +17,14 @@ MAX_INPUT_BYTES = 16 * 1024 * 1024
 VERIFIED_LINE = "{rank:>3}. {score:>3} atoms  frames {frames:>5}  seed {seed}  {source}"
 REJECTED_LINE = "  -  rejected ({reason}): {detail}  {source}"
 USAGE_NO_INPUT = "give at least one replay code or file"
+#: An argument that is neither a code nor a readable file of them.
+NOT_CODES = "argument CODE|FILE: {arg} is {what}, not a replay code or a file of them"
 
 
 def _entries(arg: str) -> list[tuple[str, str | dict[str, object]]]:
     """(source, code or JSON recording) of one argument: a code, or a file of them."""
+    if not arg.strip():
+        raise ValueError(NOT_CODES.format(arg=repr(arg), what="empty"))
     path = Path(arg)
     if arg.startswith("EC") or len(arg) > 4096:
         return [(arg if len(arg) <= 24 else arg[:21] + "...", arg)]
@@ -36,7 +40,7 @@ def _entries(arg: str) -> list[tuple[str, str | dict[str, object]]]:
         docs = doc if isinstance(doc, list) else [doc]
         return [(f"{arg}#{i + 1}", d) for i, d in enumerate(docs)]
     if path.exists():
-        raise ValueError(f"{arg}: not a file of replay codes or recordings")
+        raise ValueError(NOT_CODES.format(arg=repr(arg), what="a folder or device"))
     return [(arg if len(arg) <= 24 else arg[:21] + "...", arg)]
 
 

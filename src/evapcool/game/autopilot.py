@@ -521,7 +521,7 @@ class Outcome:
 class GameSetup:
     """The game a strategy plays: the classic applet's gas by default, the fast engine."""
 
-    atoms: int = N_ATOMS
+    n_atoms: int = N_ATOMS
     radius: float = ATOM_RADIUS
     escape: str = "rim"
     tc_exponent: float = TC_EXPONENT_SEED
@@ -541,7 +541,7 @@ def play(
     state at frame k. trace, if given, gets (frame, H, N, T) for each frame played.
     """
     sim = Simulation(
-        n_atoms=setup.atoms,
+        n_atoms=setup.n_atoms,
         radius=setup.radius,
         seed=seed,
         engine=setup.engine,

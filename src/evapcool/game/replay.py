@@ -51,14 +51,14 @@ class ReplayError(ValueError):
 class Settings:
     """The game's settings a recording was played with (GameConfig's deciding fields)."""
 
-    atoms: int = 49
+    n_atoms: int = 49
     radius: float = 12.0
     escape: str = "rim"
     tc_exponent: float = 2.0 / 3.0
 
     def game_config(self, seed: int, engine: str = "auto") -> GameConfig:
         return GameConfig(
-            n_atoms=self.atoms,
+            n_atoms=self.n_atoms,
             radius=self.radius,
             seed=seed,
             engine=engine,
@@ -109,7 +109,7 @@ class Recording:
         try:
             s = doc["settings"]
             settings = Settings(
-                atoms=_int(s["atoms"]),
+                n_atoms=_int(s["n_atoms"]),
                 radius=_num(s["radius"]),
                 escape=str(s["escape"]),
                 tc_exponent=_num(s["tc_exponent"]),
@@ -134,7 +134,7 @@ class Recording:
         """ReplayError(EDITED) naming the first field out of its limits or inconsistent."""
         s = self.settings
         problems = [
-            (not 2 <= s.atoms <= MAX_ATOMS, f"settings.atoms must be 2..{MAX_ATOMS}"),
+            (not 2 <= s.n_atoms <= MAX_ATOMS, f"settings.n_atoms must be 2..{MAX_ATOMS}"),
             (not 1.0 <= s.radius <= 40.0, "settings.radius must be 1..40"),
             (s.escape not in ("rim", "knife"), "settings.escape must be rim or knife"),
             (not 0.0 < s.tc_exponent <= 2.0, "settings.tc_exponent must be in (0, 2]"),
@@ -147,7 +147,7 @@ class Recording:
             ),
             (self.n_frames > max_frames, f"moves: at most {max_frames} frames"),
             (self.frames != self.n_frames, "frames must equal the moves' frames"),
-            (not 0 <= self.score <= s.atoms, "score must be 0..atoms"),
+            (not 0 <= self.score <= s.n_atoms, "score must be 0..n_atoms"),
             (not self.won and self.score != 0, "score must be 0 without a win"),
         ]
         for bad, message in problems:

@@ -1,7 +1,7 @@
 """The lab: headless evaporation experiments checked against kinetic theory (docs/lab.md).
 
 from evapcool.lab import run_experiment
-res = run_experiment(atoms=49, schedule="400@0,60@1800", frames=1800, seed=1)
+res = run_experiment(n_atoms=49, schedule="400@0,60@1800", frames=1800, seed=1)
 res.n_trapped, res.temperature, res.metadata
 tables = sweep("spec.toml")  # many runs on Dask: tables.runs, tables.records (pandas)
 """

@@ -30,7 +30,7 @@ from evapcool.lab.theory import Cup, TruncatedCloud, gamma_p_half, thermal_cloud
 from evapcool.physics.simulation import CURVATURE, GRAVITY, Simulation
 
 #: The runs of docs/lab.md: 300 disks of radius 0.5 px from kT = 60 (peak packing ~1 %).
-RUN = dict(atoms=300, radius=0.5, start="thermal=60", every=20, escape="knife", win=False)
+RUN = dict(n_atoms=300, radius=0.5, start="thermal=60", every=20, escape="knife", win=False)
 #: Frames in which about half the atoms evaporate, by eta.
 FRAMES = {4.0: 600, 5.0: 800, 6.0: 1400, 7.0: 3000}
 DEFAULT_FRAMES = 1500

@@ -33,9 +33,10 @@ def build_parser() -> argparse.ArgumentParser:
     )
     p.add_argument(
         "--atoms",
+        dest="n_atoms",
         type=ranged(limits.N_ATOMS),
         help=f"number of atoms, {limits.N_ATOMS.span()}, at most "
-        f"{limits.REFERENCE_MAX_ATOMS} with --engine reference (default {d.atoms})",
+        f"{limits.REFERENCE_MAX_ATOMS} with --engine reference (default {d.n_atoms})",
     )
     p.add_argument(
         "--radius",

@@ -125,7 +125,7 @@ def compare_with_theory(result, *, settle: float = SETTLE_COLLISIONS) -> TheoryR
     )
     track = _track(result, cup)
     pairs = result.pair_collisions.astype(float)
-    per_atom = 2.0 * pairs / float(p["atoms"])  # collisions per atom so far (about)
+    per_atom = 2.0 * pairs / float(p["n_atoms"])  # collisions per atom so far (about)
     usable = np.isfinite(track.pair_rate)
     if result.metadata.get("won_frame") is not None:  # the game's rules stop collisions
         usable &= result.frame < result.metadata["won_frame"]

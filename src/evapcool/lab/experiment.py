@@ -18,6 +18,7 @@ from evapcool.lab import notebook
 from evapcool.lab.io import (
     COLUMNS,
     as_arrays,
+    current_names,
     output_format,
     read_result,
     write_result,
@@ -69,7 +70,7 @@ def parse_start(text: str) -> float | None:
 class LabConfig:
     """Every parameter of a lab run; together with the version it fixes the result bit for bit."""
 
-    atoms: int = N_ATOMS
+    n_atoms: int = N_ATOMS
     radius: float = ATOM_RADIUS
     curvature: float = CURVATURE
     gravity: float = GRAVITY
@@ -94,13 +95,13 @@ class LabConfig:
         if seed is None:
             # Draw a seed now so that the file records it and the run can be repeated.
             seed = int(np.random.SeedSequence().entropy % (2**32))
-        atoms = limits.N_ATOMS.check("atoms", self.atoms)
+        n_atoms = limits.N_ATOMS.check_int("n_atoms", self.n_atoms)
         _choice("engine", self.engine, ENGINES)
-        if self.engine == "reference" and atoms > limits.REFERENCE_MAX_ATOMS:
+        if self.engine == "reference" and n_atoms > limits.REFERENCE_MAX_ATOMS:
             raise limits.ParameterError(
-                "atoms",
+                "n_atoms",
                 f"must be at most {limits.REFERENCE_MAX_ATOMS} with engine reference "
-                f"(got {atoms}); use engine fast or auto",
+                f"(got {n_atoms}); use engine fast or auto",
             )
         _choice("escape", self.escape, ESCAPES)
         _choice("tc_law", self.tc_law, TC_LAWS)
@@ -125,7 +126,7 @@ class LabConfig:
                 f"{frames} frames: a run keeps at most {limits.RECORDS_MAX} records (got {every})",
             )
         config = LabConfig(
-            atoms=atoms,
+            n_atoms=n_atoms,
             radius=limits.RADIUS.check("radius", self.radius),
             curvature=limits.CURVATURE.check("curvature", self.curvature),
             gravity=limits.GRAVITY.check("gravity", self.gravity),
@@ -265,7 +266,7 @@ def _make_simulation(cfg: LabConfig, schedule: Schedule) -> Simulation:
         rng = np.random.default_rng(cfg.seed)
         try:
             pos, vel = thermal_cloud(
-                cfg.atoms,
+                cfg.n_atoms,
                 cfg.radius,
                 kt,
                 mass=MASS,
@@ -276,18 +277,18 @@ def _make_simulation(cfg: LabConfig, schedule: Schedule) -> Simulation:
         except ValueError:
             raise limits.ParameterError(
                 "start",
-                f"a thermal cloud at kT {kt:g} is too dense for {cfg.atoms} atoms of "
+                f"a thermal cloud at kT {kt:g} is too dense for {cfg.n_atoms} atoms of "
                 f"radius {cfg.radius:g} (a larger kT, fewer or smaller atoms fit)",
                 sep=": ",
             ) from None
     h0 = schedule.fixed_height(0.0) if schedule.kind == "ramp" else math.inf
-    check_engine_size(cfg.engine, cfg.atoms)  # the one check LabConfig leaves: auto, no numba
+    check_engine_size(cfg.engine, cfg.n_atoms)  # the one check LabConfig leaves: auto, no numba
     # cfg was checked once (LabConfig.checked); the physics trusts it. A thermal start is new
     # data: its positions are checked (in the cup, apart) as they join the config.
     config = SimulationConfig(
-        n_atoms=cfg.atoms,
-        radii=np.full(cfg.atoms, cfg.radius),
-        masses=np.full(cfg.atoms, MASS),
+        n_atoms=cfg.n_atoms,
+        radii=np.full(cfg.n_atoms, cfg.radius),
+        masses=np.full(cfg.n_atoms, MASS),
         curvature=cfg.curvature,
         gravity=cfg.gravity,
         trap_height=h0,
@@ -337,7 +338,7 @@ def run_experiment(
 ) -> LabResult:
     """Run one evaporation experiment; ValueError on bad input, before any simulation work.
 
-    params are the LabConfig fields (atoms, radius, curvature, gravity, seed, engine,
+    params are the LabConfig fields (n_atoms, radius, curvature, gravity, seed, engine,
     frames, every, escape, schedule, tc_law, start, stop_at_win, win). The trap height
     follows the schedule frame by frame; a record (a row) is taken every `every`
     frames and at the end, which is the frame where T < Tc unless stop_at_win=False.
@@ -345,6 +346,7 @@ def run_experiment(
     Ctrl-C stops the run early and returns (and writes) the rows so far, marked
     completed=False. progress=None draws a bar only if stderr is a terminal.
     """
+    params = current_names(params, warn=True)
     unknown = sorted(set(params) - set(LabConfig.__dataclass_fields__))
     if unknown:
         raise ValueError(

@@ -5,13 +5,33 @@ from __future__ import annotations
 import json
 import math
 import os
-from collections.abc import Iterator
+import warnings
+from collections.abc import Iterator, Mapping
 from pathlib import Path
 
 import numpy as np
 
 from evapcool.fileio import atomic_write_text, check_writable, read_user_text
 from evapcool.limits import LAB_FILE_MAX_BYTES, N_ATOMS, RECORDS_MAX, ParameterError
+
+#: Parameters renamed since: old name -> name now (files, specs and calls with the old one
+#: are still read, issue 26.2: one name for the atom count, n_atoms, as Simulation's).
+RENAMED_PARAMETERS = {"atoms": "n_atoms"}
+
+
+def current_names(params: Mapping[str, object], warn: bool = False) -> dict[str, object]:
+    """params with every old name (RENAMED_PARAMETERS) under its name now; an old name
+    beside its new one is a ValueError naming both."""
+    out = dict(params)
+    for old, new in RENAMED_PARAMETERS.items():
+        if old in out:
+            if new in out:
+                raise ParameterError(old, f"is the old name of {new}: give one of them")
+            if warn:
+                warnings.warn(f"{old}= is now {new}=", DeprecationWarning, stacklevel=3)
+            out[new] = out.pop(old)
+    return out
+
 
 #: Output columns, one row per record (docs/lab.md explains each).
 COLUMNS = (
@@ -260,11 +280,13 @@ def read_result(path: str | os.PathLike[str]) -> tuple[dict, dict[str, np.ndarra
     if text.count(",") > VALUES_MAX:
         raise ValueError(f"more values than a lab result holds (over {VALUES_MAX} commas)")
     try:
-        if Path(path).suffix.lower() == ".json":
-            return _parse_json(text)
-        return _parse_csv(text)
+        parse = _parse_json if Path(path).suffix.lower() == ".json" else _parse_csv
+        metadata, columns, energies = parse(text)
     except RecursionError:
         raise ValueError("nested too deeply") from None
+    if isinstance(metadata.get("parameters"), dict):  # older files name some differently
+        metadata["parameters"] = current_names(metadata["parameters"])
+    return metadata, columns, energies
 
 
 def _parse_json(text: str) -> tuple[dict, dict[str, np.ndarray], np.ndarray]:

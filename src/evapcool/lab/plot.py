@@ -30,7 +30,7 @@ def plot_result(result, path: str | os.PathLike[str] | None = None, *, theory=No
     fig = Figure(figsize=(10, 11.25 if theory else 7.5), layout="constrained")
     axes = fig.subplots(3 if theory else 2, 2)
     fig.suptitle(
-        f"{p.get('atoms')} atoms, R = {p.get('radius')}, escape = {p.get('escape')}, "
+        f"{p.get('n_atoms')} atoms, R = {p.get('radius')}, escape = {p.get('escape')}, "
         f"schedule = {p.get('schedule')}, Tc law = {p.get('tc_law')}, seed = {p.get('seed')}",
         fontsize=10,
     )
@@ -75,7 +75,7 @@ def _path_panel(ax, result, theory) -> None:
     n = result.n_trapped[ok]
     ax.loglog(n, result.temperature[ok], "o-", ms=3, color="tab:red", label="run")
     if n.size:
-        n0 = float(p.get("atoms", n.max()))
+        n0 = float(p.get("n_atoms", n.max()))
         n_first = float(result.n_trapped[0])
         tc0 = float(result.critical_temperature[0]) / (n_first / n0) ** meta["tc_exponent"]
         grid = np.geomspace(max(n.min() / 2.0, 1.0), n0, 100)

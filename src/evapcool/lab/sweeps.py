@@ -11,7 +11,7 @@ a run that fails is recorded with its error while the others go on.
     [sweep]
     seeds = { from = 1, to = 20 }          # or [1, 5, 9], or 7
     [parameters]
-    atoms = [49, 100]
+    n_atoms = [49, 100]
     schedule = ["400@0,140@1800", "eta=6"]
     radius = { from = 6, to = 12, step = 2 }   # or num = 4 (linspace), log = true
 """
@@ -33,6 +33,8 @@ from pathlib import Path
 
 from evapcool.fileio import atomic_write_bytes, atomic_write_text, locked, set_aside
 from evapcool.lab.experiment import LabConfig
+from evapcool.lab.io import RENAMED_PARAMETERS, current_names
+from evapcool.limits import ParameterError
 
 #: Lab parameters a spec may set (the seed comes from [sweep] seeds); 'eta' is short for
 #: schedule = "eta=...".
@@ -52,7 +54,7 @@ EXAMPLE_SPEC = """\
 seeds = { from = 1, to = 5 }              # or [1, 2, 3], or 7
 
 [parameters]
-atoms = 49
+n_atoms = 49
 escape = ["rim", "knife"]
 schedule = ["425@0,162@1788", "eta=5"]    # or eta = [4, 5, 6]
 frames = 1800
@@ -181,6 +183,10 @@ def expand(spec: Mapping) -> list[dict]:
         raise SpecError(f"sweep.{bad[0]}: unknown key; [sweep] has {', '.join(SWEEP_KEYS)}")
     if "seeds" not in head:
         raise SpecError("sweep.seeds is missing: give seeds = [1, 2] or { from = 1, to = 20 }")
+    try:
+        params = current_names(params)  # older specs name the atom count `atoms`
+    except ValueError as exc:
+        raise SpecError(f"parameters.{exc}") from None
     bad = sorted(set(params) - set(PARAMETERS))
     if bad:
         raise SpecError(f"parameters.{bad[0]}: unknown parameter; allowed: {', '.join(PARAMETERS)}")
@@ -210,15 +216,20 @@ def _check(base: dict, seed: int) -> None:
         LabConfig(**base, seed=seed).validated()
     except (ValueError, TypeError) as exc:
         msg = str(exc)
-        field = msg.split(" ", 1)[0].rstrip(":")
+        field = exc.parameter if isinstance(exc, ParameterError) else ""
         name = "eta" if field == "schedule" and "eta" in base.get("schedule", "") else field
         prefix = f"parameters.{name}: " if name in PARAMETERS else ""
         raise SpecError(prefix + msg) from None
 
 
 def run_id(params: Mapping) -> str:
-    """The run's key: a hash of its parameters (the same run always gets the same id)."""
-    text = json.dumps({k: params[k] for k in sorted(params)}, sort_keys=True, default=repr)
+    """The run's key: a hash of its parameters (the same run always gets the same id).
+
+    Hashed under the parameters' first names (`atoms` for n_atoms), so a sweep folder of an
+    older version resumes: its runs keep their ids."""
+    first_name = {new: old for old, new in RENAMED_PARAMETERS.items()}
+    named = {first_name.get(k, k): v for k, v in params.items()}
+    text = json.dumps({k: named[k] for k in sorted(named)}, sort_keys=True, default=repr)
     return hashlib.sha256(text.encode()).hexdigest()[:16]
 
 
@@ -320,7 +331,8 @@ def _read_table(path: Path, notices: list[str]):
     import pandas as pd
 
     try:
-        return pd.read_parquet(path)
+        # An older version's table names some parameters as they were called then.
+        return pd.read_parquet(path).rename(columns=RENAMED_PARAMETERS)
     except FileNotFoundError:  # a part another sweep merged meanwhile: its runs are merged
         return None
     except Exception as exc:  # a damaged file: set aside, never lost, never fatal

@@ -37,7 +37,7 @@ PROBLEM_OPTIONS = {
     "families": "--family",
     "knots": "--knots",
     "objectives": "--objectives",
-    "atoms": "--atoms",
+    "n_atoms": "--atoms",
     "radius": "--radius",
     "escape": "--escape",
     "tc_law": "--tc-law",
@@ -111,7 +111,7 @@ def build_parser() -> argparse.ArgumentParser:
     q.add_argument("--sampler-seed", type=whole(0), help="seed of the sampler (repeatable)")
     q.add_argument("--batch", type=whole(1), help=f"trials asked at once ({DEFAULT_BATCH})")
     q.add_argument("--chunk", type=whole(1), help=f"games per task ({DEFAULT_CHUNK})")
-    q.add_argument("--atoms", type=whole(2), help="atoms (the game's 49)")
+    q.add_argument("--atoms", dest="n_atoms", type=whole(2), help="atoms (the game's 49)")
     q.add_argument("--radius", type=positive, help="atom radius, px (12)")
     q.add_argument("--escape", type=choice(ESCAPES), help="rim (the game) or knife")
     q.add_argument(
@@ -149,7 +149,7 @@ def build_parser() -> argparse.ArgumentParser:
     metavars = {"study_name": "NAME", "trials": "N", "budget": "FRAMES", "seed_start": "SEED",
                 "families": "NAMES", "knots": "K", "objectives": "score[,time]",
                 "sampler": "NAME", "sampler_seed": "SEED", "batch": "B", "chunk": "C",
-                "atoms": "N", "radius": "R", "escape": "RULE", "tc_law": "LAW",
+                "n_atoms": "N", "radius": "R", "escape": "RULE", "tc_law": "LAW",
                 "workers": "N", "finalists": "K"}  # fmt: skip
     for action in p._actions:
         action.metavar = metavars.get(action.dest, action.metavar)

@@ -45,7 +45,7 @@ class Problem:
     families: tuple[str, ...] = tuple(FAMILIES)
     knots: int = DEFAULT_KNOTS
     objectives: tuple[str, ...] = ("score",)
-    atoms: int = N_ATOMS
+    n_atoms: int = N_ATOMS
     radius: float = ATOM_RADIUS
     escape: str = "rim"
     tc_law: str = "seed"
@@ -56,7 +56,7 @@ class Problem:
 
     def __post_init__(self) -> None:
         for name, low in (("budget", 1), ("seeds", 2), ("seed_start", 0), ("knots", 1),
-                          ("atoms", 2), ("batch", 1), ("chunk", 1)):  # fmt: skip
+                          ("n_atoms", 2), ("batch", 1), ("chunk", 1)):  # fmt: skip
             v = getattr(self, name)
             if isinstance(v, bool) or not isinstance(v, int) or v < low:
                 raise ValueError(f"{name} must be a whole number >= {low} (got {v!r})")
@@ -99,7 +99,7 @@ class Problem:
     def setup(self) -> dict:
         return asdict(
             GameSetup(
-                atoms=self.atoms,
+                n_atoms=self.n_atoms,
                 radius=float(self.radius),
                 escape=self.escape,
                 tc_exponent=TC_LAWS[self.tc_law],
@@ -115,6 +115,7 @@ class Problem:
     @classmethod
     def from_attr(cls, d: dict) -> Problem:
         known = {f.name for f in fields(cls)}
+        d = {"n_atoms" if k == "atoms" else k: v for k, v in d.items()}  # older studies
         kw = {k: v for k, v in d.items() if k in known}
         kw["families"] = tuple(kw.get("families", FAMILIES))
         kw["objectives"] = tuple(kw.get("objectives", ("score",)))

@@ -348,7 +348,6 @@ export class App implements Animated {
     if (this.overlay === "table") this.overlay = null;
     this.charts.reset();
     this.scores.openTable(s);
-    this.controls.slider.setValue(this.game.trapHeight);
     this.say(`Restarted: ${this.game.config.nAtoms} atoms, trap height 400, paused`);
   }
 

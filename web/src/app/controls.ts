@@ -24,7 +24,8 @@ const SLIDER_LABEL = "Trap height";
 const CLICK_AFTER_PRESS_MS = 600;
 
 export class Controls {
-  readonly slider = new SliderModel(HEIGHT_MIN, HEIGHT_MAX, 400);
+  /** The knob rests at the game's trap height (read when drawn) unless a drag holds it. */
+  readonly slider = new SliderModel(HEIGHT_MIN, HEIGHT_MAX, () => this.app.game.trapHeight);
   private buttons = new Map<ControlName, HTMLButtonElement>();
   private sliderEl!: HTMLDivElement;
   private pressed: ControlName | null = null;
@@ -146,7 +147,7 @@ export class Controls {
     const [x] = this.app.screen.toLogical(ev.clientX, ev.clientY);
     const value = this.slider.valueAt(x, this.app.screen.layout.slider);
     this.app.game.setTrapHeight(value);
-    this.slider.setValue(value);
+    this.slider.hold(value);
     this.app.heightChanged();
   }
 
@@ -154,6 +155,7 @@ export class Controls {
     if (!this.sliding) return;
     this.slideMove(ev);
     this.sliding = false;
+    this.slider.release();
     this.sliderEl.releasePointerCapture?.(ev.pointerId);
   }
 
@@ -194,7 +196,6 @@ export class Controls {
       const look: Look = this.pressed === name ? "down" : this.hot === name ? "hover" : "idle";
       drawControlButton(ctx, l.buttons[name], symbols[name], look);
     }
-    if (!this.sliding) this.slider.setValue(g.trapHeight);
     const labelSize = l.mode === "tall" ? 40 : 24;
     const hot = this.sliding || this.hot === "slider";
     drawSlider(ctx, l.slider, this.slider, l.knobRadius, SLIDER_LABEL, hot, !g.won, labelSize);

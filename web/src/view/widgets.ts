@@ -5,20 +5,34 @@ import type { Rect } from "./geometry";
 import { drawText } from "./text";
 
 /** Slider value <-> knob position (the desktop's Slider arithmetic). */
+/**
+ * A slider's value: where a drag holds the knob, else where `follow` says it rests (e.g. the
+ * game's trap height, read when asked). The slider owns its drag; nobody writes the model's
+ * value back into it (issue 26.2, as the desktop's Slider).
+ */
 export class SliderModel {
-  activation = 0;
+  private held: number | null = null;
   constructor(
     readonly min: number,
     readonly max: number,
-    value: number,
-  ) {
-    this.setValue(value);
-  }
+    private readonly follow: () => number,
+  ) {}
   get value(): number {
-    return this.min + this.activation * (this.max - this.min);
+    return Math.min(this.max, Math.max(this.min, this.held ?? this.follow()));
   }
-  setValue(v: number): void {
-    this.activation = Math.min(1, Math.max(0, (v - this.min) / (this.max - this.min)));
+  /** 0 at min, 1 at max. */
+  get activation(): number {
+    return (this.value - this.min) / (this.max - this.min);
+  }
+  /** A drag holds the knob at v until release(). */
+  hold(v: number): void {
+    this.held = v;
+  }
+  release(): void {
+    this.held = null;
+  }
+  get dragging(): boolean {
+    return this.held !== null;
   }
   /** The value for a knob at logical x on a bar at r. */
   valueAt(x: number, r: Rect): number {

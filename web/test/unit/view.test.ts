@@ -102,11 +102,21 @@ describe("scene", () => {
   });
 
   test("slider: the desktop's value <-> knob arithmetic", () => {
-    const s = new SliderModel(25, 450, 400);
+    let height = 400;
+    const s = new SliderModel(25, 450, () => height);
     const bar = { x: 240, y: 611, w: 272, h: 8 };
     expect(s.knobX(bar)).toBe(Math.round(240 + (272 * 375) / 425));
     expect(s.valueAt(100, bar)).toBe(25);
     expect(s.valueAt(240 + 136, bar)).toBe(237.5);
+    // The knob rests where the model is, read when drawn: nobody writes it back...
+    height = 100;
+    expect(s.value).toBe(100);
+    // ...and a drag holds it where the pointer is until released.
+    s.hold(300);
+    height = 90;
+    expect([s.value, s.dragging]).toEqual([300, true]);
+    s.release();
+    expect([s.value, s.dragging]).toEqual([90, false]);
   });
 });
 
