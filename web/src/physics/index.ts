@@ -2,14 +2,13 @@
  * The web edition's physics: the exact event-driven model of docs/model.md, the same events
  * as the Python engines (held to it by the golden traces in web/test/golden/).
  */
+export { Simulation, pairwiseSum, type AtomSnapshot, type PhysicsEvent } from "./simulation";
 export {
-  Simulation,
-  pairwiseSum,
-  type AtomSnapshot,
-  type PhysicsEvent,
+  checkedConfig,
   type Points,
+  type SimulationConfig,
   type SimulationOptions,
-} from "./simulation";
+} from "./config";
 export {
   STATE_FORMAT,
   STATE_VERSION,

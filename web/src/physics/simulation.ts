@@ -21,9 +21,10 @@ import {
   type EscapeRule,
   type EventName,
 } from "./constants";
+import { checkedConfig, type SimulationConfig, type SimulationOptions } from "./config";
 import { STORED, type EngineAtoms, type EngineSetup } from "./engine";
 import { loadCup } from "./loading";
-import { CLASSIC_ROOM, checkRoom, escapeBox, roomTop, type Room } from "./room";
+import { escapeBox, roomTop, type Room } from "./room";
 import { randomSeed } from "./start";
 import {
   STATE_FORMAT,
@@ -49,40 +50,6 @@ import {
   type Range,
 } from "../limits";
 
-/** Points as interleaved numbers [x0, y0, x1, y1, ...] or as pairs [[x0, y0], ...]. */
-export type Points = ArrayLike<number> | ReadonlyArray<readonly [number, number]>;
-
-export interface SimulationOptions {
-  /** Atoms at the start (default 49; the number of positions if those are given). */
-  nAtoms?: number;
-  /** Radius, px: one for all, or one per atom (then positions must be given). Default 12. */
-  radius?: number | ArrayLike<number>;
-  /** Mass: one for all or one per atom. Default 1. */
-  mass?: number | ArrayLike<number>;
-  /** a of the cup y = a x^2, per px. Default 0.01. */
-  curvature?: number;
-  /** g, px / frame^2. Default 10/30. */
-  gravity?: number;
-  /** Rim height H, px above the lowest centre position (Infinity allowed). Default 400. */
-  trapHeight?: number;
-  /** The room around the cup: where escaped atoms are gone, how high the start fills. Default the original's. */
-  room?: Room;
-  /** Seed of the start's generator (a whole number >= 0); a random one if absent. */
-  seed?: number;
-  /** p in Tc(N) = Tc0 (N / N0)^p. Default 2/3 (seed Eq. 46); 2/5 is the cup's Bose gas. */
-  tcExponent?: number;
-  /** "rim" (atoms fly over the rim, default) or "knife" (energy above m g H cut at once). */
-  escape?: EscapeRule;
-  /** The win rule: false keeps the gas a gas below Tc. Default true. */
-  win?: boolean;
-  /** Keep every event in `eventLog` (tests, traces). Default false. */
-  recordEvents?: boolean;
-  /** Starting centres (trap coordinates), instead of the game's rows of cells. */
-  positions?: Points;
-  /** Starting velocities, px / frame, with positions. */
-  velocities?: Points;
-}
-
 /** One processed event: kind, atoms (j = -1 for solo events) and time in frames. */
 export interface PhysicsEvent {
   kind: EventName;
@@ -106,91 +73,16 @@ export interface AtomSnapshot {
   energy: Float64Array;
 }
 
-const OPTION_KEYS = new Set([
-  "nAtoms",
-  "radius",
-  "mass",
-  "curvature",
-  "gravity",
-  "trapHeight",
-  "room",
-  "seed",
-  "tcExponent",
-  "escape",
-  "win",
-  "recordEvents",
-  "positions",
-  "velocities",
-]);
-
 /** Mid-run states may have atoms touching or on the wall up to round-off: this much, relative. */
 const STATE_TOLERANCE = 1e-9;
 
-/** v within range (limits.py's table, issue 25.1), or fallback when not given. */
-function inRange(range: Range, name: string, v: unknown, fallback: number): number {
-  return v === undefined ? fallback : range.check(name, v);
-}
-
-function perAtom(
-  range: Range,
-  name: string,
-  v: unknown,
-  n: number,
-  fallback: number,
-): Float64Array {
-  if (v === undefined || typeof v === "number")
-    return new Float64Array(n).fill(inRange(range, name, v, fallback));
-  const arr = v as ArrayLike<number>;
-  if (typeof arr !== "object" || arr === null || arr.length !== n)
-    throw bad(name, `${range.allowed()}, or ${n} such numbers`, v);
-  const out = new Float64Array(n);
-  for (let i = 0; i < n; i++) {
-    const e = arr[i];
-    if (typeof e !== "number" || !range.contains(e))
-      throw new RangeError(
-        `${name} must be ${range.allowed()} (atom ${i} has ${typeof e === "number" ? pyFloat(e) : String(e)})`,
-      );
-    out[i] = e;
-  }
-  return out;
-}
-
-function pointCount(v: Points): number {
-  const first = (v as ArrayLike<unknown>)[0];
-  return typeof first === "object" && first !== null ? v.length : Math.floor(v.length / 2);
-}
-
-/** Points as two columns; RangeError unless exactly n finite points. */
-function points(name: string, v: unknown, n: number): [Float64Array, Float64Array] {
+/** Interleaved points [x0, y0, ...] of the loader as two columns. */
+function columns(xy: Float64Array, n: number): [Float64Array, Float64Array] {
   const xs = new Float64Array(n);
   const ys = new Float64Array(n);
-  const arr = v as ArrayLike<unknown>;
-  const allowed = `${n} finite points ([x, y] pairs or ${2 * n} interleaved numbers)`;
-  if (typeof arr !== "object" || arr === null) throw bad(name, allowed, v);
-  const pairs = arr.length > 0 && typeof arr[0] === "object" && arr[0] !== null;
-  if (arr.length !== (pairs ? n : 2 * n)) throw bad(name, allowed, v);
   for (let i = 0; i < n; i++) {
-    let x: unknown;
-    let y: unknown;
-    if (pairs) {
-      const p = arr[i] as ArrayLike<unknown>;
-      if (typeof p !== "object" || p === null || p.length !== 2)
-        throw bad(`${name}[${i}]`, "an [x, y] pair", p);
-      x = p[0];
-      y = p[1];
-    } else {
-      x = arr[2 * i];
-      y = arr[2 * i + 1];
-    }
-    if (
-      typeof x !== "number" ||
-      typeof y !== "number" ||
-      !Number.isFinite(x) ||
-      !Number.isFinite(y)
-    )
-      throw bad(`${name}[${i}]`, "a point of finite numbers", pairs ? arr[i] : [x, y]);
-    xs[i] = x;
-    ys[i] = y;
+    xs[i] = xy[2 * i];
+    ys[i] = xy[2 * i + 1];
   }
   return [xs, ys];
 }
@@ -253,64 +145,44 @@ export class Simulation {
   private scratch!: Float64Array;
 
   constructor(options: SimulationOptions = {}) {
-    if (typeof options !== "object" || options === null) throw bad("options", "an object", options);
-    for (const k of Object.keys(options))
-      if (!OPTION_KEYS.has(k))
-        throw bad("options", `free of unknown names (known: ${[...OPTION_KEYS].join(", ")})`, k);
-    const o = options;
-    const given = o.positions !== undefined || o.velocities !== undefined;
-    if (given && (o.positions === undefined || o.velocities === undefined))
-      throw bad("velocities", "given together with positions", given);
-    let n = o.nAtoms;
-    if (n === undefined) n = o.positions !== undefined ? pointCount(o.positions) : N_ATOMS;
-    N_ATOMS_RANGE.check("nAtoms", n);
-    const radius = perAtom(RADIUS_RANGE, "radius", o.radius, n, ATOM_RADIUS);
-    const mass = perAtom(MASS_RANGE, "mass", o.mass, n, 1);
-    const a = inRange(CURVATURE_RANGE, "curvature", o.curvature, CURVATURE);
-    const g = inRange(GRAVITY_RANGE, "gravity", o.gravity, GRAVITY);
-    const height = inRange(TRAP_HEIGHT_RANGE, "trapHeight", o.trapHeight, TRAP_HEIGHT);
-    const tcExponent = inRange(TC_EXPONENT_RANGE, "tcExponent", o.tcExponent, TC_EXPONENT_SEED);
-    const room = o.room === undefined ? CLASSIC_ROOM : checkRoom("room", o.room);
-    const seed = o.seed;
-    if (seed !== undefined && (typeof seed !== "number" || !Number.isSafeInteger(seed) || seed < 0))
-      throw bad("seed", "a whole number >= 0 (or absent)", seed);
-    const win = o.win ?? true;
-    if (typeof win !== "boolean") throw bad("win", "true or false", win);
-    const record = o.recordEvents ?? false;
-    if (typeof record !== "boolean") throw bad("recordEvents", "true or false", record);
-    const escape = o.escape ?? "rim";
-    if (!ESCAPE_RULES.includes(escape))
-      throw bad("escape", `one of ${ESCAPE_RULES.join(", ")}`, escape);
+    this.build(checkedConfig(options));
+  }
 
+  /** A simulation of a config checked once at the boundary (checkedConfig); nothing is
+   * checked again here but whether the atoms fit the cup (the loader's). */
+  static fromConfig(config: SimulationConfig): Simulation {
+    const sim = Object.create(Simulation.prototype) as Simulation;
+    sim.build(config);
+    return sim;
+  }
+
+  private build(c: SimulationConfig): void {
+    const n = c.nAtoms;
+    const radius = c.radius;
     let xs: Float64Array;
     let ys: Float64Array;
     let vxs: Float64Array;
     let vys: Float64Array;
     this.seedUsed = null;
-    if (!given) {
-      for (let i = 1; i < n; i++)
-        if (radius[i] !== radius[0])
-          throw bad("radius", "one number unless positions are given", "per-atom radii");
-      const s = seed ?? randomSeed();
+    if (c.start === null) {
+      const s = c.seed ?? randomSeed();
       this.seedUsed = s;
-      const start = loadCup(n, radius[0], a, roomTop(room, radius[0]), s);
-      [xs, ys] = points("positions", start.positions, n);
-      [vxs, vys] = points("velocities", start.velocities, n);
+      const start = loadCup(n, radius[0], c.curvature, roomTop(c.room, radius[0]), s);
+      [xs, ys] = columns(start.positions, n);
+      [vxs, vys] = columns(start.velocities, n);
     } else {
-      [xs, ys] = points("positions", o.positions, n);
-      [vxs, vys] = points("velocities", o.velocities, n);
-      checkStart(xs, ys, vxs, vys, radius, a);
+      ({ x: xs, y: ys, vx: vxs, vy: vys } = c.start);
     }
     this.init(
-      room,
+      c.room,
       {
-        curvature: a,
-        gravity: g,
-        tcExponent,
-        escape,
-        win,
-        trapHeight: height,
-        recordEvents: record,
+        curvature: c.curvature,
+        gravity: c.gravity,
+        tcExponent: c.tcExponent,
+        escape: c.escape,
+        win: c.win,
+        trapHeight: c.trapHeight,
+        recordEvents: c.recordEvents,
       },
       {
         x: xs,
@@ -319,7 +191,7 @@ export class Simulation {
         vy: vys,
         t: new Float64Array(n),
         radius,
-        mass,
+        mass: c.mass,
         status: new Int8Array(n),
         time: 0,
         won: false,
