@@ -7,7 +7,7 @@
  */
 import type { AtomArrays, SimLike } from "../game/sim";
 import { rect, type Rect } from "./geometry";
-import { drawText } from "./text";
+import { drawText, textWidth } from "./text";
 
 const BG = "rgb(244,243,238)";
 const PLOT_BG = "rgb(255,255,255)";
@@ -21,15 +21,25 @@ const TC_LINE = "rgb(25,60,150)";
 const PATH = "rgb(215,95,10)";
 export const KT_FRACTION = 0.4;
 const GAMMA_5_2 = 0.75 * Math.sqrt(Math.PI);
+/** The legends (the desktop's panels'), drawn in the header, never over the plot. */
+const ENERGY_LEGEND: readonly LegendItem[] = [
+  { swatch: "bar", color: BAR, text: "atoms" },
+  { swatch: "line", color: CURVE, text: "equilibrium at T" },
+  { swatch: "bar", color: CUT, text: "cut m g H" },
+];
+const PATH_LEGEND: readonly LegendItem[] = [
+  { swatch: "dot", color: PATH, text: "your path" },
+  { swatch: "line", color: TC_LINE, text: "T = Tc(N)" },
+  { swatch: "bar", color: CONDENSATE, text: "condensate, T < Tc" },
+];
 
 const fontSize = (r: Rect) => Math.max(18, Math.min(30, Math.floor(r.h / 11)));
 
-/** The plotting area inside a panel rectangle (room for title, ticks and labels). */
-export function margins(r: Rect): Rect {
+/** The plotting area inside a panel rectangle (room for title, header, ticks and labels). */
+export function margins(r: Rect, top = Math.floor(1.5 * fontSize(r))): Rect {
   const fs = fontSize(r);
   const left = Math.floor(2.6 * fs);
   const right = Math.floor(0.8 * fs);
-  const top = Math.floor(1.5 * fs);
   const bottom = Math.floor(2.1 * fs);
   return rect(
     r.x + left,
@@ -71,6 +81,74 @@ export function energies(a: AtomArrays, g: number, out: Float64Array): Float64Ar
     out[i] = 0.5 * m * (a.vx[i] * a.vx[i] + a.vy[i] * a.vy[i]) + m * g * a.y[i];
   }
   return out;
+}
+
+/** A legend entry: a swatch ("bar", "line" or "dot") in a colour, and its words. */
+export interface LegendItem {
+  swatch: "bar" | "line" | "dot";
+  color: string;
+  text: string;
+}
+
+/** Where a panel put its plot and its words: every word lies outside the plot, where the
+ * bars, curves and lines are drawn (clipped to it), so no line ever crosses a word. */
+export interface PanelDrawn {
+  plot: Rect;
+  words: Rect[];
+}
+
+const SWATCH_W = 22;
+
+/** The header under the title: the legend flowing in rows, then the live readout. */
+function header(
+  ctx: CanvasRenderingContext2D,
+  r: Rect,
+  items: readonly LegendItem[],
+  readout: string,
+  fs: number,
+  small: number,
+): { bottom: number; draw: () => Rect[] } {
+  const pad = Math.floor(0.5 * fs);
+  const line = Math.ceil(small * 0.6875 * 1.45);
+  const gap = Math.floor(small * 0.9);
+  const placed: Array<[LegendItem, number, number, number]> = [];
+  let x = r.x + pad;
+  let y = r.y + Math.floor(1.5 * fs);
+  for (const item of items) {
+    const w = SWATCH_W + 6 + textWidth(ctx, item.text, small);
+    if (x > r.x + pad && x + w > r.x + r.w - pad) {
+      x = r.x + pad;
+      y += line;
+    }
+    placed.push([item, x, y, w]);
+    x += w + gap;
+  }
+  const readoutY = y + line;
+  return {
+    bottom: readoutY + line + Math.floor(small * 0.3),
+    draw: () => {
+      const words: Rect[] = [];
+      for (const [item, ix, iy, w] of placed) {
+        const cy = iy + line / 2;
+        ctx.fillStyle = item.color;
+        if (item.swatch === "bar") ctx.fillRect(ix, iy + 3, SWATCH_W, line - 6);
+        else if (item.swatch === "line") ctx.fillRect(ix, cy - 1.5, SWATCH_W, 3);
+        else {
+          ctx.beginPath();
+          ctx.arc(ix + SWATCH_W / 2, cy, 6, 0, 2 * Math.PI);
+          ctx.fill();
+        }
+        const tw = drawText(ctx, item.text, small, INK, ix + SWATCH_W + 6, cy, "midleft");
+        words.push(rect(ix + SWATCH_W + 6, iy, Math.ceil(tw), line));
+        void w;
+      }
+      if (readout) {
+        const tw = drawText(ctx, readout, small, INK, r.x + pad, readoutY + line / 2, "midleft");
+        words.push(rect(r.x + pad, readoutY, Math.ceil(tw), line));
+      }
+      return words;
+    },
+  };
 }
 
 function blank(ctx: CanvasRenderingContext2D, r: Rect, plot: Rect): void {
@@ -183,16 +261,24 @@ export class EnergyPanel {
     return out;
   }
 
+  /** Where the last draw put the plot and the words. */
+  drawn: PanelDrawn | null = null;
+
   draw(ctx: CanvasRenderingContext2D, r: Rect): void {
-    const plot = margins(r);
     const fs = fontSize(r);
     const small = Math.floor(fs * 0.85);
+    const readout = this.edges
+      ? `N = ${this.nTrapped}   T = ${tickText(this.temperature)}   kT = ${tickText(this.kt)}`
+      : "";
+    const head = header(ctx, r, ENERGY_LEGEND, readout, fs, small);
+    const plot = margins(r, head.bottom - r.y);
     ctx.save();
     ctx.beginPath();
     ctx.rect(r.x, r.y, r.w, r.h);
     ctx.clip();
     blank(ctx, r, plot);
     drawText(ctx, "Energies of the trapped atoms", fs, INK, r.x + r.w / 2, r.y + 4, "midtop", true);
+    const words = head.draw();
     drawText(ctx, "energy E", small, INK, plot.x + plot.w / 2, r.y + r.h - 2, "midbottom");
     yLabel(ctx, "atoms per bin", small, r.x + 4, plot.y + plot.h / 2);
     if (!this.edges) {
@@ -248,28 +334,19 @@ export class EnergyPanel {
         ctx.fillRect(plot.x - 5, y - 1, 5, 2);
         drawText(ctx, tickText(v), small, INK, plot.x - 6, y, "midright");
       }
-      const inner = plot.x + plot.w - 6;
-      if (cx <= plot.x + plot.w) {
-        const lx = cx - 6;
-        if (lx - 90 < plot.x) drawText(ctx, "cut m g H", small, CUT, cx + 6, plot.y + 6, "topleft");
-        else drawText(ctx, "cut m g H", small, CUT, lx, plot.y + 6, "topright");
-      } else {
-        drawText(ctx, "cut m g H ->", small, CUT, inner, plot.y + 6, "topright");
+      if (cx > plot.x + plot.w) {
+        // The cut lies beyond the energies shown: a red arrowhead at the plot's right edge.
+        const ax = plot.x + plot.w - 3;
+        ctx.fillStyle = CUT;
+        ctx.beginPath();
+        ctx.moveTo(ax, plot.y + 14);
+        ctx.lineTo(ax - 12, plot.y + 6);
+        ctx.lineTo(ax - 12, plot.y + 22);
+        ctx.closePath();
+        ctx.fill();
       }
-      drawText(
-        ctx,
-        `N = ${this.nTrapped}   kT = ${tickText(this.kt)}`,
-        small,
-        INK,
-        inner,
-        plot.y + 10 + fs,
-        "topright",
-      );
-      const ly = plot.y + 16 + 2 * fs;
-      ctx.fillStyle = CURVE;
-      ctx.fillRect(inner - 146, ly - 1, 25, 3);
-      drawText(ctx, "equilibrium", small, INK, inner, ly, "midright");
     }
+    this.drawn = { plot, words };
     ctx.strokeStyle = INK;
     ctx.lineWidth = 2;
     ctx.strokeRect(plot.x, plot.y, plot.w, plot.h);
@@ -338,10 +415,20 @@ export class PathPanel {
     ];
   }
 
+  /** Where the last draw put the plot and the words. */
+  drawn: PanelDrawn | null = null;
+
   draw(ctx: CanvasRenderingContext2D, r: Rect): void {
-    const plot = margins(r);
     const fs = fontSize(r);
     const small = Math.floor(fs * 0.85);
+    let readout = "";
+    if (this.n.length) {
+      const n = this.n[this.n.length - 1];
+      const t = this.t[this.t.length - 1];
+      readout = `N = ${n}   T = ${tickText(t)}   Tc = ${tickText(this.tc(n))}`;
+    }
+    const head = header(ctx, r, PATH_LEGEND, readout, fs, small);
+    const plot = margins(r, head.bottom - r.y);
     ctx.save();
     ctx.beginPath();
     ctx.rect(r.x, r.y, r.w, r.h);
@@ -368,19 +455,6 @@ export class PathPanel {
     ctx.moveTo(xa, ya);
     ctx.lineTo(xb, yb);
     ctx.stroke();
-    drawText(
-      ctx,
-      "condensate",
-      fs,
-      TC_LINE,
-      plot.x + plot.w - 8,
-      plot.y + plot.h - 8,
-      "bottomright",
-      true,
-    );
-    const xl = plot.x + plot.w / 3;
-    const yl = ya + ((yb - ya) * (xl - xa)) / (xb - xa);
-    drawText(ctx, "T = Tc(N)", small, TC_LINE, xl, Math.max(plot.y + 30, yl - 12), "bottomleft");
     // The path and its markers, then the current point.
     if (this.n.length) {
       ctx.strokeStyle = PATH;
@@ -407,13 +481,8 @@ export class PathPanel {
       ctx.fill();
     }
     ctx.restore();
-    if (this.n.length) {
-      const n = this.n[this.n.length - 1];
-      const t = this.t[this.t.length - 1];
-      const text = `N = ${n}   T = ${tickText(t)}   Tc = ${tickText(this.tc(n))}`;
-      drawText(ctx, text, small, INK, plot.x + 8, plot.y + 6, "topleft");
-    }
     drawText(ctx, "Path to condensation", fs, INK, r.x + r.w / 2, r.y + 4, "midtop", true);
+    this.drawn = { plot, words: head.draw() };
     ctx.fillStyle = INK;
     for (const v of logTicks(...this.nRange)) {
       const x = Math.round(this.toPixel(v, this.tRange[0], plot)[0]);
