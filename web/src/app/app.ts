@@ -23,6 +23,7 @@ import {
   drawNotices,
   drawSettings,
   drawTable,
+  type TableCell,
   type Target,
 } from "../view/overlays";
 import { Scene } from "../view/scene";
@@ -100,6 +101,8 @@ export class App implements Animated {
   dirty = true;
   /** The drawn panels' tap targets, in the panel's own coordinates (last frame drawn). */
   targets: Target[] = [];
+  /** The score table's words and where they were drawn (the last table drawn). */
+  tableCells: TableCell[] = [];
   /** Whether those targets were drawn zoomed with the panels (overlayZoom) or on the scene. */
   targetsZoomed = false;
   readonly drawn: DrawnControls = {
@@ -563,7 +566,7 @@ export class App implements Animated {
     if (this.overlay === "help") {
       this.targets = drawHelp(ctx, helpRows(), this.fpsLine());
     } else if (this.overlay === "table") {
-      this.targets = drawTable(
+      const table = drawTable(
         ctx,
         `for ${describeRun(this.options.runSettings())}`,
         this.scores.table.entries,
@@ -571,6 +574,8 @@ export class App implements Animated {
         this.scores.footer(),
         this.scores.buttons(),
       );
+      this.targets = table.targets;
+      this.tableCells = table.cells;
     } else if (this.overlay === "settings") {
       const o = this.options;
       this.targets = drawSettings(ctx, describe(o.draft), o.row, o.footer());

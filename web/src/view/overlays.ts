@@ -93,6 +93,43 @@ export function drawHelp(
   return targets;
 }
 
+/** A word of the score table and where it was drawn (tests check each lies whole in its column). */
+export interface TableCell {
+  text: string;
+  rect: Rect;
+}
+
+/** Column headers of the score table and the text of an empty one. */
+const TABLE_HEADS = ["#", "name", "atoms", "time", "date"];
+const TABLE_EMPTY = "No scores yet: be the first!";
+/** Sizes (desktop units) the rows may take: the largest at which every column fits whole. */
+const ROW_SIZE_MAX = 24;
+const ROW_SIZE_MIN = 14;
+const COLUMN_GAP = 14;
+
+/** Whatever the name box accepts shows whole: columns as wide as their widest word, the rows'
+ * size the largest at which they all fit the panel (the date goes first if none does). */
+function tableColumns(
+  ctx: CanvasRenderingContext2D,
+  rows: string[][],
+  inner: number,
+): { size: number; widths: number[] } {
+  const measure = (size: number, n: number) =>
+    Array.from({ length: n }, (_, c) =>
+      Math.max(
+        textWidth(ctx, TABLE_HEADS[c], size - 2) + 2,
+        ...rows.map((r) => textWidth(ctx, r[c], size) + 2),
+      ),
+    );
+  const total = (w: number[]) => w.reduce((a, b) => a + b, 0) + COLUMN_GAP * (w.length - 1);
+  for (const n of [5, 4])
+    for (let size = ROW_SIZE_MAX; size >= ROW_SIZE_MIN; size--) {
+      const widths = measure(size, n);
+      if (total(widths) <= inner) return { size, widths };
+    }
+  return { size: ROW_SIZE_MIN, widths: measure(ROW_SIZE_MIN, 4) };
+}
+
 export function drawTable(
   ctx: CanvasRenderingContext2D,
   title: string,
@@ -100,38 +137,39 @@ export function drawTable(
   highlight: number | null,
   footer: string[],
   buttons: Array<[string, string]>,
-): Target[] {
+): { targets: Target[]; cells: TableCell[] } {
   const targets: Target[] = [];
+  const cells: TableCell[] = [];
   const rows = Math.max(1, entries.length);
   const panel = overlay(ctx, "High scores", 130 + 30 * (rows + 1 + footer.length) + 44);
   drawText(ctx, title, 20, C.DIM_TEXT, panel.x + panel.w / 2, panel.y + 48, "midtop");
-  const cols = [panel.x + 16, panel.x + 50, panel.x + 222, panel.x + 292];
-  const y0 = panel.y + 76;
-  ["#", "name", "atoms", "time"].forEach((h, k) =>
-    drawText(ctx, h, 22, C.ACCENT, cols[k], y0, "topleft", true),
-  );
-  drawText(ctx, "date", 22, C.ACCENT, panel.x + panel.w - 16, y0, "topright", true);
-  if (!entries.length) {
-    drawText(ctx, "No scores yet: be the first!", 24, C.TEXT, cols[1], y0 + 32, "topleft");
+  const texts = entries.map((e, k) => [
+    `${k + 1}`,
+    e.name,
+    `${e.score}`,
+    formatSeconds(e.seconds),
+    e.date.slice(0, 10),
+  ]);
+  const { size, widths } = tableColumns(ctx, texts, panel.w - 32);
+  const cols: number[] = [];
+  let x = panel.x + 16;
+  for (const w of widths) {
+    cols.push(x);
+    x += w + COLUMN_GAP;
   }
-  const nameWidth = cols[2] - cols[1] - 8;
-  entries.forEach((e, k) => {
+  const y0 = panel.y + 76;
+  cols.forEach((cx, c) =>
+    drawText(ctx, TABLE_HEADS[c], size - 2, C.ACCENT, cx, y0, "topleft", true),
+  );
+  if (!entries.length) drawText(ctx, TABLE_EMPTY, 24, C.TEXT, cols[1], y0 + 32, "topleft");
+  texts.forEach((row, k) => {
     const y = panel.y + 108 + 30 * k;
     const mine = highlight === k + 1;
     const color = mine ? C.ACCENT : C.TEXT;
-    const cells = [`${k + 1}`, e.name, `${e.score}`, formatSeconds(e.seconds)];
-    cells.forEach((cell, c) => {
-      ctx.save();
-      if (c === 1) {
-        // A long name is cut at its column rather than running into the score.
-        ctx.beginPath();
-        ctx.rect(cols[1], y - 4, nameWidth, 32);
-        ctx.clip();
-      }
-      drawText(ctx, cell, 24, color, cols[c], y, "topleft", mine);
-      ctx.restore();
+    cols.forEach((cx, c) => {
+      const w = drawText(ctx, row[c], size, color, cx, y, "topleft", mine);
+      cells.push({ text: row[c], rect: rect(cx, y, w, 30) });
     });
-    drawText(ctx, e.date.slice(0, 10), 22, color, panel.x + panel.w - 16, y + 1, "topright");
   });
   let y = panel.y + 108 + 30 * rows + 14;
   for (const line of footer) {
@@ -139,7 +177,7 @@ export function drawTable(
     y += 30;
   }
   buttonRow(ctx, buttons, panel.x + panel.w / 2, y + 4, targets);
-  return targets;
+  return { targets, cells };
 }
 
 export function drawSettings(
