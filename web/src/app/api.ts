@@ -36,6 +36,10 @@ export interface PageState {
   slowNote: string | null;
   /** The worker's ms spent on the physics for its newest frame (NaN without a worker). */
   physicsMs: number;
+  /** The autopilot holds the trap (key A or the wheel button). */
+  autopilot: boolean;
+  /** The help's row size as last drawn, logical px (x scale: CSS px). */
+  helpSize: number;
 }
 
 export function exposeApi(app: App): void {
@@ -78,6 +82,8 @@ export function exposeApi(app: App): void {
         pace: app.pace.pace,
         slowNote: app.slowNote(),
         physicsMs: app.physicsMs,
+        autopilot: app.autopilotEngaged,
+        helpSize: app.helpSize,
       };
     },
     /** Play n frames of 1/30 s x speed now, drawn (unpauses); resolves once shown. */

@@ -26,9 +26,11 @@ import {
   type TableCell,
   type Target,
 } from "../view/overlays";
-import { Scene } from "../view/scene";
+import { Scene, speedText } from "../view/scene";
 import { drawText } from "../view/text";
+import { Autopilot } from "../game/autopilot";
 import { helpRows, HEIGHT_STEP, type Action } from "./bindings";
+import { KEY_HINTS, TOUCH_HINTS, type Hints } from "./hints";
 import { Charts } from "./charts";
 import { Controls } from "./controls";
 import { Input } from "./input";
@@ -103,6 +105,8 @@ export class App implements Animated {
   targets: Target[] = [];
   /** The score table's words and where they were drawn (the last table drawn). */
   tableCells: TableCell[] = [];
+  /** The help's row size as last drawn (logical px; tests check it is legible). */
+  helpSize = 0;
   /** Whether those targets were drawn zoomed with the panels (overlayZoom) or on the scene. */
   targetsZoomed = false;
   readonly drawn: DrawnControls = {
@@ -121,11 +125,16 @@ export class App implements Animated {
   private saidSlow: string | null = null;
   private readonly reducedMotion: boolean;
   private readonly coarse: boolean;
+  /** A key was pressed: this touch screen has a keyboard too, so hints name keys. */
+  private keyboardSeen = false;
+  /** The autopilot (key A or its wheel button): the demo strategy, made on first use. */
+  autopilot: Autopilot | null = null;
 
   constructor(
     readonly el: Elements,
     private readonly opts: AppOptions,
   ) {
+    const app = this;
     const ctx = el.canvas.getContext("2d", { alpha: false });
     if (!ctx) throw new Error("this browser cannot draw on a canvas");
     this.ctx = ctx;
@@ -143,6 +152,9 @@ export class App implements Animated {
     this.options = new SettingsEditor(
       {
         storage: opts.storage,
+        get hints() {
+          return app.hints;
+        },
         notify: (t) => this.notify(t),
         say: (t) => this.say(t),
         closeOverlay: () => (this.overlay = null),
@@ -150,10 +162,16 @@ export class App implements Animated {
       opts.overrides ?? {},
     );
     this.game = this.firstGame();
-    const app = this;
     this.scores = new Scoreboard({
       get game() {
         return app.game;
+      },
+      get hints() {
+        return app.hints;
+      },
+      get autopilotFlew() {
+        const pilot = app.autopilot;
+        return pilot?.flew ? pilot.name : null;
       },
       storage: opts.storage,
       screen: this.screen,
@@ -162,6 +180,7 @@ export class App implements Animated {
       notify: (t) => this.notify(t),
       say: (t) => this.say(t),
       quiet: () => this.quietHeight(),
+      focusNext: () => this.controls.focus("restart"),
       showTable: (shown) => (this.overlay = shown ? "table" : null),
     });
     this.scores.openTable(this.options.runSettings());
@@ -245,6 +264,40 @@ export class App implements Animated {
   }
 
   // -- what the rooms share ---------------------------------------------------------------
+  /** Hints in the words of the device: taps on a touch screen, keys once a key is pressed. */
+  get hints(): Hints {
+    return this.coarse && !this.keyboardSeen ? TOUCH_HINTS : KEY_HINTS;
+  }
+
+  /** A key was pressed (touch screens with a keyboard get key hints from now on). */
+  keyPressed(): void {
+    this.keyboardSeen = true;
+  }
+
+  get autopilotEngaged(): boolean {
+    return this.autopilot?.engaged ?? false;
+  }
+
+  /** The player touched the trap: the autopilot lets go (and says so). */
+  takeOver(): void {
+    if (!this.autopilot?.engaged) return;
+    this.autopilot.takeOver();
+    this.notify(this.hints.youHaveTheTrap);
+  }
+
+  /** Key A or the wheel: the demo autopilot takes the trap, or hands it back. */
+  private toggleAutopilot(): void {
+    if (this.game.won) return;
+    if (this.autopilot?.engaged) {
+      this.takeOver();
+      return;
+    }
+    this.autopilot ??= Autopilot.demo();
+    this.autopilot.engage();
+    this.autopilot.steer(this.game);
+    this.notify(this.hints.autopilotPlays(this.autopilot.name));
+  }
+
   get layout(): Layout {
     return this.screen.layout;
   }
@@ -264,6 +317,9 @@ export class App implements Animated {
   // -- actions -------------------------------------------------------------------------------
   act(action: Action): void {
     const g = this.game;
+    // Another panel over the settings: they close first, and say if changes were dropped.
+    if (this.overlay === "settings" && ["help", "table", "clear", "escape"].includes(action))
+      this.options.close(false);
     switch (action) {
       case "pause":
         g.togglePause();
@@ -273,15 +329,21 @@ export class App implements Animated {
         this.restart();
         break;
       case "lower":
+        this.takeOver();
         g.nudgeHeight(-HEIGHT_STEP);
         this.heightChanged();
         break;
       case "raise":
+        this.takeOver();
         g.nudgeHeight(HEIGHT_STEP);
         this.heightChanged();
         break;
       case "step":
+        this.autopilot?.steer(g);
         g.step();
+        break;
+      case "autopilot":
+        this.toggleAutopilot();
         break;
       case "faster":
         g.faster();
@@ -308,7 +370,7 @@ export class App implements Animated {
       case "clear":
         this.overlay = "table";
         this.scores.confirmReset = true;
-        this.say("Clear all scores? Y: yes, N or Escape: no");
+        this.say(this.hints.confirmClearSpoken);
         break;
       case "next":
         if (this.scores.readyForNext) this.restart();
@@ -348,6 +410,8 @@ export class App implements Animated {
       this.game.restart();
     }
     this.scores.newGame();
+    this.autopilot?.newGame();
+    this.autopilot?.steer(this.game);
     if (this.overlay === "table") this.overlay = null;
     this.charts.reset();
     this.scores.openTable(s);
@@ -401,6 +465,7 @@ export class App implements Animated {
 
   advance(dt: number): void {
     const g = this.game;
+    this.autopilot?.steer(g); // the trap for this frame, from the gas as it is now
     g.update(dt);
     this.animTime += Math.min(dt, 0.25);
     this.pace.add(performance.now(), g.sim.time, g.speed, !g.paused, `${g.speed}|${g.generation}`);
@@ -448,6 +513,7 @@ export class App implements Animated {
   async runFrames(n: number): Promise<void> {
     const g = this.game;
     for (let k = 0; k < n; k++) {
+      this.autopilot?.steer(g);
       if (g instanceof RemoteGame) await g.runFrames(1);
       else (g as Game).runFrames(1);
       this.animTime += 1 / FPS;
@@ -483,7 +549,7 @@ export class App implements Animated {
     ctx.setTransform(s, 0, 0, s, Math.round(l.offsetX * dpr), Math.round(l.offsetY * dpr));
     this.scene.deviceScale = s;
     this.drawScene(ctx);
-    this.scene.drawFrame(ctx, sceneGame(g), l.sceneHeight);
+    this.scene.drawFrame(ctx, sceneGame(g), l.sceneHeight, 16 / l.scale);
     this.controls.draw(ctx);
     this.drawMessages(ctx);
     this.drawOverlay(ctx);
@@ -535,9 +601,8 @@ export class App implements Animated {
     const tooFew = g.score === null ? g.tooFewAtoms(this.lightestMass()) : null;
     if (g.score !== null) this.scene.drawScore(ctx, g.score);
     else if (tooFew !== null) {
-      this.scene.drawTooFew(ctx, tooFew);
-      if (tooFew !== this.saidTooFew)
-        this.say(`Too few atoms left. ${tooFew} Press R to try again.`);
+      this.scene.drawTooFew(ctx, tooFew, this.hints.tooFewLine);
+      if (tooFew !== this.saidTooFew) this.say(this.hints.tooFewSpoken(tooFew));
     } else if (g.paused && g.sim.time === 0 && this.overlay === null) {
       this.scene.drawStartHint(ctx, this.coarse);
     }
@@ -557,15 +622,22 @@ export class App implements Animated {
 
   /** Help, scores or settings over the play area (zoomed in the tall layout). */
   private drawOverlay(ctx: CanvasRenderingContext2D): void {
+    if (this.overlay === "help") {
+      // Over the whole screen: a projector's black bands hold larger text, a phone's rows
+      // wrap at 16 CSS px or more.
+      const box = this.screen.visibleBox(12);
+      const help = drawHelp(ctx, helpRows(), this.fpsLines(), box, 16 / this.layout.scale);
+      this.targets = help.targets;
+      this.helpSize = help.size;
+      return;
+    }
     const zoom = this.overlayZoom();
     ctx.save();
     ctx.translate(zoom.x, zoom.y);
     ctx.scale(zoom.k, zoom.k);
     ctx.translate(-zoom.cx, -zoom.cy);
     if (this.overlay !== null) this.targetsZoomed = true;
-    if (this.overlay === "help") {
-      this.targets = drawHelp(ctx, helpRows(), this.fpsLine());
-    } else if (this.overlay === "table") {
+    if (this.overlay === "table") {
       const table = drawTable(
         ctx,
         `for ${describeRun(this.options.runSettings())}`,
@@ -583,10 +655,23 @@ export class App implements Animated {
     ctx.restore();
   }
 
-  private fpsLine(): string {
-    const st = this.loop.stats.summary();
-    const fps = st.fps > 0 ? st.fps.toFixed(0) : "-";
-    return `${fps} fps   frame ${st.medianMs.toFixed(2)} ms   ${this.game.sim.nTrapped} atoms`;
+  /** The display rate while playing (paused frames are not counted) and the game's pace. */
+  private fpsLines(): string[] {
+    const st = this.loop.playStats.summary();
+    const atoms = `${this.game.sim.nTrapped} atoms`;
+    if (st.frames < 2) return [`display rate: shown after some play   ${atoms}`];
+    const shown = `${st.fps.toFixed(0)} fps while playing   frame ${st.medianMs.toFixed(1)} ms`;
+    const pace = this.pace.pace;
+    const paceLine =
+      pace >= 0.98
+        ? "the game keeps real time"
+        : `the game runs at ${pace.toFixed(2)}x real time: this device is too slow`;
+    return [`${shown}   ${atoms}`, paceLine];
+  }
+
+  /** Whether the game is playing (the loop counts only these frames for the display rate). */
+  running(): boolean {
+    return !this.game.paused && !this.game.won;
   }
 
   /** The lightest trapped atom's mass (the escape energy of the too-few rule). */
@@ -601,8 +686,4 @@ export class App implements Animated {
 /** The scene reads only a game's sim and speed, which the worker's game has as the page's. */
 function sceneGame(g: GameLike): Game {
   return g as Game;
-}
-
-export function speedText(s: number): string {
-  return s >= 1 ? `${s}x` : `1/${1 / s}x`;
 }

@@ -22,6 +22,7 @@ export type Action =
   | "settings"
   | "fullscreen"
   | "help"
+  | "autopilot"
   | "escape";
 
 export interface Binding {
@@ -49,9 +50,10 @@ export const BINDINGS: Binding[] = [
   },
   { keys: ["s"], label: "S", help: "one frame forward (while paused)", action: "step" },
   { keys: ["+", "="], label: "+", help: "faster (up to 4x)", action: "faster" },
-  { keys: ["-", "_"], label: "-", help: "slower (down to 1/4x)", action: "slower" },
+  { keys: ["-", "_"], label: "-", help: "slower (down to 0.25x)", action: "slower" },
   { keys: ["e"], label: "E", help: "energy chart on / off", action: "energy" },
   { keys: ["g"], label: "G", help: "path-to-condensation chart on / off", action: "path" },
+  { keys: ["a"], label: "A", help: "autopilot on / off (the demo strategy)", action: "autopilot" },
   { keys: ["t"], label: "T", help: "high-score table on / off", action: "table" },
   {
     keys: ["delete", "x"],

@@ -5,7 +5,13 @@
  */
 import { HEIGHT_MAX, HEIGHT_MIN } from "../game/rules";
 import * as C from "../view/colors";
-import { atLeast, MIN_TARGET_CSS, type ControlName } from "../view/geometry";
+import {
+  atLeast,
+  CONTROL_ORDER,
+  MIN_TARGET_CSS,
+  type ControlName,
+  type Rect,
+} from "../view/geometry";
 import type { Look, SymbolName } from "../view/icons";
 import { drawControlButton, drawSlider, SliderModel } from "../view/widgets";
 import type { App } from "./app";
@@ -18,6 +24,11 @@ const LABELS: Record<ControlName, string> = {
   table: "High-score table",
   settings: "Settings",
   fullscreen: "Full screen on or off",
+  step: "One frame forward (while paused)",
+  slower: "Slower",
+  faster: "Faster",
+  path: "Path-to-condensation chart on or off",
+  autopilot: "Autopilot on or off",
 };
 const SLIDER_LABEL = "Trap height";
 /** A click this soon after a handled press and release is that press's own click, ms. */
@@ -28,6 +39,11 @@ export class Controls {
   readonly slider = new SliderModel(HEIGHT_MIN, HEIGHT_MAX, () => this.app.game.trapHeight);
   private buttons = new Map<ControlName, HTMLButtonElement>();
   private sliderEl!: HTMLDivElement;
+  private layer!: HTMLDivElement;
+  /** Knob minus pointer along the track when a drag grabbed the knob (no jump), logical px. */
+  private grab = 0;
+  /** The layout mode the elements' tab order was last put in. */
+  private orderedFor = "";
   private pressed: ControlName | null = null;
   private clickHandledAt = -Infinity;
   sliding = false;
@@ -40,11 +56,28 @@ export class Controls {
     const layer = document.createElement("div");
     layer.className = "controls";
     root.append(layer);
-    const make = (name: ControlName) => layer.append(this.button(name));
-    (["pause", "restart"] as ControlName[]).forEach(make);
-    // The slider comes after the two buttons in the tab order, as on screen.
+    this.layer = layer;
+    for (const name of CONTROL_ORDER) layer.append(this.button(name));
     layer.append(this.sliderElement());
-    (["chart", "help", "table", "settings", "fullscreen"] as ControlName[]).forEach(make);
+  }
+
+  focus(name: ControlName): void {
+    this.buttons.get(name)?.focus({ preventScroll: true });
+  }
+
+  /** Tab order follows what is drawn: top to bottom, then left to right (issue 27.12). */
+  private orderByPlace(): void {
+    const l = this.app.screen.layout;
+    if (this.orderedFor === l.mode) return;
+    this.orderedFor = l.mode;
+    const items: Array<[HTMLElement, Rect]> = [...this.buttons].map(([n, b]) => [b, l.buttons[n]]);
+    const s = l.slider;
+    // The slider as drawn with its knob (a lying track is only a few px high).
+    items.push([this.sliderEl, atLeast(s, 2 * l.knobRadius)]);
+    const focused = document.activeElement;
+    for (const el of readingOrder(items, this.sliderEl, l.mode === "side")) this.layer.append(el);
+    if (focused instanceof HTMLElement && this.layer.contains(focused))
+      focused.focus({ preventScroll: true });
   }
 
   private button(name: ControlName): HTMLButtonElement {
@@ -93,7 +126,7 @@ export class Controls {
     s.setAttribute("aria-label", SLIDER_LABEL);
     s.setAttribute("aria-valuemin", String(HEIGHT_MIN));
     s.setAttribute("aria-valuemax", String(HEIGHT_MAX));
-    s.setAttribute("aria-orientation", "horizontal");
+    s.setAttribute("aria-orientation", "horizontal"); // set per layout in place()
     s.addEventListener("pointerdown", (ev) => this.slideStart(ev));
     s.addEventListener("pointermove", (ev) => this.slideMove(ev));
     s.addEventListener("pointerup", (ev) => this.slideEnd(ev));
@@ -110,6 +143,7 @@ export class Controls {
         ev.preventDefault();
         const g = this.app.game;
         const h = { Home: HEIGHT_MIN, End: HEIGHT_MAX, PageUp: g.trapHeight + 50 }[k as "Home"];
+        this.app.takeOver();
         g.setTrapHeight(h ?? g.trapHeight - 50);
         this.app.heightChanged();
       }
@@ -125,7 +159,8 @@ export class Controls {
         app.act("energy");
         break;
       case "settings":
-        if (app.overlay === "settings") app.options.close(false);
+        // The gear closes the screen as it opened it: keeping the changes, and saying so.
+        if (app.overlay === "settings") app.options.close(true);
         else app.act("settings");
         break;
       default:
@@ -139,13 +174,25 @@ export class Controls {
     this.sliding = true;
     this.sliderEl.setPointerCapture?.(ev.pointerId);
     this.sliderEl.focus({ preventScroll: true });
+    this.app.takeOver();
+    // A press on or near the knob takes hold of it where it is; elsewhere the knob jumps there.
+    const l = this.app.screen.layout;
+    const along = this.along(ev);
+    const knob = this.slider.knobAt(l.slider);
+    const reach = Math.max(l.knobRadius, MIN_TARGET_CSS / 2 / l.scale);
+    this.grab = Math.abs(knob - along) <= reach ? knob - along : 0;
     this.slideMove(ev);
+  }
+
+  /** The pointer's logical position along the slider's track. */
+  private along(ev: PointerEvent): number {
+    const [x, y] = this.app.screen.toLogical(ev.clientX, ev.clientY);
+    return SliderModel.upright(this.app.screen.layout.slider) ? y : x;
   }
 
   private slideMove(ev: PointerEvent): void {
     if (!this.sliding) return;
-    const [x] = this.app.screen.toLogical(ev.clientX, ev.clientY);
-    const value = this.slider.valueAt(x, this.app.screen.layout.slider);
+    const value = this.slider.valueAt(this.along(ev) + this.grab, this.app.screen.layout.slider);
     this.app.game.setTrapHeight(value);
     this.slider.hold(value);
     this.app.heightChanged();
@@ -167,10 +214,16 @@ export class Controls {
     for (const [name, b] of this.buttons) screen.place(b, atLeast(l.buttons[name], min));
     const s = l.slider;
     const r = l.knobRadius;
-    screen.place(
-      this.sliderEl,
-      atLeast({ x: s.x - r, y: s.y + s.h / 2 - r, w: s.w + 2 * r, h: 2 * r }, min),
-    );
+    const upright = SliderModel.upright(s);
+    const box = upright
+      ? { x: s.x + s.w / 2 - r, y: s.y - r, w: 2 * r, h: s.h + 2 * r }
+      : { x: s.x - r, y: s.y + s.h / 2 - r, w: s.w + 2 * r, h: 2 * r };
+    const hit = atLeast(box, min);
+    // Its focus ring must not cut the label under a lying slider: grow upward, not down.
+    if (!upright) hit.y = Math.min(hit.y, s.y + s.h + r + 4 - 7 / l.scale - hit.h);
+    screen.place(this.sliderEl, hit);
+    this.sliderEl.setAttribute("aria-orientation", upright ? "vertical" : "horizontal");
+    this.orderByPlace();
   }
 
   /** Draw the strip, buttons and slider, and keep the elements' states in step. */
@@ -181,22 +234,20 @@ export class Controls {
       ctx.fillStyle = C.BORDER;
       ctx.fillRect(l.strip.x, l.strip.y, l.strip.w, l.strip.h);
       ctx.fillStyle = "rgb(60,60,60)";
-      ctx.fillRect(l.strip.x, l.strip.y, l.strip.w, 2);
+      // A line where the strip meets the scene: above it (tall), at its left (wide, side).
+      if (l.mode === "tall") ctx.fillRect(l.strip.x, l.strip.y, l.strip.w, 2);
+      else ctx.fillRect(l.strip.x, l.strip.y, 2, l.strip.h);
     }
-    const symbols: Record<ControlName, SymbolName> = {
-      pause: g.paused ? "play" : "pause",
-      restart: "restart",
-      chart: "chart",
-      help: "help",
-      table: "table",
-      settings: "settings",
-      fullscreen: "fullscreen",
-    };
-    for (const name of Object.keys(symbols) as ControlName[]) {
-      const look: Look = this.pressed === name ? "down" : this.hot === name ? "hover" : "idle";
-      drawControlButton(ctx, l.buttons[name], symbols[name], look);
+    const flying = this.app.autopilotEngaged;
+    for (const name of CONTROL_ORDER) {
+      const symbol: SymbolName = name === "pause" ? (g.paused ? "play" : "pause") : name;
+      const down = this.pressed === name || (name === "autopilot" && flying);
+      const look: Look = down ? "down" : this.hot === name ? "hover" : "idle";
+      drawControlButton(ctx, l.buttons[name], symbol, look);
     }
-    const labelSize = l.mode === "tall" ? 40 : 24;
+    this.buttons.get("autopilot")?.setAttribute("aria-pressed", String(flying));
+    // At least 16 CSS px on any screen (issue 27.6).
+    const labelSize = Math.max(l.mode === "tall" ? 40 : 24, 16 / l.scale);
     const hot = this.sliding || this.hot === "slider";
     drawSlider(ctx, l.slider, this.slider, l.knobRadius, SLIDER_LABEL, hot, !g.won, labelSize);
     const pauseBtn = this.buttons.get("pause");
@@ -209,4 +260,31 @@ export class Controls {
     }
     this.sliderEl.setAttribute("aria-disabled", String(g.won));
   }
+}
+
+/**
+ * Elements in reading order of their drawn boxes: rows top to bottom (a box whose centre
+ * lies within a row's height joins it), left to right in a row; `first` (the upright slider,
+ * standing left of everything in the side layout) before all when `firstLeads`.
+ */
+function readingOrder(
+  items: Array<[HTMLElement, Rect]>,
+  first: HTMLElement,
+  firstLeads: boolean,
+): HTMLElement[] {
+  const rest = firstLeads ? items.filter(([el]) => el !== first) : items;
+  const byCentre = [...rest].sort(([, a], [, b]) => a.y + a.h / 2 - (b.y + b.h / 2));
+  const rows: Array<Array<[HTMLElement, Rect]>> = [];
+  let bottom = -Infinity;
+  for (const item of byCentre) {
+    const [, r] = item;
+    if (r.y + r.h / 2 > bottom || !rows.length) {
+      rows.push([item]);
+      bottom = r.y + r.h;
+    } else {
+      rows[rows.length - 1].push(item);
+    }
+  }
+  const order = rows.flatMap((row) => row.sort(([, a], [, b]) => a.x - b.x).map(([el]) => el));
+  return firstLeads ? [first, ...order] : order;
 }

@@ -9,8 +9,6 @@ import type { Target } from "../view/overlays";
 import type { App } from "./app";
 import { actionFor } from "./bindings";
 
-const HIDDEN_PAUSE = "Paused while the page was hidden. Space or play: go on.";
-
 /** Targets drawn on the scene itself (the name box's buttons) are not zoomed. */
 const NO_ZOOM = { k: 1, cx: 0, cy: 0, x: 0, y: 0 };
 
@@ -78,10 +76,13 @@ export class Input {
     const nameInput = app.el.nameInput;
     window.addEventListener("keydown", (ev) => {
       if (ev.ctrlKey || ev.metaKey || ev.altKey) return;
+      app.keyPressed();
       const target = ev.target as HTMLElement | null;
       if (target === nameInput) return;
-      // Enter on a focused button presses that button (its own click).
-      if (ev.key === "Enter" && target instanceof HTMLButtonElement && !app.scores.readyForNext)
+      // Enter on a focused button presses that button (its own click); on the settings
+      // screen Enter saves wherever the focus is, as its footer says (issue 27.1).
+      const onButton = target instanceof HTMLButtonElement;
+      if (ev.key === "Enter" && onButton && !app.scores.readyForNext && app.overlay !== "settings")
         return;
       if (this.key(ev.key)) ev.preventDefault();
     });
@@ -111,7 +112,7 @@ export class Input {
       this.pausedByHiding = true;
     } else if (!document.hidden && this.pausedByHiding) {
       this.pausedByHiding = false;
-      app.say(HIDDEN_PAUSE);
+      app.say(app.hints.hiddenPause);
     }
     app.loop.resetClock();
   }

@@ -46,6 +46,21 @@ export class Screen {
     el.style.height = `${r.h * l.scale}px`;
   }
 
+  /** The whole viewport in logical px, less a margin (the projector's black bands too). */
+  visibleBox(margin: number): Rect {
+    const l = this.layout;
+    const vw = parseFloat(this.canvas.style.width) || l.width * l.scale;
+    const vh = parseFloat(this.canvas.style.height) || l.height * l.scale;
+    const x = -l.offsetX / l.scale;
+    const y = -l.offsetY / l.scale;
+    return {
+      x: x + margin,
+      y: y + margin,
+      w: vw / l.scale - 2 * margin,
+      h: vh / l.scale - 2 * margin,
+    };
+  }
+
   /** A pointer's client position -> logical scene px. */
   toLogical(clientX: number, clientY: number): [number, number] {
     const r = this.canvas.getBoundingClientRect();

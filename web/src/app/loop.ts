@@ -14,13 +14,18 @@ export interface Animated {
   /** What the picture depends on besides input; "" means animated (draw every frame). */
   pictureKey(): string;
   draw(): void;
+  /** Playing (not paused, not won): only these frames count for the display rate. */
+  running(): boolean;
 }
 
 /** Errors kept for the console and the tests. */
 const ERRORS_KEPT = 20;
 
 export class FrameLoop {
+  /** Every drawn frame (a paused applet draws only when something changes). */
   readonly stats = new FrameStats();
+  /** Frames drawn while playing: the display rate the help reports (issue 27.5). */
+  readonly playStats = new FrameStats();
   readonly errors: string[] = [];
   /** Display frames run so far. */
   frames = 0;
@@ -28,6 +33,7 @@ export class FrameLoop {
   private rafId = 0;
   private lastPicture = "";
   private drawnAt = -1;
+  private wasRunning = false;
 
   constructor(private readonly target: Animated) {}
 
@@ -68,6 +74,12 @@ export class FrameLoop {
       if (this.errors.length < ERRORS_KEPT) this.errors.push(text);
       if (this.errors.length === 1) console.error(err);
     }
-    if (this.drawnAt === now) this.stats.add(now, performance.now() - t0);
+    // The display rate is of play: a paused applet draws only when something changes.
+    const running = target.running();
+    if (running && !this.wasRunning) this.playStats.reset();
+    this.wasRunning = running;
+    if (this.drawnAt !== now) return;
+    this.stats.add(now, performance.now() - t0);
+    if (running) this.playStats.add(now, performance.now() - t0);
   }
 }

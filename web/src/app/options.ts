@@ -10,14 +10,15 @@ import {
 } from "../game/settings";
 import { loadSettings, saveSettings } from "../game/settingsStore";
 import type { KeyValue } from "../game/store";
+import type { Hints } from "./hints";
 
-const SAVED = "Settings saved. Press R (restart) to play with them.";
-const FOOTER = ["Up/Down choose, Left/Right change", "Enter or O: save   Esc: cancel"];
+const NOT_SAVED = "Settings not saved: the changes were dropped.";
 const ADDRESS_USES = (names: string) =>
   `This visit uses the address's ${names} until you save here.`;
 
 export interface OptionsHost {
   storage: KeyValue;
+  readonly hints: Hints;
   notify(text: string): void;
   say(text: string): void;
   /** The settings screen is closed (shown or not is the app's overlay). */
@@ -89,18 +90,23 @@ export class SettingsEditor {
   close(save: boolean): void {
     this.host.closeOverlay();
     const draft = this.draft;
-    if (!save || sameSettings(draft, this.settings)) return;
+    if (sameSettings(draft, this.settings)) return;
+    if (!save) {
+      // A panel never drops changes silently (issue 27.1).
+      this.host.notify(NOT_SAVED);
+      return;
+    }
     const base = this.settings;
     this.overrides = {}; // a choice made here beats the address for the rest of the visit
     // What was stored: this draft's changes over another tab's choices made meanwhile.
     const { saved, notices: problems } = saveSettings(this.host.storage, draft, base);
     this.settings = saved;
     problems.forEach((t) => this.host.notify(t));
-    if (!problems.length) this.host.notify(SAVED);
+    if (!problems.length) this.host.notify(this.host.hints.settingsSaved);
   }
 
   footer(): string[] {
-    const lines = [...FOOTER];
+    const lines = [...this.host.hints.settingsFooter];
     const names = Object.keys(this.overrides);
     if (names.length) lines.push(ADDRESS_USES(names.join(", ")));
     return lines;

@@ -3,14 +3,13 @@ import { HighScoreTable, scoresKey } from "../game/highscores";
 import { settingsKey, type Settings } from "../game/settings";
 import type { KeyValue } from "../game/store";
 import { nameField } from "../view/overlays";
+import type { Hints } from "./hints";
 import type { Screen } from "./layout";
 import type { GameLike } from "./remote";
 
 const WON = (score: number) => `Temperature below Tc: ${score} atoms, score ${score}`;
-const NOT_TOP = (score: number) =>
-  `Score ${score} is not in the top 10 this time. Enter: next player.`;
-const STORED = (rank: number) => `Stored at place ${rank}. Enter: next player`;
-const NOT_STORED = "Score not stored. Enter: next player.";
+const AUTOPILOT_WON = (name: string, score: number) =>
+  `Autopilot (${name}) won with ${score} atoms: not a player's score, not stored.`;
 const CLEARED = "The high-score table was cleared.";
 export const NAME_PROMPT = "Top 10! Type your name:";
 
@@ -20,10 +19,16 @@ export interface ScoringHost {
   readonly screen: Screen;
   readonly nameInput: HTMLInputElement;
   readonly canvas: HTMLCanvasElement;
+  /** The words of the device at hand (keys or taps). */
+  readonly hints: Hints;
+  /** The autopilot's name if it moved the trap in this game (its win is not a player's). */
+  readonly autopilotFlew: string | null;
   notify(text: string): void;
   say(text: string): void;
   /** Drop a trap height still waiting to be spoken. */
   quiet(): void;
+  /** The name box closed with the focus in it: focus the control that goes on (restart). */
+  focusNext(): void;
   /** Show the table (or nothing) over the play area. */
   showTable(shown: boolean): void;
 }
@@ -70,11 +75,15 @@ export class Scoreboard {
     // The win is what matters now: a trap height still waiting to be spoken is dropped.
     this.host.quiet();
     this.host.say(WON(score));
-    if (this.table.qualifies(score, seconds)) {
+    const pilot = this.host.autopilotFlew;
+    if (pilot !== null) {
+      this.host.notify(AUTOPILOT_WON(pilot, score));
+      this.readyForNext = true;
+    } else if (this.table.qualifies(score, seconds)) {
       this.host.showTable(false); // the name box must be seen
       this.openNameBox();
     } else {
-      this.host.notify(NOT_TOP(score));
+      this.host.notify(this.host.hints.notTop(score));
       this.readyForNext = true;
     }
   }
@@ -94,7 +103,8 @@ export class Scoreboard {
     const input = this.host.nameInput;
     const hadFocus = document.activeElement === input;
     input.hidden = true;
-    if (hadFocus) this.host.canvas.focus({ preventScroll: true });
+    // A control, not the whole canvas: its focus ring frames one button (issue 27.12).
+    if (hadFocus) this.host.focusNext();
   }
 
   placeNameBox(): void {
@@ -102,7 +112,8 @@ export class Scoreboard {
     if (!this.nameBoxOpen || !screen.layout) return;
     const input = this.host.nameInput;
     screen.place(input, nameField());
-    input.style.fontSize = `${32 * 0.6875 * screen.layout.scale}px`;
+    // 16 CSS px at least: iOS Safari zooms the page into a smaller field (issue 27.9).
+    input.style.fontSize = `${Math.max(16, 32 * 0.6875 * screen.layout.scale)}px`;
   }
 
   /** Letters typed in the name box (the frame drawn round it counts them). */
@@ -117,12 +128,12 @@ export class Scoreboard {
     this.takeNotices();
     this.host.showTable(true);
     this.readyForNext = true;
-    if (this.storedRank !== null) this.host.say(STORED(this.storedRank));
+    if (this.storedRank !== null) this.host.say(this.host.hints.stored(this.storedRank));
   }
 
   skipName(): void {
     this.closeNameBox();
-    this.host.notify(NOT_STORED);
+    this.host.notify(this.host.hints.notStored);
     this.readyForNext = true;
   }
 
@@ -135,9 +146,10 @@ export class Scoreboard {
   }
 
   footer(): string[] {
-    if (this.confirmReset) return ["Clear all scores?  Y: yes   N or Esc: no"];
-    if (this.readyForNext) return ["Enter: next player"];
-    return ["T: close   Delete or X: clear the table"];
+    const hints = this.host.hints;
+    if (this.confirmReset) return [hints.confirmClear];
+    if (this.readyForNext) return [hints.nextFooter];
+    return [hints.tableFooter];
   }
 
   buttons(): Array<[string, string]> {

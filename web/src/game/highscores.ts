@@ -112,7 +112,7 @@ export class HighScoreTable {
     this.notices.push(...notices);
     if (text === null) return notices.length ? null : [];
     try {
-      return parseTable(text);
+      return this.keepGoodRows(parseTable(text));
     } catch (err) {
       const moved = setAside(this.kv, this.key, text);
       const why = (err as Error).message;
@@ -123,6 +123,25 @@ export class HighScoreTable {
       );
       return [];
     }
+  }
+
+  /**
+   * The good rows of a stored table; its bad rows alone are set aside (under a key of their
+   * own, with one notice) and the table is written back without them (issue 27.11).
+   */
+  private keepGoodRows({ rows, bad }: ParsedTable): Entry[] {
+    if (!bad.length) return rows;
+    const aside = JSON.stringify({ version: FORMAT_VERSION, entries: bad.map((b) => b.row) });
+    const moved = setAside(this.kv, this.key, aside);
+    const good = JSON.stringify({ version: FORMAT_VERSION, entries: rows });
+    writeKey(this.kv, this.key, good, "High scores", this.notices);
+    const count = bad.length === 1 ? "1 damaged row" : `${bad.length} damaged rows`;
+    this.notices.push(
+      moved
+        ? `The stored high-score table had ${count} (${bad[0].why}); kept as "${moved}", the other rows are shown.`
+        : `The stored high-score table has ${count} (${bad[0].why}); the other rows are shown.`,
+    );
+    return rows;
   }
 
   /** Would this result enter the table (so it is worth asking for a name)? */
@@ -202,8 +221,14 @@ function sortRows(rows: Entry[]): Entry[] {
   return rows.sort(compareEntries).slice(0, MAX_ENTRIES);
 }
 
-/** The rows of a stored table; throws Error saying what is off (damaged or foreign). */
-export function parseTable(text: string): Entry[] {
+/** A stored table's good rows, and its bad ones with what is wrong with each. */
+export interface ParsedTable {
+  rows: Entry[];
+  bad: Array<{ row: unknown; why: string }>;
+}
+
+/** A stored table's rows; throws Error saying what is off if the table as a whole is. */
+export function parseTable(text: string): ParsedTable {
   let data: unknown;
   try {
     data = JSON.parse(text);
@@ -218,5 +243,13 @@ export function parseTable(text: string): Entry[] {
     throw new Error(`format version ${JSON.stringify(d.version)}, not ${FORMAT_VERSION}`);
   }
   if (!Array.isArray(d.entries)) throw new Error("no 'entries' list");
-  return d.entries.map(entryFromJson);
+  const out: ParsedTable = { rows: [], bad: [] };
+  for (const row of d.entries as unknown[]) {
+    try {
+      out.rows.push(entryFromJson(row));
+    } catch (err) {
+      out.bad.push({ row, why: (err as Error).message });
+    }
+  }
+  return out;
 }

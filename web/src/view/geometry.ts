@@ -42,10 +42,27 @@ export const MIN_TARGET_CSS = 44;
 export const TOOLS = ["help", "table", "settings", "fullscreen"] as const;
 export type Tool = (typeof TOOLS)[number];
 
-export type ControlName = "pause" | "restart" | "chart" | Tool;
+/** The buttons for what the keyboard alone did before (issue 27.2): S, -, +, G, A. */
+export const EXTRAS = ["step", "slower", "faster", "path", "autopilot"] as const;
+export type Extra = (typeof EXTRAS)[number];
+
+export type ControlName = "pause" | "restart" | "chart" | Tool | Extra;
+/** Every control, in the order the tall and side layouts draw them (rows, left to right). */
+export const CONTROL_ORDER: ControlName[] = [
+  "pause",
+  "restart",
+  "step",
+  "slower",
+  "faster",
+  "autopilot",
+  "chart",
+  "path",
+  ...TOOLS,
+];
 
 export interface Layout {
-  mode: "wide" | "tall";
+  /** wide: the desktop's scene; tall: a phone upright; side: a phone on its side. */
+  mode: "wide" | "tall" | "side";
   /** Logical size of everything drawn. */
   width: number;
   height: number;
@@ -58,7 +75,7 @@ export interface Layout {
   buttons: Record<ControlName, Rect>;
   slider: Rect;
   knobRadius: number;
-  /** The strip under the scene in the tall layout (null in the wide one). */
+  /** The controls' own ground: under the scene (tall), beside it (wide, side). */
   strip: Rect | null;
   /** Chart rectangles, logical px. */
   charts: { energy?: Rect; path?: Rect };
@@ -66,7 +83,11 @@ export interface Layout {
 
 /** Rows of the scene kept above the controls in the tall layout (the bulb ends at 618). */
 export const TALL_SCENE_H = 626;
-const STRIP_H = 236;
+/** The tall layout's strip: the slider and its label, two rows of six 80 px buttons. */
+const STRIP_H = 330;
+const TALL_BUTTON = 80;
+/** The wide layout's extra buttons: a column in the left border, 40 px each. */
+const TOOLBAR_BUTTON = 40;
 
 export interface ChartsShown {
   energy: boolean;
@@ -85,14 +106,15 @@ export function fit(
 }
 
 function wideLayout(charts: ChartsShown): Omit<Layout, "scale" | "offsetX" | "offsetY"> {
-  const shown = (["energy", "path"] as const).filter((k) => charts[k]);
-  const width = SCENE_W + (shown.length ? COLUMN_WIDTH : 0);
-  const chartRects: Layout["charts"] = {};
-  shown.forEach((name, k) => {
-    const h = Math.floor(SCENE_H / shown.length);
-    chartRects[name] = rect(SCENE_W, k * h, COLUMN_WIDTH, h);
-  });
+  const width = SCENE_W + (shownCharts(charts).length ? COLUMN_WIDTH : 0);
   const tool = (k: number) => rect(470 + 42 * k, 6, 36, 36);
+  const extra = (k: number) =>
+    rect(
+      (BORDER_LEFT - TOOLBAR_BUTTON) / 2,
+      BORDER_TOP + 12 + 50 * k,
+      TOOLBAR_BUTTON,
+      TOOLBAR_BUTTON,
+    );
   return {
     mode: "wide",
     width,
@@ -106,16 +128,32 @@ function wideLayout(charts: ChartsShown): Omit<Layout, "scale" | "offsetX" | "of
       table: tool(1),
       settings: tool(2),
       fullscreen: tool(3),
+      ...(Object.fromEntries(EXTRAS.map((name, k) => [name, extra(k)])) as Record<Extra, Rect>),
     },
     slider: SLIDER_RECT,
     knobRadius: KNOB_RADIUS,
     strip: null,
-    charts: chartRects,
+    charts: chartColumn(charts, SCENE_W, SCENE_H),
   };
 }
 
+function shownCharts(charts: ChartsShown): Array<"energy" | "path"> {
+  return (["energy", "path"] as const).filter((k) => charts[k]);
+}
+
+/** The charts shown, stacked in a column at x, sharing its height. */
+function chartColumn(charts: ChartsShown, x: number, height: number): Layout["charts"] {
+  const shown = shownCharts(charts);
+  const out: Layout["charts"] = {};
+  shown.forEach((name, k) => {
+    const h = Math.floor(height / shown.length);
+    out[name] = rect(x, k * h, COLUMN_WIDTH, h);
+  });
+  return out;
+}
+
 /** Charts below the scene in the tall layout: logical height each, least and most. */
-const TALL_CHART_MIN = 300;
+const TALL_CHART_MIN = 280;
 const TALL_CHART_MAX = 420;
 
 /**
@@ -141,13 +179,13 @@ function tallLayout(
   const strip = rect(0, stripTop, SCENE_W, height - stripTop);
   // The slider and the buttons keep their places from the strip's bottom edge.
   const top = height - STRIP_H;
-  const names: ControlName[] = ["pause", "restart", "chart", "help", "table", "settings"];
-  names.push("fullscreen");
-  const size = 80;
-  const gap = (SCENE_W - names.length * size) / (names.length + 1);
+  const perRow = CONTROL_ORDER.length / 2;
+  const size = TALL_BUTTON;
+  const gap = (SCENE_W - perRow * size) / (perRow + 1);
   const buttons = {} as Record<ControlName, Rect>;
-  names.forEach((name, k) => {
-    buttons[name] = rect(gap + k * (size + gap), top + 136, size, size);
+  CONTROL_ORDER.forEach((name, k) => {
+    const [row, col] = [Math.floor(k / perRow), k % perRow];
+    buttons[name] = rect(gap + col * (size + gap), top + 140 + row * (size + 16), size, size);
   });
   return {
     mode: "tall",
@@ -162,44 +200,61 @@ function tallLayout(
   };
 }
 
+/** The side layout's panel right of the scene: a tall slider, then a grid of buttons. */
+const SIDE_PANEL_W = 430;
+const SIDE_BUTTON = 84;
+const SIDE_COLUMNS = 3;
+
+/**
+ * A phone on its side: the scene (its bottom border cut, as in the tall layout) at the
+ * left edge, then a panel with the trap slider standing upright over most of the screen's
+ * height (a thumb's sweep; up is a higher rim) and the buttons in a grid of 52 CSS px or
+ * more, then the charts when shown.
+ */
+function sideLayout(charts: ChartsShown): Omit<Layout, "scale" | "offsetX" | "offsetY"> {
+  const height = TALL_SCENE_H;
+  const x0 = SCENE_W;
+  const rows = Math.ceil(CONTROL_ORDER.length / SIDE_COLUMNS);
+  const gap = 18;
+  const gridTop = (height - rows * SIDE_BUTTON - (rows - 1) * gap) / 2;
+  const buttons = {} as Record<ControlName, Rect>;
+  CONTROL_ORDER.forEach((name, k) => {
+    const [row, col] = [Math.floor(k / SIDE_COLUMNS), k % SIDE_COLUMNS];
+    const x = x0 + 140 + col * (SIDE_BUTTON + gap);
+    buttons[name] = rect(x, gridTop + row * (SIDE_BUTTON + gap), SIDE_BUTTON, SIDE_BUTTON);
+  });
+  const hasCharts = shownCharts(charts).length > 0;
+  return {
+    mode: "side",
+    width: x0 + SIDE_PANEL_W + (hasCharts ? COLUMN_WIDTH : 0),
+    height,
+    sceneHeight: TALL_SCENE_H,
+    buttons,
+    slider: rect(x0 + 64, 84, 12, height - 84 - 34),
+    knobRadius: 26,
+    strip: rect(x0, 0, SIDE_PANEL_W, height),
+    charts: chartColumn(charts, x0 + SIDE_PANEL_W, height),
+  };
+}
+
 /**
  * The layout for a viewport (CSS px): the desktop's scene with the charts to its right
- * when the window is wide enough for it, else (portrait phones) the scene above the
- * charts, a strip of big controls at the bottom edge.
+ * when the window is large enough for its buttons to be touched (44 CSS px), else a phone's:
+ * upright, the scene above the charts and a strip of big controls at the bottom edge; on its
+ * side, the scene at the left and a panel of big controls beside it.
  */
 export function layoutFor(viewW: number, viewH: number, charts: ChartsShown): Layout {
   const wide = wideLayout(charts);
-  const tall = tallLayout(charts, viewH / viewW);
   const fw = fit(wide.width, wide.height, viewW, viewH);
-  const ft = fit(tall.width, tall.height, viewW, viewH);
-  // Portrait screens: the tall layout when it draws the scene at least as large and the
-  // wide one would make buttons too small to touch.
   const wideButtonCss = PAUSE_RECT.w * fw.scale;
-  const useTall = viewH > viewW && (ft.scale >= fw.scale || wideButtonCss < MIN_TARGET_CSS);
-  if (useTall) return { ...tall, ...ft };
-  return toolsBeside({ ...wide, ...fw }, viewW);
-}
-
-/** CSS px of a tool button put beside the scene, and of the gap around it. */
-const SIDE_TOOL_CSS = 52;
-const SIDE_GAP_CSS = 10;
-
-/**
- * A small landscape screen (a phone on its side) draws the top border's tool buttons and
- * the chart button too small to touch; when the space beside the scene allows, they move
- * there at 52 CSS px.
- */
-function toolsBeside(l: Layout, viewW: number): Layout {
-  const room = viewW - (l.offsetX + l.width * l.scale);
-  // In the top border they sit 42 px apart: below 44 CSS px their touch areas would overlap.
-  if (l.scale * 42 >= MIN_TARGET_CSS || room < SIDE_TOOL_CSS + 2 * SIDE_GAP_CSS) return l;
-  const size = SIDE_TOOL_CSS / l.scale;
-  const gap = SIDE_GAP_CSS / l.scale;
-  const buttons = { ...l.buttons };
-  const names: ControlName[] = [...TOOLS, "chart"];
-  if (gap + names.length * (size + gap) > l.height) return l;
-  names.forEach((name, k) => {
-    buttons[name] = rect(l.width + gap, gap + k * (size + gap), size, size);
-  });
-  return { ...l, buttons };
+  if (viewH > viewW) {
+    const tall = tallLayout(charts, viewH / viewW);
+    const ft = fit(tall.width, tall.height, viewW, viewH);
+    // The tall layout when it draws the scene at least as large, or wide buttons are too small.
+    if (ft.scale >= fw.scale || wideButtonCss < MIN_TARGET_CSS) return { ...tall, ...ft };
+  } else if (wideButtonCss < MIN_TARGET_CSS) {
+    const side = sideLayout(charts);
+    return { ...side, ...fit(side.width, side.height, viewW, viewH) };
+  }
+  return { ...wide, ...fw };
 }

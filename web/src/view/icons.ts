@@ -7,7 +7,19 @@ import type { Rect } from "./geometry";
 
 export type Look = keyof typeof FACE;
 export type SymbolName =
-  "play" | "pause" | "restart" | "chart" | "help" | "table" | "settings" | "fullscreen";
+  | "play"
+  | "pause"
+  | "restart"
+  | "chart"
+  | "help"
+  | "table"
+  | "settings"
+  | "fullscreen"
+  | "step"
+  | "slower"
+  | "faster"
+  | "path"
+  | "autopilot";
 
 function roundRect(ctx: CanvasRenderingContext2D, r: Rect, radius: number): void {
   ctx.beginPath();
@@ -162,6 +174,68 @@ const SYMBOLS: Record<SymbolName, Painter> = {
       ctx.moveTo(sx * a, sy * (a - b));
       ctx.lineTo(sx * a, sy * a);
       ctx.lineTo(sx * (a - b), sy * a);
+      ctx.stroke();
+    }
+  },
+  step(ctx, s) {
+    // One frame forward: a small play triangle against a bar.
+    const h = 0.36 * s;
+    ctx.beginPath();
+    ctx.moveTo(-0.2 * s, -h / 2);
+    ctx.lineTo(-0.2 * s, h / 2);
+    ctx.lineTo(0.1 * s, 0);
+    ctx.closePath();
+    ctx.fill();
+    ctx.fillRect(0.12 * s, -h / 2, 0.09 * s, h);
+  },
+  slower(ctx, s) {
+    ctx.fillRect(-0.24 * s, -0.05 * s, 0.48 * s, 0.1 * s);
+  },
+  faster(ctx, s) {
+    ctx.fillRect(-0.24 * s, -0.05 * s, 0.48 * s, 0.1 * s);
+    ctx.fillRect(-0.05 * s, -0.24 * s, 0.1 * s, 0.48 * s);
+  },
+  path(ctx, s) {
+    // The path chart: axes, the dashed Tc line, a path falling to it with its end dot.
+    const a = 0.28 * s;
+    ctx.lineWidth = 0.06 * s;
+    ctx.lineCap = "round";
+    ctx.beginPath();
+    ctx.moveTo(-a, -a);
+    ctx.lineTo(-a, a);
+    ctx.lineTo(a, a);
+    ctx.stroke();
+    ctx.strokeStyle = "rgb(200,20,20)";
+    ctx.lineWidth = 0.04 * s;
+    ctx.setLineDash([0.07 * s, 0.05 * s]);
+    ctx.beginPath();
+    ctx.moveTo(-a, 0.12 * s);
+    ctx.lineTo(a, -0.02 * s);
+    ctx.stroke();
+    ctx.setLineDash([]);
+    ctx.strokeStyle = BLACK;
+    ctx.lineWidth = 0.06 * s;
+    ctx.beginPath();
+    ctx.moveTo(0.2 * s, -0.22 * s);
+    ctx.quadraticCurveTo(0.05 * s, 0.1 * s, -0.14 * s, 0.12 * s);
+    ctx.stroke();
+    ctx.beginPath();
+    ctx.arc(-0.14 * s, 0.12 * s, 0.06 * s, 0, 2 * Math.PI);
+    ctx.fill();
+  },
+  autopilot(ctx, s) {
+    // A steering wheel: the autopilot holds the trap.
+    ctx.lineWidth = 0.07 * s;
+    ctx.beginPath();
+    ctx.arc(0, 0, 0.25 * s, 0, 2 * Math.PI);
+    ctx.stroke();
+    ctx.beginPath();
+    ctx.arc(0, 0, 0.07 * s, 0, 2 * Math.PI);
+    ctx.fill();
+    for (const angle of [Math.PI / 2, (7 * Math.PI) / 6, (11 * Math.PI) / 6]) {
+      ctx.beginPath();
+      ctx.moveTo(0, 0);
+      ctx.lineTo(0.25 * s * Math.cos(angle), 0.25 * s * Math.sin(angle));
       ctx.stroke();
     }
   },

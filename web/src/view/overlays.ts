@@ -70,27 +70,92 @@ function buttonRow(
   });
 }
 
+/** The help as drawn: its tap targets and its row size (logical px; tests read it). */
+export interface HelpDrawn {
+  targets: Target[];
+  size: number;
+}
+
+/**
+ * The help: every control over the whole screen (issue 27.6), in two columns when the box
+ * is wide (a projector), descriptions wrapped, at the largest size (to 44) that fits; never
+ * below `minSize` (16 CSS px in logical px). `box`: the panel's room, logical px.
+ */
 export function drawHelp(
   ctx: CanvasRenderingContext2D,
   rows: Array<[string, string]>,
-  footer: string,
-): Target[] {
-  const targets: Target[] = [];
-  const step = Math.max(
-    18,
-    Math.min(27, Math.floor((PLAY_RECT.h - 110) / Math.max(1, rows.length))),
-  );
-  const size = Math.min(24, step - 2);
-  const panel = overlay(ctx, "Controls", 100 + step * rows.length);
-  const col = panel.x + 18 + Math.max(...rows.map(([k]) => textWidth(ctx, k, size))) + 16;
-  rows.forEach(([keys, what], k) => {
-    const y = panel.y + 52 + step * k;
-    drawText(ctx, keys, size, C.ACCENT, panel.x + 18, y, "topleft", true);
-    drawText(ctx, what, size, C.TEXT, col, y, "topleft");
+  footer: string[],
+  box: Rect,
+  minSize = 14,
+): HelpDrawn {
+  const columns = box.w > 1.5 * box.h ? 2 : 1;
+  const fit = helpFit(ctx, rows, box, columns, footer.length, minSize);
+  const { size, step, keyWidth, lines, perColumn } = fit;
+  const panel = rect(box.x, box.y + Math.max(0, (box.h - fit.height) / 2), box.w, fit.height);
+  frame(ctx, panel);
+  const title = size * 1.4;
+  drawText(ctx, "Controls", title, C.ACCENT, panel.x + panel.w / 2, panel.y + 12, "midtop", true);
+  const colW = (panel.w - 36) / columns;
+  let line = 0;
+  rows.forEach(([keys], k) => {
+    const c = Math.floor(k / perColumn);
+    if (k % perColumn === 0) line = 0;
+    const x = panel.x + 18 + c * colW;
+    const y = panel.y + title + 28 + step * line;
+    drawText(ctx, keys, size, C.ACCENT, x, y, "topleft", true);
+    lines[k].forEach((text, n) =>
+      drawText(ctx, text, size, C.TEXT, x + keyWidth + size * 0.7, y + n * step, "topleft"),
+    );
+    line += lines[k].length;
   });
-  drawText(ctx, footer, 20, C.DIM_TEXT, panel.x + panel.w / 2, panel.y + panel.h - 44, "midtop");
-  targets.push({ rect: panel, action: "close" });
-  return targets;
+  const small = Math.max(minSize, size * 0.85);
+  footer.forEach((text, k) => {
+    const y = panel.y + panel.h - 14 - (footer.length - k) * (small + 6);
+    drawText(ctx, text, small, C.DIM_TEXT, panel.x + panel.w / 2, y, "midtop");
+  });
+  return { targets: [{ rect: panel, action: "close" }], size };
+}
+
+interface HelpFit {
+  size: number;
+  step: number;
+  keyWidth: number;
+  /** Each row's description, wrapped to its column. */
+  lines: string[][];
+  perColumn: number;
+  height: number;
+}
+
+/** The largest row size (44 down to minSize) at which the wrapped rows fit the box. */
+function helpFit(
+  ctx: CanvasRenderingContext2D,
+  rows: Array<[string, string]>,
+  box: Rect,
+  columns: number,
+  footerLines: number,
+  minSize: number,
+): HelpFit {
+  const perColumn = Math.ceil(rows.length / columns);
+  for (let size = 44; ; size -= 1) {
+    const step = Math.round(size * 1.2);
+    const keyWidth = Math.max(...rows.map(([k]) => textWidth(ctx, k, size)));
+    const colW = (box.w - 36) / columns;
+    const textW = colW - keyWidth - size * 0.7 - (columns > 1 ? size : 0);
+    const lines = rows.map(([, what]) => wrap(ctx, what, size, Math.max(textW, size * 4)));
+    let tallest = 0;
+    for (let c = 0; c < columns; c++) {
+      const inColumn = lines.slice(c * perColumn, (c + 1) * perColumn);
+      tallest = Math.max(
+        tallest,
+        inColumn.reduce((n, l) => n + l.length, 0),
+      );
+    }
+    const footer = footerLines * (Math.max(minSize, size * 0.85) + 6);
+    const height = size * 1.4 + 28 + step * tallest + footer + 30;
+    if (height <= box.h || size <= minSize) {
+      return { size, step, keyWidth, lines, perColumn, height: Math.min(height, box.h) };
+    }
+  }
 }
 
 /** A word of the score table and where it was drawn (tests check each lies whole in its column). */

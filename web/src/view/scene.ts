@@ -9,7 +9,7 @@ import type { AtomArrays, SimLike } from "../game/sim";
 import * as C from "./colors";
 import { PLAY_RECT, SCENE_W, SCENE_H, type Rect } from "./geometry";
 import { AtomLayer, atomSprite } from "./sprites";
-import { drawText, wrap } from "./text";
+import { drawText, textWidth, wrap } from "./text";
 
 /** Where messages over the play area go (the desktop's), and panels under them. */
 export const MESSAGE_Y = PLAY_RECT.y + 62;
@@ -78,7 +78,12 @@ export class Scene {
   }
 
   /** Borders and title (drawn after the play area and any glow over it). */
-  drawFrame(ctx: CanvasRenderingContext2D, game: Game, sceneHeight = SCENE_H): void {
+  drawFrame(
+    ctx: CanvasRenderingContext2D,
+    game: Game,
+    sceneHeight = SCENE_H,
+    minTextSize = 0,
+  ): void {
     ctx.fillStyle = C.BORDER;
     const bottom = PLAY_RECT.y + PLAY_RECT.h;
     ctx.fillRect(0, 0, SCENE_W, BORDER_TOP);
@@ -87,9 +92,11 @@ export class Scene {
     ctx.fillRect(PLAY_RECT.x + PLAY_RECT.w, 0, SCENE_W - PLAY_RECT.x - PLAY_RECT.w, sceneHeight);
     drawText(ctx, "Evaporation cooling", 40, C.TEXT, SCENE_W / 2, BORDER_TOP / 2 + 1, "center");
     this.drawThermometer(ctx, game.sim);
-    const s = game.speed;
-    const label = s >= 1 ? `speed ${s}x` : `speed 1/${1 / s}x`;
-    drawText(ctx, label, 22, C.DIM_TEXT, 10, BORDER_TOP / 2, "midleft");
+    // Left of the title whatever the size: the title starts 183 px in at its size of 40.
+    const label = `speed ${speedText(game.speed)}`;
+    let size = Math.max(22, minTextSize);
+    while (size > 12 && textWidth(ctx, label, size) > 170) size -= 1;
+    drawText(ctx, label, size, C.DIM_TEXT, 10, BORDER_TOP / 2, "midleft");
   }
 
   drawCup(ctx: CanvasRenderingContext2D, sim: SimLike): void {
@@ -207,13 +214,10 @@ export class Scene {
   }
 
   /** The gas can no longer condense: say why and offer a restart. */
-  drawTooFew(ctx: CanvasRenderingContext2D, reason: string): void {
+  drawTooFew(ctx: CanvasRenderingContext2D, reason: string, retry: string): void {
     const cx = PLAY_RECT.x + PLAY_RECT.w / 2;
     shadowed(ctx, "Too few atoms left", 52, cx, MESSAGE_Y);
-    const lines = [
-      ...wrap(ctx, reason, 26, PLAY_RECT.w - 40),
-      "Press R (or restart) to try again.",
-    ];
+    const lines = [...wrap(ctx, reason, 26, PLAY_RECT.w - 40), retry];
     lines.forEach((line, k) =>
       drawText(ctx, line, 26, C.TEXT, cx, MESSAGE_Y + 48 + 30 * k, "center", true),
     );
@@ -246,4 +250,9 @@ export function frame(ctx: CanvasRenderingContext2D, r: Rect): void {
   ctx.beginPath();
   ctx.roundRect(r.x + 1, r.y + 1, r.w - 2, r.h - 2, 4);
   ctx.stroke();
+}
+
+/** A speed as people write it: 0.3x, 0.25x, 2x (two significant digits, no float noise). */
+export function speedText(s: number): string {
+  return `${Number(s.toPrecision(2))}x`;
 }

@@ -34,13 +34,22 @@ export class SliderModel {
   get dragging(): boolean {
     return this.held !== null;
   }
-  /** The value for a knob at logical x on a bar at r. */
-  valueAt(x: number, r: Rect): number {
-    const a = Math.min(1, Math.max(0, (x - r.x) / r.w));
+  /** An upright bar (taller than wide): its top is the maximum. */
+  static upright(r: Rect): boolean {
+    return r.h > r.w;
+  }
+  /** The value for a knob at logical position p along the bar r (x, or y if upright). */
+  valueAt(p: number, r: Rect): number {
+    const f = SliderModel.upright(r) ? 1 - (p - r.y) / r.h : (p - r.x) / r.w;
+    const a = Math.min(1, Math.max(0, f));
     return this.min + a * (this.max - this.min);
   }
+  /** The knob's position along the bar (x, or y if upright). */
+  knobAt(r: Rect): number {
+    return SliderModel.upright(r) ? r.y + (1 - this.activation) * r.h : r.x + this.activation * r.w;
+  }
   knobX(r: Rect): number {
-    return Math.round(r.x + this.activation * r.w);
+    return this.knobAt(r);
   }
 }
 
@@ -63,12 +72,15 @@ export function drawSlider(
   ctx.beginPath();
   ctx.roundRect(r.x + 0.5, r.y + 0.5, r.w - 1, r.h - 1, 3);
   ctx.stroke();
-  if (label) {
+  const upright = SliderModel.upright(r);
+  if (label && upright) {
+    drawText(ctx, label, labelSize, C.WHITE, r.x + r.w / 2, r.y - knobRadius - 14, "midbottom");
+  } else if (label) {
     // The desktop's slider label is pygame's default font at 24 (no extra weight).
     drawText(ctx, label, labelSize, C.WHITE, r.x + r.w / 2, r.y + r.h + knobRadius + 4, "midtop");
   }
-  const cx = model.knobX(r);
-  const cy = r.y + r.h / 2;
+  const cx = upright ? r.x + r.w / 2 : model.knobAt(r);
+  const cy = upright ? model.knobAt(r) : r.y + r.h / 2;
   ctx.fillStyle = !enabled ? "rgb(170,170,170)" : hot ? "rgb(255,245,70)" : C.YELLOW;
   ctx.beginPath();
   ctx.arc(cx, cy, knobRadius, 0, 2 * Math.PI);

@@ -161,15 +161,20 @@ describe("the page", () => {
     await touch("touchStart", px, py);
     await touch("touchEnd", px, py);
     assert.equal((await state(page)).paused, false);
-    // A finger drags the knob to the middle of the bar.
+    // A finger beside the knob takes hold of it where it is (no jump), and drags it left by
+    // 40 % of the bar: the trap falls by 40 % of its range.
     const y = slider.y + slider.height / 2;
-    const x0 = slider.x + slider.width * 0.9;
-    const x1 = slider.x + slider.width / 2;
+    const bar = await page.evaluate(() => window.evapcool.app.layout.slider.w);
+    const barCss = bar * s0.scale;
+    const knob = slider.x + slider.width / 2 - barCss / 2 + ((400 - 25) / 425) * barCss;
+    const x0 = knob + 10;
+    const x1 = x0 - 0.4 * barCss;
     await touch("touchStart", x0, y);
+    assert.equal((await state(page)).trapHeight, 400, "a touch beside the knob does not jump");
     for (let k = 1; k <= 5; k++) await touch("touchMove", x0 + ((x1 - x0) * k) / 5, y);
     await touch("touchEnd", x1, y);
     const h = (await state(page)).trapHeight;
-    assert.ok(Math.abs(h - 237.5) < 15, `finger put the trap at ${h}`);
+    assert.ok(Math.abs(h - (400 - 0.4 * 425)) < 3, `finger put the trap at ${h}`);
     // Settings by touch: the gear, ">" on the first row (atoms), then Save.
     const tapAt = async (x, y) => {
       await touch("touchStart", x, y);
@@ -427,10 +432,27 @@ describe("the page", () => {
     const { page, log } = await openPage(browser, { query: "?seed=5" });
     await page.keyboard.press("s");
     assert.equal((await state(page)).time, 1);
-    // The canvas (its text alternative), then the controls in screen order.
-    for (let k = 0; k < 3; k++) await page.keyboard.press("Tab");
-    const focused = await page.evaluate(() => document.activeElement?.dataset.control);
-    assert.equal(focused, "restart");
+    // The canvas (its text alternative), then the controls in the order they are drawn: top
+    // to bottom, left to right (issue 27.12).
+    const order = [];
+    for (let k = 0; k < 16 && order.at(-1) !== "restart"; k++) {
+      await page.keyboard.press("Tab");
+      order.push(await page.evaluate(() => document.activeElement?.dataset.control ?? "-"));
+    }
+    assert.deepEqual(order.slice(0, 11), [
+      "-",
+      "help",
+      "table",
+      "settings",
+      "fullscreen",
+      "step",
+      "slower",
+      "faster",
+      "path",
+      "autopilot",
+      "pause",
+    ]);
+    assert.equal(order.at(-1), "restart");
     const box = await controlBox(page, '[data-control="restart"]');
     const img = await shot(page);
     // The focus ring (blue) just outside the button's target.
@@ -567,7 +589,8 @@ describe("looks like the desktop applet", () => {
     assert.equal(web.height, desk.height);
     // Regions of the scene: same dominant colour in both, and close mean colours.
     const regions = {
-      "left border": [4, 100, 36, 400],
+      // Below the column of extra buttons in the left border (step, -, +, path, autopilot).
+      "left border": [4, 320, 36, 280],
       "play area, sides": [52, 60, 20, 500],
       "bottom border": [220, 640, 300, 28],
       "thermometer glass": [585, 100, 14, 60],

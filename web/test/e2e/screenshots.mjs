@@ -35,7 +35,32 @@ try {
   });
   await page.screenshot({ path: `${DOCS}/web-phone.png` });
   await page.close();
+  // Issue 27: the phone on its side (the upright slider, every control a button) and a
+  // 1080p projector with the help over the whole screen.
+  ({ page } = await openPage(browser, {
+    viewport: { width: 844, height: 390 },
+    scale: 2,
+    touch: true,
+    query: "?seed=2",
+  }));
+  await page.evaluate(() => {
+    window.evapcool.app.game.setTrapHeight(250);
+    window.evapcool.runFrames(90);
+  });
+  await page.screenshot({ path: `${DOCS}/web-landscape.png` });
+  await page.close();
+  ({ page } = await openPage(browser, {
+    viewport: { width: 1920, height: 1080 },
+    query: "?seed=2",
+  }));
+  await page.keyboard.press("Space");
+  await page.waitForTimeout(1200);
+  await page.keyboard.press("Space");
+  await page.keyboard.press("h");
+  await page.waitForTimeout(300);
+  await page.screenshot({ path: `${DOCS}/web-projector-help.png` });
+  await page.close();
 } finally {
   await browser.close();
 }
-console.log(`wrote ${DOCS}/web-start.png, web-win.png, web-phone.png`);
+console.log(`wrote ${DOCS}/web-start.png, web-win.png, web-phone.png, web-landscape.png, web-projector-help.png`);

@@ -146,7 +146,7 @@ describe("high scores", () => {
   test("a damaged or foreign stored table is set aside, reported once, and the new one saved", () => {
     const kv = new MemoryStore();
     const key = scoresKey("49-r12-seed-rim");
-    for (const bad of ["[1,2", '{"version": 2, "entries": []}', '{"entries": [{"name": ""}]}']) {
+    for (const bad of ["[1,2", '{"version": 2, "entries": []}', '{"entries": 3}']) {
       kv.map.clear();
       kv.setItem(key, bad);
       const t = new HighScoreTable(kv, key);
@@ -158,6 +158,36 @@ describe("high scores", () => {
       t.add("Bo", 5, 5);
       expect(new HighScoreTable(kv, key).entries[0].name).toBe("Bo");
     }
+  });
+
+  test("one bad row: only it is set aside, the good rows stay in the table (issue 27.11)", () => {
+    const kv = new MemoryStore();
+    const key = scoresKey("49-r12-seed-rim");
+    const good = (name: string, score: number) => ({
+      name,
+      score,
+      seconds: 40,
+      date: "2026-11-20 10:00:00",
+    });
+    const bad = { name: "", score: 9, seconds: 1, date: "2026-11-20 10:00:00" };
+    kv.setItem(
+      key,
+      JSON.stringify({ version: 1, entries: [good("Ann", 30), bad, good("Bo", 20)] }),
+    );
+    const t = new HighScoreTable(kv, key);
+    expect(t.entries.map((e) => e.name)).toEqual(["Ann", "Bo"]);
+    const notes = t.takeNotices();
+    expect(notes).toHaveLength(1);
+    expect(notes[0]).toMatch(
+      /1 damaged row \(bad name ""\); kept as "evapcool\.highscores\..*corrupt-/,
+    );
+    const aside = [...kv.map.entries()].filter(([k]) => k !== key);
+    expect(aside).toHaveLength(1);
+    expect(JSON.parse(aside[0][1]).entries).toEqual([bad]);
+    // Written back without the bad row: the next visit sees the two rows and no notice.
+    const again = new HighScoreTable(kv, key);
+    expect(again.entries.map((e) => e.name)).toEqual(["Ann", "Bo"]);
+    expect(again.takeNotices()).toEqual([]);
   });
 
   test("two tabs: each result is merged into what the other stored meanwhile", () => {

@@ -1,6 +1,12 @@
 import fc from "fast-check";
 import { describe, expect, test } from "vitest";
-import { layoutFor, MIN_TARGET_CSS, SCENE_H, SCENE_W } from "../../src/view/geometry";
+import {
+  CONTROL_ORDER,
+  layoutFor,
+  MIN_TARGET_CSS,
+  SCENE_H,
+  SCENE_W,
+} from "../../src/view/geometry";
 import { cupOutline, mercuryFraction, scaleRow } from "../../src/view/scene";
 import { spherePixels } from "../../src/view/sprites";
 import { packetSize } from "../../src/view/condensate";
@@ -31,7 +37,7 @@ describe("layout", () => {
             l.offsetY >= -1e-9 &&
             l.offsetX + l.width * l.scale <= w + 1e-6 &&
             l.offsetY + l.height * l.scale <= h + 1e-6;
-          return fits && (l.mode === "wide" || h > w);
+          return fits && (l.mode === "tall" ? h > w : true) && (l.mode !== "side" || w >= h);
         },
       ),
     );
@@ -39,7 +45,7 @@ describe("layout", () => {
     expect(phone.mode).toBe("tall");
     expect(phone.buttons.pause.w * phone.scale).toBeGreaterThanOrEqual(MIN_TARGET_CSS);
     expect(phone.slider.y).toBeGreaterThan(600);
-    expect(layoutFor(844, 390, none).mode).toBe("wide");
+    expect(layoutFor(844, 390, none).mode).toBe("side");
     expect(SCENE_H).toBe(672);
   });
 });
@@ -182,17 +188,23 @@ describe("tap targets", () => {
   });
 });
 
-describe("tools on a phone on its side", () => {
-  test("beside the scene, 52 CSS px, inside the window; on a desktop in the top border", () => {
+describe("a phone on its side (issue 27.3)", () => {
+  test("every control beside the scene, 52 CSS px or more; the slider upright and long", () => {
     const none = { energy: false, path: false };
-    const l = layoutFor(844, 390, none);
-    expect(l.mode).toBe("wide");
-    for (const name of ["help", "table", "settings", "fullscreen", "chart"] as const) {
-      const b = l.buttons[name];
-      expect(b.w * l.scale).toBeCloseTo(52, 9);
-      expect(b.x).toBeGreaterThanOrEqual(l.width);
-      expect(l.offsetX + (b.x + b.w) * l.scale).toBeLessThanOrEqual(844);
-      expect(l.offsetY + (b.y + b.h) * l.scale).toBeLessThanOrEqual(390);
+    for (const charts of [none, { energy: true, path: true }]) {
+      const l = layoutFor(844, 390, charts);
+      expect(l.mode).toBe("side");
+      for (const name of CONTROL_ORDER) {
+        const b = l.buttons[name];
+        expect(b.w * l.scale).toBeGreaterThanOrEqual(charts.energy ? 44 : 52);
+        expect(b.x).toBeGreaterThanOrEqual(SCENE_W);
+        expect(l.offsetX + (b.x + b.w) * l.scale).toBeLessThanOrEqual(844);
+        expect(l.offsetY + (b.y + b.h) * l.scale).toBeLessThanOrEqual(390);
+      }
+      // Upright, over most of the height: 1 CSS px moves the trap by at most 1.4 units (1.6
+      // with the charts open), where the lying slider of before moved it by 2.7.
+      expect(l.slider.h).toBeGreaterThan(l.slider.w);
+      expect((450 - 25) / (l.slider.h * l.scale)).toBeLessThan(charts.energy ? 1.6 : 1.4);
     }
     expect(layoutFor(1280, 800, none).buttons.help.y).toBe(6);
   });
