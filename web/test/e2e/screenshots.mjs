@@ -63,4 +63,6 @@ try {
 } finally {
   await browser.close();
 }
-console.log(`wrote ${DOCS}/web-start.png, web-win.png, web-phone.png, web-landscape.png, web-projector-help.png`);
+console.log(
+  `wrote ${DOCS}/web-start.png, web-win.png, web-phone.png, web-landscape.png, web-projector-help.png`,
+);
