@@ -121,7 +121,7 @@ def serve(sock: socket.socket, data: Path, pool_workers: int, shown_host: str) -
     print(words.t("class.cli.students", url=f"{base}/"))
     print(words.t("class.cli.data", path=str(data)))
     print(words.t("class.cli.stop"), flush=True)
-    app = create_app(data, token, pool_workers)
+    app = create_app(data, token, pool_workers, join_url=f"{base}/")
     config = uvicorn.Config(app, log_level="warning", timeout_graceful_shutdown=2)
     uvicorn.Server(config).run(sockets=[sock])
     return 0

@@ -163,7 +163,7 @@ async def projector(request: Request) -> Response:
     """The projector page: QR code of the join address, the live leaderboard."""
     hub = guard(request)
     words = hub.words.of(request)
-    join_url = str(request.base_url)
+    join_url = request.app.state.join_url or str(request.base_url)
     svg = _qr_svg(join_url)
     text = pages.projector_page(
         lambda k: raw(words, k), words.locale, words.meta["direction"], join_url, svg
@@ -466,9 +466,16 @@ def _pool(workers: int) -> ProcessPoolExecutor:
 
 
 def create_app(
-    store_path: Path | str, lecturer_token: str, pool_workers: int, limits: Limits | None = None
+    store_path: Path | str,
+    lecturer_token: str,
+    pool_workers: int,
+    limits: Limits | None = None,
+    join_url: str | None = None,
 ) -> Starlette:
-    """The class server's app: SQLite at store_path, `pool_workers` verifying processes."""
+    """The class server's app: SQLite at store_path, `pool_workers` verifying processes.
+
+    join_url: the students' address shown on the projector (default: the one it was read at).
+    """
 
     @asynccontextmanager
     async def lifespan(app: Starlette) -> AsyncIterator[None]:
@@ -485,6 +492,7 @@ def create_app(
             hub.db_thread.shutdown()
 
     app = Starlette(routes=ROUTES, lifespan=lifespan, exception_handlers={RefusedError: _refused})
+    app.state.join_url = join_url
     app.add_middleware(_SafeHeaders)
     return app
 
