@@ -19,6 +19,7 @@ BAD = {
     "sweep": [["--bogus"]],
     "optimize": [["--bogus"]],
     "verify": [["--bogus"], [], ["{tmp}"]],
+    "class": [["--bogus"], ["--port", "0"], ["--workers", "x"], ["--data", "{tmp}"]],
 }
 
 

@@ -23,6 +23,7 @@ SUBCOMMANDS = {
         "evapcool.classroom.verify_cli",
         "verify replay codes by replay, rank them by score",
     ),
+    "class": ("evapcool.classroom.class_cli", "run the class competition server"),
 }
 EXIT_USAGE = 2
 

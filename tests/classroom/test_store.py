@@ -64,3 +64,42 @@ def test_entries_survive_reopening_and_csv_is_formula_safe(tmp_path: Path) -> No
     assert '\'=HYPERLINK("http://x")' in names
     assert all(len(n) <= NAME_MAX + 1 for n in names)
     assert not any(ch in BIDI_CONTROLS for n in names for ch in n)
+
+
+def test_entries_refused_after_the_window_closes_or_attempts_run_out(tmp_path: Path) -> None:
+    store = Store(tmp_path / "class.sqlite")
+    challenge = store.open_challenge({}, seed=1, max_frames=100, attempts=2, closes_at=1000.0)
+    token = store.join("Ann")
+    game = (5, 50, "web", "EC1.x.y")
+    assert isinstance(store.add_if_allowed(challenge, token, game, now=999.0), int)
+    assert store.add_if_allowed(challenge, token, game, now=1000.0) == "challenge"
+    assert isinstance(store.add_if_allowed(challenge, token, game, now=1.0), int)
+    assert store.add_if_allowed(challenge, token, game, now=1.0) == "attempts"
+    assert store.entry_code(store.entries(challenge)[0]["entry"]) == ("Ann", "EC1.x.y")  # type: ignore[arg-type]
+    store.close_challenge(challenge)
+    assert store.add_if_allowed(challenge, store.join("Bob"), game, now=1.0) == "challenge"
+    assert store.open_one() is None and store.latest() is not None
+
+
+def test_two_players_of_one_name_both_ranked(tmp_path: Path) -> None:
+    store = Store(tmp_path / "class.sqlite")
+    challenge = store.open_challenge({}, seed=1, max_frames=100, attempts=None)
+    first, second = store.join("Sam"), store.join("Sam")
+    store.add_entry(challenge, first, 3, 10, "web")
+    store.add_entry(challenge, second, 4, 10, "web")
+    store.add_entry(challenge, second, 2, 10, "web")
+    assert [row[2] for row in store.leaderboard(challenge)] == [4, 3]
+    assert (store.rank(challenge, second), store.rank(challenge, first)) == (1, 2)
+
+
+def test_a_file_of_the_first_schema_gains_the_new_columns(tmp_path: Path) -> None:
+    import sqlite3
+
+    from evapcool.classroom.store import SCHEMA
+
+    path = tmp_path / "old.sqlite"
+    with sqlite3.connect(path) as old:
+        old.executescript(SCHEMA)
+    store = Store(path)
+    challenge = store.open_challenge({}, seed=1, max_frames=100, attempts=None, closes_at=5.0)
+    assert store.latest() == {**(store.open_one() or {}), "id": challenge, "closes_at": 5.0}

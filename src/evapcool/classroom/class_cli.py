@@ -1,0 +1,127 @@
+"""`evapcool class`: the class-competition server; prints the lecturer's and students' links."""
+
+from __future__ import annotations
+
+import argparse
+import os
+import secrets
+import socket
+import sys
+from pathlib import Path
+
+from evapcool.about import APP_NAME, error_line
+from evapcool.argtypes import OneLineParser
+from evapcool.extras import available
+from evapcool.i18n import Catalog, choose_locale
+
+EXIT_USAGE = 2
+DEFAULT_PORT = 8765
+FILE_NAME = "class.sqlite"
+#: The line printed when the class extra is not installed.
+NEEDS_EXTRA = "evapcool class needs the class extra: pip install 'evapcool[class]'"
+EXTRA_MODULES = ("starlette", "uvicorn", "segno")
+
+
+def port(text: str) -> int:
+    """A TCP port 1..65535."""
+    if not text.isdigit() or not 1 <= int(text) <= 65535:
+        raise argparse.ArgumentTypeError(f"must be a whole number 1..65535 (got {text!r})")
+    return int(text)
+
+
+def workers(text: str) -> int:
+    """A number of verifying processes 1..64."""
+    if not text.isdigit() or not 1 <= int(text) <= 64:
+        raise argparse.ArgumentTypeError(f"must be a whole number 1..64 (got {text!r})")
+    return int(text)
+
+
+def default_data() -> Path:
+    """The class file in the per-user data folder (platformdirs), as evapcool's other files."""
+    from platformdirs import user_data_dir
+
+    return Path(user_data_dir(APP_NAME, appauthor=False)) / FILE_NAME
+
+
+def lan_address() -> str:
+    """This computer's address on its network (the route out; no packet is sent)."""
+    with socket.socket(socket.AF_INET, socket.SOCK_DGRAM) as probe:
+        try:
+            probe.connect(("192.0.2.1", 9))
+            return str(probe.getsockname()[0])
+        except OSError:
+            return "127.0.0.1"
+
+
+def build_parser() -> OneLineParser:
+    """The options of `evapcool class`."""
+    parser = OneLineParser(
+        "class",
+        prog="evapcool class",
+        description="Run the class competition server (docs/class.md).",
+    )
+    parser.add_argument("--port", type=port, default=DEFAULT_PORT, help="TCP port (8765)")
+    parser.add_argument(
+        "--lan", action="store_true", help="listen on all addresses and print the network address"
+    )
+    parser.add_argument(
+        "--data",
+        type=Path,
+        default=None,
+        metavar="FILE",
+        help="the SQLite file (default: the user data folder)",
+    )
+    parser.add_argument(
+        "--workers",
+        type=workers,
+        default=max(1, (os.cpu_count() or 2) - 1),
+        help="processes verifying games (CPUs - 1)",
+    )
+    return parser
+
+
+def _listen(host: str, number: int) -> socket.socket:
+    """A listening socket on host:number (OSError if taken)."""
+    sock = socket.socket(socket.AF_INET, socket.SOCK_STREAM)
+    sock.setsockopt(socket.SOL_SOCKET, socket.SO_REUSEADDR, 1)
+    sock.bind((host, number))
+    sock.listen(2048)
+    return sock
+
+
+def main(argv: list[str] | None = None) -> int:
+    """Parse, bind, print the links, serve until Ctrl+C."""
+    args = build_parser().parse_args(argv)
+    if not all(available(m) for m in EXTRA_MODULES):
+        print(NEEDS_EXTRA, file=sys.stderr)
+        return EXIT_USAGE
+    data = args.data or default_data()
+    if data.is_dir():
+        print(error_line("class", f"argument --data: {data} is a folder"), file=sys.stderr)
+        return EXIT_USAGE
+    host = "0.0.0.0" if args.lan else "127.0.0.1"
+    try:
+        sock = _listen(host, args.port)
+    except OSError as exc:
+        print(error_line("class", f"argument --port: {args.port}: {exc.strerror}"), file=sys.stderr)
+        return EXIT_USAGE
+    return serve(sock, data, args.workers, lan_address() if args.lan else host)
+
+
+def serve(sock: socket.socket, data: Path, pool_workers: int, shown_host: str) -> int:
+    """Print the links and run the server on a bound socket."""
+    import uvicorn
+
+    from evapcool.classroom.server import create_app
+
+    token = secrets.token_urlsafe(24)
+    base = f"http://{shown_host}:{sock.getsockname()[1]}"
+    words = Catalog(choose_locale())
+    print(words.t("class.cli.lecturer", url=f"{base}/lecturer?token={token}"))
+    print(words.t("class.cli.students", url=f"{base}/"))
+    print(words.t("class.cli.data", path=str(data)))
+    print(words.t("class.cli.stop"), flush=True)
+    app = create_app(data, token, pool_workers, join_url=f"{base}/")
+    config = uvicorn.Config(app, log_level="warning", timeout_graceful_shutdown=2)
+    uvicorn.Server(config).run(sockets=[sock])
+    return 0

@@ -1,0 +1,156 @@
+"""The class server's tests' kit: honest recordings made once, a real server in a subprocess."""
+
+from __future__ import annotations
+
+import os
+import re
+import signal
+import socket
+import subprocess
+import sys
+import time
+from dataclasses import dataclass
+from pathlib import Path
+
+import evapcool
+from evapcool.game.replay import Recorder, Recording, Settings, encode
+
+SRC = Path(evapcool.__file__).resolve().parents[1]
+SETTINGS = Settings()
+SEED = 11
+#: Seconds a server gets to start (the verifying worker loads the compiled engine).
+START_TIMEOUT = 90.0
+_CACHE: dict[tuple[int, int], Recording] = {}
+
+
+def variant(seed: int, k: int) -> Recording:
+    """Game k on `seed`: the autopilot with its trap nudged by a few px in one stretch.
+
+    Each k is a different game with its true result (played here, so it verifies).
+    """
+    if (seed, k) not in _CACHE:
+        _CACHE[seed, k] = _play(seed, k)
+    return _CACHE[seed, k]
+
+
+def _play(seed: int, k: int, budget: int = 1800) -> Recording:
+    from evapcool.game.autopilot import clamp_height, load_strategy, read
+    from evapcool.game.rules import Game
+
+    control = load_strategy("demo").controller()
+    game = Game(SETTINGS.game_config(seed, "fast"))
+    game.toggle_pause()
+    recorder = Recorder(SETTINGS, seed, edition="web" if k % 2 else "desktop")
+    start, nudge = (37 * k) % 600, 1.0 + (k % 11)
+    for frame in range(budget):
+        height = control(read(game.sim, mass=1.0))
+        if k and start <= frame < start + 60:
+            height += nudge
+        game.set_trap_height(clamp_height(height))
+        recorder.frame(game.trap_height)
+        game.run_frames(1)
+        if game.won or game.sim.n_trapped == 0:
+            break
+    return recorder.finish(game.won, game.score)
+
+
+def code(seed: int, k: int) -> str:
+    """The replay code of game k on `seed`."""
+    return encode(variant(seed, k))
+
+
+def free_port() -> int:
+    """A TCP port free on 127.0.0.1 just now."""
+    with socket.socket() as sock:
+        sock.bind(("127.0.0.1", 0))
+        return int(sock.getsockname()[1])
+
+
+@dataclass
+class Server:
+    """A running `evapcool class` subprocess."""
+
+    proc: subprocess.Popen[str]
+    base: str
+    token: str
+    data: Path
+
+    @property
+    def lecturer(self) -> dict[str, str]:
+        return {"Authorization": f"Bearer {self.token}"}
+
+    def stop(self, kill: bool = False) -> None:
+        """SIGKILL (kill=True) or SIGTERM, and wait for the process to end."""
+        if self.proc.poll() is None:
+            self.proc.send_signal(signal.SIGKILL if kill else signal.SIGTERM)
+        try:
+            self.proc.wait(15)
+        except subprocess.TimeoutExpired:
+            self.proc.kill()
+            self.proc.wait(15)
+        if self.proc.stdout:
+            self.proc.stdout.close()
+
+
+def start_server(data: Path, workers: int = 1, port: int | None = None) -> Server:
+    """`evapcool class` on a free port with `data`; returns once it answers."""
+    import httpx
+
+    port = port or free_port()
+    env = {**os.environ, "PYTHONPATH": str(SRC), "LANG": "C.UTF-8", "LANGUAGE": "en"}
+    cmd = [
+        sys.executable,
+        "-m",
+        "evapcool",
+        "class",
+        "--port",
+        str(port),
+        "--data",
+        str(data),
+        "--workers",
+        str(workers),
+    ]
+    proc = subprocess.Popen(
+        cmd, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True, env=env
+    )
+    assert proc.stdout is not None
+    first = proc.stdout.readline()
+    found = re.search(r"token=(\S+)", first)
+    assert found, f"no lecturer link in {first!r}"
+    server = Server(proc, f"http://127.0.0.1:{port}", found.group(1), data)
+    deadline = time.monotonic() + START_TIMEOUT
+    while time.monotonic() < deadline:
+        assert proc.poll() is None, "the server ended while starting"
+        try:
+            if httpx.get(server.base + "/api/leaderboard", timeout=2).status_code == 200:
+                return server
+        except httpx.TransportError:
+            time.sleep(0.2)
+    server.stop(kill=True)
+    raise AssertionError("the server did not answer in time")
+
+
+def open_challenge(server: Server, **params: object) -> dict[str, object]:
+    """Open a challenge on the test seed and settings (params override)."""
+    import httpx
+
+    body = {
+        "n_atoms": SETTINGS.n_atoms,
+        "radius": SETTINGS.radius,
+        "escape": SETTINGS.escape,
+        "seed": SEED,
+        **params,
+    }
+    answer = httpx.post(server.base + "/api/challenge", json=body, headers=server.lecturer)
+    assert answer.status_code == 200, answer.text
+    doc: dict[str, object] = answer.json()
+    return doc
+
+
+def join(server: Server, name: str) -> dict[str, str]:
+    """A student's Authorization header."""
+    import httpx
+
+    answer = httpx.post(server.base + "/api/join", json={"name": name})
+    assert answer.status_code == 200, answer.text
+    return {"Authorization": f"Bearer {answer.json()['token']}"}

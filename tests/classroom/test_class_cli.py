@@ -1,0 +1,51 @@
+"""`evapcool class`'s command line: bad options in one line, the missing extra named."""
+
+from __future__ import annotations
+
+import socket
+from pathlib import Path
+
+import pytest
+
+from evapcool.classroom import class_cli
+from evapcool.cli import main
+
+
+@pytest.mark.parametrize(
+    ("argv", "option"),
+    [
+        (["--port", "0"], "--port"),
+        (["--port", "http"], "--port"),
+        (["--workers", "0"], "--workers"),
+    ],
+)
+def test_bad_option_is_one_line_naming_it(
+    argv: list[str], option: str, capsys: pytest.CaptureFixture[str]
+) -> None:
+    with pytest.raises(SystemExit) as ended:
+        main(["class", *argv])
+    assert ended.value.code == 2
+    err = capsys.readouterr().err.strip()
+    assert "\n" not in err and option in err
+
+
+def test_port_in_use_and_folder_as_data(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    with socket.socket() as taken:
+        taken.bind(("127.0.0.1", 0))
+        taken.listen()
+        port = taken.getsockname()[1]
+        assert main(["class", "--port", str(port), "--data", str(tmp_path / "c.db")]) == 2
+    assert "--port" in capsys.readouterr().err
+    assert main(["class", "--data", str(tmp_path)]) == 2
+    err = capsys.readouterr().err.strip()
+    assert "\n" not in err and "--data" in err
+
+
+def test_missing_extra_is_named(
+    monkeypatch: pytest.MonkeyPatch, capsys: pytest.CaptureFixture[str]
+) -> None:
+    monkeypatch.setattr(class_cli, "available", lambda module: module != "segno")
+    assert main(["class"]) == 2
+    assert capsys.readouterr().err.strip() == (
+        "evapcool class needs the class extra: pip install 'evapcool[class]'"
+    )
