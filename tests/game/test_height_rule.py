@@ -89,3 +89,18 @@ def test_the_game_checks_a_height_once_and_the_physics_trusts_it(monkeypatch) ->
     assert "trap_height" not in checked
     game.sim.trap_height = 300.0  # the physics API itself still checks, at once
     assert checked.count("trap_height") == 1
+
+
+def test_pausing_mid_frame_finishes_the_frame_so_a_paused_height_lands_on_a_whole_one() -> None:
+    """A paused game stands on a whole frame: a recording of heights per frame is exact."""
+    game = _playing()
+    game._advance(0.4)
+    game.toggle_pause()
+    assert game.paused and game.sim.time == 1.0
+    game.set_trap_height(250.0)
+    assert game.sim.trap_height == 250.0  # applied at once: frame 1 on starts with it
+    held: list[float] = []
+    game.on_frame.append(held.append)
+    game.toggle_pause()
+    game._advance(2.0)
+    assert held == [250.0, 250.0]

@@ -105,6 +105,9 @@ class Game:
         self.speed = check_speed(self.config.speed)
         #: Called once with the game when the gas condenses (highscores, sounds...).
         self.on_win: list[Callable[[Game], None]] = []
+        #: Called at the end of each whole physics frame with the height held during it
+        #: (a replay's Recorder.frame: a game is its heights per frame, issue 22).
+        self.on_frame: list[Callable[[float], None]] = []
         #: Bumped by every restart so views can drop per-game caches.
         self.generation = 0
         self.restart(sim=sim)
@@ -132,6 +135,25 @@ class Game:
         self.generation += 1
 
     # -- pause and speed -----------------------------------------------------------
+    @property
+    def paused(self) -> bool:
+        return self._paused
+
+    @paused.setter
+    def paused(self, value: bool) -> None:
+        """Pausing finishes the frame in flight: a paused game stands on a whole frame, so a
+        height set while paused takes effect at one (the rule replays rely on)."""
+        if value and not getattr(self, "_paused", True):
+            self._finish_frame()
+        self._paused = bool(value)
+
+    def _finish_frame(self) -> None:
+        for _ in range(3):  # one piece, a second if rounding stopped short of the boundary
+            t = float(self.sim.time)
+            if t.is_integer():
+                return
+            self._advance(math.floor(t) + 1.0 - t)
+
     def toggle_pause(self) -> None:
         self.paused = not self.paused
 
@@ -202,6 +224,8 @@ class Game:
             boundary = math.floor(sim.time) + 1.0
             sim.advance(min(boundary, end) - sim.time)
             if sim.time >= boundary:
+                for listener in self.on_frame:
+                    listener(sim.trap_height)
                 self._apply_pending()
             self._check_win()
         return frames

@@ -57,12 +57,15 @@ export class Game {
   config: GameConfig;
   speed: number;
   sim!: SimLike;
-  paused = true;
+  private pausedNow = true;
   /** Play time (s) at which the win was first seen; null before. */
   wonAt: number | null = null;
   /** Bumped by every restart so views can drop per-game caches. */
   generation = 0;
   readonly onWin: Array<(game: Game) => void> = [];
+  /** Called at the end of each whole physics frame with the height held during it (a
+   * replay's recorder: a game is its heights per frame, issue 22). */
+  readonly onFrame: Array<(height: number) => void> = [];
   /** A trap height asked for since the last frame boundary (applied there). */
   private pendingHeight: number | null = null;
 
@@ -85,6 +88,23 @@ export class Game {
     this.wonAt = null;
     this.pendingHeight = null;
     this.generation += 1;
+  }
+
+  get paused(): boolean {
+    return this.pausedNow;
+  }
+
+  /** Pausing finishes the frame in flight: a paused game stands on a whole frame, so a
+   * height set while paused takes effect at one (the rule replays rely on). */
+  set paused(p: boolean) {
+    if (p && !this.pausedNow) this.finishFrame();
+    this.pausedNow = p;
+  }
+
+  private finishFrame(): void {
+    // One piece, a second if rounding stopped short of the boundary.
+    for (let k = 0; k < 3 && !Number.isInteger(this.sim.time); k++)
+      this.advance(Math.floor(this.sim.time) + 1 - this.sim.time);
   }
 
   togglePause(): void {
@@ -152,7 +172,10 @@ export class Game {
       const boundary = Math.floor(sim.time) + 1;
       const target = Math.min(boundary, end);
       sim.advance(target - sim.time);
-      if (sim.time >= boundary) this.applyPending();
+      if (sim.time >= boundary) {
+        for (const listener of this.onFrame) listener(sim.trapHeight);
+        this.applyPending();
+      }
       this.checkWin();
     }
     return frames;

@@ -301,6 +301,21 @@ describe("game rules", () => {
     ]);
   });
 
+  test("pausing mid-frame finishes the frame: a paused height lands on a whole frame", () => {
+    const { game, sims } = make();
+    game.paused = false;
+    game.update(0.4 / 30);
+    game.paused = true;
+    expect(sims[0].time).toBe(1);
+    game.setTrapHeight(250);
+    expect(sims[0].trapHeight).toBe(250); // at once: frame 1 on starts with it
+    const held: number[] = [];
+    game.onFrame.push((h) => held.push(h));
+    game.paused = false;
+    game.runFrames(2);
+    expect(held).toEqual([250, 250]);
+  });
+
   test("a stall never jumps the game ahead: at most 2 physics frames a drawn frame at 1x", () => {
     const { game, sims } = make();
     game.paused = false;
