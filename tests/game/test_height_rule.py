@@ -104,3 +104,22 @@ def test_pausing_mid_frame_finishes_the_frame_so_a_paused_height_lands_on_a_whol
     game.toggle_pause()
     game._advance(2.0)
     assert held == [250.0, 250.0]
+
+
+def test_a_game_at_any_display_step_replays_to_the_same_win() -> None:
+    """The win is checked at whole frames: half-frame steps record a game that replays."""
+    from evapcool.game.replay import Recorder, Settings, verify
+
+    game = Game(GameConfig(seed=21))
+    recorder = Recorder(Settings(), 21)
+    game.on_frame.append(recorder.frame)
+    game.toggle_pause()
+    k = 0
+    while game.won_at is None and game.sim.time < 3000:
+        if k % 50 == 0 and game.trap_height > 100:
+            game.nudge_height(-5.0)
+        game.update(1.0 / 60.0)  # half a frame per display frame
+        k += 1
+    rec = recorder.finish(game.won, game.score)
+    assert rec.won and rec.frames == int(game.sim.time)
+    assert verify(rec).score == game.score

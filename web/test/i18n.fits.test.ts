@@ -62,6 +62,9 @@ describe("fits in Chromium", () => {
     const t = createTranslator(tag);
     const overflows: string[] = [];
     for (const key of Object.keys(CATALOGS.en.messages)) {
+      // The class server's words are laid out by the browser in its HTML pages (they wrap)
+      // and on the terminal: no canvas box to overflow.
+      if (key.startsWith("class.")) continue;
       const [font, width] = boxOf(key);
       const drawn = await measure(font, t.t(key, ARGS));
       if (drawn > width) overflows.push(`${key} ${Math.round(drawn)} > ${width}`);

@@ -105,8 +105,8 @@ class Game:
         self.speed = check_speed(self.config.speed)
         #: Called once with the game when the gas condenses (highscores, sounds...).
         self.on_win: list[Callable[[Game], None]] = []
-        #: Called at the end of each whole physics frame with the height held during it
-        #: (a replay's Recorder.frame: a game is its heights per frame, issue 22).
+        #: Called at the end of each whole physics frame up to the win with the height held
+        #: during it (a replay's Recorder.frame: a game is its heights per frame, issue 22).
         self.on_frame: list[Callable[[float], None]] = []
         #: Bumped by every restart so views can drop per-game caches.
         self.generation = 0
@@ -217,17 +217,19 @@ class Game:
 
     def _advance(self, frames: float) -> float:
         """Advance frames in pieces that stop at each whole frame: the held height applies
-        there, and the win is checked there."""
+        there, and the win is checked there only, so a game (its win, its score) depends on
+        the heights of whole frames, not on the display's step (replays rely on it)."""
         sim = self.sim
         end = sim.time + frames
         while sim.time < end:
             boundary = math.floor(sim.time) + 1.0
             sim.advance(min(boundary, end) - sim.time)
             if sim.time >= boundary:
-                for listener in self.on_frame:
-                    listener(sim.trap_height)
+                if self.won_at is None:  # the moves end with the frame of the win
+                    for listener in self.on_frame:
+                        listener(sim.trap_height)
                 self._apply_pending()
-            self._check_win()
+                self._check_win()
         return frames
 
     def _check_win(self) -> None:

@@ -9,7 +9,7 @@ import { MIN_TARGET_CSS } from "../view/geometry";
 import { ParameterError } from "../limits";
 import { ADDRESS_NAMES } from "./params";
 import { FPS } from "../game/constants";
-import { forceWin, replayGolden } from "../game/engine";
+import { forceWin, randomSeed, replayGolden } from "../game/engine";
 import { NAME_MAX } from "../game/highscores";
 import { DEFAULT_CONFIG, Game, type GameConfig, type SimFactory } from "../game/rules";
 import { describe, type Settings } from "../game/settings";
@@ -19,9 +19,11 @@ import { Condensate } from "../view/condensate";
 import { PLAY_RECT, type Layout } from "../view/geometry";
 import {
   drawHelp,
+  drawMessageButtons,
   drawNameFrame,
   drawNotices,
   drawSettings,
+  drawVerify,
   drawTable,
   type TableCell,
   type Target,
@@ -40,6 +42,12 @@ import { Notices, StatusLine } from "./notices";
 import { configFor, SettingsEditor } from "./options";
 import { PaceMeter } from "./pace";
 import { RemoteGame, type GameLike } from "./remote";
+import { Replays } from "./replays";
+import { heightsOf } from "../game/moves";
+import { configOf, type Recording, type ReplaySettings } from "../game/replay";
+import type { Challenge, ClassMode } from "./classmode";
+import { decode } from "../game/replaycode";
+import { PASTE_BOX, Verifier } from "./verifier";
 import { describeRun, NAME_PROMPT, Scoreboard } from "./scoring";
 
 export { pickTarget } from "./input";
@@ -68,7 +76,7 @@ export interface AppOptions {
   worker?: Worker | null;
 }
 
-export type Overlay = null | "help" | "table" | "settings";
+export type Overlay = null | "help" | "table" | "settings" | "verify";
 
 /** What the last drawn frame showed of the controls (tests count frames from a key to it). */
 export interface DrawnControls {
@@ -92,6 +100,13 @@ export class App implements Animated {
   readonly notices: Notices;
   readonly options: SettingsEditor;
   readonly scores: Scoreboard;
+  readonly replays: Replays;
+  readonly verifier: Verifier;
+  /** Class mode (the page served by `evapcool class`), or null. */
+  classMode: ClassMode | null = null;
+  /** The seed every game plays (the address's ?seed=, a class challenge's), or null: a
+   * fresh one each game. Games always get an explicit seed, so each can be recorded. */
+  fixedSeed: number | null;
   readonly controls = new Controls(this);
   readonly input = new Input(this);
   readonly loop = new FrameLoop(this);
@@ -149,6 +164,17 @@ export class App implements Animated {
       () => (this.dirty = true),
     );
     for (const text of opts.notices ?? []) this.notify(text);
+    this.fixedSeed = opts.config?.seed ?? null;
+    this.replays = new Replays({
+      get game() {
+        return app.game;
+      },
+      notify: (t) => this.notify(t),
+      say: (t) => this.say(t),
+      get touch() {
+        return app.hints.touch;
+      },
+    });
     this.options = new SettingsEditor(
       {
         storage: opts.storage,
@@ -169,10 +195,7 @@ export class App implements Animated {
       get hints() {
         return app.hints;
       },
-      get autopilotFlew() {
-        const pilot = app.autopilot;
-        return pilot?.flew ? pilot.name : null;
-      },
+      notAPlayer: (score: number) => this.notAPlayer(score),
       storage: opts.storage,
       screen: this.screen,
       nameInput: el.nameInput,
@@ -184,6 +207,15 @@ export class App implements Animated {
       showTable: (shown) => (this.overlay = shown ? "table" : null),
     });
     this.scores.openTable(this.options.runSettings());
+    this.verifier = new Verifier(
+      {
+        screen: this.screen,
+        overlayZoom: () => this.overlayZoom(),
+        say: (t) => this.say(t),
+        redraw: () => (this.dirty = true),
+      },
+      el.root,
+    );
     this.controls.build(el.root);
     this.resize();
     this.input.wire();
@@ -205,11 +237,11 @@ export class App implements Animated {
 
   /** A game in the worker if there is one, else on the page (RangeError if refused). */
   private makeGame(settings: Partial<GameConfig>): GameLike {
-    const config = { ...DEFAULT_CONFIG, ...this.opts.config, ...settings };
+    const config = { ...DEFAULT_CONFIG, ...this.opts.config, ...settings, seed: this.freshSeed() };
     const worker = this.opts.worker;
     if (worker)
       return new RemoteGame(worker, this.opts.factory, config, {
-        won: () => this.scores.onWin(),
+        won: () => this.won(),
         failed: (message) => this.workerFailed(message),
       });
     return this.pageGame(config);
@@ -217,8 +249,72 @@ export class App implements Animated {
 
   private pageGame(config: GameConfig): Game {
     const game = new Game(this.opts.factory, config);
-    game.onWin.push(() => this.scores.onWin());
+    game.onWin.push(() => this.won());
     return game;
+  }
+
+  /** A recording being watched (?replay=CODE), played again by each restart. */
+  replaying: Recording | null = null;
+  /** The class challenge played (class mode): its settings at every restart. */
+  challengeSettings: ReplaySettings | null = null;
+
+  /** Class mode: play this challenge (its settings and seed) from now on. */
+  playChallenge(challenge: Challenge): void {
+    this.challengeSettings = challenge.settings;
+    this.fixedSeed = challenge.seed;
+    this.restart();
+    const s = challenge.settings;
+    this.notify(
+      `Class challenge: ${s.n_atoms} atoms of radius ${s.radius}, ${s.escape}, the same start for everyone.`,
+    );
+  }
+
+  /** The win's notice when the autopilot or a replay won (never a player's score). */
+  private notAPlayer(score: number): string | null {
+    if (this.replaying)
+      return `The replay reached the win with ${score} atoms (claimed: ${this.replaying.score}).`;
+    if (this.challengeSettings)
+      return `${score} atoms: your game goes to the class's leaderboard once the server replays it.`;
+    const pilot = this.autopilot;
+    if (pilot?.flew)
+      return `Autopilot (${pilot.name}) won with ${score} atoms: not a player's score, not stored.`;
+    return null;
+  }
+
+  /** Watch a replay code: its settings and seed, its heights frame by frame (page game). */
+  async watch(code: string): Promise<void> {
+    let rec: Recording;
+    try {
+      rec = await decode(code);
+    } catch (err) {
+      this.notify(`Address: replay is not a replay code to watch (${(err as Error).message}).`);
+      return;
+    }
+    this.replaying = rec;
+    this.fixedSeed = rec.seed;
+    this.restart();
+    const v = `${rec.edition}, claimed ${rec.won ? `${rec.score} atoms` : "no win"}`;
+    this.notify(`Watching a replay (${v}): Space plays it; R starts it again.`);
+  }
+
+  /** The replay's heights from the start of this game (a watched replay only). */
+  private playBack(): void {
+    const rec = this.replaying;
+    if (!rec || !(this.game instanceof Game)) return;
+    this.game.playback(heightsOf(rec.moves));
+  }
+
+  /** The seed of the next game. */
+  freshSeed(): number {
+    return this.fixedSeed ?? randomSeed();
+  }
+
+  /** A win: the scores (name or not), and the game's replay code. */
+  private won(): void {
+    this.scores.onWin();
+    void this.replays.onWin().catch((err: unknown) => {
+      console.warn(`evapcool: no replay code for this game (${(err as Error).message})`);
+    });
   }
 
   /** The worker stopped: the same game's settings go on in the page's own loop. */
@@ -345,6 +441,12 @@ export class App implements Animated {
       case "autopilot":
         this.toggleAutopilot();
         break;
+      case "copycode":
+        void this.replays.copy();
+        break;
+      case "verify":
+        this.toggleOverlay("verify");
+        break;
       case "faster":
         g.faster();
         this.say(`Speed ${speedText(g.speed)}`);
@@ -394,7 +496,12 @@ export class App implements Animated {
 
   private toggleOverlay(name: Exclude<Overlay, null>): void {
     this.overlay = this.overlay === name ? null : name;
-    const titles = { help: "Help", table: "High scores", settings: "Settings" };
+    const titles = {
+      help: "Help",
+      table: "High scores",
+      settings: "Settings",
+      verify: "Verify replay codes",
+    };
     if (this.overlay === name) this.say(`${titles[name]} shown`);
   }
 
@@ -402,7 +509,9 @@ export class App implements Animated {
   restart(): void {
     const s = this.options.runSettings();
     try {
-      this.game.restart({ ...this.game.config, ...configFor(s) });
+      const forced = this.replaying?.settings ?? this.challengeSettings;
+      const settings = forced ? configOf(forced, this.fixedSeed ?? 0) : configFor(s);
+      this.game.restart({ ...this.game.config, ...settings, seed: this.freshSeed() });
     } catch (err) {
       this.notify(
         `Those settings do not work (${(err as Error).message}); kept the previous ones.`,
@@ -412,6 +521,7 @@ export class App implements Animated {
     this.scores.newGame();
     this.autopilot?.newGame();
     this.autopilot?.steer(this.game);
+    this.playBack();
     if (this.overlay === "table") this.overlay = null;
     this.charts.reset();
     this.scores.openTable(s);
@@ -452,6 +562,7 @@ export class App implements Animated {
     this.screen.fit(this.charts.shown);
     this.controls.place();
     this.scores.placeNameBox();
+    this.verifier.place();
   }
 
   // -- the frame ------------------------------------------------------------------------------
@@ -552,6 +663,7 @@ export class App implements Animated {
     this.scene.drawFrame(ctx, sceneGame(g), l.sceneHeight, 16 / l.scale);
     this.controls.draw(ctx);
     this.drawMessages(ctx);
+    this.verifier.show(this.overlay === "verify");
     this.drawOverlay(ctx);
     drawNotices(ctx, this.notices.visible);
     this.charts.draw(ctx, l);
@@ -609,6 +721,10 @@ export class App implements Animated {
     this.targets = [];
     this.targetsZoomed = false;
     this.saidTooFew = tooFew;
+    if (g.won && this.replays.current && !this.scores.nameBoxOpen && this.overlay === null) {
+      const h = this.coarse ? Math.max(34, MIN_TARGET_CSS / this.layout.scale) : 34;
+      this.targets = drawMessageButtons(ctx, [["Copy replay code", "copycode"]], h);
+    }
     if (this.scores.nameBoxOpen)
       this.targets = drawNameFrame(
         ctx,
@@ -648,6 +764,10 @@ export class App implements Animated {
       );
       this.targets = table.targets;
       this.tableCells = table.cells;
+    } else if (this.overlay === "verify") {
+      const h = this.coarse ? Math.max(34, MIN_TARGET_CSS / this.layout.scale) : 34;
+      const v = this.verifier;
+      this.targets = drawVerify(ctx, PASTE_BOX, v.lines(), v.busy, h);
     } else if (this.overlay === "settings") {
       const o = this.options;
       this.targets = drawSettings(ctx, describe(o.draft), o.row, o.footer());

@@ -23,6 +23,8 @@ export type Action =
   | "fullscreen"
   | "help"
   | "autopilot"
+  | "copycode"
+  | "verify"
   | "escape";
 
 export interface Binding {
@@ -62,6 +64,8 @@ export const BINDINGS: Binding[] = [
     action: "clear",
     more: ["...asks first: Y clears it, N or Esc keeps it"],
   },
+  { keys: ["c"], label: "C", help: "after a win: copy its replay code", action: "copycode" },
+  { keys: ["v"], label: "V", help: "verify replay codes (a class's results)", action: "verify" },
   { keys: ["enter"], label: "Enter", help: "after a name is stored: next player", action: "next" },
   {
     keys: ["o"],

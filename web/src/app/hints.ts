@@ -3,6 +3,8 @@
  * for a keyboard, taps for a touch screen ("tap restart", not "press R").
  */
 export interface Hints {
+  /** A touch screen's words (no keys named). */
+  touch: boolean;
   tooFewSpoken(reason: string): string;
   tooFewLine: string;
   notTop(score: number): string;
@@ -20,6 +22,7 @@ export interface Hints {
 }
 
 export const KEY_HINTS: Hints = {
+  touch: false,
   tooFewSpoken: (reason) => `Too few atoms left. ${reason} Press R to try again.`,
   tooFewLine: "Press R (or restart) to try again.",
   notTop: (score) => `Score ${score} is not in the top 10 this time. Enter: next player.`,
@@ -38,6 +41,7 @@ export const KEY_HINTS: Hints = {
 };
 
 export const TOUCH_HINTS: Hints = {
+  touch: true,
   tooFewSpoken: (reason) => `Too few atoms left. ${reason} Tap restart to try again.`,
   tooFewLine: "Tap restart to try again.",
   notTop: (score) => `Score ${score} is not in the top 10 this time. Tap restart: next player.`,

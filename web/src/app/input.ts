@@ -166,6 +166,15 @@ export class Input {
       case "next":
         app.restart();
         break;
+      case "copycode":
+        app.act("copycode");
+        break;
+      case "verifycodes":
+        app.act("verify");
+        break;
+      case "verifyrun":
+        void app.verifier.run();
+        break;
       case "store":
         app.scores.storeName(app.el.nameInput.value);
         break;

@@ -3,6 +3,7 @@ import { makeSimulation } from "../game/engine";
 import { loadSettings } from "../game/settingsStore";
 import { drawPageIcon } from "../view/icons";
 import { App } from "./app";
+import { classApi, ClassMode } from "./classmode";
 import { exposeApi } from "./api";
 import { parseParams } from "./params";
 import PhysicsWorker from "./physics.worker?worker&inline";
@@ -28,12 +29,13 @@ function startWorker(): Worker | null {
 }
 
 async function main(): Promise<void> {
-  const worker = startWorker();
   const notices: string[] = [];
   const kv = pageStorage(notices);
   // Read the saved settings once here only to size address options against them.
   const [saved] = loadSettings(new ReadOnly(kv));
   const params = parseParams(location.search, saved);
+  // A watched replay plays in the page's own loop (its heights are fed frame by frame).
+  const worker = params.replay === null ? startWorker() : null;
   // The inline font must be ready before the first frame measures text.
   try {
     await Promise.race([document.fonts.load("700 20px EvapSans"), sleep(500)]);
@@ -58,11 +60,37 @@ async function main(): Promise<void> {
     },
   );
   await app.ready();
+  if (params.replay !== null) await app.watch(params.replay);
+  const api = classApi(document);
+  if (api !== null) startClass(app, api);
   exposeApi(app);
   setIcon();
   app.draw();
   performance.mark("evapcool-first-frame");
   app.start();
+}
+
+/** Class mode: the served page plays the open challenge and sends each win's code. */
+function startClass(app: App, api: string): void {
+  let storage: Storage | null = null;
+  try {
+    storage = window.localStorage;
+  } catch {
+    storage = null; // no storage: the name is asked again on each visit
+  }
+  const mode = new ClassMode(
+    api,
+    {
+      notify: (t) => app.notify(t),
+      say: (t) => app.say(t),
+      play: (c) => app.playChallenge(c),
+      onCode: app.replays.onCode,
+    },
+    byId("app"),
+    storage,
+  );
+  app.classMode = mode;
+  void mode.start();
 }
 
 /** The tab's icon, drawn in code (no image file). */

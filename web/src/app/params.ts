@@ -14,13 +14,23 @@ export interface PageParams {
   overrides: Partial<Settings>;
   seed: number | null;
   speed: number;
+  /** A replay code to watch (checked when decoded), or null. */
+  replay: string | null;
   notices: string[];
 }
 
 /** Physics' own limit on a count in the browser: beyond this a frame cannot keep up. */
 export const URL_ATOMS_MAX = 100_000;
 /** The options the address knows, in the order the notices name them. */
-export const ADDRESS_OPTIONS = ["atoms", "radius", "seed", "speed", "tc-law", "escape"] as const;
+export const ADDRESS_OPTIONS = [
+  "atoms",
+  "radius",
+  "seed",
+  "speed",
+  "tc-law",
+  "escape",
+  "replay",
+] as const;
 /** The game's parameter names as the address spells them (for the physics' refusals). */
 export const ADDRESS_NAMES: Readonly<Record<string, string>> = {
   nAtoms: "atoms",
@@ -56,7 +66,7 @@ const refusal = (option: string, allowed: string, raw: string): string =>
 /** The address's options, each checked once; bad ones named in notices and ignored. */
 export function parseParams(search: string, saved: Settings): PageParams {
   const q = new URLSearchParams(search);
-  const out: PageParams = { overrides: {}, seed: null, speed: 1, notices: [] };
+  const out: PageParams = { overrides: {}, seed: null, speed: 1, replay: null, notices: [] };
   const known = new Set<string>(ADDRESS_OPTIONS);
   const seen = new Set<string>();
   for (const key of q.keys()) {
@@ -114,5 +124,6 @@ export function parseParams(search: string, saved: Settings): PageParams {
     if (v !== null && v >= SPEED_MIN && v <= SPEED_MAX) out.speed = v;
     else out.notices.push(refusal("speed", `a number from ${SPEED_MIN} to ${SPEED_MAX}`, speed));
   }
+  out.replay = value("replay");
   return out;
 }

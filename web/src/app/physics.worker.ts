@@ -192,6 +192,9 @@ function receive(msg: ToWorker): void {
     case "replay":
       post({ type: "replayed", id: msg.id, text: replayGolden(msg.text) });
       break;
+    case "moves":
+      post({ type: "moves", id: msg.id, runs: game ? game.moves.runs : [] });
+      break;
   }
 }
 

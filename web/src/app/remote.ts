@@ -162,6 +162,7 @@ export class RemoteGame implements GameLike {
   private toReturn: ArrayBuffer | null = null;
   private waiting: Array<() => void> = [];
   private replies = new Map<number, (text: string) => void>();
+  private movesAsked = new Map<number, (runs: Array<[number, number]>) => void>();
   private readonly checked = new Set<string>();
   private alive = false;
   private winScore: number | null = null;
@@ -223,6 +224,9 @@ export class RemoteGame implements GameLike {
       this.alive = true;
     } else if (msg.type === "failed") {
       this.fail(msg.message);
+    } else if (msg.type === "moves") {
+      this.movesAsked.get(msg.id)?.(msg.runs);
+      this.movesAsked.delete(msg.id);
     } else if (msg.type === "replayed") {
       this.replies.get(msg.id)?.(msg.text);
       this.replies.delete(msg.id);
@@ -408,6 +412,15 @@ export class RemoteGame implements GameLike {
     return new Promise((resolve) => {
       this.replies.set(id, resolve);
       this.send({ type: "replay", id, text });
+    });
+  }
+
+  /** The heights held per whole frame so far, run-length coded (after all input sent). */
+  moves(): Promise<Array<[number, number]>> {
+    const id = this.seq + 1 + this.replies.size + this.movesAsked.size;
+    return new Promise((resolve) => {
+      this.movesAsked.set(id, resolve);
+      this.send({ type: "moves", id });
     });
   }
 

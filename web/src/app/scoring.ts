@@ -8,8 +8,6 @@ import type { Screen } from "./layout";
 import type { GameLike } from "./remote";
 
 const WON = (score: number) => `Temperature below Tc: ${score} atoms, score ${score}`;
-const AUTOPILOT_WON = (name: string, score: number) =>
-  `Autopilot (${name}) won with ${score} atoms: not a player's score, not stored.`;
 const CLEARED = "The high-score table was cleared.";
 export const NAME_PROMPT = "Top 10! Type your name:";
 
@@ -21,8 +19,8 @@ export interface ScoringHost {
   readonly canvas: HTMLCanvasElement;
   /** The words of the device at hand (keys or taps). */
   readonly hints: Hints;
-  /** The autopilot's name if it moved the trap in this game (its win is not a player's). */
-  readonly autopilotFlew: string | null;
+  /** Who won if not the player (the autopilot, a replay): the win's notice; else null. */
+  notAPlayer(score: number): string | null;
   notify(text: string): void;
   say(text: string): void;
   /** Drop a trap height still waiting to be spoken. */
@@ -75,9 +73,9 @@ export class Scoreboard {
     // The win is what matters now: a trap height still waiting to be spoken is dropped.
     this.host.quiet();
     this.host.say(WON(score));
-    const pilot = this.host.autopilotFlew;
-    if (pilot !== null) {
-      this.host.notify(AUTOPILOT_WON(pilot, score));
+    const other = this.host.notAPlayer(score);
+    if (other !== null) {
+      this.host.notify(other);
       this.readyForNext = true;
     } else if (this.table.qualifies(score, seconds)) {
       this.host.showTable(false); // the name box must be seen
@@ -166,6 +164,7 @@ export class Scoreboard {
     return [
       ["Close", "tableclose"],
       ["Clear...", "clear"],
+      ["Verify codes...", "verifycodes"],
     ];
   }
 }

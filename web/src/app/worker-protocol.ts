@@ -120,12 +120,15 @@ export type ToWorker =
   /** A buffer back without a display frame (frames arrived faster than they were drawn). */
   | { type: "give"; buffer: ArrayBuffer }
   /** Replay a golden trace's text with the engine the page uses (tests). */
-  | { type: "replay"; id: number; text: string };
+  | { type: "replay"; id: number; text: string }
+  /** The moves of the game so far (a recording at the win, issue 22). */
+  | { type: "moves"; id: number };
 
 export type FromWorker =
   /** The worker's code runs (posted before anything else). */
   | { type: "hello" }
   | { type: "frame"; buffer: ArrayBuffer }
   | { type: "replayed"; id: number; text: string }
+  | { type: "moves"; id: number; runs: Array<[number, number]> }
   /** A message the worker could not handle (the page falls back to its own loop). */
   | { type: "failed"; message: string };

@@ -7,6 +7,7 @@
  * in which frame, never on the display's rate; between boundaries the exact physics is
  * advanced to the moment drawn, so motion stays smooth at 60 or 120 Hz.
  */
+import { MoveRecorder } from "./moves";
 import { FPS, N_ATOMS, ATOM_RADIUS, TC_EXPONENT_SEED, type EscapeRule } from "./constants";
 import type { SimLike } from "./sim";
 
@@ -63,11 +64,17 @@ export class Game {
   /** Bumped by every restart so views can drop per-game caches. */
   generation = 0;
   readonly onWin: Array<(game: Game) => void> = [];
-  /** Called at the end of each whole physics frame with the height held during it (a
-   * replay's recorder: a game is its heights per frame, issue 22). */
+  /** Called at the end of each whole physics frame up to the win with the height held
+   * during it (a replay's recorder: a game is its heights per frame, issue 22). */
   readonly onFrame: Array<(height: number) => void> = [];
+  /** The heights held since the (re)start, one per whole frame: the game's moves. */
+  moves = new MoveRecorder();
+  /** Heights to hold frame by frame (a recording played back), or null: the player's. */
+  private script: number[] | null = null;
   /** A trap height asked for since the last frame boundary (applied there). */
   private pendingHeight: number | null = null;
+  /** Atoms in the cup at the whole frame the win was seen (the score). */
+  private wonWith: number | null = null;
 
   constructor(
     private readonly factory: SimFactory,
@@ -86,7 +93,10 @@ export class Game {
     this.sim = sim;
     this.paused = true;
     this.wonAt = null;
+    this.wonWith = null;
     this.pendingHeight = null;
+    this.moves = new MoveRecorder();
+    this.script = null;
     this.generation += 1;
   }
 
@@ -105,6 +115,26 @@ export class Game {
     // One piece, a second if rounding stopped short of the boundary.
     for (let k = 0; k < 3 && !Number.isInteger(this.sim.time); k++)
       this.advance(Math.floor(this.sim.time) + 1 - this.sim.time);
+  }
+
+  /** Play these heights back, one per whole frame from now (the player's input is ignored
+   * until the script ends or `playback(null)`). */
+  playback(heights: number[] | null): void {
+    this.script = heights && heights.length ? heights : null;
+    this.scripted();
+    if (Number.isInteger(this.sim.time)) this.applyPending();
+  }
+
+  get playingBack(): boolean {
+    return this.script !== null;
+  }
+
+  /** The script's height for the frame starting now. */
+  private scripted(): void {
+    if (!this.script) return;
+    const h = this.script[this.moves.frames];
+    if (h === undefined) this.script = null;
+    else this.pendingHeight = Math.min(HEIGHT_MAX, Math.max(HEIGHT_MIN, h));
   }
 
   togglePause(): void {
@@ -126,7 +156,7 @@ export class Game {
 
   /** Ask for a rim height (clamped to the slider's range); frozen once the gas condensed. */
   setTrapHeight(height: number): boolean {
-    if (this.won || !Number.isFinite(height)) return false;
+    if (this.won || this.script || !Number.isFinite(height)) return false;
     const h = Math.min(HEIGHT_MAX, Math.max(HEIGHT_MIN, height));
     if (h === this.trapHeight) return false;
     this.pendingHeight = h;
@@ -173,10 +203,17 @@ export class Game {
       const target = Math.min(boundary, end);
       sim.advance(target - sim.time);
       if (sim.time >= boundary) {
-        for (const listener of this.onFrame) listener(sim.trapHeight);
+        if (this.wonAt === null) {
+          // The moves end with the frame of the win.
+          this.moves.frame(sim.trapHeight);
+          for (const listener of this.onFrame) listener(sim.trapHeight);
+        }
+        this.scripted();
         this.applyPending();
+        // The win is checked at whole frames only: a game (its win, its score) depends on
+        // the heights of whole frames, not on the display's step (replays rely on it).
+        this.checkWin();
       }
-      this.checkWin();
     }
     return frames;
   }
@@ -184,6 +221,7 @@ export class Game {
   private checkWin(): void {
     if (this.sim.won && this.wonAt === null) {
       this.wonAt = this.playTime;
+      this.wonWith = this.sim.nTrapped;
       for (const callback of [...this.onWin]) callback(this);
     }
   }
@@ -197,9 +235,10 @@ export class Game {
     return this.sim.won;
   }
 
-  /** Atoms left in the cup once the gas has condensed; null before. */
+  /** Atoms in the cup when the win was seen (at a whole frame, fixed then); null before. */
   get score(): number | null {
-    return this.sim.won ? this.sim.nTrapped : null;
+    if (!this.sim.won) return null;
+    return this.wonWith ?? this.sim.nTrapped;
   }
 
   /** Every atom has left the cup: nothing can happen but a restart. */

@@ -354,3 +354,47 @@ export function drawNotices(ctx: CanvasRenderingContext2D, lines: string[]): Rec
   );
   return box;
 }
+
+/** Text buttons in a row under the win's message (e.g. "Copy replay code"); their targets. */
+export function drawMessageButtons(
+  ctx: CanvasRenderingContext2D,
+  buttons: Array<[string, string]>,
+  height = 34,
+): Target[] {
+  const targets: Target[] = [];
+  buttonRow(ctx, buttons, PLAY_RECT.x + PLAY_RECT.w / 2, UNDER_MESSAGE, targets, height);
+  return targets;
+}
+
+/** The verify panel: title, the paste box's frame (a text area lies over it), the buttons
+ * and the ranked results (wrapped to the panel). */
+export function drawVerify(
+  ctx: CanvasRenderingContext2D,
+  paste: Rect,
+  lines: string[],
+  busy: boolean,
+  buttonHeight = 34,
+): Target[] {
+  const panel = overlay(ctx, "Verify replay codes", PLAY_RECT.h - 8);
+  ctx.strokeStyle = C.ACCENT;
+  ctx.lineWidth = 2;
+  ctx.strokeRect(paste.x - 2, paste.y - 2, paste.w + 4, paste.h + 4);
+  const targets: Target[] = [];
+  const y = paste.y + paste.h + 12;
+  const buttons: Array<[string, string]> = busy
+    ? [["Close", "close"]]
+    : [
+        ["Verify", "verifyrun"],
+        ["Close", "close"],
+      ];
+  buttonRow(ctx, buttons, panel.x + panel.w / 2, y, targets, buttonHeight);
+  const rows = lines.flatMap((line) => wrap(ctx, line, 20, panel.w - 36));
+  const top = y + buttonHeight + 14;
+  const fit = Math.max(0, Math.floor((panel.y + panel.h - 12 - top) / 24));
+  const shown =
+    rows.length > fit
+      ? [...rows.slice(0, fit - 1), `... and ${rows.length - fit + 1} more lines`]
+      : rows;
+  shown.forEach((row, k) => drawText(ctx, row, 20, C.TEXT, panel.x + 18, top + 24 * k, "topleft"));
+  return targets;
+}

@@ -20,7 +20,7 @@ import {
 import { loadSettings, saveSettings, SETTINGS_KEY } from "../../src/game/settingsStore";
 import type { AtomArrays, SimLike } from "../../src/game/sim";
 import { MemoryStore } from "../../src/game/store";
-import { parseParams } from "../../src/app/params";
+import { ADDRESS_OPTIONS, parseParams } from "../../src/app/params";
 
 describe("cup capacity", () => {
   test("the same counts as the desktop's settings.cup_capacity (every atom below the rim)", () => {
@@ -378,11 +378,17 @@ describe("too few atoms (the desktop's rule)", () => {
 describe("address options", () => {
   test("values for this visit; one message per bad value", () => {
     const p = parseParams("?atoms=10000&radius=1&seed=3&speed=2", DEFAULTS);
-    expect(p).toEqual({ overrides: { radius: 1, nAtoms: 10000 }, seed: 3, speed: 2, notices: [] });
+    expect(p).toEqual({
+      overrides: { radius: 1, nAtoms: 10000 },
+      seed: 3,
+      speed: 2,
+      replay: null,
+      notices: [],
+    });
     const q = parseParams("?atoms=2.5&speed=8&escape=door&zoom=2", DEFAULTS);
     expect(q.overrides).toEqual({});
     expect(q.notices).toEqual([
-      'Address: unknown option "zoom"; known: atoms, radius, seed, speed, tc-law, escape.',
+      'Address: unknown option "zoom"; known: atoms, radius, seed, speed, tc-law, escape, replay.',
       'Address: atoms must be a whole number from 1 to 100000 (got "2.5"); ignored.',
       'Address: escape must be one of rim, knife (got "door"); ignored.',
       'Address: speed must be a number from 0.25 to 4 (got "8"); ignored.',
@@ -409,7 +415,8 @@ describe("address options", () => {
     expect(twice.notices).toEqual(["Address: atoms is given 2 times; give it once. Ignored."]);
     const name = "x".repeat(3000);
     const [notice] = parseParams(`?${name}=1`, DEFAULTS).notices;
-    expect(notice.length).toBeLessThan(120);
+    // Shortened: the typed name to 24 characters, then the known options' list.
+    expect(notice.length).toBeLessThan(80 + ADDRESS_OPTIONS.join(", ").length);
     expect(notice).toContain("(3000 characters)");
   });
 

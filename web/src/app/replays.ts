@@ -1,0 +1,88 @@
+/**
+ * Every game's recording (issue 22): at a win the game's moves, settings and seed become a
+ * replay code the player can copy from the win screen (button or key C) into a chat or a
+ * learning platform; `evapcool verify` and the page's verify panel check it by replaying.
+ */
+import { recordingOf, type Recording } from "../game/replay";
+import { encode } from "../game/replaycode";
+import type { Game } from "../game/rules";
+import { RemoteGame, type GameLike } from "./remote";
+
+export interface ReplayHost {
+  readonly game: GameLike;
+  notify(text: string): void;
+  say(text: string): void;
+  readonly touch: boolean;
+}
+
+export class Replays {
+  /** The newest win's code and the game (generation) it belongs to. */
+  code: string | null = null;
+  recording: Recording | null = null;
+  private generation = -1;
+  /** Called with each new win's code (class mode submits it). */
+  readonly onCode: Array<(code: string, rec: Recording) => void> = [];
+
+  constructor(private readonly host: ReplayHost) {}
+
+  /** The code of the game just won (async: the worker's moves, then zlib). */
+  async onWin(): Promise<void> {
+    const g = this.host.game;
+    const generation = g.generation;
+    const runs = g instanceof RemoteGame ? await g.moves() : (g as Game).moves.runs;
+    const seed = g.config.seed;
+    if (seed === null || g.generation !== generation) return;
+    const rec = recordingOf(g.config, seed, runs, g.won, g.score);
+    const code = await encode(rec);
+    if (g.generation !== generation) return;
+    [this.code, this.recording, this.generation] = [code, rec, generation];
+    this.host.say(
+      this.host.touch
+        ? "Replay code ready: tap Copy replay code."
+        : "Replay code ready: C copies it.",
+    );
+    for (const listener of this.onCode) listener(code, rec);
+  }
+
+  /** The code of the game on screen, if it was won. */
+  get current(): string | null {
+    return this.host.game.generation === this.generation ? this.code : null;
+  }
+
+  /** Copy the code to the clipboard (the async API, else a selected text's copy command). */
+  async copy(): Promise<void> {
+    const code = this.current;
+    if (!code) return;
+    let copied = false;
+    try {
+      await navigator.clipboard.writeText(code);
+      copied = true;
+    } catch {
+      copied = copyBySelection(code);
+    }
+    this.host.notify(
+      copied
+        ? `Replay code copied (${code.length} characters): paste it where your class collects them.`
+        : `Copy this replay code by hand: ${code}`,
+    );
+  }
+}
+
+/** The older way to copy: a selected, off-screen text and the copy command. */
+function copyBySelection(text: string): boolean {
+  const area = document.createElement("textarea");
+  area.value = text;
+  area.setAttribute("readonly", "");
+  area.style.position = "fixed";
+  area.style.left = "-9999px";
+  document.body.append(area);
+  area.select();
+  let ok = false;
+  try {
+    ok = document.execCommand("copy");
+  } catch {
+    ok = false;
+  }
+  area.remove();
+  return ok;
+}

@@ -1,0 +1,153 @@
+/**
+ * Recordings of games, replay codes and verification by replay (twin of
+ * evapcool/game/replay.py, issue 22): a game is its settings, seed and the trap height held
+ * in each whole physics frame; a replay code is that recording as
+ * `EC1.<base64url(zlib(json))>.<crc32 hex>`, read and written by both editions.
+ */
+import { version } from "../../package.json";
+import { SEED_PORTABLE_MAX, START_GENERATOR } from "./engine";
+import { Game, HEIGHT_MAX, HEIGHT_MIN, type GameConfig, type SimFactory } from "./rules";
+import type { EscapeRule } from "./constants";
+export { MoveRecorder } from "./moves";
+
+export const CODE_PREFIX = "EC1";
+export const FORMAT_VERSION = 1;
+export const EDITION_VERSION: string = version;
+/** Longest game a recording may hold (frames): 20 minutes of play at 30 frames/s. */
+export const MAX_FRAMES = 36_000;
+export const MAX_ATOMS = 400;
+export const MAX_CODE_CHARS = 200_000;
+
+/** Why a code or recording is rejected (the reasons both editions give). */
+export const DAMAGED = "damaged";
+export const EDITED = "edited";
+export const OTHER_VERSION = "other version";
+export const WRONG_SCORE = "does not replay to the claimed score";
+
+export class ReplayError extends RangeError {
+  constructor(
+    readonly reason: string,
+    readonly detail: string,
+  ) {
+    super(`${reason}: ${detail}`);
+  }
+}
+
+/** The settings a recording was played with (the JSON names of the Python edition). */
+export interface ReplaySettings {
+  n_atoms: number;
+  radius: number;
+  escape: EscapeRule;
+  tc_exponent: number;
+}
+
+export interface Recording {
+  settings: ReplaySettings;
+  seed: number;
+  /** [height, frames] runs: the height held during that many whole frames. */
+  moves: Array<[number, number]>;
+  won: boolean;
+  score: number;
+  frames: number;
+  edition: "desktop" | "web";
+  version: string;
+  start_generator: number;
+  format: number;
+}
+
+export function settingsOf(config: GameConfig): ReplaySettings {
+  return {
+    n_atoms: config.nAtoms,
+    radius: config.radius,
+    escape: config.escape,
+    tc_exponent: config.tcExponent,
+  };
+}
+
+export function configOf(s: ReplaySettings, seed: number): Partial<GameConfig> {
+  return { nAtoms: s.n_atoms, radius: s.radius, escape: s.escape, tcExponent: s.tc_exponent, seed };
+}
+
+/** The recording of a game played in the page. */
+export function recordingOf(
+  config: GameConfig,
+  seed: number,
+  runs: Array<[number, number]>,
+  won: boolean,
+  score: number | null,
+): Recording {
+  const moves = runs.map(([h, n]) => [h, n] as [number, number]);
+  return {
+    settings: settingsOf(config),
+    seed,
+    moves,
+    won,
+    score: won ? (score ?? 0) : 0,
+    frames: moves.reduce((sum, [, n]) => sum + n, 0),
+    edition: "web",
+    version: EDITION_VERSION,
+    start_generator: START_GENERATOR,
+    format: FORMAT_VERSION,
+  };
+}
+
+/** What a replay gave: won, score (atoms at the win, else 0), frames played. */
+export interface Verdict {
+  won: boolean;
+  score: number;
+  frames: number;
+}
+
+/** Play the recording headless with the game's rules: hold each frame's height for one whole
+ * frame; stop at the win or at the end of the moves (Python's replay). */
+export function replay(rec: Recording, factory: SimFactory): Verdict {
+  const game = new Game(factory, configOf(rec.settings, rec.seed));
+  game.paused = false;
+  let frames = 0;
+  for (const [height, n] of rec.moves) {
+    for (let k = 0; k < n; k++) {
+      game.setTrapHeight(height);
+      game.runFrames(1);
+      frames += 1;
+      if (game.won) return { won: true, score: game.score ?? 0, frames };
+    }
+  }
+  return { won: false, score: 0, frames };
+}
+
+/** The replayed result if it is the one claimed, else ReplayError(WRONG_SCORE). */
+export function verify(rec: Recording, factory: SimFactory): Verdict {
+  checkRecording(rec);
+  const got = replay(rec, factory);
+  if (got.won !== rec.won || got.score !== rec.score || got.frames !== rec.frames)
+    throw new ReplayError(
+      WRONG_SCORE,
+      `claimed won=${rec.won} score=${rec.score} frames=${rec.frames}, ` +
+        `replayed won=${got.won} score=${got.score} frames=${got.frames}`,
+    );
+  return got;
+}
+
+/** ReplayError(EDITED) naming the first field out of its limits or inconsistent. */
+export function checkRecording(rec: Recording, maxFrames = MAX_FRAMES): void {
+  const s = rec.settings;
+  const total = rec.moves.reduce((sum, [, n]) => sum + n, 0);
+  const problems: Array<[boolean, string]> = [
+    [!(s.n_atoms >= 2 && s.n_atoms <= MAX_ATOMS), `settings.n_atoms must be 2..${MAX_ATOMS}`],
+    [!(s.radius >= 1 && s.radius <= 40), "settings.radius must be 1..40"],
+    [s.escape !== "rim" && s.escape !== "knife", "settings.escape must be rim or knife"],
+    [!(s.tc_exponent > 0 && s.tc_exponent <= 2), "settings.tc_exponent must be in (0, 2]"],
+    [!(rec.seed >= 0 && rec.seed <= SEED_PORTABLE_MAX), "seed must be 0..2^53-1"],
+    [rec.edition !== "desktop" && rec.edition !== "web", "edition must be desktop or web"],
+    [rec.moves.some(([, n]) => n < 1), "moves: each run needs frames >= 1"],
+    [
+      rec.moves.some(([h]) => !(h >= HEIGHT_MIN && h <= HEIGHT_MAX)),
+      `moves: heights must be ${HEIGHT_MIN}..${HEIGHT_MAX}`,
+    ],
+    [total > maxFrames, `moves: at most ${maxFrames} frames`],
+    [rec.frames !== total, "frames must equal the moves' frames"],
+    [!(rec.score >= 0 && rec.score <= s.n_atoms), "score must be 0..n_atoms"],
+    [!rec.won && rec.score !== 0, "score must be 0 without a win"],
+  ];
+  for (const [bad, message] of problems) if (bad) throw new ReplayError(EDITED, message);
+}
