@@ -307,13 +307,13 @@ describe("game rules", () => {
     game.update(0.4 / 30);
     game.paused = true;
     expect(sims[0].time).toBe(1);
-    game.setTrapHeight(250);
-    expect(sims[0].trapHeight).toBe(250); // at once: frame 1 on starts with it
+    game.setTrapHeight(320);
+    expect(sims[0].trapHeight).toBe(320); // at once: frame 1 on starts with it
     const held: number[] = [];
     game.onFrame.push((h) => held.push(h));
     game.paused = false;
     game.runFrames(2);
-    expect(held).toEqual([250, 250]);
+    expect(held).toEqual([320, 320]);
   });
 
   test("a stall never jumps the game ahead: at most 2 physics frames a drawn frame at 1x", () => {
