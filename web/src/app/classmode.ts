@@ -13,7 +13,8 @@ export interface Challenge {
   seed: number;
   max_frames: number;
   attempts: number | null;
-  closes_at: number | null;
+  /** When the challenge closes (ISO 8601), or null. */
+  closes_at: string | null;
 }
 
 export interface ClassHost {

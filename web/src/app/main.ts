@@ -62,7 +62,8 @@ async function main(): Promise<void> {
   await app.ready();
   if (params.replay !== null) await app.watch(params.replay);
   const api = classApi(document);
-  if (api !== null) startClass(app, api);
+  // A replay watched from the projector's link is not a student's game.
+  if (api !== null && params.replay === null) startClass(app, api);
   exposeApi(app);
   setIcon();
   app.draw();
