@@ -7,7 +7,6 @@ import pygame
 import pytest
 from apphelp import click, count, frames, key, post
 
-from evapcool.app import replays
 from evapcool.app.applet import HEIGHT_STEP, App
 from evapcool.app.input import Mode
 from evapcool.game.autopilot import Autopilot, parse_strategy
@@ -80,3 +79,67 @@ def test_an_autopilot_win_and_a_restart_are_recorded_too(make):
         assert verify(rec).score == 18
         key(app, pygame.K_r)
         assert app.replays.code is None and not app.replay_offered
+
+
+def window_rect(app: App, rect: pygame.Rect) -> pygame.Rect:
+    """A scene (logical) rectangle in window pixels."""
+    lay = app.layout
+    s = lay.scale
+    return pygame.Rect(lay.scene.x + rect.x * s, lay.scene.y + rect.y * s, rect.w * s, rect.h * s)
+
+
+def accent(r, g, b):
+    return (r > 230) & (g > 190) & (b < 90)
+
+
+def test_the_win_screen_offers_the_code_beside_the_name_entry_and_the_table(make, monkeypatch):
+    app = make(seed=3)
+    button = window_rect(app, REPLAY_RECT)
+    play_ramp(app)
+    frames(app)
+    assert app.input.mode is Mode.NAME and app.scores.name_box is not None  # as before
+    assert app.replay_offered and count(app, button, accent) > 100  # the button's words
+    click(app, button.center)  # the name box is modal: the button waits for it
+    assert app.visible_notices == []
+    key(app, pygame.K_a, text="a")
+    key(app, pygame.K_c, text="c")  # C types into the name while it is asked
+    key(app, pygame.K_RETURN)
+    assert app.scores.table.entries[0].name == "ac" and app.overlay == "table"
+    assert count(app, button, accent) > 100  # the table ends above the button
+    key(app, pygame.K_c)
+    assert pygame.scrap.get_text() == app.replays.code
+    assert "copied to the clipboard" in app.visible_notices[-1]
+    assert str(app.replays.path) in app.visible_notices[-1]
+
+
+def test_without_a_clipboard_the_button_says_where_the_file_is(make, monkeypatch):
+    app = make(seed=3)
+    play_ramp(app)
+    key(app, pygame.K_ESCAPE)  # no name: the score is not stored
+    monkeypatch.setattr(pygame.scrap, "put_text", _no_clipboard)
+    click(app, window_rect(app, REPLAY_RECT).center)
+    assert app.visible_notices[-1].startswith("No clipboard here")
+    assert app.replays.path.read_text().strip() == app.replays.code
+    assert str(app.replays.path) in app.visible_notices[-1]
+
+
+def _no_clipboard(text: str) -> None:
+    raise pygame.error("no clipboard on this system")
+
+
+def test_an_unwritable_data_folder_is_one_notice_and_the_code_is_still_offered(
+    make, tmp_path, monkeypatch
+):
+    app = make(seed=3)
+    (tmp_path / "data").mkdir(exist_ok=True)
+    (tmp_path / "data" / "replays").write_text("a file in the folder's place")
+    play_ramp(app)
+    assert app.replays.path is None and app.replay_offered
+    assert any(n.startswith("The replay code could not be saved") for n in app.visible_notices)
+    key(app, pygame.K_ESCAPE)
+    key(app, pygame.K_c)
+    assert pygame.scrap.get_text() == app.replays.code
+    assert app.visible_notices[-1] == "Replay code copied to the clipboard."
+    monkeypatch.setattr(pygame.scrap, "put_text", _no_clipboard)
+    key(app, pygame.K_c)  # neither file nor clipboard: the code itself, to copy by hand
+    assert app.visible_notices[-1] == app.replays.code

@@ -550,11 +550,11 @@ class App:
             self.scene.draw_too_few(pen, reason)
         elif game.paused and game.sim.time == 0.0 and self.overlay is None:
             self.scene.draw_start_hint(pen)
-        bottom = PLAY_RECT.bottom
-        if self.replay_offered:
-            self.scene.draw_replay_button(pen, t("replay.button"), self._hovering("replay"))
-            bottom = REPLAY_RECT.top  # the table and the notices stay above it
+        offered = self.replay_offered
+        bottom = REPLAY_RECT.top if offered else PLAY_RECT.bottom  # the table and notices
         self._draw_overlay(pen, bottom)
+        if offered:  # over a full table's lowest edge: the button stays whole
+            self.scene.draw_replay_button(pen, t("replay.button"), self._hovering("replay"))
         self.scene.draw_notices(pen, self.visible_notices, bottom)
         self.charts.draw(surface, lay.charts, lay.scale)
 

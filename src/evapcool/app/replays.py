@@ -89,11 +89,13 @@ class ReplayKeeper:
         """Put the code on the clipboard (or say where its file is); False if no code."""
         if self.code is None:
             return False
-        where = str(self.path) if self.path is not None else "-"
-        if put_on_clipboard(self.code):
-            self.notify(t("replay.copied", path=where))
+        copied = put_on_clipboard(self.code)
+        if self.path is None:  # not saved (the notice at the win said why)
+            self.notify(t("replay.copied_only") if copied else self.code)
+        elif copied:
+            self.notify(t("replay.copied", path=str(self.path)))
         else:
-            self.notify(t("replay.no_clipboard", path=where))
+            self.notify(t("replay.no_clipboard", path=str(self.path)))
         return True
 
 

@@ -73,8 +73,9 @@ THERMO_MAX_FRACTION = 1.2  # full scale is 1.2 x the starting temperature
 MESSAGE_Y = PLAY_RECT.top + 62
 #: Panels shown under a message start here.
 UNDER_MESSAGE = PLAY_RECT.top + 150
-#: The win screen's replay-code button, along the bottom of the play area (key C too).
-REPLAY_RECT = pygame.Rect(PLAY_RECT.left + 12, PLAY_RECT.bottom - 44, PLAY_RECT.width - 24, 36)
+#: The win screen's replay-code button (key C too): a strip under the cup's lowest point,
+#: so the condensate stays in view.
+REPLAY_RECT = pygame.Rect(PLAY_RECT.left + 12, PLAY_RECT.bottom - 27, PLAY_RECT.width - 24, 25)
 
 
 def mercury_fraction(temperature: float, initial_temperature: float) -> float:
@@ -391,7 +392,7 @@ class Scene:
     def draw_replay_button(self, pen: Pen, label: str, hover: bool) -> pygame.Rect:
         """The win screen's 'Replay code: C copies it' button; returns its pixels."""
         self._frame(pen, REPLAY_RECT, (40, 40, 90, 235) if hover else TABLE_SHADE)
-        pen.text(label, 24, ACCENT, True, center=REPLAY_RECT.center)
+        pen.text(label, 20, ACCENT, True, center=REPLAY_RECT.center)
         return pen.rect(REPLAY_RECT)
 
     def draw_notices(
