@@ -5,9 +5,9 @@ from __future__ import annotations
 
 import pygame
 import pytest
-from apphelp import click, count, frames, key, post
+from apphelp import click, count, frames, key, play_ramp
 
-from evapcool.app.applet import HEIGHT_STEP, App
+from evapcool.app.applet import App
 from evapcool.app.input import Mode
 from evapcool.game.autopilot import Autopilot, parse_strategy
 from evapcool.game.replay import decode, verify
@@ -40,20 +40,6 @@ def make(tmp_path):
     yield build
     for a in apps:
         a.close()
-
-
-def play_ramp(app: App, budget: int = 1500) -> None:
-    """A scripted player: Space, then the Down key whenever the trap is a step above a
-    ramp from 400 to 80 px over 500 frames, until the gas condenses."""
-    key(app, pygame.K_SPACE)
-    for k in range(budget):
-        wanted = max(80.0, 400.0 - 320.0 * k / 500.0)
-        if app.game.trap_height - wanted >= HEIGHT_STEP:
-            post(pygame.KEYDOWN, key=pygame.K_DOWN, mod=0, unicode="", scancode=0)
-        frames(app)
-        if app.game.won:
-            return
-    raise AssertionError("the scripted game did not win")
 
 
 def test_a_players_win_gives_a_code_that_verifies(make, tmp_path):
