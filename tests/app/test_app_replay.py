@@ -3,6 +3,8 @@ screen offers it (key C or its button copies it; a file in the data folder keeps
 
 from __future__ import annotations
 
+import math
+
 import pygame
 import pytest
 from apphelp import click, count, frames, key, play_ramp
@@ -129,3 +131,17 @@ def test_an_unwritable_data_folder_is_one_notice_and_the_code_is_still_offered(
     monkeypatch.setattr(pygame.scrap, "put_text", _no_clipboard)
     key(app, pygame.K_c)  # neither file nor clipboard: the code itself, to copy by hand
     assert app.visible_notices[-1] == app.replays.code
+
+
+def test_a_wall_clock_game_won_within_a_frame_verifies(make):
+    # At 45 display frames a second the game stands between whole frames when it condenses
+    # (frame 430.67): the frame in flight counts as played, as the replay checks it.
+    app = make(seed=3, autopilot=QUICK)
+    app.game.paused = False
+    while not app.game.won:
+        assert app.game.sim.time < 600
+        app.frame(1 / 45)
+    assert not float(app.game.sim.time).is_integer()
+    rec = decode(app.replays.code)
+    assert verify(rec).frames == rec.frames == math.ceil(app.game.sim.time)
+    assert rec.score == app.game.score
