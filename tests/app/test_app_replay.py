@@ -96,7 +96,7 @@ def test_the_win_screen_offers_the_code_beside_the_name_entry_and_the_table(make
     assert count(app, button, accent) > 100  # the table ends above the button
     key(app, pygame.K_c)
     assert pygame.scrap.get_text() == app.replays.code
-    assert "copied to the clipboard" in app.visible_notices[-1]
+    assert app.visible_notices[-1].startswith("Replay code copied;")
     assert str(app.replays.path) in app.visible_notices[-1]
 
 
@@ -106,7 +106,7 @@ def test_without_a_clipboard_the_button_says_where_the_file_is(make, monkeypatch
     key(app, pygame.K_ESCAPE)  # no name: the score is not stored
     monkeypatch.setattr(pygame.scrap, "put_text", _no_clipboard)
     click(app, window_rect(app, REPLAY_RECT).center)
-    assert app.visible_notices[-1].startswith("No clipboard here")
+    assert app.visible_notices[-1].startswith("No clipboard:")
     assert app.replays.path.read_text().strip() == app.replays.code
     assert str(app.replays.path) in app.visible_notices[-1]
 
