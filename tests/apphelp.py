@@ -9,7 +9,7 @@ from __future__ import annotations
 import numpy as np
 import pygame
 
-from evapcool.app.applet import App
+from evapcool.app.applet import HEIGHT_STEP, App
 from evapcool.view.scene import MESSAGE_Y, PLAY_RECT
 
 #: Where "Score: N" and the other big messages appear, at the top of the play area
@@ -53,6 +53,20 @@ def click(app: App, xy: tuple[int, int], *, move: bool = True) -> None:
     frames(app)
     post(pygame.MOUSEBUTTONUP, pos=xy, button=1)
     frames(app)
+
+
+def play_ramp(app: App, budget: int = 1500) -> None:
+    """A scripted player: Space, then the Down key whenever the trap is a step above a
+    ramp from 400 to 80 px over 500 frames, until the gas condenses."""
+    key(app, pygame.K_SPACE)
+    for k in range(budget):
+        wanted = max(80.0, 400.0 - 320.0 * k / 500.0)
+        if app.game.trap_height - wanted >= HEIGHT_STEP:
+            post(pygame.KEYDOWN, key=pygame.K_DOWN, mod=0, unicode="", scancode=0)
+        frames(app)
+        if app.game.won:
+            return
+    raise AssertionError("the scripted game did not win")
 
 
 def pixels(app: App) -> np.ndarray:

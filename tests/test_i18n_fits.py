@@ -14,6 +14,10 @@ TEXT_COLUMN = 600
 BOXES = {"title": (24, True, TEXT_COLUMN), "line": (16, False, TEXT_COLUMN)}
 SAMPLE = {"n": 12345, "p": 0.667, "height": 400, "percent": 87, "problem": "disk full"}
 SAMPLE |= {"radius": 2.5, "mode": "autopilot", "name": "Anonymous"}
+# The class server's and the desktop's class words (a path, an address, a reason).
+SAMPLE |= {"path": "~/.local/share/evapcool/replays/x.txt", "url": "http://10.0.0.2:8765/"}
+SAMPLE |= dict(id=12, reason="the challenge is closed", detail="d", got=1, wanted=2, allowed="1..2")
+SAMPLE |= dict(score=25, frames=1234, runs=5, first=6, last=7, escape="rim", seed=8)
 
 
 def box_of(key: str) -> tuple[int, bool, int]:

@@ -267,6 +267,16 @@ def _settings(app, k):
     assert app.overlay is None and not app.options.path.exists()
 
 
+def _copy_replay(app, k):
+    key(app, k)  # before a win there is no code: nothing happens
+    assert app.visible_notices == [] and not app.replay_offered
+    app.game.sim.force_win()
+    frames(app)
+    app.replays.code = "EC1.test.00000000"  # as after a win (tests/app/test_app_replay.py)
+    key(app, k)
+    assert pygame.scrap.get_text() == "EC1.test.00000000"
+
+
 def _autopilot(app, k):
     key(app, k)  # the demo takes the trap...
     assert app.autopilot.engaged and app.autopilot.name == "demo"
@@ -300,6 +310,7 @@ KEY_CHECKS = {
     pygame.K_KP_ENTER: _next_player,
     pygame.K_o: _settings,
     pygame.K_a: _autopilot,
+    pygame.K_c: _copy_replay,
 }
 
 
@@ -316,7 +327,7 @@ def test_every_bound_key_is_checked_and_listed_in_the_help(app):
         assert (b.label, b.help) in rows
     labels = " ".join(label for label, _ in rows)
     names = ("Space", "R", "Left", "Right", "Up", "Down", "S", "+", "-", "F11", "H", "F1")
-    for name in (*names, "E", "G", "T", "O", "Delete", "X", "Enter", "A"):
+    for name in (*names, "E", "G", "T", "O", "Delete", "X", "Enter", "A", "C"):
         assert name in labels
     assert "Esc" in labels and "Mouse" in labels
     # The reset confirmation and the settings keys are spelled out too.

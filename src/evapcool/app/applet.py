@@ -21,15 +21,18 @@ import pygame
 from evapcool.about import note_line
 from evapcool.app import warmup
 from evapcool.app.charts import ChartColumn
+from evapcool.app.classlink import Challenge, ClassLink, Event
 from evapcool.app.controls import SceneControls
 from evapcool.app.input import Binding, InputMachine, Mode
 from evapcool.app.layout import Layout, arrange, window_size_for
 from evapcool.app.notices import NOTICE_SECONDS, Notices
 from evapcool.app.options import SettingsEditor
+from evapcool.app.replays import REPLAY_FOLDER, ReplayKeeper
 from evapcool.app.scoring import Scoreboard
 from evapcool.app.stats import FrameStats
 from evapcool.app.storage import scores_path, settings_path
 from evapcool.app.window import Window
+from evapcool.app.words import t
 from evapcool.game.autopilot import Autopilot
 from evapcool.game.rules import HEIGHT_MAX, HEIGHT_MIN, MAX_WALL_STEP, Game, GameConfig
 from evapcool.game.settings import Settings
@@ -37,6 +40,8 @@ from evapcool.physics.simulation import FPS, Simulation
 from evapcool.view.icons import window_icon
 from evapcool.view.pen import Pen
 from evapcool.view.scene import (
+    PLAY_RECT,
+    REPLAY_RECT,
     SCENE_SIZE,
     UNDER_MESSAGE,
     Scene,
@@ -113,6 +118,7 @@ def default_bindings() -> list[Binding]:
             lambda app: app.toggle_chart("path"),
         ),
         Binding((pygame.K_t,), "T", "high-score table on / off", mode=Mode.TABLE),
+        Binding((pygame.K_c,), "C", "after a win: copy its replay code", App.copy_replay),
         Binding(
             (pygame.K_DELETE, pygame.K_x),
             "Delete, X",
@@ -165,6 +171,7 @@ class App:
         screen: tuple[int, int] | None = None,
         log: Callable[[str], None] | None = None,
         autopilot: Autopilot | None = None,
+        classroom: ClassLink | None = None,
     ) -> None:
         """game: what to play, or the config to make it from (behind a progress screen
         when the fast engine must be readied first). data_dir / config_dir: where scores
@@ -174,6 +181,8 @@ class App:
         at start. screen: the desktop size to lay out for (default: the real one).
         log: where a one-line note about a slow start goes (e.g. stderr).
         autopilot: a strategy that plays by itself (`evapcool --autopilot FILE`; key A).
+        classroom: a class server to join (`evapcool --class URL`): its challenge is
+        played, and each win is sent to it.
         """
         for name, value in (("data_dir", data_dir), ("config_dir", config_dir)):
             _check_folder(name, value)
@@ -187,6 +196,10 @@ class App:
         self.notices.add_all(tuple(notices))
         self.scores = Scoreboard(scores_path(data_dir), self.notify)
         self.options = SettingsEditor(settings_path(config_dir), self.notify, settings, overrides)
+        self.replays = ReplayKeeper(scores_path(data_dir).parent / REPLAY_FOLDER, self.notify)
+        self.classroom = classroom
+        #: The class challenge being played (its settings and seed on every restart).
+        self.challenge: Challenge | None = None
         self.charts = ChartColumn()
         self.input = InputMachine(self, self.scores, self.options, default_bindings())
         self.scene = Scene()
@@ -216,6 +229,10 @@ class App:
             game = Game(game, sim=sim)
         self.game = game
         game.on_win.append(self._on_win)
+        self.replays.attach(game)  # every game is recorded, the autopilot's too
+        if classroom is not None:
+            self.notify(t("desk.class.joining", url=classroom.base))
+            classroom.start()
         self.autopilot: Autopilot | None = None
         if autopilot is not None:
             self.autopilot = autopilot
@@ -344,7 +361,7 @@ class App:
 
     def restart(self) -> None:
         """New atoms with the current settings, trap at 400, paused; ends any name entry."""
-        s = self.options.for_run()
+        s = self.challenge.settings if self.challenge else self.options.for_run()
         config = replace(
             self.game.config,
             n_atoms=s.n_atoms,
@@ -352,6 +369,8 @@ class App:
             tc_exponent=s.tc_exponent,
             escape=s.escape,
         )
+        if self.challenge is not None:  # everyone in the class plays the same atoms
+            config = replace(config, seed=self.challenge.seed)
         self.input.end_drag()  # a drag never carries into the new game
         try:
             sim = self.build_simulation(config)
@@ -361,6 +380,7 @@ class App:
         except ValueError as exc:  # settings are validated; this is a guard, not a path
             self.notify(f"Those settings do not work ({exc}); kept the previous ones.")
             self.game.restart()
+        self.replays.start(self.game)
         self.scores.new_round()
         if self.autopilot is not None:
             self.autopilot.new_game()
@@ -383,7 +403,10 @@ class App:
         lay = self.layout
         if not lay.scene.collidepoint(pos):
             return None
-        return self.controls.target_at(lay.to_scene(pos))
+        at = lay.to_scene(pos)
+        if self.replay_offered and REPLAY_RECT.collidepoint(at):
+            return "replay"
+        return self.controls.target_at(at)
 
     def slider_press(self, pos: tuple[float, float]) -> bool:
         self.slider.enabled = not self.game.won
@@ -404,16 +427,59 @@ class App:
         self.game.toggle_pause()
 
     def _on_win(self, game: Game) -> None:
+        code = self.replays.finish(game)
         if self.autopilot is not None and self.autopilot.flew:  # never in the players' table
+            if self.challenge is not None:
+                self.notify(t("desk.class.autopilot"))
             self.scores.autopilot_win(
                 self.autopilot.table_name, game.score or 0, game.won_at or 0.0
             )
             self.input.end_drag()
             return
+        if self.classroom is not None and self.challenge is not None and code is not None:
+            self.classroom.submit(code)
+            self.notify(t("desk.class.sending"))
         if self.scores.win(game.score or 0, game.won_at or 0.0):
             self.input.ask_name()
         else:
             self.input.end_drag()
+
+    # -- replay codes and the class ------------------------------------------------------------
+    @property
+    def replay_offered(self) -> bool:
+        """The win screen shows the replay button (a won game that was recorded)."""
+        return self.game.score is not None and self.replays.code is not None
+
+    def copy_replay(self) -> None:
+        """Key C or the win screen's button: the won game's code to the clipboard."""
+        if self.replay_offered:
+            self.replays.copy()
+
+    def _class_news(self) -> None:
+        """What the class server said since the last frame, as notices."""
+        if self.classroom is None:
+            return
+        for event in self.classroom.poll():
+            self._class_event(event)
+
+    def _class_event(self, event: Event) -> None:
+        if event.kind == "joined":
+            ch: Challenge = event.value
+            self.challenge = ch
+            self.notify(t("desk.class.joined", id=ch.id, n=ch.settings.n_atoms, name=event.name))
+            if self.game.sim.time == 0.0:  # not begun: switch to the challenge's atoms now
+                self.restart()
+            else:
+                self.notify(t("desk.class.press_r"))
+        elif event.kind == "result":
+            doc = event.value
+            self.notify(
+                t("desk.class.result", n=doc["rank"], score=doc["score"], frames=doc["frames"])
+            )
+        elif event.kind == "refused":
+            self.notify(t("desk.class.refused", reason=event.value))
+        else:
+            self.notify(t("desk.class.unreachable", problem=event.value))
 
     def help_rows(self) -> list[tuple[str, str]]:
         rows = []
@@ -464,6 +530,7 @@ class App:
             played = 0.0 if paused else min(dt, MAX_WALL_STEP)
         self.anim_time += dt
         self.notices.now = self.anim_time
+        self._class_news()
         if self.scores.name_box is not None:
             self.scores.name_box.update(dt)
         self.charts.observe(self.game.sim)
@@ -483,8 +550,12 @@ class App:
             self.scene.draw_too_few(pen, reason)
         elif game.paused and game.sim.time == 0.0 and self.overlay is None:
             self.scene.draw_start_hint(pen)
-        self._draw_overlay(pen)
-        self.scene.draw_notices(pen, self.visible_notices)
+        offered = self.replay_offered
+        bottom = REPLAY_RECT.top if offered else PLAY_RECT.bottom  # the table and notices
+        self._draw_overlay(pen, bottom)
+        if offered:  # over a full table's lowest edge: the button stays whole
+            self.scene.draw_replay_button(pen, t("replay.button"), self._hovering("replay"))
+        self.scene.draw_notices(pen, self.visible_notices, bottom)
         self.charts.draw(surface, lay.charts, lay.scale)
 
     def _draw_widgets(self, pen: Pen, lay: Layout) -> None:
@@ -494,7 +565,12 @@ class App:
             mouse = Pointer()  # modal: the buttons do not answer, so do not light up
         self.controls.draw(pen, mouse, self.game)
 
-    def _draw_overlay(self, pen: Pen) -> None:
+    def _hovering(self, target: str) -> bool:
+        pointer = self.input.pointer
+        modal = self.input.mode in (Mode.NAME, Mode.SETTINGS, Mode.CONFIRM_CLEAR)
+        return not modal and pointer is not None and self.target_at(pointer) == target
+
+    def _draw_overlay(self, pen: Pen, bottom: int = PLAY_RECT.bottom) -> None:
         game, overlay = self.game, self.overlay
         if self.scores.name_box is not None:
             self.scene.draw_name_entry(pen, self.scores.name_box, "Top 10! Type your name:")
@@ -508,6 +584,7 @@ class App:
                 self.scores.stored_rank,
                 self.scores.footer(confirming),
                 top=UNDER_MESSAGE if game.score is not None else None,
+                bottom=bottom,
             )
         elif overlay == "settings":
             self.scene.draw_settings(

@@ -3,11 +3,13 @@
 from __future__ import annotations
 
 import argparse
+import getpass
 import os
 import sys
 
 from evapcool import limits
 from evapcool.about import APP_NAME, error_line
+from evapcool.app.classlink import ClassLink
 from evapcool.app.storage import settings_path
 from evapcool.argtypes import OneLineParser, folder, output_file, ranged
 from evapcool.game.rules import GameConfig
@@ -93,6 +95,20 @@ def build_parser() -> argparse.ArgumentParser:
         "schedule like 425@0,162@1788; touch the slider to take over, A hands back",
     )
     p.add_argument(
+        "--class",
+        dest="class_url",
+        default=None,
+        metavar="URL",
+        help="join a class competition: the class server's address (evapcool class), "
+        "like http://192.168.1.10:8765/; its challenge is played and each win is sent",
+    )
+    p.add_argument(
+        "--name",
+        default=None,
+        metavar="NAME",
+        help="with --class: your name on the class's leaderboard (default: your user name)",
+    )
+    p.add_argument(
         "--frames",
         type=ranged(limits.APPLET_FRAMES),
         default=None,
@@ -129,6 +145,25 @@ def _user_message(exc: ValueError) -> str:
     return exc.render(_OPTION_OF) if isinstance(exc, ParameterError) else str(exc)
 
 
+def _class_link(args: argparse.Namespace) -> tuple[ClassLink | None, str | None]:
+    """The class server to join (--class, --name), or why the options do not work."""
+    if args.class_url is None:
+        return None, "--name needs --class URL" if args.name is not None else None
+    name = args.name if args.name is not None else _user_name()
+    try:
+        return ClassLink(args.class_url, name), None
+    except ValueError as exc:
+        return None, str(exc)
+
+
+def _user_name() -> str:
+    """The OS user's name (the class server cleans it), or 'player' if there is none."""
+    try:
+        return getpass.getuser() or "player"
+    except (OSError, KeyError, ImportError):
+        return "player"
+
+
 def _no_display() -> str | None:
     """Why no window can open here, or None. Checked before anything slow happens."""
     driver = os.environ.get("SDL_VIDEODRIVER", "")
@@ -148,6 +183,10 @@ def main(argv: list[str] | None = None) -> int:
         print(
             error_line(None, "--screenshot needs --frames N (frames to run first)"), file=sys.stderr
         )
+        return 2
+    link, problem = _class_link(args)
+    if problem:
+        print(error_line(None, problem), file=sys.stderr)
         return 2
     saved, notices = load_settings(settings_path(args.config_dir))
     overrides = {
@@ -212,6 +251,7 @@ def main(argv: list[str] | None = None) -> int:
             notices=notices,
             log=stderr_log,
             autopilot=pilot,
+            classroom=link,
         )
     except StartCancelledError:
         return 0

@@ -45,7 +45,7 @@ class Controls(Protocol):
     """What the machine asks of the app (window pixels in, actions out)."""
 
     def target_at(self, pos: Point) -> str | None:
-        """'pause', 'restart', 'slider', 'chart', 'close:<chart>' or None."""
+        """'pause', 'restart', 'slider', 'chart', 'replay', 'close:<chart>' or None."""
 
     def slider_press(self, pos: Point) -> bool: ...
     def slider_drag(self, pos: Point) -> None: ...
@@ -53,6 +53,7 @@ class Controls(Protocol):
     def toggle_pause(self) -> None: ...
     def restart(self) -> None: ...
     def toggle_chart(self, name: str) -> None: ...
+    def copy_replay(self) -> None: ...
     def leave(self) -> None:
         """Esc with nothing open: leave full screen, else quit."""
 
@@ -201,6 +202,8 @@ class InputMachine:
             self.controls.restart()
         elif target == "chart":
             self.controls.toggle_chart("energy")
+        elif target == "replay":
+            self.controls.copy_replay()
         elif target and target.startswith("close:"):
             self.controls.toggle_chart(target.split(":", 1)[1])
 

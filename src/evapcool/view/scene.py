@@ -73,6 +73,9 @@ THERMO_MAX_FRACTION = 1.2  # full scale is 1.2 x the starting temperature
 MESSAGE_Y = PLAY_RECT.top + 62
 #: Panels shown under a message start here.
 UNDER_MESSAGE = PLAY_RECT.top + 150
+#: The win screen's replay-code button (key C too): a strip under the cup's lowest point,
+#: so the condensate stays in view.
+REPLAY_RECT = pygame.Rect(PLAY_RECT.left + 12, PLAY_RECT.bottom - 27, PLAY_RECT.width - 24, 25)
 
 
 def mercury_fraction(temperature: float, initial_temperature: float) -> float:
@@ -270,9 +273,11 @@ class Scene:
         height: int,
         top: int | None = None,
         shade: tuple[int, int, int, int] = OVERLAY_SHADE,
+        bottom: int = PLAY_RECT.bottom,
     ) -> pygame.Rect:
-        """A framed panel over the play area (centred, or from `top` down); returns it."""
-        room = PLAY_RECT.bottom - 4 - (PLAY_RECT.top + 4 if top is None else top)
+        """A framed panel over the play area (centred, or from `top` down to at most
+        `bottom`); returns it."""
+        room = bottom - 4 - (PLAY_RECT.top + 4 if top is None else top)
         panel = pygame.Rect(0, 0, PLAY_RECT.width - 24, min(height, room))
         panel.centerx = PLAY_RECT.centerx
         if top is None:
@@ -309,16 +314,18 @@ class Scene:
         highlight: int | None = None,
         footer: Sequence[str] = (),
         top: int | None = None,
+        bottom: int = PLAY_RECT.bottom,
     ) -> pygame.Rect:
         """The high-score table; row `highlight` (1-based) stands out; footer lines below.
 
-        top: put the panel's top edge there (under the score) and fit the rows below it.
+        top: put the panel's top edge there (under the score) and fit the rows below it;
+        bottom: keep it above there (the win screen's replay button).
         """
         rows = max(1, len(entries))
-        room = PLAY_RECT.bottom - 4 - (PLAY_RECT.top + 4 if top is None else top)
+        room = bottom - 4 - (PLAY_RECT.top + 4 if top is None else top)
         step = max(20, min(30, (room - 96 - 28 * len(footer)) // rows))
         height = 96 + step * rows + 28 * len(footer)
-        panel = self._overlay(pen, "High scores", height, top, TABLE_SHADE)
+        panel = self._overlay(pen, "High scores", height, top, TABLE_SHADE, bottom)
         cols = (panel.left + 16, panel.left + 50, panel.left + 222, panel.left + 292)
         y = panel.top + 54
         for x, head in zip(cols, ("#", "name", "atoms", "time"), strict=True):
@@ -382,14 +389,23 @@ class Scene:
         pen.text("Enter: store   Esc: skip", 22, TEXT, topleft=(field.left, field.bottom + 8))
         return field
 
-    def draw_notices(self, pen: Pen, lines: list[str]) -> pygame.Rect | None:
-        """Toasts at the bottom of the play area, wrapped to its width; returns their box."""
+    def draw_replay_button(self, pen: Pen, label: str, hover: bool) -> pygame.Rect:
+        """The win screen's 'Replay code: C copies it' button; returns its pixels."""
+        self._frame(pen, REPLAY_RECT, (40, 40, 90, 235) if hover else TABLE_SHADE)
+        pen.text(label, 20, ACCENT, True, center=REPLAY_RECT.center)
+        return pen.rect(REPLAY_RECT)
+
+    def draw_notices(
+        self, pen: Pen, lines: list[str], bottom: int = PLAY_RECT.bottom
+    ) -> pygame.Rect | None:
+        """Toasts at the bottom of the play area (or above `bottom`), wrapped to its width;
+        returns their box."""
         if not lines:
             return None
         width = PLAY_RECT.width - 32
         wrapped = [row for line in lines for row in wrap(line, 22, width)]
         box = pygame.Rect(0, 0, PLAY_RECT.width - 12, 12 + 20 * len(wrapped))
-        box.midbottom = (PLAY_RECT.centerx, PLAY_RECT.bottom - 6)
+        box.midbottom = (PLAY_RECT.centerx, bottom - 6)
         _shade(pen, box, NOTICE_SHADE)
         for k, row in enumerate(wrapped):
             pen.text(row, 22, TEXT, topleft=(box.left + 10, box.top + 6 + 20 * k))

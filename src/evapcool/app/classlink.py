@@ -1,0 +1,165 @@
+"""The applet in a class competition (`evapcool --class URL`, docs/class.md).
+
+Talks to the class server's API with urllib on a thread of its own, so the frame loop
+never waits for the network: it fetches the open challenge and joins with the player's
+name, then sends the replay code of each win. The app reads what came back with `poll()`
+each frame and shows it as notices.
+"""
+
+from __future__ import annotations
+
+import json
+import queue
+import threading
+import urllib.error
+import urllib.request
+from collections.abc import Callable
+from dataclasses import dataclass
+from typing import Any
+from urllib.parse import urlsplit
+
+from evapcool.game.replay import Settings
+
+#: Seconds a request may take before the player is told the server did not answer.
+TIMEOUT = 20.0
+BAD_URL = (
+    "--class must be the class server's address: http:// or https:// and a host, "
+    "like http://192.168.1.10:8765/ (got {value!r})"
+)
+
+
+def check_url(value: str) -> str:
+    """The class server's base address (ending in /), or ValueError saying what is allowed."""
+    try:
+        parts = urlsplit(value)
+        ok = parts.scheme in ("http", "https") and bool(parts.hostname) and parts.port != 0
+    except ValueError:
+        ok = False
+    if not ok or parts.query or parts.fragment:
+        raise ValueError(BAD_URL.format(value=value))
+    return value if value.endswith("/") else value + "/"
+
+
+@dataclass(frozen=True)
+class Challenge:
+    """The open challenge: its id, the settings and seed every student plays."""
+
+    id: int
+    settings: Settings
+    seed: int
+
+    @classmethod
+    def from_json(cls, doc: dict[str, Any]) -> Challenge:
+        s = doc["settings"]
+        settings = Settings(
+            n_atoms=int(s["n_atoms"]),
+            radius=float(s["radius"]),
+            escape=str(s["escape"]),
+            tc_exponent=float(s["tc_exponent"]),
+        )
+        return cls(int(doc["id"]), settings, int(doc["seed"]))
+
+
+class RefusedError(Exception):
+    """The server answered with an error: its message (in the server's words)."""
+
+
+@dataclass(frozen=True)
+class Event:
+    """What came back: 'joined' (challenge, name), 'result' (the answer's JSON),
+    'refused' (message) or 'unreachable' (problem)."""
+
+    kind: str
+    value: Any = None
+    name: str = ""
+
+
+class ClassLink:
+    """The applet's connection to one class server; every request runs on its thread."""
+
+    def __init__(self, base: str, name: str, timeout: float = TIMEOUT) -> None:
+        self.base = check_url(base)
+        self.name = name
+        self.timeout = timeout
+        self.token: str | None = None
+        self.challenge: Challenge | None = None
+        self._tasks: queue.Queue[Callable[[], None]] = queue.Queue()
+        self._events: queue.Queue[Event] = queue.Queue()
+        self._thread = threading.Thread(target=self._work, name="evapcool-class", daemon=True)
+
+    def start(self) -> None:
+        """Fetch the challenge and join, in the background."""
+        self._thread.start()
+        self._tasks.put(self._join)
+
+    def submit(self, code: str) -> None:
+        """Send a won game's replay code, in the background (after the join)."""
+        self._tasks.put(lambda: self._submit(code))
+
+    def poll(self) -> list[Event]:
+        """What came back since the last call (never waits)."""
+        found = []
+        while True:
+            try:
+                found.append(self._events.get_nowait())
+            except queue.Empty:
+                return found
+
+    # -- on the link's thread -----------------------------------------------------------------
+    def _work(self) -> None:
+        while True:
+            task = self._tasks.get()
+            try:
+                task()
+            except RefusedError as exc:
+                self._events.put(Event("refused", str(exc)))
+            except (OSError, ValueError, KeyError, TypeError) as exc:
+                # The network, or an answer that is not the class server's: say so once.
+                self._events.put(Event("unreachable", _problem(exc)))
+
+    def _join(self) -> None:
+        self.challenge = Challenge.from_json(self._call("GET", "api/challenge"))
+        joined = self._call("POST", "api/join", {"name": self.name})
+        self.token = str(joined["token"])
+        self._events.put(Event("joined", self.challenge, str(joined["name"])))
+
+    def _submit(self, code: str) -> None:
+        if self.token is None or self.challenge is None:
+            return  # the join failed and said so; nothing to send to
+        body = {"challenge": self.challenge.id, "code": code}
+        self._events.put(Event("result", self._call("POST", "api/submit", body)))
+
+    def _call(self, method: str, path: str, body: object = None) -> dict[str, Any]:
+        """One request; the answer's JSON object, or RefusedError with the server's message."""
+        headers = {"Accept": "application/json", "Accept-Language": "en"}
+        data = None
+        if body is not None:
+            data = json.dumps(body).encode("utf-8")
+            headers["Content-Type"] = "application/json"
+        if self.token is not None:
+            headers["Authorization"] = f"Bearer {self.token}"
+        request = urllib.request.Request(self.base + path, data, headers, method=method)
+        try:
+            with urllib.request.urlopen(request, timeout=self.timeout) as answer:
+                doc = json.loads(answer.read(1_000_000))
+        except urllib.error.HTTPError as exc:
+            raise RefusedError(_refusal(exc)) from None
+        if not isinstance(doc, dict):
+            raise ValueError("not an answer of a class server")
+        return doc
+
+
+def _refusal(exc: urllib.error.HTTPError) -> str:
+    """The message of a refusal {"error": {"field", "message"}}, else the HTTP status."""
+    try:
+        doc = json.loads(exc.read(100_000))
+        return str(doc["error"]["message"])
+    except (OSError, ValueError, KeyError, TypeError):
+        return f"HTTP {exc.code} {exc.reason}"
+
+
+def _problem(exc: BaseException) -> str:
+    """A short reason for a failed request (the URL error's own, without the wrapping)."""
+    if isinstance(exc, urllib.error.URLError):
+        return str(exc.reason)
+    return str(exc) or type(exc).__name__

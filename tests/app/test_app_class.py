@@ -1,0 +1,103 @@
+"""`evapcool --class URL` (issue 22.4, desktop side): the applet joins a real class server,
+plays its challenge's atoms, sends each win and shows the verified rank; without a server
+the game goes on after one notice."""
+
+from __future__ import annotations
+
+import time
+from collections.abc import Iterator
+from pathlib import Path
+
+import httpx
+import pygame
+import pytest
+from apphelp import frames, key, play_ramp
+from classhelp import SEED, SETTINGS, Server, free_port, open_challenge, start_server
+
+from evapcool.app import cli
+from evapcool.app.applet import App
+from evapcool.app.classlink import ClassLink
+from evapcool.game.rules import Game, GameConfig
+
+pytestmark = pytest.mark.usefixtures("own_folders")
+
+
+@pytest.fixture
+def server(tmp_path: Path) -> Iterator[Server]:
+    running = start_server(tmp_path / "class.sqlite")
+    yield running
+    running.stop()
+
+
+@pytest.fixture
+def class_app(tmp_path: Path) -> Iterator[list[App]]:
+    apps: list[App] = []
+    yield apps
+    for a in apps:
+        a.close()
+
+
+def join_app(apps: list[App], tmp_path: Path, url: str, name: str = "Ada") -> App:
+    """An App with --class url --name name, as the command line makes it."""
+    app = App(
+        Game(GameConfig()),
+        data_dir=tmp_path / "data",
+        config_dir=tmp_path / "config",
+        screen=(1600, 1000),
+        classroom=ClassLink(url, name, timeout=10),
+    )
+    apps.append(app)
+    return app
+
+
+def frames_until(app: App, done, seconds: float = 60.0) -> None:
+    """Frames (the game paused or on) until done() holds; the network answers meanwhile."""
+    deadline = time.monotonic() + seconds
+    while not done():
+        assert time.monotonic() < deadline, app.visible_notices
+        frames(app)
+        time.sleep(0.01)
+
+
+def test_the_applet_joins_plays_the_challenge_and_its_win_is_ranked(server, class_app, tmp_path):
+    challenge = open_challenge(server)
+    app = join_app(class_app, tmp_path, server.base + "/")
+    frames_until(app, lambda: app.challenge is not None)
+    assert app.challenge.id == challenge["id"] and app.game.sim.seed == SEED
+    assert app.game.config.n_atoms == SETTINGS.n_atoms
+    assert any(f"Class challenge {challenge['id']}" in n for n in app.visible_notices)
+    key(app, pygame.K_r)  # a restart keeps the class's atoms
+    assert app.game.sim.seed == SEED
+    play_ramp(app)
+    frames_until(app, lambda: any(n.startswith("Class: rank") for n in app.visible_notices))
+    board = httpx.get(server.base + "/api/leaderboard").json()
+    [entry] = board["entries"]
+    assert (entry["name"], entry["score"], entry["edition"]) == ("Ada", app.game.score, "desktop")
+    assert f"rank 1, {app.game.score} atoms" in app.visible_notices[-1]
+
+
+def test_a_refusal_is_shown_in_the_servers_words(server, class_app, tmp_path):
+    app = join_app(class_app, tmp_path, server.base)  # no challenge open yet
+    frames_until(app, lambda: any("not accepted" in n for n in app.visible_notices))
+    assert app.challenge is None and "challenge" in app.visible_notices[-1].lower()
+
+
+def test_no_server_is_one_notice_and_the_game_goes_on(class_app, tmp_path):
+    app = join_app(class_app, tmp_path, f"http://127.0.0.1:{free_port()}/")
+    frames_until(app, lambda: any("did not answer" in n for n in app.visible_notices))
+    key(app, pygame.K_SPACE)
+    frames(app, 10)
+    assert app.game.sim.time == 11.0  # the frame after Space, and ten more
+    assert sum("did not answer" in n for n in app.visible_notices) == 1
+
+
+@pytest.mark.parametrize("url", ["example.org", "ftp://h/", "http://", "http://h/?x=1"])
+def test_a_bad_class_url_is_one_line_and_exit_2(url, capsys):
+    assert cli.main(["--class", url, "--frames", "1"]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and "--class" in err[0] and "http://" in err[0]
+
+
+def test_name_without_class_is_refused(capsys):
+    assert cli.main(["--name", "Ada", "--frames", "1"]) == 2
+    assert "--name needs --class" in capsys.readouterr().err
