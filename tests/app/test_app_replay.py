@@ -3,8 +3,6 @@ screen offers it (key C or its button copies it; a file in the data folder keeps
 
 from __future__ import annotations
 
-import math
-
 import pygame
 import pytest
 from apphelp import click, count, frames, key, play_ramp
@@ -134,14 +132,17 @@ def test_an_unwritable_data_folder_is_one_notice_and_the_code_is_still_offered(
 
 
 def test_a_wall_clock_game_won_within_a_frame_verifies(make):
-    # At 45 display frames a second the game stands between whole frames when it condenses
-    # (frame 430.67): the frame in flight counts as played, as the replay checks it.
+    # At 45 display frames a second the gas condenses between whole frames (t = 430.67):
+    # the win counts at that frame's end, which the recording holds, as the replay checks.
     app = make(seed=3, autopilot=QUICK)
     app.game.paused = False
     while not app.game.won:
         assert app.game.sim.time < 600
         app.frame(1 / 45)
-    assert not float(app.game.sim.time).is_integer()
+    assert not float(app.game.sim.time).is_integer()  # condensed mid-frame...
+    assert app.game.won_at is None and app.replays.code is None  # ...counted at its end
+    while app.game.won_at is None:
+        app.frame(1 / 45)
     rec = decode(app.replays.code)
-    assert verify(rec).frames == rec.frames == math.ceil(app.game.sim.time)
+    assert verify(rec).frames == rec.frames == round(app.game.won_at * 30)
     assert rec.score == app.game.score

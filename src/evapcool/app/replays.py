@@ -65,10 +65,7 @@ class ReplayKeeper:
         rec = self.recorder
         if rec is None:
             return None
-        if not float(game.sim.time).is_integer():
-            # Won within a frame still in flight (wall-clock steps): the replay checks the
-            # win at that frame's end, so it counts as played, at the height held in it.
-            rec.frame(game.sim.trap_height)
+        # The win is seen at a whole frame's end, after that frame was recorded (rules.py).
         self.recorder = None  # the atoms settling after the win are not part of the game
         self.code = encode(rec.finish(True, game.score))
         self.path = self._save(self.code, game.score or 0, rec.seed)
