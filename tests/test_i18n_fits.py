@@ -18,6 +18,7 @@ SAMPLE |= {"radius": 2.5, "mode": "autopilot", "name": "Anonymous"}
 SAMPLE |= {"path": "~/.local/share/evapcool/replays/x.txt", "url": "http://10.0.0.2:8765/"}
 SAMPLE |= dict(id=12, reason="the challenge is closed", detail="d", got=1, wanted=2, allowed="1..2")
 SAMPLE |= dict(score=25, frames=1234, runs=5, first=6, last=7, escape="rim", seed=8)
+SAMPLE |= dict(edition="desktop", claimed=25)
 
 
 def box_of(key: str) -> tuple[int, bool, int]:

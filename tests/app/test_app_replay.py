@@ -146,3 +146,39 @@ def test_a_wall_clock_game_won_within_a_frame_verifies(make):
     rec = decode(app.replays.code)
     assert verify(rec).frames == rec.frames == round(app.game.won_at * 30)
     assert rec.score == app.game.score
+
+
+def test_a_replay_watched_in_the_applet_plays_its_heights_to_the_claimed_win(tmp_path):
+    """`evapcool --replay CODE`: the recording's settings, seed and heights; R plays it again;
+    its win is not a player's (no name asked); the player's keys do not move the trap."""
+    from evapcool.game.replay import Settings, encode, record_autopilot
+
+    rec = record_autopilot(QUICK, Settings(), 3)
+    app = App(
+        Game(rec.settings.game_config(rec.seed)),
+        data_dir=tmp_path / "data",
+        config_dir=tmp_path / "config",
+        screen=(1600, 1000),
+        replay=decode(encode(rec)),
+    )
+    try:
+        for _ in range(2):  # the second time after R
+            assert app.game.trap_height == rec.heights()[0]
+            key(app, pygame.K_DOWN)  # the recording holds the trap
+            assert app.game.trap_height == rec.heights()[0]
+            key(app, pygame.K_SPACE)
+            frames(app, rec.frames + 2)
+            assert (app.game.won, app.game.score) == (True, rec.score)
+            assert app.input.mode is not Mode.NAME
+            assert any("replay reached the win" in n for n in app.notices.visible)
+            key(app, pygame.K_r)
+    finally:
+        app.close()
+
+
+def test_the_command_line_refuses_a_bad_replay_in_one_line(capsys):
+    from evapcool.app.cli import main
+
+    assert main(["--replay", "EC1.nonsense.00000000", "--frames", "1"]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and "--replay: not a replay code to watch (damaged" in err[0]

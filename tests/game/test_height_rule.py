@@ -123,3 +123,18 @@ def test_a_game_at_any_display_step_replays_to_the_same_win() -> None:
     rec = recorder.finish(game.won, game.score)
     assert rec.won and rec.frames == int(game.sim.time)
     assert verify(rec).score == game.score
+
+
+def test_playback_holds_a_recordings_heights_and_ignores_the_player() -> None:
+    """A recording watched: its heights frame by frame, whatever the display's step."""
+    from evapcool.game.replay import Settings, record_autopilot
+
+    rec = record_autopilot("demo", Settings(), 9)
+    game = Game(Settings().game_config(9))
+    game.playback(rec.heights())
+    assert game.trap_height == rec.heights()[0]
+    assert not game.set_trap_height(100.0)  # the recording holds the trap
+    game.toggle_pause()
+    while game.won_at is None and game.sim.time < rec.frames + 5:
+        game.update(0.7 / 30.0)
+    assert (game.won, game.score, round(game.won_at * 30)) == (rec.won, rec.score, rec.frames)

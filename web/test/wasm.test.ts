@@ -134,7 +134,7 @@ describe("the two cores side by side", () => {
       const wasm = run(CORES[0][1], make, frames);
       expect(wasm.length).toBeGreaterThan(1000);
       expect(wasm === ts).toBe(true);
-    });
+    }, 60_000); // two full runs of up to 20 000 atoms: seconds on a busy 2-core machine
 
   it("the classic start reaches the win within the run compared", () => {
     const sim = Simulation.classic(7);

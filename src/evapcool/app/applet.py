@@ -34,6 +34,7 @@ from evapcool.app.storage import scores_path, settings_path
 from evapcool.app.window import Window
 from evapcool.app.words import t
 from evapcool.game.autopilot import Autopilot
+from evapcool.game.replay import Recording
 from evapcool.game.rules import HEIGHT_MAX, HEIGHT_MIN, MAX_WALL_STEP, Game, GameConfig
 from evapcool.game.settings import Settings
 from evapcool.physics.simulation import FPS, Simulation
@@ -172,6 +173,7 @@ class App:
         log: Callable[[str], None] | None = None,
         autopilot: Autopilot | None = None,
         classroom: ClassLink | None = None,
+        replay: Recording | None = None,
     ) -> None:
         """game: what to play, or the config to make it from (behind a progress screen
         when the fast engine must be readied first). data_dir / config_dir: where scores
@@ -233,6 +235,11 @@ class App:
         if classroom is not None:
             self.notify(t("desk.class.joining", url=classroom.base))
             classroom.start()
+        #: A recording watched (`evapcool --replay`): its heights frame by frame, each restart.
+        self.watching = replay
+        if replay is not None:
+            game.playback(replay.heights())
+            self.notify(t("desk.replay.watching", edition=replay.edition))
         self.autopilot: Autopilot | None = None
         if autopilot is not None:
             self.autopilot = autopilot
@@ -361,7 +368,10 @@ class App:
 
     def restart(self) -> None:
         """New atoms with the current settings, trap at 400, paused; ends any name entry."""
-        s = self.challenge.settings if self.challenge else self.options.for_run()
+        if self.watching is not None:
+            s = self.watching.settings
+        else:
+            s = self.challenge.settings if self.challenge else self.options.for_run()
         config = replace(
             self.game.config,
             n_atoms=s.n_atoms,
@@ -371,6 +381,8 @@ class App:
         )
         if self.challenge is not None:  # everyone in the class plays the same atoms
             config = replace(config, seed=self.challenge.seed)
+        if self.watching is not None:
+            config = replace(config, seed=self.watching.seed)
         self.input.end_drag()  # a drag never carries into the new game
         try:
             sim = self.build_simulation(config)
@@ -381,6 +393,8 @@ class App:
             self.notify(f"Those settings do not work ({exc}); kept the previous ones.")
             self.game.restart()
         self.replays.start(self.game)
+        if self.watching is not None:
+            self.game.playback(self.watching.heights())
         self.scores.new_round()
         if self.autopilot is not None:
             self.autopilot.new_game()
@@ -427,6 +441,11 @@ class App:
         self.game.toggle_pause()
 
     def _on_win(self, game: Game) -> None:
+        if self.watching is not None:  # a replay's win is not a player's
+            claimed = self.watching.score
+            self.notify(t("desk.replay.won", n=game.score or 0, claimed=claimed))
+            self.input.end_drag()
+            return
         code = self.replays.finish(game)
         if self.autopilot is not None and self.autopilot.flew:  # never in the players' table
             if self.challenge is not None:

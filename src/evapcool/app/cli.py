@@ -6,12 +6,16 @@ import argparse
 import getpass
 import os
 import sys
+from dataclasses import replace
+from pathlib import Path
 
 from evapcool import limits
 from evapcool.about import APP_NAME, error_line
 from evapcool.app.classlink import ClassLink
 from evapcool.app.storage import settings_path
 from evapcool.argtypes import OneLineParser, folder, output_file, ranged
+from evapcool.fileio import read_user_text
+from evapcool.game.replay import Recording, ReplayError, decode
 from evapcool.game.rules import GameConfig
 from evapcool.game.settings import (
     TC_LAWS,
@@ -19,7 +23,7 @@ from evapcool.game.settings import (
     max_atoms,
     with_overrides,
 )
-from evapcool.limits import ParameterError
+from evapcool.limits import USER_FILE_MAX_BYTES, ParameterError
 from evapcool.physics.world import ESCAPE_RULES
 from evapcool.view.screen import WINDOW as SCENE_SIZE
 from evapcool.view.screen import window_room
@@ -103,6 +107,12 @@ def build_parser() -> argparse.ArgumentParser:
         "like http://192.168.1.10:8765/; its challenge is played and each win is sent",
     )
     p.add_argument(
+        "--replay",
+        default=None,
+        metavar="CODE|FILE",
+        help="watch a recorded game: a replay code (EC1....) or a file holding one",
+    )
+    p.add_argument(
         "--name",
         default=None,
         metavar="NAME",
@@ -156,6 +166,25 @@ def _class_link(args: argparse.Namespace) -> tuple[ClassLink | None, str | None]
         return None, str(exc)
 
 
+def _watched(args: argparse.Namespace) -> tuple[Recording | None, str | None]:
+    """The recording to watch (--replay CODE|FILE), or why it cannot be watched."""
+    if args.replay is None:
+        return None, None
+    if args.class_url is not None:
+        return None, "--replay cannot be combined with --class"
+    text = args.replay
+    path = Path(text)
+    if not text.startswith("EC") and path.is_file():
+        try:
+            text = read_user_text(path, USER_FILE_MAX_BYTES).strip()
+        except (OSError, ValueError) as exc:
+            return None, f"--replay: cannot read {path} ({exc})"
+    try:
+        return decode(text), None
+    except ReplayError as exc:
+        return None, f"--replay: not a replay code to watch ({exc})"
+
+
 def _user_name() -> str:
     """The OS user's name (the class server cleans it), or 'player' if there is none."""
     try:
@@ -185,6 +214,7 @@ def main(argv: list[str] | None = None) -> int:
         )
         return 2
     link, problem = _class_link(args)
+    watched, problem = (None, problem) if problem else _watched(args)
     if problem:
         print(error_line(None, problem), file=sys.stderr)
         return 2
@@ -209,6 +239,10 @@ def main(argv: list[str] | None = None) -> int:
             escape=run.escape,
             room=window_room(SCENE_SIZE),  # the room the scene shows
         )
+        if watched is not None:  # the recording's own settings and seed
+            config = replace(
+                watched.settings.game_config(watched.seed), speed=args.speed, room=config.room
+            )
     except ValueError as exc:
         print(error_line(None, _user_message(exc)), file=sys.stderr)
         return 2
@@ -252,6 +286,7 @@ def main(argv: list[str] | None = None) -> int:
             log=stderr_log,
             autopilot=pilot,
             classroom=link,
+            replay=watched,
         )
     except StartCancelledError:
         return 0

@@ -128,6 +128,10 @@ class Game:
         self.sim.set_checked_trap_height(HEIGHT_START)
         #: A height asked for since the last whole frame, applied at the next one.
         self._pending_height: float | None = None
+        #: Heights to hold frame by frame (a recording played back), or None: the player's.
+        self._script: list[float] | None = None
+        #: Whole frames played since the (re)start (the script's index).
+        self._frames_done = 0
         self.paused = True
         #: Play time (s) at which the win was first seen, None before.
         self.won_at: float | None = None
@@ -179,7 +183,7 @@ class Game:
 
         Returns True if the height asked for changed.
         """
-        if self.won:
+        if self.won or self._script is not None:
             return False  # the score is the atoms left: no evaporating after the win
         # The slider's range, inside limits.TRAP_HEIGHT: the one check and conversion.
         h = min(HEIGHT_MAX, max(HEIGHT_MIN, float(height)))
@@ -192,6 +196,28 @@ class Game:
 
     def nudge_height(self, delta: float) -> bool:
         return self.set_trap_height(self.trap_height + delta)
+
+    def playback(self, heights: list[float] | None) -> None:
+        """Hold these heights, one per whole frame from now (a recording watched); the
+        player's heights are ignored until the script ends or playback(None)."""
+        self._script = list(heights) if heights else None
+        self._scripted()
+        if float(self.sim.time).is_integer():
+            self._apply_pending()
+
+    @property
+    def playing_back(self) -> bool:
+        return self._script is not None
+
+    def _scripted(self) -> None:
+        """The script's height for the frame starting now."""
+        if self._script is None:
+            return
+        if self._frames_done >= len(self._script):
+            self._script = None
+            return
+        h = self._script[self._frames_done]
+        self._pending_height = min(HEIGHT_MAX, max(HEIGHT_MIN, float(h)))
 
     def _apply_pending(self) -> None:
         if self._pending_height is not None:
@@ -228,6 +254,8 @@ class Game:
                 if self.won_at is None:  # the moves end with the frame of the win
                     for listener in self.on_frame:
                         listener(sim.trap_height)
+                self._frames_done += 1
+                self._scripted()
                 self._apply_pending()
                 self._check_win()
         return frames
