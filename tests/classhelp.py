@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import contextlib
 import os
 import re
 import signal
@@ -80,16 +81,27 @@ class Server:
         return {"Authorization": f"Bearer {self.token}"}
 
     def stop(self, kill: bool = False) -> None:
-        """SIGKILL (kill=True) or SIGTERM, and wait for the process to end."""
+        """SIGKILL (kill=True: the server and its verifying workers, as a crash would) or
+        SIGTERM, and wait for the process to end; no worker is left behind either way."""
         if self.proc.poll() is None:
-            self.proc.send_signal(signal.SIGKILL if kill else signal.SIGTERM)
+            if kill:
+                _signal_group(self.proc.pid, signal.SIGKILL)
+            else:
+                self.proc.send_signal(signal.SIGTERM)
         try:
             self.proc.wait(15)
         except subprocess.TimeoutExpired:
             self.proc.kill()
             self.proc.wait(15)
+        _signal_group(self.proc.pid, signal.SIGKILL)
         if self.proc.stdout:
             self.proc.stdout.close()
+
+
+def _signal_group(pid: int, sig: int) -> None:
+    """Signal the server's process group (it leads a session of its own); gone is fine."""
+    with contextlib.suppress(ProcessLookupError, PermissionError):
+        os.killpg(pid, sig)
 
 
 def start_server(data: Path, workers: int = 1, port: int | None = None) -> Server:
@@ -111,7 +123,12 @@ def start_server(data: Path, workers: int = 1, port: int | None = None) -> Serve
         str(workers),
     ]
     proc = subprocess.Popen(
-        cmd, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True, env=env
+        cmd,
+        stdout=subprocess.PIPE,
+        stderr=subprocess.STDOUT,
+        text=True,
+        env=env,
+        start_new_session=True,  # its own process group: a kill reaches its workers too
     )
     assert proc.stdout is not None
     first = proc.stdout.readline()

@@ -36,7 +36,11 @@ async function startServer() {
   const proc = spawn(
     PYTHON,
     ["-m", "evapcool", "class", "--port", String(port), "--data", join(dir, "c.sqlite")],
-    { env: { ...process.env, LANG: "C.UTF-8", LANGUAGE: "en" }, stdio: ["ignore", "pipe", "pipe"] },
+    {
+      env: { ...process.env, LANG: "C.UTF-8", LANGUAGE: "en" },
+      stdio: ["ignore", "pipe", "pipe"],
+      detached: true, // its own process group: stopping it reaches its workers too
+    },
   );
   let out = "";
   proc.stdout.on("data", (d) => (out += d));
@@ -68,7 +72,15 @@ before(async () => {
 
 after(async () => {
   await browser?.close();
-  server?.proc.kill("SIGTERM");
+  if (server) {
+    server.proc.kill("SIGTERM");
+    await new Promise((r) => setTimeout(r, 1500));
+    try {
+      process.kill(-server.proc.pid, "SIGKILL"); // anything of its group still there
+    } catch {
+      /* all gone */
+    }
+  }
   if (dir) rmSync(dir, { recursive: true, force: true });
 });
 

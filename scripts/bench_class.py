@@ -1,0 +1,140 @@
+"""The class server under a lecture hall's load (issue 22's benchmark; docs/benchmarks.md).
+
+    python scripts/bench_class.py [--students 300] [--workers 2] [--spread 60] [--burst 50]
+
+Starts a real `evapcool class` on 127.0.0.1, opens a challenge, and sends one game per
+student (real recordings of the autopilot, perturbed so that each is a different game, one
+in ten forged): once as a burst (`--burst` students at a time, as the load test does), once
+spread over `--spread` seconds (students finishing at random moments of a minute, as in a
+lecture). Prints verified games per second and the p50/p95 latency from submit to the
+acknowledgement and to the leaderboard's stream. Traffic goes to 127.0.0.1 only.
+"""
+
+from __future__ import annotations
+
+import argparse
+import asyncio
+import dataclasses
+import json
+import random
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+import httpx
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tests"))
+from classhelp import SEED, Server, open_challenge, start_server, variant
+
+from evapcool.game.replay import encode
+
+
+def games(students: int) -> list[tuple[str, str, bool]]:
+    """(name, code, honest) per student; one in ten claims one atom more than it won."""
+    out = []
+    for i in range(students):
+        rec = variant(SEED, i + 1)
+        honest = i % 10 != 0
+        if not honest:
+            rec = dataclasses.replace(rec, won=True, score=rec.score + 1)
+        out.append((f"Student {i:03d}", encode(rec), honest))
+    return out
+
+
+def quantile(values: list[float], q: float) -> float:
+    ordered = sorted(values)
+    return ordered[min(len(ordered) - 1, round(q * (len(ordered) - 1)))]
+
+
+async def send_all(server: Server, challenge: object, entries, starts: list[float], gate: int):
+    """Each student joins, waits for its start time, submits; returns the timings."""
+    sent: dict[str, float] = {}
+    acked: dict[str, float] = {}
+    seen: dict[str, float] = {}
+    bad: list[str] = []
+    limit = asyncio.Semaphore(gate)
+
+    async def watch(client: httpx.AsyncClient) -> None:
+        async with client.stream("GET", server.base + "/api/stream") as events:
+            async for line in events.aiter_lines():
+                if line.startswith("data: "):
+                    now = time.perf_counter()
+                    for e in json.loads(line[6:])["entries"]:
+                        seen.setdefault(e["name"], now)
+
+    async def student(client: httpx.AsyncClient, name: str, code: str, honest: bool, at: float):
+        joined = await client.post(server.base + "/api/join", json={"name": name})
+        who = {"Authorization": f"Bearer {joined.json()['token']}"}
+        await asyncio.sleep(max(0.0, at - (time.perf_counter() - t0)))
+        async with limit:
+            sent[name] = time.perf_counter()
+            answer = await client.post(
+                server.base + "/api/submit",
+                headers=who,
+                json={"challenge": challenge, "code": code},
+            )
+            acked[name] = time.perf_counter()
+        if answer.status_code != (200 if honest else 422):
+            bad.append(f"{name}: {answer.status_code}")
+
+    limits = httpx.Limits(max_connections=gate + 20)
+    async with httpx.AsyncClient(timeout=600, limits=limits) as client:
+        watcher = asyncio.create_task(watch(client))
+        await asyncio.sleep(0.3)
+        t0 = time.perf_counter()
+        await asyncio.gather(
+            *(student(client, n, c, h, at) for (n, c, h), at in zip(entries, starts, strict=True))
+        )
+        took = time.perf_counter() - t0
+        await asyncio.sleep(1.0)
+        watcher.cancel()
+    return sent, acked, seen, took, bad
+
+
+def report(label: str, entries, result) -> None:
+    sent, acked, seen, took, bad = result
+    honest = [n for n, _, h in entries if h]
+    ack = [acked[n] - sent[n] for n in honest]
+    board = [seen[n] - sent[n] for n in honest if n in seen]
+    print(
+        f"{label}: {len(entries)} games in {took:.1f} s; "
+        f"submit->200 p50 {quantile(ack, 0.5):.3f} s, p95 {quantile(ack, 0.95):.3f} s; "
+        f"submit->leaderboard p50 {quantile(board, 0.5):.3f} s, p95 {quantile(board, 0.95):.3f} s"
+        f" ({len(board)}/{len(honest)} seen); wrong answers: {len(bad)}"
+    )
+
+
+def main() -> int:
+    p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    p.add_argument("--students", type=int, default=300)
+    p.add_argument("--workers", type=int, default=2)
+    p.add_argument("--spread", type=float, default=60.0)
+    p.add_argument("--burst", type=int, default=50)
+    args = p.parse_args()
+    entries = games(args.students)
+    rng = random.Random(1)
+    for label, starts, gate in (
+        (f"burst of {args.burst} at a time", [0.0] * args.students, args.burst),
+        (
+            f"spread over {args.spread:g} s",
+            sorted(rng.uniform(0, args.spread) for _ in entries),
+            args.students,
+        ),
+    ):
+        with tempfile.TemporaryDirectory() as tmp:
+            server = start_server(Path(tmp) / "class.sqlite", workers=args.workers)
+            try:
+                challenge = open_challenge(server)["id"]
+                time.sleep(2.0)  # the workers' engines warm before the first game
+                result = asyncio.run(send_all(server, challenge, entries, starts, gate))
+            finally:
+                server.stop()
+        report(label, entries, result)
+        if label.startswith("burst"):
+            print(f"  verified games per second (burst): {args.students / result[3]:.1f}")
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())
