@@ -221,8 +221,12 @@ def text_image(text: str, size: int, color: Color, bold: bool = False) -> pygame
     chain = faces()
     parts = []
     for k, script, s in runs(text):
+        if not any(unicodedata.category(ch) not in ("Cf", "Mn") for ch in s):
+            continue  # marks alone (a direction mark after a space) draw nothing
         f = _sdl_font(chain[k].path, size, bold, script)
         parts.append((f.render(s, True, color), f.get_ascent()))
+    if not parts:
+        return font(size, bold).render("", True, color)
     if _rtl_paragraph(text):
         parts.reverse()
     ascent = max(a for _, a in parts)
