@@ -192,8 +192,11 @@ def runs(text: str) -> list[tuple[int, str | None, str]]:
             k, script, s = out[-1]
             out[-1] = (k, script, s + ch)
             continue
-        k = next((i for i, face in enumerate(chain) if face.has(ch)), 0)
         script = _script(ch)
+        # Right-to-left letters never from the bundled font: it has some Arabic letters
+        # but not all, and a word split between two fonts cannot join.
+        first = 1 if script is not None and len(chain) > 1 else 0
+        k = next((i for i, face in enumerate(chain) if i >= first and face.has(ch)), 0)
         prev = out[-1] if out else None
         if prev and prev[0] == k and prev[1] == script and prev[2][-1].isspace() == ch.isspace():
             out[-1] = (k, script, prev[2] + ch)
