@@ -118,3 +118,13 @@ def pytest_collection_modifyitems(config: pytest.Config, items: list[pytest.Item
     for item in items:
         if item.path.name in SLOW_MODULES:
             item.add_marker(pytest.mark.slow)
+
+
+@pytest.fixture(autouse=True)
+def _english_after_each_test() -> object:
+    """A test that switches the language (--lang, the settings screen) leaves English behind."""
+    yield None
+    from evapcool import i18n
+
+    if i18n.active().locale != i18n.FALLBACK:
+        i18n.use(i18n.FALLBACK)

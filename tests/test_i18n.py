@@ -139,11 +139,19 @@ SAMPLE_ARGS = {"n": 2, "p": 0.5, "height": 400, "percent": 80, "problem": "x", "
 SAMPLE_ARGS |= {"mode": "a", "name": "B"}
 
 
+#: The desktop applet's placeholders (help, charts, table, settings, notices).
+DESK_ARGS = dict(speed="1/2", step=5, fast=4, slow="1/4", low=80, high=450, fps=60, physics=2.5)
+DESK_ARGS |= dict(drawing=3.1, t="0.123", tc="0.2", count="16/16", time="1:23.4", max=62)
+DESK_ARGS |= dict(names="radius", default="'rim'", why="not valid JSON", s=12)
+DESK_ARGS |= dict(done=2, total=6)
+
+
 #: An argument for every placeholder in the catalogs (the class server's too).
 ARGS_IN_USE = {
     **dict(n=2, p=0.5, height=400, percent=80, problem="x", radius=3, mode="a", name="B"),
     **dict(url="http://h/", path="/p", id=1, reason="r", detail="d", got=1, wanted=2),
     **dict(allowed="1..2", score=3, frames=4, runs=5, first=6, last=7, escape="rim", seed=8),
+    **DESK_ARGS,
 }
 
 

@@ -11,6 +11,7 @@ import json
 import locale as system_locale
 import os
 from collections.abc import Iterable, Mapping
+from functools import lru_cache
 from importlib import resources
 from typing import Any
 
@@ -30,6 +31,12 @@ def shipped_locales() -> list[str]:
     """The locale tags with a catalog file in the package."""
     folder = resources.files("evapcool") / "locales"
     return sorted(p.name[:-5] for p in folder.iterdir() if p.name.endswith(".json"))
+
+
+@lru_cache(maxsize=32)
+def language_name(tag: str) -> str:
+    """The language's own name (its catalog's meta name): "Deutsch", "العربية"."""
+    return str(load_catalog(tag)["meta"]["name"])
 
 
 def load_catalog(tag: str) -> dict[str, Any]:
@@ -297,3 +304,37 @@ def pseudo_catalog(english: dict[str, Any]) -> dict[str, Any]:
     meta = dict(english["meta"], tag=PSEUDO, name="English (pseudo)", author="generated")
     messages = {k: pseudo_message(v) for k, v in english["messages"].items()}
     return {"meta": meta, "messages": messages}
+
+
+# -- the desktop's language: one catalog for the process (the applet is one window) ----------
+_active: Catalog | None = None
+
+
+def use(locale: str) -> Catalog:
+    """Make `locale` (a shipped tag, or en-XA) the language of `t` and `number`."""
+    global _active
+    _active = Catalog(locale)
+    return _active
+
+
+def active() -> Catalog:
+    """The catalog `t` reads (English until `use` picks another)."""
+    global _active
+    if _active is None:
+        _active = Catalog(FALLBACK)
+    return _active
+
+
+def t(key: str, **args: Any) -> str:
+    """The message `key` of the active language, formatted with `args`."""
+    return active().t(key, **args)
+
+
+def number(value: float) -> str:
+    """`value` written the active language's way (decimal mark, grouping)."""
+    return active().format_number(value)
+
+
+def is_rtl() -> bool:
+    """The active language is written right to left."""
+    return active().meta.get("direction") == "rtl"

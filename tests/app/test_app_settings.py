@@ -9,6 +9,7 @@ import pygame
 import pytest
 from apphelp import NOTICE_STRIP, key
 
+from evapcool import i18n
 from evapcool.app import applet
 from evapcool.app.cli import main
 from evapcool.game.settings import max_atoms
@@ -165,8 +166,9 @@ def test_the_overlay_caps_the_atoms_so_every_start_fits_below_the_rim(
     draft = app.options.draft
     cap = max_atoms(draft.radius)
     assert draft.n_atoms == cap
-    assert f"(1 to {cap})" in dict(app.options.rows())["Number of atoms"]
-    assert any(f"At most {cap} atoms" in line for line in app.options.footer())
+    shown = i18n.number(cap)  # grouped the language's way: 1,234
+    assert f"(1 to {shown})" in dict(app.options.rows())["Number of atoms"]
+    assert any(f"At most {shown} atoms" in line for line in app.options.footer())
     key(app, pygame.K_RETURN)
     key(app, pygame.K_r)
     sim = app.game.sim

@@ -188,7 +188,9 @@ def test_step_clamps_and_cycles() -> None:
     assert step(step(s, "escape", +1), "escape", +1).escape == "rim"
     with pytest.raises(ValueError):
         step(s, "colour", +1)
-    assert len(describe(s)) == 4
+    assert len(describe(s)) == 5  # atoms, radius, Tc law, escape rule, language
+    assert step(s, "language", +1).language == "ar"  # after "auto", the shipped tags
+    assert step(s, "language", -1).language == "en-XA"
 
 
 _any_value = st.one_of(

@@ -50,7 +50,7 @@ from evapcool.view.scene import (
 )
 from evapcool.view.widgets import Pointer
 
-TITLE = "Evaporation cooling"
+TITLE = "app.title"  # the window's title, in the chosen language
 #: Display frame rate we aim for; physics time follows the wall clock regardless.
 TARGET_FPS = 60
 #: Trap height change per arrow-key press (key repeat is on), px.
@@ -67,89 +67,92 @@ BAD_FOLDER = "{name} must name a folder (got {value!r})"
 def default_bindings() -> list[Binding]:
     """The applet's keyboard controls (the help overlay lists exactly these)."""
     return [
-        Binding((pygame.K_SPACE,), "Space", "pause / play", lambda app: app.toggle_pause()),
+        Binding((pygame.K_SPACE,), "help.key.space", "help.space", lambda app: app.toggle_pause()),
         Binding(
             (pygame.K_r,),
             "R",
-            "restart: new atoms, trap at 400, paused",
+            "help.restart",
             App.restart,
             ends_drag=True,
         ),
         Binding(
             (pygame.K_LEFT, pygame.K_DOWN),
-            "Left, Down",
-            f"lower the trap by {HEIGHT_STEP:g} px",
+            "help.key.left_down",
+            "help.lower",
             lambda app: app.nudge(-HEIGHT_STEP),
         ),
         Binding(
             (pygame.K_RIGHT, pygame.K_UP),
-            "Right, Up",
-            f"raise the trap by {HEIGHT_STEP:g} px",
+            "help.key.right_up",
+            "help.raise",
             lambda app: app.nudge(HEIGHT_STEP),
         ),
-        Binding(
-            (pygame.K_s,), "S", "one frame forward (while paused)", lambda app: app.game.step()
-        ),
+        Binding((pygame.K_s,), "S", "help.step", lambda app: app.game.step()),
         Binding(
             (pygame.K_a,),
             "A",
-            "autopilot on / off (the demo, or --autopilot FILE)",
+            "help.autopilot",
             App.toggle_autopilot,
-            more=("...touch the slider or its keys to take over",),
+            more=("help.autopilot_more",),
         ),
         Binding(
             (pygame.K_PLUS, pygame.K_EQUALS, pygame.K_KP_PLUS),
             "+",
-            "faster (up to 4x)",
+            "help.faster",
             lambda app: app.game.faster(),
         ),
         Binding(
             (pygame.K_MINUS, pygame.K_KP_MINUS),
             "-",
-            "slower (down to 1/4x)",
+            "help.slower",
             lambda app: app.game.slower(),
         ),
-        Binding(
-            (pygame.K_e,), "E", "energy chart on / off", lambda app: app.toggle_chart("energy")
-        ),
+        Binding((pygame.K_e,), "E", "help.energy", lambda app: app.toggle_chart("energy")),
         Binding(
             (pygame.K_g,),
             "G",
-            "path-to-condensation chart on / off",
+            "help.path",
             lambda app: app.toggle_chart("path"),
         ),
-        Binding((pygame.K_t,), "T", "high-score table on / off", mode=Mode.TABLE),
-        Binding((pygame.K_c,), "C", "after a win: copy its replay code", App.copy_replay),
+        Binding((pygame.K_t,), "T", "help.table", mode=Mode.TABLE),
+        Binding((pygame.K_c,), "C", "help.copy", App.copy_replay),
         Binding(
             (pygame.K_DELETE, pygame.K_x),
-            "Delete, X",
-            "clear the high-score table...",
+            "help.key.delete_x",
+            "help.clear",
             mode=Mode.CONFIRM_CLEAR,
-            more=("...asks first: Y clears it, N or Esc keeps it",),
+            more=("help.clear_more",),
         ),
-        Binding(
-            _SUBMIT, "Enter", "after a name is stored: next player", App.next_player, ends_drag=True
-        ),
+        Binding(_SUBMIT, "help.key.enter", "help.next", App.next_player, ends_drag=True),
         Binding(
             (pygame.K_o,),
             "O",
-            "settings (R restarts with them)",
+            "help.settings",
             mode=Mode.SETTINGS,
-            more=("Up/Down choose, Left/Right change, Enter/O save",),
+            more=("help.choose_change_save",),
         ),
-        Binding((pygame.K_F11,), "F11", "full screen on / off", App.toggle_fullscreen),
-        Binding((pygame.K_h, pygame.K_F1), "H, F1", "this help on / off", mode=Mode.HELP),
-        Binding(
-            (pygame.K_ESCAPE,), "Esc", "close a panel, leave full screen, or quit", mode=Mode.PLAY
-        ),
+        Binding((pygame.K_F11,), "F11", "help.fullscreen", App.toggle_fullscreen),
+        Binding((pygame.K_h, pygame.K_F1), "H, F1", "help.help", mode=Mode.HELP),
+        Binding((pygame.K_ESCAPE,), "help.key.esc", "help.escape", mode=Mode.PLAY),
     ]
 
 
 #: Mouse controls, listed in the help overlay after the keys.
-MOUSE_HELP = [
-    ("Mouse", "play/pause, restart and chart buttons, x closes a chart;"),
-    ("", f"drag the slider: trap height {HEIGHT_MIN:g} to {HEIGHT_MAX:g} px"),
-]
+MOUSE_HELP = [("help.key.mouse", "help.mouse"), ("", "help.mouse_more")]
+#: The numbers the help's messages name.
+HELP_ARGS = {
+    "step": HEIGHT_STEP,
+    "height": 400,
+    "low": HEIGHT_MIN,
+    "high": HEIGHT_MAX,
+    "fast": 4,
+    "slow": "1/4",
+}
+
+
+def _word(label: str) -> str:
+    """A key's name: a catalog key (help.key.*) translated, a key cap ("R", "F11") as is."""
+    return t(label) if label.startswith("help.key.") else label
 
 
 class StartCancelledError(Exception):
@@ -209,7 +212,7 @@ class App:
         self.controls = SceneControls(lambda: self.game.trap_height)
         self.slider = self.controls.slider
 
-        self.window = Window(TITLE, SCENE_SIZE, window_icon(64), screen)
+        self.window = Window(t(TITLE), SCENE_SIZE, window_icon(64), screen)
         #: The scene's scale the player wants (1, or what they resized the window to).
         self.preferred_scale = min(1.0, arrange(self.window.usable(), 0).scale)
         self.fit_window()
@@ -248,14 +251,14 @@ class App:
 
     # -- the autopilot -------------------------------------------------------------------------
     def _say_autopilot(self) -> None:
-        self.notify(f"{self.autopilot.label} plays: touch the slider to take over, A to hand back")
+        self.notify(t("notice.autopilot_plays", name=self.autopilot.label))
 
     def toggle_autopilot(self) -> None:
         """Key A: the autopilot takes the slider (the demo if none was given), or hands back."""
         if self.autopilot is None:
             self.autopilot = Autopilot.load("demo")
         elif self.autopilot.toggle() is False:
-            self.notify("You have the trap. A: autopilot again")
+            self.notify(t("notice.you_have_trap"))
             return
         self.autopilot.engage()
         self._say_autopilot()
@@ -264,7 +267,7 @@ class App:
         """The player touched the trap's controls: the autopilot lets go."""
         if self.autopilot is not None and self.autopilot.engaged:
             self.autopilot.take_over()
-            self.notify("You have the trap. A: autopilot again")
+            self.notify(t("notice.you_have_trap"))
 
     def nudge(self, delta: float) -> None:
         self.take_over()
@@ -349,7 +352,7 @@ class App:
                     self.running = False
                     return None
             if not said and self.log is not None and builder.elapsed > SLOW_BUILD_NOTICE_S:
-                self.log(f"{builder.what}... {warmup.COMPILE_NOTE}")
+                self.log(f"{builder.what}... {t(warmup.COMPILE_NOTE)}")
                 said = True
             what, fraction = builder.state
             self.draw_progress(what, fraction, builder.elapsed)
@@ -362,7 +365,7 @@ class App:
         surface = self.window.surface
         surface.fill((0, 0, 0))
         pen = Pen(surface, lay.scale, lay.scene.topleft)
-        bar = draw_progress(pen, what, fraction, elapsed, warmup.COMPILE_NOTE)
+        bar = draw_progress(pen, what, fraction, elapsed, t(warmup.COMPILE_NOTE))
         self.window.flip()
         return bar
 
@@ -390,7 +393,7 @@ class App:
                 return
             self.game.restart(config, sim=sim)
         except ValueError as exc:  # settings are validated; this is a guard, not a path
-            self.notify(f"Those settings do not work ({exc}); kept the previous ones.")
+            self.notify(t("notice.settings_failed", problem=exc))
             self.game.restart()
         self.replays.start(self.game)
         if self.watching is not None:
@@ -501,11 +504,13 @@ class App:
             self.notify(t("desk.class.unreachable", problem=event.value))
 
     def help_rows(self) -> list[tuple[str, str]]:
+        """The help overlay's (keys, what they do) rows in the chosen language."""
+        mouse = Binding((), *MOUSE_HELP[0], more=(MOUSE_HELP[1][1],))
         rows = []
-        for b in self.input.bindings:
-            rows.append((b.label, b.help))
-            rows.extend(("", line) for line in b.more)
-        return rows + MOUSE_HELP
+        for b in [*self.input.bindings, mouse]:
+            rows.append((_word(b.label), t(b.help, **HELP_ARGS)))
+            rows.extend(("", t(line, **HELP_ARGS)) for line in b.more)
+        return rows
 
     # -- one frame -------------------------------------------------------------------------------
     def handle_events(self, events: Sequence[pygame.event.Event]) -> None:
@@ -556,6 +561,9 @@ class App:
         return played
 
     def draw(self) -> None:
+        title = t(TITLE)
+        if self.window.win.title != title:  # the settings screen chose another language
+            self.window.win.title = title
         lay = self.layout
         surface = self.window.surface
         surface.fill((0, 0, 0))
@@ -592,7 +600,7 @@ class App:
     def _draw_overlay(self, pen: Pen, bottom: int = PLAY_RECT.bottom) -> None:
         game, overlay = self.game, self.overlay
         if self.scores.name_box is not None:
-            self.scene.draw_name_entry(pen, self.scores.name_box, "Top 10! Type your name:")
+            self.scene.draw_name_entry(pen, self.scores.name_box, t("win.top10"))
         elif overlay == "help":
             self.scene.draw_help(pen, self.help_rows(), self.stats.lines())
         elif overlay == "table":

@@ -9,10 +9,11 @@ import sys
 from dataclasses import replace
 from pathlib import Path
 
-from evapcool import limits
+from evapcool import i18n, limits
 from evapcool.about import APP_NAME, error_line
 from evapcool.app.classlink import ClassLink
 from evapcool.app.storage import settings_path
+from evapcool.app.words import choose
 from evapcool.argtypes import OneLineParser, folder, output_file, ranged
 from evapcool.fileio import read_user_text
 from evapcool.game.replay import Recording, ReplayError, decode
@@ -38,6 +39,20 @@ _OPTION_OF = {
     "tc_law": "--tc-law",
     "escape": "--escape",
 }
+
+
+def _languages() -> list[str]:
+    return [*i18n.shipped_locales(), i18n.PSEUDO]
+
+
+def _language(value: str) -> str:
+    """A --lang value: the shipped catalog it names (de-AT gives de), else one line naming
+    the allowed tags."""
+    match = i18n.best_match([value], _languages())
+    if match is None:
+        allowed = ", ".join(_languages())
+        raise argparse.ArgumentTypeError(f"must be one of {allowed} (got {value!r})")
+    return match
 
 
 def build_parser() -> argparse.ArgumentParser:
@@ -91,6 +106,15 @@ def build_parser() -> argparse.ArgumentParser:
         help=f"simulation speed, {limits.APPLET_SPEED.span()} (default 1)",
     )
     p.add_argument("--fullscreen", action="store_true", help="start in full screen")
+    p.add_argument(
+        "--lang",
+        type=_language,
+        default=None,
+        metavar="TAG",
+        help="language of the window: "
+        + ", ".join(_languages())
+        + " (default: the saved setting, else the system's)",
+    )
     p.add_argument(
         "--autopilot",
         default=None,
@@ -219,6 +243,7 @@ def main(argv: list[str] | None = None) -> int:
         print(error_line(None, problem), file=sys.stderr)
         return 2
     saved, notices = load_settings(settings_path(args.config_dir))
+    choose(args.lang, saved.language)
     overrides = {
         "n_atoms": args.atoms,
         "radius": args.radius,

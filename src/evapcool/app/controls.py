@@ -5,6 +5,7 @@ from __future__ import annotations
 from collections.abc import Callable
 
 from evapcool.app.charts import CHART_BUTTON_RECT, chart_button_looks
+from evapcool.app.words import t
 from evapcool.game.rules import HEIGHT_MAX, HEIGHT_MIN, HEIGHT_START, Game
 from evapcool.view.icons import button_looks
 from evapcool.view.pen import Pen
@@ -31,7 +32,7 @@ class SceneControls:
             HEIGHT_MAX,
             HEIGHT_START,
             knob_radius=KNOB_RADIUS,
-            label="Trap height",
+            label=t("controls.trap_height"),
             follow=trap_height,
         )
 
@@ -51,5 +52,6 @@ class SceneControls:
         """Draw them showing the game's state (paused, trap height, frozen after a win)."""
         self.pause.set_state(game.paused)
         self.slider.enabled = not game.won
+        self.slider.label = t("controls.trap_height")  # the language may change meanwhile
         for widget in (self.pause, self.restart, self.slider, self.chart):
             widget.draw(pen, pointer)

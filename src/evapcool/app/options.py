@@ -7,6 +7,7 @@ from pathlib import Path
 
 import pygame
 
+from evapcool.app.words import choose, t
 from evapcool.game import settings as settings_mod
 from evapcool.game.settings import Settings, describe, load_settings, max_atoms, save_settings
 
@@ -37,7 +38,7 @@ class SettingsEditor:
         try:
             return settings_mod.with_overrides(self.settings, **self.overrides)
         except ValueError as exc:
-            self.notify(f"Command-line options dropped ({exc}).")
+            self.notify(t("notice.options_dropped", problem=exc))
             self.overrides = {}
             return self.settings
 
@@ -63,11 +64,13 @@ class SettingsEditor:
         previous, self.settings = self.settings, draft
         self.overrides = {}  # a choice made here beats the command line for the rest of the run
         # Only the fields changed here go over the file: another window's choices stay.
+        if draft.language != previous.language:  # shown at once, no restart needed
+            choose(None, draft.language)
         problems = save_settings(draft, self.path, base=previous)
         for text in problems:
             self.notify(text)
         if not problems:
-            self.notify("Settings saved. Press R (restart) to play with them.")
+            self.notify(t("settings.saved"))
 
     def rows(self) -> list[tuple[str, str]]:
         return describe(self.draft)
@@ -75,11 +78,11 @@ class SettingsEditor:
     def footer(self) -> list[str]:
         r = self.draft.radius
         lines = [
-            f"At most {max_atoms(r)} atoms of radius {r:g} px start below the rim.",
-            "Up/Down choose, Left/Right change",
-            "Enter or O: save   Esc: cancel",
+            t("settings.max_atoms", n=max_atoms(r), radius=r),
+            t("help.choose_change"),
+            t("settings.save_cancel"),
         ]
         if self.overrides:
             names = ", ".join(sorted(self.overrides))
-            lines.append(f"This run uses command-line {names} until you save here.")
+            lines.append(t("settings.overrides", names=names))
         return lines

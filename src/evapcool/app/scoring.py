@@ -8,6 +8,7 @@ from pathlib import Path
 import pygame
 
 from evapcool.app.storage import folder_problem
+from evapcool.app.words import t
 from evapcool.game.highscores import NAME_MAX, HighScoreTable, format_seconds
 from evapcool.view.text_input import CANCEL, SUBMIT, TextInput
 
@@ -25,7 +26,7 @@ class Scoreboard:
         self.table = HighScoreTable(path)
         problem = folder_problem(self.table.path)
         if problem:
-            notify(f"High scores cannot be saved ({problem}); they last this session only.")
+            notify(t("scores.unsaved", problem=problem))
         self._pass_on_notices()
         self.name_box: TextInput | None = None
         #: Rank (1-based) of the score stored this round, highlighted in the table.
@@ -54,7 +55,7 @@ class Scoreboard:
             self.name_box = TextInput(max_length=NAME_MAX)
             pygame.key.start_text_input()  # the IME / on-screen keyboard, if any
             return True
-        self.notify(f"Score {score} is not in the top 10 this time. Enter: next player.")
+        self.notify(t("notice.not_top10", n=score))
         self.ready_for_next = True
         return False
 
@@ -70,7 +71,7 @@ class Scoreboard:
         self.pilots.add(label, score, seconds)
         for text in self.pilots.take_notices():
             self.notify(text)
-        self.notify(f"{label}: {score} atoms (kept apart from the players' scores)")
+        self.notify(t("notice.autopilot_score", name=label, n=score))
         self.ready_for_next = True
 
     def autopilot_lines(self) -> list[str]:
@@ -78,7 +79,10 @@ class Scoreboard:
         if self._pilots is None and not self.autopilot_path.exists():
             return []
         best = self.pilots.entries[:1]
-        return [f"{e.name}, not ranked: {e.score} atoms, {format_seconds(e.seconds)}" for e in best]
+        return [
+            t("table.autopilot_row", name=e.name, n=e.score, time=format_seconds(e.seconds))
+            for e in best
+        ]
 
     def close_name_box(self) -> None:
         if self.name_box is not None:
@@ -98,14 +102,14 @@ class Scoreboard:
             self.ready_for_next = True
         elif result == CANCEL:
             self.close_name_box()
-            self.notify("Score not stored. Enter: next player.")
+            self.notify(t("win.not_stored"))
             self.ready_for_next = True
         return result
 
     def clear(self) -> None:
         self.stored_rank = None
         if self.table.reset():
-            self.notify("The high-score table was cleared.")
+            self.notify(t("scores.cleared"))
         if self._pilots is not None or self.autopilot_path.exists():
             self.pilots.reset()
         self._pass_on_notices()
@@ -113,7 +117,7 @@ class Scoreboard:
     def footer(self, confirming: bool) -> list[str]:
         pilots = self.autopilot_lines()
         if confirming:
-            return [*pilots, "Clear all scores?  Y: yes   N or Esc: no"]
+            return [*pilots, t("table.clear_confirm")]
         if self.ready_for_next:
-            return [*pilots, "Enter: next player"]
-        return [*pilots, "T: close   Delete or X: clear the table"]
+            return [*pilots, t("win.next_player")]
+        return [*pilots, t("table.footer")]

@@ -8,6 +8,8 @@ from __future__ import annotations
 
 from collections import deque
 
+from evapcool.app.words import t
+
 
 class FrameStats:
     """Rolling frame rate, mean physics and drawing time, and the game's pace."""
@@ -52,10 +54,14 @@ class FrameStats:
     def lines(self) -> list[str]:
         """The readout for the help overlay."""
         lines = [
-            f"Frame rate {self.fps:.0f} per second: physics {self.physics_ms:.1f} ms, "
-            f"drawing {self.drawing_ms:.1f} ms a frame"
+            t(
+                "help.frame_rate",
+                fps=round(self.fps),
+                physics=round(self.physics_ms, 1),
+                drawing=round(self.drawing_ms, 1),
+            )
         ]
         pace = self.pace
         if pace is not None and pace < 0.97:
-            lines.append(f"Frames fall behind: the game runs at {100 * pace:.0f}% of its speed")
+            lines.append(t("status.slow", percent=round(100 * pace)))
         return lines

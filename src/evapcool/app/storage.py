@@ -10,6 +10,7 @@ from __future__ import annotations
 import os
 from pathlib import Path
 
+from evapcool.app.words import t
 from evapcool.game import highscores, settings
 
 DATA_ENV = "EVAPCOOL_DATA_DIR"
@@ -49,11 +50,11 @@ def folder_problem(path: Path) -> str | None:
         except FileNotFoundError:
             continue
         except OSError as exc:  # a name too long, a file in the way, ...
-            return f"{parent} cannot be used ({exc.strerror or exc})"
+            return t("storage.cannot_use", path=parent, problem=exc.strerror or exc)
         if parent.exists():
             if not parent.is_dir():
-                return f"{parent} is a file, not a folder"
+                return t("storage.is_file", path=parent)
             if not os.access(parent, os.W_OK | os.X_OK):
-                return f"{parent} is read-only"
+                return t("storage.read_only", path=parent)
             return None
     return None

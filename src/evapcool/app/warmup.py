@@ -14,14 +14,12 @@ import importlib.util
 import threading
 import time
 
+from evapcool.app.words import t
 from evapcool.game.rules import GameConfig, make_simulation
 from evapcool.physics.simulation import AUTO_FAST_MIN_ATOMS, Simulation
 
 #: Shown under the bar while the fast engine is readied (docs/benchmarks.md, README).
-COMPILE_NOTE = (
-    "The first start on a machine compiles the fast engine: about 10 s of computing, "
-    "longer on a busy machine. Later starts take about a second."
-)
+COMPILE_NOTE = "progress.compile_note"
 
 _fast_ready = False
 
@@ -49,7 +47,7 @@ class SimulationBuilder:
         self.config = config
         #: (what is happening, steps done / all steps or None if unknown), replaced whole
         #: by the worker so the window reads a consistent pair.
-        self.state: tuple[str, float | None] = ("Starting", None)
+        self.state: tuple[str, float | None] = (t("progress.starting"), None)
         self._sim: Simulation | None = None
         self._error: BaseException | None = None
         self._thread = threading.Thread(target=self._work, name="evapcool-warmup", daemon=True)
@@ -94,6 +92,8 @@ class SimulationBuilder:
 
     def _progress(self, done: int, total: int, what: str) -> None:
         # One more step follows the warm-up: placing the atoms.
+        # The engine's own step names are a programmer's words: the player reads ours.
+        what = t("progress.compiling_part", done=done, total=total + 1) if total > 0 else what
         self.state = (what, done / (total + 1) if total > 0 else None)
 
     def _work(self) -> None:
@@ -101,7 +101,7 @@ class SimulationBuilder:
         try:
             compiles_here = False
             if needs_warmup(self.config):
-                self._say("Loading the fast engine (Numba)")
+                self._say(t("app.loading_fast"))
                 from evapcool.physics import fast
 
                 prepare = getattr(fast, "prepare", None)
@@ -109,9 +109,9 @@ class SimulationBuilder:
                     prepare(self._progress)
                 else:  # making the simulation compiles what it needs
                     compiles_here = True
-                    self._say("Compiling the fast engine")
+                    self._say(t("app.compiling_fast"))
             if not compiles_here:
-                self._say(f"Placing {self.config.n_atoms} atoms in the cup")
+                self._say(t("progress.placing", n=self.config.n_atoms))
             self._sim = make_simulation(self.config)
             if self._sim.engine == "fast":
                 _fast_ready = True

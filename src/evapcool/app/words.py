@@ -1,21 +1,18 @@
-"""The applet's words, read from the message catalog (evapcool.i18n).
+"""The applet's words, read from the message catalog of the chosen language (evapcool.i18n).
 
-English for now: the rest of the applet still draws English text, and one screen in two
-languages would be worse than one in English. The catalog holds every translation already.
+The language is chosen once at start (`--lang`, the saved setting, the system locale) and
+again when the settings screen saves another; every layer reads it through `evapcool.i18n`.
 """
 
 from __future__ import annotations
 
-from typing import Any
+from evapcool.i18n import choose_locale, number, t, use
 
-from evapcool.i18n import FALLBACK, Catalog
-
-_CATALOG: Catalog | None = None
+__all__ = ["choose", "number", "t"]
 
 
-def t(key: str, **args: Any) -> str:
-    """The applet's message `key` formatted with `args`."""
-    global _CATALOG
-    if _CATALOG is None:  # read once, when first needed
-        _CATALOG = Catalog(FALLBACK)
-    return _CATALOG.t(key, **args)
+def choose(cli: str | None = None, saved: str | None = None) -> str:
+    """Pick and use the language: --lang, then the saved setting ("auto": none), then the system."""
+    tag = choose_locale(cli, None if saved in (None, "auto") else saved)
+    use(tag)
+    return tag

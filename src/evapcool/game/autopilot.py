@@ -28,6 +28,7 @@ from typing import Any
 
 from evapcool.fileio import atomic_write_text, read_user_text
 from evapcool.game.rules import HEIGHT_MAX, HEIGHT_MIN, Game
+from evapcool.i18n import t
 from evapcool.limits import USER_FILE_MAX_BYTES
 from evapcool.physics.simulation import (
     ATOM_RADIUS,
@@ -641,7 +642,7 @@ class Autopilot:
     @property
     def label(self) -> str:
         """What the screen calls it: 'Autopilot (demo)'."""
-        return f"Autopilot ({self.name})"
+        return t("autopilot.label", name=self.name)
 
     @property
     def table_name(self) -> str:

@@ -27,6 +27,7 @@ from evapcool.fileio import (
     set_aside,
     warn,
 )
+from evapcool.i18n import t
 from evapcool.limits import USER_FILE_MAX_BYTES, shown
 
 FILE_NAME = "highscores.json"
@@ -135,16 +136,10 @@ class HighScoreTable:
         except (FileNotFoundError, NotADirectoryError):
             return []  # no table yet; if the folder is unusable, saving will say so
         except NotRegularFileError:
-            self.notices.append(
-                f"High scores: {self.path} is not a regular file (a pipe or a device?); "
-                "it is left alone and the table lasts this session only."
-            )
+            self.notices.append(t("notice.scores_not_regular", path=self.path))
             return None
         except OSError as exc:
-            self.notices.append(
-                f"High scores could not be read from {self.path} ({_reason(exc)}); "
-                "starting an empty table."
-            )
+            self.notices.append(t("notice.scores_unreadable", path=self.path, problem=_reason(exc)))
             return None
         except ValueError as exc:  # not UTF-8, or far too large for a score table
             self._set_aside(getattr(exc, "reason", None) or str(exc))
@@ -162,15 +157,9 @@ class HighScoreTable:
         try:
             moved = set_aside(self.path)
         except OSError as exc:
-            text = (
-                f"The high-score file {self.path} is damaged ({why}) and could not be "
-                f"renamed ({_reason(exc)}); starting an empty table."
-            )
+            text = t("notice.scores_damaged_kept", path=self.path, why=why, problem=_reason(exc))
         else:
-            text = (
-                f"The high-score file was damaged ({why}); it was kept as {moved.name} "
-                "and a new table was started."
-            )
+            text = t("notice.scores_damaged", why=why, name=moved.name)
         self.notices.append(text)
         warn(text)
 
@@ -252,8 +241,7 @@ class HighScoreTable:
         except OSError as exc:
             self._entries = sorted_entries([*self._known_rows(), *self._unsaved])
             self.notices.append(
-                f"High scores could not be saved to {self.path.parent} ({_reason(exc)}); "
-                "they are kept for this session only."
+                t("notice.scores_unsaved", path=self.path.parent, problem=_reason(exc))
             )
             return False
         self._unsaved = []

@@ -17,6 +17,7 @@ import math
 from collections.abc import Callable
 from dataclasses import dataclass, replace
 
+from evapcool.i18n import t
 from evapcool.limits import APPLET_SPEED
 from evapcool.physics.config import SimulationConfig
 from evapcool.physics.room import CLASSIC_ROOM, Room
@@ -326,11 +327,11 @@ def out_of_reach(
     - T >= Tc(N) and no atom can ever leave (E <= escape_energy), so T stays.
     """
     if n <= 0:
-        return "All the atoms escaped."
+        return t("lose.all_escaped")
     if energy / n < critical_temperature:
         return None  # condensing now
     if n == 1:
-        return "One atom alone cannot cool below Tc."
+        return t("lose.one_atom")
     if energy <= escape_energy:
-        return "No atom can leave any more: T stays above Tc."
+        return t("lose.stuck")
     return None

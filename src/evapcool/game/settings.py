@@ -28,6 +28,7 @@ from evapcool.fileio import (
     set_aside,
     warn,
 )
+from evapcool.i18n import PSEUDO, language_name, shipped_locales, t
 from evapcool.physics.loading import capacity
 from evapcool.physics.room import CLASSIC_ROOM
 from evapcool.physics.simulation import (
@@ -61,6 +62,8 @@ class Settings:
     radius: float = ATOM_RADIUS
     tc_law: str = "seed"
     escape: str = "rim"
+    #: The applet's language: a shipped catalog's tag, or "auto" (the system's).
+    language: str = "auto"
 
     @property
     def tc_exponent(self) -> float:
@@ -137,6 +140,11 @@ def _check_choice(name: str, value: object, allowed: tuple[str, ...]) -> str:
     return value
 
 
+def languages() -> tuple[str, ...]:
+    """What the language setting may be: "auto", then every shipped catalog and en-XA."""
+    return ("auto", *shipped_locales(), PSEUDO)
+
+
 def validate(settings: Settings, cap: Callable[[float], int] = max_atoms) -> Settings:
     """The same settings with canonical types; ValueError naming the first bad field.
 
@@ -149,6 +157,7 @@ def validate(settings: Settings, cap: Callable[[float], int] = max_atoms) -> Set
         radius=radius,
         tc_law=_check_choice("tc_law", settings.tc_law, tuple(TC_LAWS)),
         escape=_check_choice("escape", settings.escape, ESCAPE_RULES),
+        language=_check_choice("language", settings.language, languages()),
     )
 
 
@@ -157,7 +166,7 @@ def from_mapping(data: dict[str, object]) -> tuple[Settings, list[str]]:
     notices: list[str] = []
     unknown = sorted(k for k in data if k not in FIELD_NAMES and k != "version")
     if unknown:
-        notices.append(f"Settings: ignored unknown entries {', '.join(unknown)}.")
+        notices.append(t("notice.settings_unknown", names=", ".join(unknown)))
 
     def take(name: str, check: Callable[[object], _T], default: _T) -> _T:
         if name not in data:
@@ -165,7 +174,7 @@ def from_mapping(data: dict[str, object]) -> tuple[Settings, list[str]]:
         try:
             return check(data[name])
         except ValueError as exc:
-            notices.append(f"Settings: {exc}; using the default {default!r}.")
+            notices.append(t("notice.settings_bad_value", problem=exc, default=repr(default)))
             return default
 
     radius = take("radius", _check_radius, DEFAULTS.radius)
@@ -174,7 +183,13 @@ def from_mapping(data: dict[str, object]) -> tuple[Settings, list[str]]:
     n_atoms = take("n_atoms", lambda v: _check_n_atoms(v, radius), fallback_n)
     tc_law = take("tc_law", lambda v: _check_choice("tc_law", v, tuple(TC_LAWS)), DEFAULTS.tc_law)
     escape = take("escape", lambda v: _check_choice("escape", v, ESCAPE_RULES), DEFAULTS.escape)
-    return Settings(n_atoms=n_atoms, radius=radius, tc_law=tc_law, escape=escape), notices
+    language = take(
+        "language", lambda v: _check_choice("language", v, languages()), DEFAULTS.language
+    )
+    found = Settings(
+        n_atoms=n_atoms, radius=radius, tc_law=tc_law, escape=escape, language=language
+    )
+    return found, notices
 
 
 def with_overrides(settings: Settings, **overrides: Any) -> Settings:
@@ -205,8 +220,8 @@ def step(settings: Settings, name: str, direction: int) -> Settings:
     if name == "radius":
         r = max(RADIUS_MIN, min(RADIUS_MAX, round(s.radius) + d))
         return replace(s, radius=float(r), n_atoms=min(s.n_atoms, max_atoms(r)))
-    if name in ("tc_law", "escape"):
-        options = tuple(TC_LAWS) if name == "tc_law" else ESCAPE_RULES
+    if name in ("tc_law", "escape", "language"):
+        options = {"tc_law": tuple(TC_LAWS), "escape": ESCAPE_RULES, "language": languages()}[name]
         i = options.index(getattr(s, name))
         changed: dict[str, Any] = {name: options[(i + d) % len(options)]}
         return replace(s, **changed)
@@ -215,13 +230,19 @@ def step(settings: Settings, name: str, direction: int) -> Settings:
 
 def describe(settings: Settings) -> list[tuple[str, str]]:
     """(label, value) rows for an options screen."""
-    law = "2/3 (original)" if settings.tc_law == "seed" else "2/5 (this cup)"
-    rule = "fly over the rim" if settings.escape == "rim" else "energy knife"
+    s = settings
+    law = t("settings.law_seed") if s.tc_law == "seed" else t("settings.law_cup")
+    rule = t("settings.escape_rim") if s.escape == "rim" else t("settings.escape_knife")
+    auto = s.language == "auto"
     return [
-        ("Number of atoms", f"{settings.n_atoms}  (1 to {max_atoms(settings.radius)})"),
-        ("Atom radius", f"{settings.radius:g} px"),
-        ("Tc law: Tc ~ N^p, p =", law),
-        ("Escape rule", rule),
+        (t("settings.atoms"), t("settings.atoms_value", n=s.n_atoms, max=max_atoms(s.radius))),
+        (t("settings.radius"), t("settings.radius_value", radius=s.radius)),
+        (t("settings.tc_law"), law),
+        (t("settings.escape"), rule),
+        (
+            t("settings.language"),
+            t("settings.language_auto") if auto else language_name(s.language),
+        ),
     ]
 
 
@@ -250,9 +271,9 @@ def _read_file(p: Path) -> tuple[dict[str, object] | None, list[str]]:
     except (FileNotFoundError, NotADirectoryError):
         return None, []
     except NotRegularFileError:
-        return None, [f"Settings: {p} is not a regular file (a pipe or a device?); using defaults."]
+        return None, [t("notice.settings_not_regular", path=p)]
     except OSError as exc:
-        return None, [f"Settings could not be read from {p} ({exc}); using defaults."]
+        return None, [t("notice.settings_unreadable", path=p, problem=exc)]
     except ValueError as exc:  # not UTF-8, or far too large for a settings file
         return None, [_set_aside(p, getattr(exc, "reason", None) or str(exc))]
     try:
@@ -270,11 +291,9 @@ def _set_aside(path: Path, why: str) -> str:
     try:
         moved = set_aside(path)
     except OSError as exc:
-        text = f"The settings file {path} is damaged ({why}); using defaults ({exc})."
+        text = t("notice.settings_damaged_kept", path=path, why=why, problem=exc)
     else:
-        text = (
-            f"The settings file was damaged ({why}); it was kept as {moved.name}; using defaults."
-        )
+        text = t("notice.settings_damaged", why=why, name=moved.name)
     warn(text)
     return text
 
@@ -300,7 +319,7 @@ def save_settings(
             payload = {"version": FORMAT_VERSION, **asdict(s)}
             atomic_write_text(p, json.dumps(payload, indent=2) + "\n")
     except OSError as exc:
-        return [f"Settings could not be saved to {p.parent} ({exc}); they apply to this session."]
+        return [t("notice.settings_unsaved", path=p.parent, problem=exc)]
     return []
 
 

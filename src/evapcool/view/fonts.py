@@ -192,8 +192,11 @@ def runs(text: str) -> list[tuple[int, str | None, str]]:
             k, script, s = out[-1]
             out[-1] = (k, script, s + ch)
             continue
-        k = next((i for i, face in enumerate(chain) if face.has(ch)), 0)
         script = _script(ch)
+        # Right-to-left letters never from the bundled font: it has some Arabic letters
+        # but not all, and a word split between two fonts cannot join.
+        first = 1 if script is not None and len(chain) > 1 else 0
+        k = next((i for i, face in enumerate(chain) if i >= first and face.has(ch)), 0)
         prev = out[-1] if out else None
         if prev and prev[0] == k and prev[1] == script and prev[2][-1].isspace() == ch.isspace():
             out[-1] = (k, script, prev[2] + ch)
@@ -221,8 +224,12 @@ def text_image(text: str, size: int, color: Color, bold: bool = False) -> pygame
     chain = faces()
     parts = []
     for k, script, s in runs(text):
+        if not any(unicodedata.category(ch) not in ("Cf", "Mn") for ch in s):
+            continue  # marks alone (a direction mark after a space) draw nothing
         f = _sdl_font(chain[k].path, size, bold, script)
         parts.append((f.render(s, True, color), f.get_ascent()))
+    if not parts:
+        return font(size, bold).render("", True, color)
     if _rtl_paragraph(text):
         parts.reverse()
     ascent = max(a for _, a in parts)

@@ -18,11 +18,12 @@ from __future__ import annotations
 import math
 from collections import deque
 from collections.abc import Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 import pygame
 
+from evapcool import i18n
 from evapcool.view.fonts import text_image, text_size
 from evapcool.view.simlike import SimLike
 
@@ -167,9 +168,12 @@ def _log_ticks(lo: float, hi: float) -> list[float]:
 
 
 def _tick_text(v: float) -> str:
-    if v >= 1000:
-        return f"{v:.0f}"
-    return f"{v:.3g}"
+    return i18n.number(round(v)) if v >= 1000 else _g3(v)
+
+
+def _g3(v: float) -> str:
+    """Three significant digits, the language's decimal mark."""
+    return i18n.number(float(f"{v:.3g}"))
 
 
 def _blit_text(
@@ -202,14 +206,14 @@ class _Panel:
     def layout(self, rect: pygame.Rect, scale: float | None = None) -> PanelLayout:
         s = self.scale if scale is None else float(scale)
         rect = pygame.Rect(rect)
-        key = (rect.x, rect.y, rect.w, rect.h, s)
+        key = (rect.x, rect.y, rect.w, rect.h, s, i18n.active().locale)
         lay = self._layouts.get(key)
         if lay is None:
             if len(self._layouts) > 16:
                 self._layouts.clear()
-            lay = self._layouts[key] = layout(
-                rect, s, self.title, self.legend_items, self.readout_template
-            )
+            items = tuple(replace(i, text=i18n.t(i.text)) for i in self.legend_items)
+            readout = i18n.t(self.readout_template, n=88888, t="8.88", tc="8.88")
+            lay = self._layouts[key] = layout(rect, s, i18n.t(self.title), items, readout)
         return lay
 
     def plot_rect(self, rect: pygame.Rect, scale: float | None = None) -> pygame.Rect:
@@ -251,13 +255,13 @@ class EnergyPanel(_Panel):
     per-frame counts over the last `window_frames` recorded frames.
     """
 
-    title = "Energies of the trapped atoms"
+    title = "chart.energies"
     legend_items = (
-        LegendItem("bar", BAR, "atoms"),
-        LegendItem("line", CURVE, "equilibrium at T"),
-        LegendItem("bar", CUT, "cut m g H"),
+        LegendItem("bar", BAR, "chart.legend.atoms"),
+        LegendItem("line", CURVE, "chart.legend.equilibrium"),
+        LegendItem("bar", CUT, "chart.legend.cut"),
     )
-    readout_template = "N = 00000   T = 00000"
+    readout_template = "chart.readout_energy"
 
     def __init__(
         self,
@@ -392,7 +396,7 @@ class EnergyPanel(_Panel):
 
     # -- drawing ----------------------------------------------------------------
     def _static_layer(self, lay: PanelLayout) -> pygame.Surface:
-        key = (lay.rect.size, lay.scale, id(self.bin_edges))
+        key = (lay.rect.size, lay.scale, id(self.bin_edges), lay.title_text)
         if self._static is not None and self._static[0] == key:
             return self._static[1]
         surf = _blank(lay)
@@ -416,13 +420,20 @@ class EnergyPanel(_Panel):
         surface.blit(self._static_layer(lay), lay.rect)
         plot = lay.plot
         rect = lay.rect
-        self._label(surface, lay, "energy E", midbottom=(plot.centerx, rect.bottom - lay.px(2)))
-        ylabel = pygame.transform.rotate(text_image("atoms per bin", lay.small, INK), 90)
+        self._label(
+            surface,
+            lay,
+            i18n.t("chart.axis.energy"),
+            midbottom=(plot.centerx, rect.bottom - lay.px(2)),
+        )
+        ylabel = pygame.transform.rotate(
+            text_image(i18n.t("chart.axis.per_bin"), lay.small, INK), 90
+        )
         self.label_rects.append(
             surface.blit(ylabel, ylabel.get_rect(midleft=(rect.x + lay.px(4), plot.centery)))
         )
         if self.bin_edges is None:
-            self._label(surface, lay, "no data yet", midleft=lay.readout.midleft)
+            self._label(surface, lay, i18n.t("chart.no_data"), midleft=lay.readout.midleft)
             return
         self._draw_data(surface, lay)
         # Count ticks move with the (slowly adapting) y range, so they are drawn per frame.
@@ -430,7 +441,9 @@ class EnergyPanel(_Panel):
             y = round(self.count_to_y(v, rect))
             pygame.draw.line(surface, INK, (plot.x - lay.px(5), y), (plot.x, y), lay.px(2))
             self._label(surface, lay, _tick_text(v), midright=(plot.x - lay.px(6), y))
-        self._readout(surface, lay, f"N = {self.n_trapped}   T = {self.temperature:.3g}")
+        self._readout(
+            surface, lay, i18n.t("chart.readout_energy", n=self.n_trapped, t=_g3(self.temperature))
+        )
 
     def _draw_data(self, surface: pygame.Surface, lay: PanelLayout) -> None:
         """Tint, bars, curve and cut, all clipped to the inside of the frame."""
@@ -476,13 +489,13 @@ class PathPanel(_Panel):
     ends where the gas condenses; the settling afterwards is not cooling).
     """
 
-    title = "Path to condensation"
+    title = "chart.path"
     legend_items = (
-        LegendItem("dot", PATH, "your path"),
-        LegendItem("line", TC_LINE, "T = Tc(N)"),
-        LegendItem("bar", CONDENSATE, "condensate, T < Tc"),
+        LegendItem("dot", PATH, "chart.legend.your_path"),
+        LegendItem("line", TC_LINE, "chart.legend.tc_line"),
+        LegendItem("bar", CONDENSATE, "chart.legend.condensate"),
     )
-    readout_template = "N = 00000   T = 00000   Tc = 00000"
+    readout_template = "chart.readout_path"
 
     def __init__(self, stop_after_win: bool = True) -> None:
         super().__init__()
@@ -588,7 +601,14 @@ class PathPanel(_Panel):
 
     # -- drawing ----------------------------------------------------------------
     def _static_layer(self, lay: PanelLayout) -> pygame.Surface:
-        key = (lay.rect.topleft, lay.rect.size, lay.scale, self.n_range, self.t_range)
+        key = (
+            lay.rect.topleft,
+            lay.rect.size,
+            lay.scale,
+            self.n_range,
+            self.t_range,
+            lay.title_text,
+        )
         key += (self.tc0, self.exponent, self.n0)
         if self._static is not None and self._static[0] == key:
             return self._static[1]
@@ -649,9 +669,14 @@ class PathPanel(_Panel):
         surface.blit(self._static_layer(lay), lay.rect)
         plot, rect = lay.plot, lay.rect
         self._label(
-            surface, lay, "atoms in the cup N", midbottom=(plot.centerx, rect.bottom - lay.px(2))
+            surface,
+            lay,
+            i18n.t("chart.axis.atoms"),
+            midbottom=(plot.centerx, rect.bottom - lay.px(2)),
         )
-        ylabel = pygame.transform.rotate(text_image("temperature T", lay.small, INK), 90)
+        ylabel = pygame.transform.rotate(
+            text_image(i18n.t("chart.axis.temperature"), lay.small, INK), 90
+        )
         where = ylabel.get_rect(midleft=(rect.x + lay.px(2), plot.centery))
         self.label_rects.append(surface.blit(ylabel, where))
         pts = self._path_pixels(lay)
@@ -666,6 +691,6 @@ class PathPanel(_Panel):
             pygame.draw.circle(surface, PATH, pts[-1], lay.px(6))
         surface.set_clip(old)
         if self._n:
-            n, t = self._n[-1], self._t[-1]
+            n, temp = self._n[-1], self._t[-1]
             tc = float(self.tc(n))
-            self._readout(surface, lay, f"N = {n}   T = {t:.3g}   Tc = {tc:.3g}")
+            self._readout(surface, lay, i18n.t("chart.readout_path", n=n, t=_g3(temp), tc=_g3(tc)))

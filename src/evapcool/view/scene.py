@@ -14,6 +14,7 @@ from collections.abc import Sequence
 import numpy as np
 import pygame
 
+from evapcool import i18n
 from evapcool.game.highscores import Entry, format_seconds
 from evapcool.game.rules import Game
 from evapcool.view.condensate import Condensate, draw_condensate
@@ -105,7 +106,15 @@ def cup_outline(
     return np.column_stack((x + offset * slope / norm, curvature * x * x - offset / norm))
 
 
+def fit_size(text: str, size: int, width: float, bold: bool = False, least: int = 12) -> int:
+    """The largest size up to `size` (at least `least`) at which text is no wider than width."""
+    while size > least and text_size(text, size, bold)[0] > width:
+        size -= 1
+    return size
+
+
 def _shadowed(pen: Pen, text: str, size: int, center: tuple[float, float]) -> pygame.Rect:
+    size = fit_size(text, size, PLAY_RECT.width - 16, True, size // 2)
     pen.text(text, size, SHADOW, True, center=(center[0] + 3, center[1] + 3))
     return pen.text(text, size, TEXT, True, center=center)
 
@@ -150,7 +159,7 @@ class Scene:
         self.draw_thermometer(pen, game)
         self.draw_status(pen, game)
 
-    def draw_borders(self, pen: Pen, title: str = "Evaporation cooling") -> None:
+    def draw_borders(self, pen: Pen, title: str | None = None) -> None:
         w, h = SCENE_SIZE
         for rect in (
             (0, 0, w, BORDER_TOP),
@@ -159,7 +168,9 @@ class Scene:
             (w - BORDER_RIGHT, 0, BORDER_RIGHT, h),
         ):
             pen.fill(BORDER, rect)
-        pen.text(title, 40, TEXT, center=(w // 2, BORDER_TOP // 2 + 1))
+        shown = i18n.t("app.title") if title is None else title
+        size = fit_size(shown, 40, TITLE_WIDTH, least=20)
+        pen.text(shown, size, TEXT, center=(w // 2, BORDER_TOP // 2 + 1))
 
     def _cup_points(self, game: Game) -> tuple[list, list]:
         sim = game.sim
@@ -229,35 +240,37 @@ class Scene:
 
     def draw_status(self, pen: Pen, game: Game) -> None:
         speed = game.speed
-        text = f"speed {speed:g}x" if speed >= 1 else f"speed 1/{1 / speed:g}x"
+        shown = i18n.number(speed) if speed >= 1 else f"1/{i18n.number(1 / speed)}"
+        text = i18n.t("status.speed", speed=shown)
         pen.text(text, 22, (220, 220, 220), midleft=(10, BORDER_TOP // 2))
-        pen.text("H: help", 22, (220, 220, 220), midright=(SCENE_SIZE[0] - 10, BORDER_TOP // 2))
+        pen.text(
+            i18n.t("status.help_hint"),
+            22,
+            (220, 220, 220),
+            midright=(SCENE_SIZE[0] - 10, BORDER_TOP // 2),
+        )
 
     # -- messages over the play area ------------------------------------------------------
     def draw_score(self, pen: Pen, score: int) -> pygame.Rect:
         """'Score: N' in large text at the top of the play area (the win); its pixels."""
-        r = _shadowed(pen, f"Score: {score}", 84, (PLAY_RECT.centerx, MESSAGE_Y))
-        pen.text(
-            "The gas has condensed!", 30, TEXT, True, center=(PLAY_RECT.centerx, MESSAGE_Y + 58)
-        )
+        r = _shadowed(pen, i18n.t("win.score_big", n=score), 84, (PLAY_RECT.centerx, MESSAGE_Y))
+        text = i18n.t("win.condensed")
+        size = fit_size(text, 30, PLAY_RECT.width - 16, True, 18)
+        pen.text(text, size, TEXT, True, center=(PLAY_RECT.centerx, MESSAGE_Y + 58))
         return r
 
     def draw_too_few(self, pen: Pen, reason: str) -> None:
         """The gas can no longer condense: say why and offer a restart."""
         cx = PLAY_RECT.centerx
-        _shadowed(pen, "Too few atoms left", 52, (cx, MESSAGE_Y))
-        lines = [*wrap(reason, 26, PLAY_RECT.width - 40, True), "Press R to try again."]
+        _shadowed(pen, i18n.t("lose.too_few"), 52, (cx, MESSAGE_Y))
+        width = PLAY_RECT.width - 40
+        lines = [*wrap(reason, 26, width, True), *wrap(i18n.t("lose.press_r"), 26, width, True)]
         for k, line in enumerate(lines):
             pen.text(line, 26, TEXT, True, center=(cx, MESSAGE_Y + 48 + 30 * k))
 
     def draw_start_hint(self, pen: Pen) -> None:
-        pen.text(
-            "Press Space or click play to start",
-            28,
-            TEXT,
-            True,
-            center=(PLAY_RECT.centerx, PLAY_RECT.top + 40),
-        )
+        for k, line in enumerate(wrap(i18n.t("start.press_space"), 28, PLAY_RECT.width - 24, True)):
+            pen.text(line, 28, TEXT, True, center=(PLAY_RECT.centerx, PLAY_RECT.top + 40 + 30 * k))
 
     def _frame(
         self, pen: Pen, rect: pygame.Rect, shade: tuple[int, int, int, int] = OVERLAY_SHADE
@@ -285,18 +298,20 @@ class Scene:
         else:
             panel.top = top
         self._frame(pen, panel, shade)
-        pen.text(title, 34, ACCENT, True, midtop=(panel.centerx, panel.top + 12))
+        size = fit_size(title, 34, panel.width - 16, True, 20)
+        pen.text(title, size, ACCENT, True, midtop=(panel.centerx, panel.top + 12))
         return panel
 
     def draw_help(
         self, pen: Pen, rows: list[tuple[str, str]], footer: Sequence[str] = ()
     ) -> pygame.Rect:
         """A panel listing (keys, what they do), then footer lines (the frame rate)."""
-        # Rows shrink a little when there are many, so the list always fits.
+        # Rows shrink a little when there are many, so the list always fits; a long
+        # description wraps onto rows of its own (a longer language, a narrow window).
+        size, rows, footer = _help_rows(rows, footer)
         n = len(rows) + len(footer)
-        step = max(17, min(27, (PLAY_RECT.height - 76) // max(1, n)))
-        size = min(24, step - 2)
-        panel = self._overlay(pen, "Controls", 64 + step * n)
+        step = max(size + 2, min(27, (PLAY_RECT.height - 76) // max(1, n)))
+        panel = self._overlay(pen, i18n.t("controls.title"), 64 + step * n)
         col = panel.left + 18 + max(text_size(k, size, True)[0] for k, _ in rows) + 16
         for k, (keys, what) in enumerate(rows):
             y = panel.top + 52 + step * k
@@ -322,24 +337,29 @@ class Scene:
         bottom: keep it above there (the win screen's replay button).
         """
         rows = max(1, len(entries))
+        footer = [row for line in footer for row in wrap(line, 24, PLAY_RECT.width - 56, True)]
         room = bottom - 4 - (PLAY_RECT.top + 4 if top is None else top)
         step = max(20, min(30, (room - 96 - 28 * len(footer)) // rows))
         height = 96 + step * rows + 28 * len(footer)
-        panel = self._overlay(pen, "High scores", height, top, TABLE_SHADE, bottom)
+        panel = self._overlay(pen, i18n.t("scores.title"), height, top, TABLE_SHADE, bottom)
         cols = (panel.left + 16, panel.left + 50, panel.left + 222, panel.left + 292)
         y = panel.top + 54
-        for x, head in zip(cols, ("#", "name", "atoms", "time"), strict=True):
-            pen.text(head, 22, ACCENT, True, topleft=(x, y))
-        pen.text("date", 22, ACCENT, True, topright=(panel.right - 16, y))
+        heads = ("table.rank", "table.name", "table.atoms", "table.time")
+        for x, head, room in zip(cols, heads, TABLE_HEADS[:4], strict=True):
+            text = i18n.t(head)
+            pen.text(text, fit_size(text, 22, room, True), ACCENT, True, topleft=(x, y))
+        date = i18n.t("table.date")
+        size = fit_size(date, 22, TABLE_HEADS[-1], True)
+        pen.text(date, size, ACCENT, True, topright=(panel.right - 16, y))
         if not entries:
-            pen.text("No scores yet: be the first!", 24, TEXT, topleft=(cols[1], y + 30))
+            pen.text(i18n.t("scores.empty"), 24, TEXT, topleft=(cols[1], y + 30))
         size = min(24, step - 4)
         name_width = cols[2] - cols[1] - 8
         for k, e in enumerate(entries):
             y = panel.top + 84 + step * k
             mine = highlight == k + 1
             color = ACCENT if mine else TEXT
-            cells = (f"{k + 1}", e.name, f"{e.score}", format_seconds(e.seconds))
+            cells = (i18n.number(k + 1), e.name, i18n.number(e.score), format_seconds(e.seconds))
             for x, cell in zip(cols, cells, strict=True):
                 # A long name is cut at its column rather than running into the score.
                 with pen.clip(pygame.Rect(x, y - 4, name_width, step + 4)):
@@ -355,14 +375,19 @@ class Scene:
         self, pen: Pen, rows: list[tuple[str, str]], selected: int, footer: Sequence[str] = ()
     ) -> pygame.Rect:
         """The settings screen: (label, value) rows, the selected one marked."""
-        panel = self._overlay(pen, "Settings", 110 + 40 * len(rows) + 28 * len(footer))
+        footer = [row for line in footer for row in wrap(line, 22, PLAY_RECT.width - 48)]
+        panel = self._overlay(
+            pen, i18n.t("settings.title"), 110 + 40 * len(rows) + 28 * len(footer)
+        )
         for k, (label, value) in enumerate(rows):
             y = panel.top + 60 + 40 * k
             if k == selected:
                 pen.box((60, 60, 110), (panel.left + 8, y - 6, panel.w - 16, 34), 0, 4)
                 pen.text(">", 26, ACCENT, True, topleft=(panel.left + 14, y))
-            pen.text(label, 24, TEXT, k == selected, topleft=(panel.left + 34, y))
             shown = f"< {value} >" if k == selected else value
+            room = SETTING_ROW - text_size(f"< {value} >", 24, True)[0]
+            size = fit_size(label, 24, room, k == selected)
+            pen.text(label, size, TEXT, k == selected, topleft=(panel.left + 34, y))
             pen.text(shown, 24, ACCENT, True, topright=(panel.right - 16, y))
         y = panel.top + 72 + 40 * len(rows)
         for line in footer:
@@ -374,25 +399,27 @@ class Scene:
         """Under the score: the prompt, the name being typed and its length; the field."""
         frame = pygame.Rect(PLAY_RECT.left + 30, UNDER_MESSAGE, PLAY_RECT.width - 60, 136)
         self._frame(pen, frame)
-        pen.text(prompt, 26, ACCENT, True, midtop=(frame.centerx, frame.top + 10))
+        size = fit_size(prompt, 26, frame.width - 20, True)
+        pen.text(prompt, size, ACCENT, True, midtop=(frame.centerx, frame.top + 10))
         field = pygame.Rect(frame.left + 20, frame.top + 40, frame.width - 40, 44)
         box.draw(pen, field, 32)
         count = f"{len(box.text)}/{box.max_length}"
         full = len(box.text) >= box.max_length
         pen.text(
-            f"{count}  (full)" if full else count,
+            i18n.t("win.name_full", count=count) if full else count,
             22,
             ACCENT if full else TEXT,
             full,
             topright=(field.right, field.bottom + 8),
         )
-        pen.text("Enter: store   Esc: skip", 22, TEXT, topleft=(field.left, field.bottom + 8))
+        pen.text(i18n.t("win.store_or_skip"), 22, TEXT, topleft=(field.left, field.bottom + 8))
         return field
 
     def draw_replay_button(self, pen: Pen, label: str, hover: bool) -> pygame.Rect:
         """The win screen's 'Replay code: C copies it' button; returns its pixels."""
         self._frame(pen, REPLAY_RECT, (40, 40, 90, 235) if hover else TABLE_SHADE)
-        pen.text(label, 20, ACCENT, True, center=REPLAY_RECT.center)
+        size = fit_size(label, 20, REPLAY_RECT.width - 16, True)
+        pen.text(label, size, ACCENT, True, center=REPLAY_RECT.center)
         return pen.rect(REPLAY_RECT)
 
     def draw_notices(
@@ -412,6 +439,35 @@ class Scene:
         return box
 
 
+#: The status texts' room at each end of the top border, and the title's between them.
+STATUS_WIDTH = 136
+TITLE_WIDTH = SCENE_SIZE[0] - 2 * (STATUS_WIDTH + 18)
+#: The high-score table's column headers: room for each (#, name, atoms, time, date).
+TABLE_HEADS = (32, 164, 62, 80, 100)
+#: A settings row: its label and its value side by side.
+SETTING_ROW = PLAY_RECT.width - 24 - 34 - 16 - 12
+#: The help panel's width for keys and descriptions (inside its margins), logical px.
+HELP_WIDTH = PLAY_RECT.width - 24 - 36
+
+
+def _help_rows(
+    rows: list[tuple[str, str]], footer: Sequence[str]
+) -> tuple[int, list[tuple[str, str]], list[str]]:
+    """The text size and the help's rows and footer wrapped to the panel at that size."""
+    for size in range(24, 11, -1):
+        keys = max(text_size(k, size, True)[0] for k, _ in rows) + 16
+        out = [
+            (keys_text if i == 0 else "", part)
+            for keys_text, what in rows
+            for i, part in enumerate(wrap(what, size, HELP_WIDTH - keys))
+        ]
+        lines = [row for line in footer for row in wrap(line, size, HELP_WIDTH)]
+        step = (PLAY_RECT.height - 76) // max(1, len(out) + len(lines))
+        if size <= step - 2 or size == 12:
+            return size, out, lines
+    raise AssertionError("unreachable")
+
+
 def draw_progress(
     pen: Pen, what: str, fraction: float | None, elapsed: float, note: str = ""
 ) -> pygame.Rect:
@@ -420,7 +476,9 @@ def draw_progress(
     pen.fill(BACKGROUND, PLAY_RECT)
     Scene().draw_borders(pen)
     cx = PLAY_RECT.centerx
-    pen.text("Getting ready", 44, TEXT, True, center=(cx, PLAY_RECT.top + 150))
+    ready = i18n.t("app.getting_ready")
+    size = fit_size(ready, 44, PLAY_RECT.width - 16, True, 22)
+    pen.text(ready, size, TEXT, True, center=(cx, PLAY_RECT.top + 150))
     bar = pygame.Rect(PLAY_RECT.left + 40, PLAY_RECT.top + 230, PLAY_RECT.width - 80, 28)
     pen.box(GLASS, bar)
     inner = bar.inflate(-6, -6)
@@ -435,17 +493,32 @@ def draw_progress(
     pen.box(CUP_COLOR, bar, width=2)
     for k, line in enumerate(wrap(what, 26, bar.w, True)):
         pen.text(line, 26, TEXT, True, midtop=(cx, bar.bottom + 14 + 28 * k))
-    pen.text(f"{elapsed:.0f} s", 26, TEXT, midtop=(cx, bar.bottom + 80))
+    pen.text(i18n.t("progress.seconds", s=round(elapsed)), 26, TEXT, midtop=(cx, bar.bottom + 80))
     for k, line in enumerate(wrap(note, 22, bar.w)):
         pen.text(line, 22, (225, 225, 225), midtop=(cx, bar.bottom + 130 + 24 * k))
     return pen.rect(bar)
 
 
+def _pieces(text: str, size: int, width: float, bold: bool) -> list[str]:
+    """The words of text; a word wider than the width (Chinese, Japanese: no spaces) is cut
+    into runs of characters that fit."""
+    out: list[str] = []
+    for word in text.split():
+        while text_size(word, size, bold)[0] > width and len(word) > 1:
+            k = len(word) - 1
+            while k > 1 and text_size(word[:k], size, bold)[0] > width:
+                k -= 1
+            out.append(word[:k])
+            word = word[k:]
+        out.append(word)
+    return out
+
+
 def wrap(text: str, size: int, width: float, bold: bool = False) -> list[str]:
-    """Greedy word wrap to a logical width (a word longer than it gets its own row)."""
+    """Greedy word wrap to a logical width (a word wider than it is cut where it must be)."""
     rows: list[str] = []
     row = ""
-    for word in text.split():
+    for word in _pieces(text, size, width, bold):
         candidate = f"{row} {word}" if row else word
         if row and text_size(candidate, size, bold)[0] > width:
             rows.append(row)
