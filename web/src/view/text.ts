@@ -59,7 +59,32 @@ export function textWidth(ctx: CanvasRenderingContext2D, text: string, size: num
   return ctx.measureText(text).width;
 }
 
-/** Greedy word wrap to a width (a word wider than that gets its own row). */
+/** Chinese, Japanese and Korean characters: a line may break between any two of them. */
+const CJK = /[\u3040-\u30ff\u3400-\u9fff\uac00-\ud7af\uf900-\ufaff\uff00-\uffef]/;
+
+/** The pieces a line may break between: words, and each CJK character of a word. */
+export function breakUnits(text: string): Array<{ piece: string; space: boolean }> {
+  const out: Array<{ piece: string; space: boolean }> = [];
+  for (const word of text.split(/\s+/).filter(Boolean)) {
+    if (!CJK.test(word)) {
+      out.push({ piece: word, space: true });
+      continue;
+    }
+    let latin = "";
+    [...word].forEach((ch, k) => {
+      if (CJK.test(ch)) {
+        if (latin) out.push({ piece: latin, space: false });
+        latin = "";
+        out.push({ piece: ch, space: k === 0 });
+      } else latin += ch;
+    });
+    if (latin) out.push({ piece: latin, space: false });
+  }
+  return out;
+}
+
+/** Greedy word wrap to a width (a word wider than that gets its own row); CJK text breaks
+ * between characters. */
 export function wrap(
   ctx: CanvasRenderingContext2D,
   text: string,
@@ -68,8 +93,9 @@ export function wrap(
 ): string[] {
   const rows: string[] = [];
   let row = "";
-  for (const word of text.split(/\s+/).filter(Boolean)) {
-    const candidate = row ? `${row} ${word}` : word;
+  for (const { piece, space } of breakUnits(text)) {
+    const word = piece;
+    const candidate = row ? `${row}${space ? " " : ""}${word}` : word;
     if (row && textWidth(ctx, candidate, size) > width) {
       rows.push(row);
       row = word;
