@@ -170,10 +170,6 @@ export class App implements Animated {
         return app.game;
       },
       notify: (t) => this.notify(t),
-      say: (t) => this.say(t),
-      get touch() {
-        return app.hints.touch;
-      },
     });
     this.options = new SettingsEditor(
       {

@@ -255,10 +255,9 @@ export class RemoteGame implements GameLike {
       const wonAt = h[HEADER.wonAt];
       if (this.wonAtNow === null && !Number.isNaN(wonAt)) {
         this.wonAtNow = wonAt;
-        // The win is told with the score it had then, as the page's own game tells it.
+        // The score is fixed at the whole frame the win was seen, as the page's own game's.
         this.winScore = h[HEADER.scoreAtWin];
         this.hooks.won();
-        this.winScore = null;
       }
     }
     if (this.applied >= this.seq) {
@@ -320,8 +319,8 @@ export class RemoteGame implements GameLike {
   }
 
   get score(): number | null {
-    if (this.winScore !== null) return this.winScore;
-    return this.won ? this.sim.nTrapped : null;
+    if (!this.won) return null;
+    return this.winScore ?? this.sim.nTrapped;
   }
 
   get allEscaped(): boolean {
@@ -379,6 +378,7 @@ export class RemoteGame implements GameLike {
     this.pausedNow = true;
     this.height = HEIGHT_START;
     this.wonAtNow = null;
+    this.winScore = null;
     this.asked += 1;
     this.command({ kind: "restart", config: this.withSeed(c) });
   }

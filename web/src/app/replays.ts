@@ -11,8 +11,6 @@ import { RemoteGame, type GameLike } from "./remote";
 export interface ReplayHost {
   readonly game: GameLike;
   notify(text: string): void;
-  say(text: string): void;
-  readonly touch: boolean;
 }
 
 export class Replays {
@@ -35,12 +33,9 @@ export class Replays {
     const rec = recordingOf(g.config, seed, runs, g.won, g.score);
     const code = await encode(rec);
     if (g.generation !== generation) return;
+    // Not spoken: the win's own message is what the live region says now; the button and
+    // key C are on the win screen and in the help.
     [this.code, this.recording, this.generation] = [code, rec, generation];
-    this.host.say(
-      this.host.touch
-        ? "Replay code ready: tap Copy replay code."
-        : "Replay code ready: C copies it.",
-    );
     for (const listener of this.onCode) listener(code, rec);
   }
 
