@@ -198,7 +198,7 @@ def _watched(args: argparse.Namespace) -> tuple[Recording | None, str | None]:
         return None, "--replay cannot be combined with --class"
     text = args.replay
     path = Path(text)
-    if not text.startswith("EC") and path.is_file():
+    if not text.startswith("EC") and _is_file(path):
         try:
             text = read_user_text(path, USER_FILE_MAX_BYTES).strip()
         except (OSError, ValueError) as exc:
@@ -207,6 +207,14 @@ def _watched(args: argparse.Namespace) -> tuple[Recording | None, str | None]:
         return decode(text), None
     except ReplayError as exc:
         return None, f"--replay: not a replay code to watch ({exc})"
+
+
+def _is_file(path: Path) -> bool:
+    """A regular file there; False for a name the system refuses (too long, say)."""
+    try:
+        return path.is_file()
+    except OSError:
+        return False
 
 
 def _user_name() -> str:
