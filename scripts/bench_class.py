@@ -2,12 +2,13 @@
 
     python scripts/bench_class.py [--students 300] [--workers 2] [--spread 60] [--burst 50]
 
-Starts a real `evapcool class` on 127.0.0.1, opens a challenge, and sends one game per
-student (real recordings of the autopilot, perturbed so that each is a different game, one
-in ten forged): once as a burst (`--burst` students at a time, as the load test does), once
-spread over `--spread` seconds (students finishing at random moments of a minute, as in a
-lecture). Prints verified games per second and the p50/p95 latency from submit to the
-acknowledgement and to the leaderboard's stream. Traffic goes to 127.0.0.1 only.
+Starts a real `evapcool class` on 127.0.0.1, opens a challenge, lets every student join,
+then sends one game per student (real recordings of the autopilot, perturbed so that each
+is a different game, one in ten forged): once as a burst (`--burst` students at a time, as
+the load test does), once spread over `--spread` seconds (students finishing at random
+moments of a minute, as in a lecture). Prints verified games per second and the p50/p95
+latency from submit to the acknowledgement and to the leaderboard's stream. Traffic goes to
+127.0.0.1 only.
 """
 
 from __future__ import annotations
@@ -63,9 +64,12 @@ async def send_all(server: Server, challenge: object, entries, starts: list[floa
                     for e in json.loads(line[6:])["entries"]:
                         seen.setdefault(e["name"], now)
 
-    async def student(client: httpx.AsyncClient, name: str, code: str, honest: bool, at: float):
+    async def join(client: httpx.AsyncClient, name: str) -> dict[str, str]:
         joined = await client.post(server.base + "/api/join", json={"name": name})
-        who = {"Authorization": f"Bearer {joined.json()['token']}"}
+        return {"Authorization": f"Bearer {joined.json()['token']}"}
+
+    async def student(client: httpx.AsyncClient, name: str, code: str, honest: bool, at: float):
+        who = tokens[name]
         await asyncio.sleep(max(0.0, at - (time.perf_counter() - t0)))
         async with limit:
             sent[name] = time.perf_counter()
@@ -80,6 +84,11 @@ async def send_all(server: Server, challenge: object, entries, starts: list[floa
 
     limits = httpx.Limits(max_connections=gate + 20)
     async with httpx.AsyncClient(timeout=600, limits=limits) as client:
+        # Everyone joins first (names are picked before games end); then the clock runs.
+        names = [n for n, _, _ in entries]
+        tokens = dict(
+            zip(names, await asyncio.gather(*(join(client, n) for n in names)), strict=True)
+        )
         watcher = asyncio.create_task(watch(client))
         await asyncio.sleep(0.3)
         t0 = time.perf_counter()

@@ -37,15 +37,20 @@ PAGE_WORDS = {
 }
 
 STYLE_PROJECTOR = """
-body{background:#0b0f17;color:#f2f4f8;font:2.2vw/1.3 system-ui,sans-serif;margin:0;padding:2vw}
-h1{font-size:4vw;margin:0 0 1vw}#top{display:flex;gap:3vw;align-items:flex-start}
-#qr svg{width:22vw;height:22vw;background:#fff;padding:1vw;border-radius:1vw}
-#join{font-size:2.6vw;word-break:break-all}#settings{font-size:2.4vw;color:#9fd3ff}
-table{border-collapse:collapse;width:100%;font-size:3vw;margin-top:1.5vw}
-td,th{padding:.4vw 1.2vw;text-align:start}tr:nth-child(even){background:#151c2a}
-th{color:#9aa3b5;font-weight:400}#rejected{color:#ffb4a8}
-#replay{border:.3vw solid #9fd3ff;padding:1vw;margin-top:1vw}#replay code{font-size:1.2vw;
-word-break:break-all;display:block;max-height:8vw;overflow:hidden}a{color:#9fd3ff}
+html,body{height:100%;margin:0}
+body{background:#0b0f17;color:#f2f4f8;font:1.6vw/1.3 system-ui,sans-serif;overflow:hidden}
+#page{display:grid;grid-template-columns:minmax(0,34vw) minmax(0,1fr);gap:3vw;height:100%;
+box-sizing:border-box;padding:2vw}
+h1{font-size:3vw;margin:0 0 1vw}
+#qr svg{display:block;width:min(28vw,48vh);height:auto;background:#fff;border-radius:1vw}
+#join{font-size:1.8vw;word-break:break-all}#settings{font-size:1.6vw;color:#9fd3ff}
+#rejected{color:#ffb4a8}#board-box{overflow:hidden;min-height:0}
+table{border-collapse:collapse;width:100%;font-size:2.4vw}
+td,th{padding:.3vw 1vw;text-align:start;white-space:nowrap;overflow:hidden;
+text-overflow:ellipsis;max-width:30vw}tr:nth-child(even){background:#151c2a}
+th{color:#9aa3b5;font-weight:400}
+#replay{border:.3vw solid #9fd3ff;padding:1vw;margin-top:1vw}#replay code{font-size:1vw;
+word-break:break-all;display:block;max-height:6vw;overflow:hidden}a{color:#9fd3ff}
 """
 STYLE_LECTURER = """
 body{font:16px/1.4 system-ui,sans-serif;margin:1.5em;max-width:70em}
@@ -160,12 +165,12 @@ PAGE = Template("""<!doctype html>
 <script>$script</script></body></html>
 """)
 
-PROJECTOR_BODY = Template("""<h1>$title</h1>
-<div id="top"><div id="qr">$qr</div><div><p id="join">$join</p>
-<p id="settings"></p><p id="rejected"></p></div></div>
+PROJECTOR_BODY = Template("""<div id="page"><div id="side"><h1>$title</h1>
+<div id="qr">$qr</div><p id="join">$join</p>
+<p id="settings"></p><p id="rejected"></p>
 <div id="replay" hidden><div id="replay-name"></div><div id="replay-summary"></div>
-<code id="replay-code"></code><a id="replay-link"></a></div>
-<table id="board"></table>""")
+<code id="replay-code"></code><a id="replay-link"></a></div></div>
+<div id="board-box"><table id="board"></table></div></div>""")
 
 LECTURER_BODY = Template("""<h1>$title</h1>
 <p><a href="/projector" target="_blank">$projector</a> · <a id="export" download>$export</a></p>

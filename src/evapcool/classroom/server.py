@@ -183,7 +183,10 @@ def _qr_svg(url: str) -> str:
     """The QR code of a URL as inline SVG (dark modules on white)."""
     import segno
 
-    svg: str = segno.make(url, error="m").svg_inline(scale=8, dark="#000", light="#fff")
+    # No fixed size (a viewBox instead): the projector's style scales it to the screen.
+    svg: str = segno.make(url, error="m").svg_inline(
+        omitsize=True, border=2, dark="#000", light="#fff"
+    )
     return svg
 
 
