@@ -14,6 +14,9 @@ export interface PageState {
   initialTemperature: number;
   criticalTemperature: number;
   won: boolean;
+  /** Play time (s) of the whole frame the win was counted at, or null: the physics may show
+   * the gas condensed (won) a moment before the game counts it at the frame's end. */
+  wonAt: number | null;
   score: number | null;
   time: number;
   overlay: string | null;
@@ -64,6 +67,7 @@ export function exposeApi(app: App): void {
         initialTemperature: s.initialTemperature,
         criticalTemperature: s.criticalTemperature,
         won: g.won,
+        wonAt: g.wonAt,
         score: g.score,
         time: s.time,
         overlay: app.overlay,

@@ -59,7 +59,7 @@ try {
     await page.waitForFunction(() => window.evapcool.app.fixedSeed === 7);
     await page.keyboard.press("Space");
     let s = await page.evaluate(() => window.evapcool.state());
-    for (let i = 0; i < 300 && !s.won; i++) {
+    for (let i = 0; i < 300 && s.wonAt === null; i++) {
       if (s.trapHeight > 80 + 20 * k) await page.keyboard.press("ArrowDown");
       await page.evaluate(() => window.evapcool.runFrames(25));
       s = await page.evaluate(() => window.evapcool.state());

@@ -105,7 +105,7 @@ async function student(name, floor) {
   await page.waitForFunction(() => window.evapcool.app.fixedSeed !== null);
   let s = await state();
   assert.equal(await page.evaluate(() => window.evapcool.app.fixedSeed), SEED);
-  for (let k = 0; k < 300 && !s.won; k++) {
+  for (let k = 0; k < 300 && s.wonAt === null; k++) {
     if (s.trapHeight > floor) await page.keyboard.press("ArrowDown");
     await page.evaluate(() => window.evapcool.runFrames(25));
     s = await state();

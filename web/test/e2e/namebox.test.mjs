@@ -20,7 +20,7 @@ async function winGame(page) {
   await page.evaluate(() => localStorage.clear());
   await page.keyboard.press("Space");
   let s = await state(page);
-  for (let k = 0; k < 200 && !s.won; k++) {
+  for (let k = 0; k < 200 && s.wonAt === null; k++) {
     if (s.trapHeight > 100) await page.keyboard.press("ArrowDown");
     await page.evaluate(() => window.evapcool.runFrames(25));
     s = await state(page);

@@ -311,7 +311,7 @@ describe("the page", () => {
     await page.keyboard.press("Space");
     // Lower the trap 5 px every 25 frames (real key presses), until the gas condenses.
     let s = await state(page);
-    for (let k = 0; k < 200 && !s.won; k++) {
+    for (let k = 0; k < 200 && s.wonAt === null; k++) {
       if (s.trapHeight > 100) await page.keyboard.press("ArrowDown");
       await page.evaluate(() => window.evapcool.runFrames(25));
       s = await state(page);

@@ -147,7 +147,7 @@ describe("27.2 every control by touch, hints in the device's words", () => {
     await page.keyboard.press("a");
     assert.equal((await state(page)).autopilot, true);
     let s = await state(page);
-    for (let k = 0; k < 40 && !s.won; k++) {
+    for (let k = 0; k < 40 && s.wonAt === null; k++) {
       await page.evaluate(() => window.evapcool.runFrames(25));
       s = await state(page);
     }

@@ -25,7 +25,7 @@ const state = (page) => page.evaluate(() => window.evapcool.state());
 async function winGame(page) {
   await page.keyboard.press("Space");
   let s = await state(page);
-  for (let k = 0; k < 200 && !s.won; k++) {
+  for (let k = 0; k < 200 && s.wonAt === null; k++) {
     if (s.trapHeight > 100) await page.keyboard.press("ArrowDown");
     await page.evaluate(() => window.evapcool.runFrames(25));
     s = await state(page);
@@ -121,7 +121,7 @@ describe("replay codes between the editions", { skip: !existsSync(PYTHON) && "no
       s.notices.some((n) => n.startsWith("Watching a replay")),
       s.notices.join("|"),
     );
-    for (let k = 0; k < 200 && !s.won; k++) {
+    for (let k = 0; k < 200 && s.wonAt === null; k++) {
       await page.evaluate(() => window.evapcool.runFrames(30));
       s = await state(page);
     }

@@ -15,7 +15,7 @@ try {
   await page.keyboard.press("Space");
   for (let k = 0; k < 200; k++) {
     const s = await page.evaluate(() => window.evapcool.state());
-    if (s.won) break;
+    if (s.wonAt !== null) break; // the win counted (at the frame's end)
     if (s.trapHeight > 100) await page.keyboard.press("ArrowDown");
     await page.evaluate(() => window.evapcool.runFrames(25));
   }
