@@ -15,7 +15,6 @@ from __future__ import annotations
 
 import argparse
 import asyncio
-import dataclasses
 import json
 import random
 import sys
@@ -26,21 +25,7 @@ from pathlib import Path
 import httpx
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tests"))
-from classhelp import SEED, Server, open_challenge, start_server, variant
-
-from evapcool.game.replay import encode
-
-
-def games(students: int) -> list[tuple[str, str, bool]]:
-    """(name, code, honest) per student; one in ten claims one atom more than it won."""
-    out = []
-    for i in range(students):
-        rec = variant(SEED, i + 1)
-        honest = i % 10 != 0
-        if not honest:
-            rec = dataclasses.replace(rec, won=True, score=rec.score + 1)
-        out.append((f"Student {i:03d}", encode(rec), honest))
-    return out
+from classhelp import Server, open_challenge, start_server, student_games
 
 
 def quantile(values: list[float], q: float) -> float:
@@ -121,7 +106,7 @@ def main() -> int:
     p.add_argument("--spread", type=float, default=60.0)
     p.add_argument("--burst", type=int, default=50)
     args = p.parse_args()
-    entries = games(args.students)
+    entries = student_games(args.students)
     rng = random.Random(1)
     for label, starts, gate in (
         (f"burst of {args.burst} at a time", [0.0] * args.students, args.burst),

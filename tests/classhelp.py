@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import contextlib
+import dataclasses
 import os
 import re
 import signal
@@ -22,6 +23,19 @@ SEED = 11
 #: Seconds a server gets to start (the verifying worker loads the compiled engine).
 START_TIMEOUT = 90.0
 _CACHE: dict[tuple[int, int], Recording] = {}
+
+
+def student_games(students: int, forged_every: int = 10) -> list[tuple[str, str, bool]]:
+    """(name, code, honest) per student: all different honest games, and one in
+    `forged_every` claiming one atom more than it won (the load test and the benchmark)."""
+    out = []
+    for i in range(students):
+        rec = variant(SEED, i + 1)
+        honest = i % forged_every != 0
+        if not honest:
+            rec = dataclasses.replace(rec, won=True, score=rec.score + 1)
+        out.append((f"Student {i:03d}", encode(rec), honest))
+    return out
 
 
 def variant(seed: int, k: int) -> Recording:

@@ -7,16 +7,13 @@ Prints the 95th-percentile latency of submit -> 200 and of submit -> seen on the
 from __future__ import annotations
 
 import asyncio
-import dataclasses
 import json
 import statistics
 import time
 from pathlib import Path
 
 import httpx
-from classhelp import SEED, Server, open_challenge, start_server, variant
-
-from evapcool.game.replay import encode
+from classhelp import Server, open_challenge, start_server, student_games
 
 STUDENTS = 300
 FORGED_EVERY = 10  # one student in ten claims more than their game gives
@@ -25,14 +22,7 @@ CONCURRENCY = 50
 
 def games() -> list[tuple[str, str, bool]]:
     """(name, code, honest) of every student; honest ones are all different games."""
-    out = []
-    for i in range(STUDENTS):
-        rec = variant(SEED, i + 1)
-        honest = i % FORGED_EVERY != 0
-        if not honest:
-            rec = dataclasses.replace(rec, won=True, score=rec.score + 1)
-        out.append((f"Student {i:03d}", encode(rec), honest))
-    return out
+    return student_games(STUDENTS, FORGED_EVERY)
 
 
 def p95(values: list[float]) -> float:
