@@ -6,6 +6,7 @@ import { copyFileSync } from "node:fs";
 import { resolve } from "node:path";
 import { defineConfig, type Plugin } from "vite";
 import { wasmCore } from "./scripts/wasm-plugin.mjs";
+import { catalogs } from "./scripts/catalogs-plugin.mjs";
 
 /** The copy shipped in the Python package (`evapcool web`); CI checks it equals a fresh build. */
 const PACKAGE_COPY = resolve(import.meta.dirname, "../src/evapcool/web/evapcool.html");
@@ -66,6 +67,7 @@ export default defineConfig({
   worker: { plugins: () => [wasmCore()] },
   plugins: [
     wasmCore(),
+    catalogs(),
     singleFile(),
     {
       name: "evapcool-page-name",

@@ -3,6 +3,7 @@
 // node scripts/run.mjs scripts/NAME.ts ARGS... calls the script's main(ARGS).
 import { build } from "vite";
 import { wasmCore } from "./wasm-plugin.mjs";
+import { catalogs } from "./catalogs-plugin.mjs";
 import { basename, resolve } from "node:path";
 import { fileURLToPath, pathToFileURL } from "node:url";
 
@@ -18,7 +19,7 @@ await build({
   configFile: false,
   logLevel: "error",
   root: web,
-  plugins: [wasmCore()],
+  plugins: [wasmCore(), catalogs()],
   build: {
     ssr: resolve(web, script),
     outDir,

@@ -3,18 +3,7 @@
  * (src/evapcool/locales/), the same ICU MessageFormat subset as evapcool.i18n, with plural
  * categories and number formats from Intl so both editions print the same words.
  */
-import en from "../../src/evapcool/locales/en.json";
-import de from "../../src/evapcool/locales/de.json";
-import fr from "../../src/evapcool/locales/fr.json";
-import es from "../../src/evapcool/locales/es.json";
-import it from "../../src/evapcool/locales/it.json";
-import nl from "../../src/evapcool/locales/nl.json";
-import pl from "../../src/evapcool/locales/pl.json";
-import ptBr from "../../src/evapcool/locales/pt-BR.json";
-import zhCn from "../../src/evapcool/locales/zh-CN.json";
-import ja from "../../src/evapcool/locales/ja.json";
-import ko from "../../src/evapcool/locales/ko.json";
-import ar from "../../src/evapcool/locales/ar.json";
+import { english, packed } from "virtual:evapcool-catalogs";
 
 /** One catalog file: who wrote it, its direction, and the messages by stable dotted id. */
 export interface CatalogFile {
@@ -26,7 +15,20 @@ export const FALLBACK = "en";
 export const PSEUDO = "en-XA";
 export const STORAGE_KEY = "evapcool.lang";
 
-const SHIPPED: CatalogFile[] = [en, de, fr, es, it, nl, pl, ptBr, zhCn, ja, ko, ar];
+const en: CatalogFile = english;
+
+/** The other locales, unpacked once (a browser without DecompressionStream shows English). */
+async function unpack(base64: string): Promise<CatalogFile[]> {
+  try {
+    const bytes = Uint8Array.from(atob(base64), (c) => c.charCodeAt(0));
+    const stream = new Blob([bytes]).stream().pipeThrough(new DecompressionStream("deflate-raw"));
+    return JSON.parse(await new Response(stream).text()) as CatalogFile[];
+  } catch {
+    return [];
+  }
+}
+
+const SHIPPED: CatalogFile[] = [en, ...(await unpack(packed))];
 export const CATALOGS: Record<string, CatalogFile> = Object.fromEntries(
   SHIPPED.map((c) => [c.meta.tag, c]),
 );
@@ -270,7 +272,7 @@ export function createTranslator(locale: string): Translator {
       if (text === undefined) {
         if (!missingKeys.has(tag)) missingKeys.set(tag, new Set());
         missingKeys.get(tag)!.add(key);
-        text = en.messages[key as keyof typeof en.messages];
+        text = en.messages[key] ?? key;
         use = english;
       }
       return render(parseMessage(text, key), args, use, 0);
@@ -304,4 +306,53 @@ function render(nodes: Node[], args: Args, tools: Tools, count: number): string 
     }
   }
   return out;
+}
+
+let current: Translator | null = null;
+const listeners: Array<(t: Translator) => void> = [];
+
+/** The page's language from now on (best match of `locale`); listeners redo their words. */
+export function useLocale(locale: string): Translator {
+  current = createTranslator(locale);
+  for (const listener of listeners) listener(current);
+  return current;
+}
+
+/** The language in use (English until `useLocale`). */
+export function activeTranslator(): Translator {
+  return current ?? useLocale(FALLBACK);
+}
+
+/** Called after each change of language (aria labels, the document's lang and dir). */
+export function onLocaleChange(listener: (t: Translator) => void): void {
+  listeners.push(listener);
+}
+
+/** The active language's message `key` with `args` (English, reported, when it lacks one). */
+export function t(key: string, args?: Args): string {
+  return activeTranslator().t(key, args);
+}
+
+/** A number as the active language writes it (decimal comma, grouping). */
+export function formatNumber(value: number): string {
+  return activeTranslator().formatNumber(value);
+}
+
+/** The name of each shipped language in itself, by tag (the settings' language menu). */
+export function languageNames(): Array<{ tag: string; name: string }> {
+  return Object.values(CATALOGS)
+    .map((c) => ({ tag: c.meta.tag, name: c.meta.name }))
+    .sort((a, b) => a.tag.localeCompare(b.tag));
+}
+
+/** The active language's decimal mark ("." or "," or "٫"). */
+export function decimalMark(): string {
+  return formatNumber(0.5).replace(/[^.,٫]/g, "") || ".";
+}
+
+/** `value` with exactly `digits` decimals as the active language writes it (0,60 in German). */
+export function formatFixed(value: number, digits: number): string {
+  const tag = activeTranslator().locale;
+  const options = { minimumFractionDigits: digits, maximumFractionDigits: digits };
+  return new Intl.NumberFormat(tag === PSEUDO ? FALLBACK : tag, options).format(value);
 }

@@ -12,7 +12,7 @@ import { FPS } from "../game/constants";
 import { forceWin, randomSeed, replayGolden } from "../game/engine";
 import { NAME_MAX } from "../game/highscores";
 import { DEFAULT_CONFIG, Game, type GameConfig, type SimFactory } from "../game/rules";
-import { describe, type Settings } from "../game/settings";
+import type { Settings } from "../game/settings";
 import { emptyAtoms, type AtomArrays } from "../game/sim";
 import type { KeyValue } from "../game/store";
 import { Condensate } from "../view/condensate";
@@ -48,7 +48,8 @@ import { configOf, type Recording, type ReplaySettings } from "../game/replay";
 import type { Challenge, ClassMode } from "./classmode";
 import { decode } from "../game/replaycode";
 import { PASTE_BOX, Verifier } from "./verifier";
-import { describeRun, NAME_PROMPT, Scoreboard } from "./scoring";
+import { describeRun, Scoreboard } from "./scoring";
+import { formatFixed, t } from "../i18n";
 
 export { pickTarget } from "./input";
 
@@ -74,6 +75,8 @@ export interface AppOptions {
   notices?: string[];
   /** The physics worker to play in (absent: the page's own loop plays). */
   worker?: Worker | null;
+  /** The language of the browser and the address (the language menu's "as the browser"). */
+  browserLocale?: string;
 }
 
 export type Overlay = null | "help" | "table" | "settings" | "verify";
@@ -180,6 +183,7 @@ export class App implements Animated {
         notify: (t) => this.notify(t),
         say: (t) => this.say(t),
         closeOverlay: () => (this.overlay = null),
+        browserLocale: opts.browserLocale ?? "en",
       },
       opts.overrides ?? {},
     );
@@ -225,7 +229,7 @@ export class App implements Animated {
     } catch (err) {
       if (!(err instanceof RangeError) || !Object.keys(options.overrides).length) throw err;
       const line = err instanceof ParameterError ? err.render(ADDRESS_NAMES) : err.message;
-      this.notify(`Address: ${line}; playing the saved settings.`);
+      this.notify(t("page.address_saved_settings", { problem: line }));
       options.overrides = {};
       return this.makeGame(configFor(options.runSettings()));
     }
@@ -260,20 +264,19 @@ export class App implements Animated {
     this.fixedSeed = challenge.seed;
     this.restart();
     const s = challenge.settings;
-    this.notify(
-      `Class challenge: ${s.n_atoms} atoms of radius ${s.radius}, ${s.escape}, the same start for everyone.`,
-    );
+    this.notify(t("page.class_challenge", { n: s.n_atoms, radius: s.radius, escape: s.escape }));
   }
 
   /** The win's notice when the autopilot or a replay won (never a player's score). */
   private notAPlayer(score: number): string | null {
-    if (this.replaying)
-      return `The replay reached the win with ${score} atoms (claimed: ${this.replaying.score}).`;
-    if (this.challengeSettings)
-      return `${score} atoms: your game goes to the class's leaderboard once the server replays it.`;
+    if (this.replaying) return t("page.replay_won", { n: score, claimed: this.replaying.score });
+    if (this.challengeSettings) return t("page.class_won", { n: score });
     const pilot = this.autopilot;
     if (pilot?.flew)
-      return `Autopilot (${pilot.name}) won with ${score} atoms: not a player's score, not stored.`;
+      return t("page.autopilot_won", {
+        name: t("autopilot.label", { name: pilot.name }),
+        n: score,
+      });
     return null;
   }
 
@@ -283,14 +286,14 @@ export class App implements Animated {
     try {
       rec = await decode(code);
     } catch (err) {
-      this.notify(`Address: replay is not a replay code to watch (${(err as Error).message}).`);
+      this.notify(t("page.address_bad_replay", { problem: (err as Error).message }));
       return;
     }
     this.replaying = rec;
     this.fixedSeed = rec.seed;
     this.restart();
-    const v = `${rec.edition}, claimed ${rec.won ? `${rec.score} atoms` : "no win"}`;
-    this.notify(`Watching a replay (${v}): Space plays it; R starts it again.`);
+    const won = rec.won ? "yes" : "no";
+    this.notify(t("page.watching", { edition: rec.edition, won, n: rec.score }));
   }
 
   /** The replay's heights from the start of this game (a watched replay only). */
@@ -415,7 +418,7 @@ export class App implements Animated {
     switch (action) {
       case "pause":
         g.togglePause();
-        this.say(g.paused ? "Paused" : "Playing");
+        this.say(t(g.paused ? "page.paused" : "page.playing"));
         break;
       case "restart":
         this.restart();
@@ -445,21 +448,21 @@ export class App implements Animated {
         break;
       case "faster":
         g.faster();
-        this.say(`Speed ${speedText(g.speed)}`);
+        this.say(t("page.speed_spoken", { speed: speedText(g.speed) }));
         break;
       case "slower":
         g.slower();
-        this.say(`Speed ${speedText(g.speed)}`);
+        this.say(t("page.speed_spoken", { speed: speedText(g.speed) }));
         break;
       case "energy":
         this.charts.showEnergy = !this.charts.showEnergy;
         this.resize();
-        this.say(`Energy chart ${this.charts.showEnergy ? "shown" : "hidden"}`);
+        this.say(t(this.charts.showEnergy ? "page.energy_shown" : "page.energy_hidden"));
         break;
       case "path":
         this.charts.showPath = !this.charts.showPath;
         this.resize();
-        this.say(`Path chart ${this.charts.showPath ? "shown" : "hidden"}`);
+        this.say(t(this.charts.showPath ? "page.path_shown" : "page.path_hidden"));
         break;
       case "table":
         this.toggleOverlay("table");
@@ -493,12 +496,12 @@ export class App implements Animated {
   private toggleOverlay(name: Exclude<Overlay, null>): void {
     this.overlay = this.overlay === name ? null : name;
     const titles = {
-      help: "Help",
-      table: "High scores",
-      settings: "Settings",
-      verify: "Verify replay codes",
+      help: "help.title",
+      table: "scores.title",
+      settings: "settings.title",
+      verify: "verify.title",
     };
-    if (this.overlay === name) this.say(`${titles[name]} shown`);
+    if (this.overlay === name) this.say(t("page.panel_shown", { panel: t(titles[name]) }));
   }
 
   /** New atoms with the current settings, trap at 400, paused; ends any name entry. */
@@ -509,9 +512,7 @@ export class App implements Animated {
       const settings = forced ? configOf(forced, this.fixedSeed ?? 0) : configFor(s);
       this.game.restart({ ...this.game.config, ...settings, seed: this.freshSeed() });
     } catch (err) {
-      this.notify(
-        `Those settings do not work (${(err as Error).message}); kept the previous ones.`,
-      );
+      this.notify(t("notice.settings_failed", { problem: (err as Error).message }));
       this.game.restart();
     }
     this.scores.newGame();
@@ -521,7 +522,7 @@ export class App implements Animated {
     if (this.overlay === "table") this.overlay = null;
     this.charts.reset();
     this.scores.openTable(s);
-    this.say(`Restarted: ${this.game.config.nAtoms} atoms, trap height 400, paused`);
+    this.say(t("page.restarted", { n: this.game.config.nAtoms, height: 400 }));
   }
 
   heightChanged(): void {
@@ -529,7 +530,7 @@ export class App implements Animated {
     this.quietHeight();
     this.heightTimer = setTimeout(() => {
       const h = Math.round(this.game.trapHeight);
-      if (h !== this.lastHeightSpoken) this.say(`Trap height ${h}`);
+      if (h !== this.lastHeightSpoken) this.say(t("page.height_spoken", { h }));
       this.lastHeightSpoken = h;
     }, HEIGHT_SPEECH_MS);
   }
@@ -545,10 +546,10 @@ export class App implements Animated {
       void document.exitFullscreen().catch(() => {});
     } else if (document.documentElement.requestFullscreen) {
       document.documentElement.requestFullscreen().catch((err: unknown) => {
-        this.notify(`Full screen is not available here (${(err as Error).message}).`);
+        this.notify(t("page.fullscreen_refused", { problem: (err as Error).message }));
       });
     } else {
-      this.notify("Full screen is not available in this browser.");
+      this.notify(t("notice.fullscreen_unavailable"));
     }
   }
 
@@ -709,7 +710,7 @@ export class App implements Animated {
     const tooFew = g.score === null ? g.tooFewAtoms(this.lightestMass()) : null;
     if (g.score !== null) this.scene.drawScore(ctx, g.score);
     else if (tooFew !== null) {
-      this.scene.drawTooFew(ctx, tooFew, this.hints.tooFewLine);
+      this.scene.drawTooFew(ctx, t(tooFew), this.hints.tooFewLine);
       if (tooFew !== this.saidTooFew) this.say(this.hints.tooFewSpoken(tooFew));
     } else if (g.paused && g.sim.time === 0 && this.overlay === null) {
       this.scene.drawStartHint(ctx, this.coarse);
@@ -719,12 +720,12 @@ export class App implements Animated {
     this.saidTooFew = tooFew;
     if (g.won && this.replays.current && !this.scores.nameBoxOpen && this.overlay === null) {
       const h = this.coarse ? Math.max(34, MIN_TARGET_CSS / this.layout.scale) : 34;
-      this.targets = drawMessageButtons(ctx, [["Copy replay code", "copycode"]], h);
+      this.targets = drawMessageButtons(ctx, [[t("page.copy_code"), "copycode"]], h);
     }
     if (this.scores.nameBoxOpen)
       this.targets = drawNameFrame(
         ctx,
-        NAME_PROMPT,
+        t("win.top10"),
         this.scores.nameLength(),
         NAME_MAX,
         this.coarse,
@@ -752,7 +753,7 @@ export class App implements Animated {
     if (this.overlay === "table") {
       const table = drawTable(
         ctx,
-        `for ${describeRun(this.options.runSettings())}`,
+        t("page.table_for", { run: describeRun(this.options.runSettings()) }),
         this.scores.table.entries,
         this.scores.storedRank,
         this.scores.footer(),
@@ -766,7 +767,7 @@ export class App implements Animated {
       this.targets = drawVerify(ctx, PASTE_BOX, v.lines(), v.busy, h);
     } else if (this.overlay === "settings") {
       const o = this.options;
-      this.targets = drawSettings(ctx, describe(o.draft), o.row, o.footer());
+      this.targets = drawSettings(ctx, o.rows(), o.row, o.footer());
     }
     ctx.restore();
   }
@@ -774,15 +775,14 @@ export class App implements Animated {
   /** The display rate while playing (paused frames are not counted) and the game's pace. */
   private fpsLines(): string[] {
     const st = this.loop.playStats.summary();
-    const atoms = `${this.game.sim.nTrapped} atoms`;
-    if (st.frames < 2) return [`display rate: shown after some play   ${atoms}`];
-    const shown = `${st.fps.toFixed(0)} fps while playing   frame ${st.medianMs.toFixed(1)} ms`;
+    const atoms = t("status.atoms", { n: this.game.sim.nTrapped });
+    if (st.frames < 2) return [t("page.rate_later", { atoms })];
+    const fps = Math.round(st.fps);
+    const ms = formatFixed(st.medianMs, 1);
     const pace = this.pace.pace;
     const paceLine =
-      pace >= 0.98
-        ? "the game keeps real time"
-        : `the game runs at ${pace.toFixed(2)}x real time: this device is too slow`;
-    return [`${shown}   ${atoms}`, paceLine];
+      pace >= 0.98 ? t("page.real_time") : t("page.too_slow", { pace: formatFixed(pace, 2) });
+    return [t("page.rate", { fps, ms, atoms }), paceLine];
   }
 
   /** Whether the game is playing (the loop counts only these frames for the display rate). */

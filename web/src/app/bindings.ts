@@ -2,7 +2,8 @@
  * The key table: the README's controls (the help overlay lists exactly these rows).
  * Keys are KeyboardEvent.key values, compared without case.
  */
-import { HEIGHT_MAX, HEIGHT_MIN } from "../game/rules";
+import { HEIGHT_MAX, HEIGHT_MIN, SPEED_MAX, SPEED_MIN } from "../game/rules";
+import { formatNumber, t } from "../i18n";
 
 export const HEIGHT_STEP = 5;
 
@@ -29,54 +30,56 @@ export type Action =
 
 export interface Binding {
   keys: string[];
+  /** The key's name: a help.key.* message, or the key cap itself (R, F11). */
   label: string;
+  /** The help row's message key (help.*). */
   help: string;
   action: Action;
   more?: string[];
 }
 
 export const BINDINGS: Binding[] = [
-  { keys: [" "], label: "Space", help: "pause / play", action: "pause" },
-  { keys: ["r"], label: "R", help: "restart: new atoms, trap at 400, paused", action: "restart" },
+  { keys: [" "], label: "help.key.space", help: "help.space", action: "pause" },
+  { keys: ["r"], label: "R", help: "help.restart", action: "restart" },
   {
     keys: ["arrowleft", "arrowdown"],
-    label: "Left, Down",
-    help: `lower the trap by ${HEIGHT_STEP} px`,
+    label: "help.key.left_down",
+    help: "help.lower",
     action: "lower",
   },
   {
     keys: ["arrowright", "arrowup"],
-    label: "Right, Up",
-    help: `raise the trap by ${HEIGHT_STEP} px`,
+    label: "help.key.right_up",
+    help: "help.raise",
     action: "raise",
   },
-  { keys: ["s"], label: "S", help: "one frame forward (while paused)", action: "step" },
-  { keys: ["+", "="], label: "+", help: "faster (up to 4x)", action: "faster" },
-  { keys: ["-", "_"], label: "-", help: "slower (down to 0.25x)", action: "slower" },
-  { keys: ["e"], label: "E", help: "energy chart on / off", action: "energy" },
-  { keys: ["g"], label: "G", help: "path-to-condensation chart on / off", action: "path" },
-  { keys: ["a"], label: "A", help: "autopilot on / off (the demo strategy)", action: "autopilot" },
-  { keys: ["t"], label: "T", help: "high-score table on / off", action: "table" },
+  { keys: ["s"], label: "S", help: "help.step", action: "step" },
+  { keys: ["+", "="], label: "+", help: "help.faster", action: "faster" },
+  { keys: ["-", "_"], label: "-", help: "help.slower", action: "slower" },
+  { keys: ["e"], label: "E", help: "help.energy", action: "energy" },
+  { keys: ["g"], label: "G", help: "help.path", action: "path" },
+  { keys: ["a"], label: "A", help: "help.autopilot_page", action: "autopilot" },
+  { keys: ["t"], label: "T", help: "help.table", action: "table" },
   {
     keys: ["delete", "x"],
-    label: "Delete, X",
-    help: "clear the high-score table...",
+    label: "help.key.delete_x",
+    help: "help.clear",
     action: "clear",
-    more: ["...asks first: Y clears it, N or Esc keeps it"],
+    more: ["help.clear_more"],
   },
-  { keys: ["c"], label: "C", help: "after a win: copy its replay code", action: "copycode" },
-  { keys: ["v"], label: "V", help: "verify replay codes (a class's results)", action: "verify" },
-  { keys: ["enter"], label: "Enter", help: "after a name is stored: next player", action: "next" },
+  { keys: ["c"], label: "C", help: "help.copy", action: "copycode" },
+  { keys: ["v"], label: "V", help: "help.verify", action: "verify" },
+  { keys: ["enter"], label: "help.key.enter", help: "help.next", action: "next" },
   {
     keys: ["o"],
     label: "O",
-    help: "settings (R restarts with them)",
+    help: "help.settings",
     action: "settings",
-    more: ["Up/Down choose, Left/Right change, Enter/O save"],
+    more: ["help.choose_change_save"],
   },
-  { keys: ["f11"], label: "F11", help: "full screen on / off", action: "fullscreen" },
-  { keys: ["h", "f1"], label: "H, F1", help: "this help on / off", action: "help" },
-  { keys: ["escape"], label: "Esc", help: "close a panel or leave full screen", action: "escape" },
+  { keys: ["f11"], label: "F11", help: "help.fullscreen", action: "fullscreen" },
+  { keys: ["h", "f1"], label: "H, F1", help: "help.help", action: "help" },
+  { keys: ["escape"], label: "help.key.esc", help: "help.escape_page", action: "escape" },
 ];
 
 const KEYMAP = new Map<string, Action>(BINDINGS.flatMap((b) => b.keys.map((k) => [k, b.action])));
@@ -86,14 +89,22 @@ export function actionFor(key: string): Action | undefined {
   return KEYMAP.get(key.toLowerCase());
 }
 
-/** Rows of the help overlay: every binding, then the pointer controls. */
+/** Rows of the help overlay in the active language: every binding, then the pointer's. */
 export function helpRows(): Array<[string, string]> {
+  const args = {
+    height: 400,
+    step: HEIGHT_STEP,
+    fast: SPEED_MAX,
+    slow: formatNumber(SPEED_MIN),
+    low: HEIGHT_MIN,
+    high: HEIGHT_MAX,
+  };
   const rows: Array<[string, string]> = [];
   for (const b of BINDINGS) {
-    rows.push([b.label, b.help]);
-    for (const line of b.more ?? []) rows.push(["", line]);
+    rows.push([b.label.startsWith("help.") ? t(b.label) : b.label, t(b.help, args)]);
+    for (const line of b.more ?? []) rows.push(["", t(line)]);
   }
-  rows.push(["Mouse, touch", "buttons; drag the slider: trap height"]);
-  rows.push(["", `${HEIGHT_MIN} to ${HEIGHT_MAX} px; tap a panel to use it`]);
+  rows.push([t("controls.mouse_touch"), t("help.mouse_page")]);
+  rows.push(["", t("help.mouse_page_more", args)]);
   return rows;
 }

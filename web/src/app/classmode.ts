@@ -5,6 +5,7 @@
  * server, which replays it and ranks only verified results. The page from a file has no
  * marker and never talks to anything.
  */
+import { activeTranslator, t } from "../i18n";
 import type { Recording, ReplaySettings } from "../game/replay";
 
 export interface Challenge {
@@ -46,8 +47,11 @@ async function refusal(res: Response): Promise<string> {
   } catch {
     /* not JSON */
   }
-  return `the server answered ${res.status}`;
+  return t("page.class_status", { status: res.status });
 }
+
+/** The server's refusals in the page's language, not only the browser's. */
+const speaking = (): Record<string, string> => ({ "accept-language": activeTranslator().locale });
 
 const TOKEN_KEY = "evapcool.class.player";
 const POLL_MS = 5000;
@@ -73,21 +77,24 @@ export class ClassMode {
     this.player = this.storedPlayer();
     await this.findChallenge();
     if (!this.player) this.askName();
-    else this.host.notify(`Class competition: you play as ${this.player.name}.`);
+    else this.host.notify(t("page.class_playing_as", { name: this.player.name }));
   }
 
   private async findChallenge(): Promise<void> {
     for (let first = true; ; first = false) {
       try {
-        const res = await fetch(`${this.api}/challenge`, { cache: "no-store" });
+        const res = await fetch(`${this.api}/challenge`, {
+          cache: "no-store",
+          headers: speaking(),
+        });
         if (res.ok) {
           this.challenge = (await res.json()) as Challenge;
           this.host.play(this.challenge);
           return;
         }
-        if (first) this.host.notify(`Class competition: ${await refusal(res)}. Waiting...`);
+        if (first) this.host.notify(t("page.class_waiting", { problem: await refusal(res) }));
       } catch {
-        if (first) this.host.notify("Class competition: the class server does not answer.");
+        if (first) this.host.notify(t("page.class_no_answer"));
       }
       await new Promise((resolve) => setTimeout(resolve, POLL_MS));
     }
@@ -110,7 +117,7 @@ export class ClassMode {
     const form = document.createElement("form");
     form.id = "join";
     const label = document.createElement("label");
-    label.textContent = "Your name for the class's leaderboard";
+    label.textContent = t("page.class_name_label");
     const input = document.createElement("input");
     input.name = "name";
     input.maxLength = 24;
@@ -118,7 +125,7 @@ export class ClassMode {
     input.required = true;
     const button = document.createElement("button");
     button.type = "submit";
-    button.textContent = "Join";
+    button.textContent = t("page.class_join");
     const status = document.createElement("p");
     status.setAttribute("role", "status");
     label.append(input);
@@ -137,7 +144,7 @@ export class ClassMode {
     try {
       const res = await fetch(`${this.api}/join`, {
         method: "POST",
-        headers: { "content-type": "application/json" },
+        headers: { ...speaking(), "content-type": "application/json" },
         body: JSON.stringify({ name }),
       });
       if (!res.ok) {
@@ -148,9 +155,9 @@ export class ClassMode {
       this.storage?.setItem(TOKEN_KEY, JSON.stringify(this.player));
       this.form?.remove();
       this.form = null;
-      this.host.notify(`Class competition: you play as ${this.player.name}. Good luck!`);
+      this.host.notify(t("page.class_joined", { name: this.player.name }));
     } catch {
-      status.textContent = "The class server does not answer: try again.";
+      status.textContent = t("page.class_try_again");
     }
   }
 
@@ -159,27 +166,29 @@ export class ClassMode {
     const c = this.challenge;
     const p = this.player;
     if (!c || !p) {
-      this.host.notify("Class competition: join first; this win was not sent.");
+      this.host.notify(t("page.class_join_first"));
       return;
     }
-    this.host.say("Sending your game to the class server...");
+    this.host.say(t("page.class_sending"));
     try {
       const res = await fetch(`${this.api}/submit`, {
         method: "POST",
-        headers: { "content-type": "application/json", authorization: `Bearer ${p.token}` },
+        headers: {
+          ...speaking(),
+          "content-type": "application/json",
+          authorization: `Bearer ${p.token}`,
+        },
         body: JSON.stringify({ challenge: c.id, code }),
       });
       if (!res.ok) {
-        this.host.notify(`Class competition: not accepted (${await refusal(res)}).`);
+        this.host.notify(t("page.class_refused", { problem: await refusal(res) }));
         return;
       }
       const got = (await res.json()) as { score: number; rank: number };
       this.verified.push({ score: got.score, rank: got.rank });
-      this.host.notify(`Class competition: verified, ${got.score} atoms, place ${got.rank}.`);
+      this.host.notify(t("page.class_verified", { n: got.score, rank: got.rank }));
     } catch {
-      this.host.notify(
-        "Class competition: the server did not answer; your code is kept: C copies it.",
-      );
+      this.host.notify(t("page.class_kept"));
     }
   }
 }

@@ -4,6 +4,7 @@
  * elements over them give keyboard focus, screen-reader labels and 44 px touch targets.
  */
 import { HEIGHT_MAX, HEIGHT_MIN } from "../game/rules";
+import { t } from "../i18n";
 import * as C from "../view/colors";
 import {
   atLeast,
@@ -16,21 +17,21 @@ import type { Look, SymbolName } from "../view/icons";
 import { drawControlButton, drawSlider, SliderModel } from "../view/widgets";
 import type { App } from "./app";
 
+/** Each button's spoken name: a message key (issue 23). */
 const LABELS: Record<ControlName, string> = {
-  pause: "Play",
-  restart: "Restart: new atoms, trap at 400, paused",
-  chart: "Energy chart on or off",
-  help: "Help: every control",
-  table: "High-score table",
-  settings: "Settings",
-  fullscreen: "Full screen on or off",
-  step: "One frame forward (while paused)",
-  slower: "Slower",
-  faster: "Faster",
-  path: "Path-to-condensation chart on or off",
-  autopilot: "Autopilot on or off",
+  pause: "control.play",
+  restart: "status.restart",
+  chart: "controls.energy_chart",
+  help: "help.title",
+  table: "control.table",
+  settings: "settings.title",
+  fullscreen: "controls.full_screen",
+  step: "control.step",
+  slower: "control.slower",
+  faster: "control.faster",
+  path: "control.path",
+  autopilot: "control.autopilot",
 };
-const SLIDER_LABEL = "Trap height";
 /** A click this soon after a handled press and release is that press's own click, ms. */
 const CLICK_AFTER_PRESS_MS = 600;
 
@@ -85,7 +86,6 @@ export class Controls {
     b.type = "button";
     b.className = "hit";
     b.dataset.control = name;
-    b.setAttribute("aria-label", LABELS[name]);
     b.addEventListener("pointerdown", () => (this.pressed = name));
     b.addEventListener("pointerleave", () => {
       if (this.pressed === name) this.pressed = null;
@@ -123,7 +123,6 @@ export class Controls {
     s.className = "hit slider";
     s.tabIndex = 0;
     s.setAttribute("role", "slider");
-    s.setAttribute("aria-label", SLIDER_LABEL);
     s.setAttribute("aria-valuemin", String(HEIGHT_MIN));
     s.setAttribute("aria-valuemax", String(HEIGHT_MAX));
     s.setAttribute("aria-orientation", "horizontal"); // set per layout in place()
@@ -249,17 +248,24 @@ export class Controls {
     // At least 16 CSS px on any screen (issue 27.6).
     const labelSize = Math.max(l.mode === "tall" ? 40 : 24, 16 / l.scale);
     const hot = this.sliding || this.hot === "slider";
-    drawSlider(ctx, l.slider, this.slider, l.knobRadius, SLIDER_LABEL, hot, !g.won, labelSize);
-    const pauseBtn = this.buttons.get("pause");
-    pauseBtn?.setAttribute("aria-label", g.paused ? "Play" : "Pause");
-    pauseBtn?.setAttribute("aria-pressed", String(!g.paused));
-    const h = Math.round(g.trapHeight);
-    if (this.sliderEl.getAttribute("aria-valuenow") !== String(h)) {
-      this.sliderEl.setAttribute("aria-valuenow", String(h));
-      this.sliderEl.setAttribute("aria-valuetext", `${h} px`);
+    const sliderLabel = t("controls.trap_height");
+    drawSlider(ctx, l.slider, this.slider, l.knobRadius, sliderLabel, hot, !g.won, labelSize);
+    for (const [name, b] of this.buttons) {
+      const key = name === "pause" && !g.paused ? "control.pause" : LABELS[name];
+      setIfChanged(b, "aria-label", t(key, { height: 400 }));
     }
+    this.buttons.get("pause")?.setAttribute("aria-pressed", String(!g.paused));
+    setIfChanged(this.sliderEl, "aria-label", sliderLabel);
+    const h = Math.round(g.trapHeight);
+    setIfChanged(this.sliderEl, "aria-valuenow", String(h));
+    setIfChanged(this.sliderEl, "aria-valuetext", t("control.height_value", { h }));
     this.sliderEl.setAttribute("aria-disabled", String(g.won));
   }
+}
+
+/** Screen readers re-read a changed label: set it only when the words change. */
+function setIfChanged(el: HTMLElement, name: string, value: string): void {
+  if (el.getAttribute(name) !== value) el.setAttribute(name, value);
 }
 
 /**

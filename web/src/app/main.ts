@@ -8,6 +8,7 @@ import { exposeApi } from "./api";
 import { parseParams } from "./params";
 import PhysicsWorker from "./physics.worker?worker&inline";
 import { pageStorage, ReadOnly } from "./storage";
+import { chooseLocale, onLocaleChange, STORAGE_KEY, t, useLocale, type Translator } from "../i18n";
 
 function byId<T extends HTMLElement>(id: string): T {
   const el = document.getElementById(id);
@@ -28,7 +29,39 @@ function startWorker(): Worker | null {
   }
 }
 
+/** The browser's languages, then the address's ?lang= (the settings' "as the browser"). */
+function browserLocale(): string {
+  const languages = navigator.languages?.length ? navigator.languages : [navigator.language];
+  return chooseLocale(languages, location.search, null);
+}
+
+/** The language menu's saved choice, if this browser keeps one. */
+function savedLocale(): string | null {
+  try {
+    const saved = window.localStorage.getItem(STORAGE_KEY);
+    return saved === "auto" ? null : saved;
+  } catch {
+    return null;
+  }
+}
+
+/** The page's own words outside the canvas, and the text direction, in language `tr`. */
+function retitle(tr: Translator): void {
+  document.documentElement.lang = tr.locale;
+  document.title = tr.t("page.doc_title");
+  document.querySelector('meta[name="description"]')?.setAttribute("content", tr.t("page.about"));
+  const canvas = document.getElementById("scene");
+  canvas?.setAttribute("aria-label", tr.t("page.canvas_label"));
+  if (canvas) canvas.textContent = tr.t("page.canvas_text");
+  document.getElementById("name")?.setAttribute("aria-label", tr.t("page.name_label"));
+  for (const id of ["name", "live", "status", "fatal"])
+    document.getElementById(id)?.setAttribute("dir", tr.direction);
+}
+
 async function main(): Promise<void> {
+  onLocaleChange(retitle);
+  const browser = browserLocale();
+  useLocale(chooseLocale([browser], "", savedLocale()));
   const notices: string[] = [];
   const kv = pageStorage(notices);
   // Read the saved settings once here only to size address options against them.
@@ -57,6 +90,7 @@ async function main(): Promise<void> {
       config: { seed: params.seed, speed: params.speed },
       notices: [...notices, ...params.notices],
       worker,
+      browserLocale: browser,
     },
   );
   await app.ready();
@@ -111,7 +145,7 @@ void main().catch((err: unknown) => {
   const box = document.getElementById("fatal");
   if (box) {
     box.hidden = false;
-    box.textContent = `evapcool could not start: ${(err as Error).message}`;
+    box.textContent = t("page.fatal", { problem: (err as Error).message });
   }
   console.error(err);
 });

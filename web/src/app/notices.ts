@@ -2,6 +2,7 @@
  * Short messages shown for a few seconds at the bottom of the play area, what a screen
  * reader is told (a polite live region) and the canvas's text alternative (the status).
  */
+import { formatNumber, t } from "../i18n";
 import type { GameLike } from "./remote";
 
 /** How long a notice stays on screen, s of the applet's own clock. */
@@ -13,7 +14,7 @@ const NOTICE_PAGE = NOTICE_MAX - 1;
 /** Notices kept at most (older ones are dropped, each was spoken when it came). */
 const NOTICE_KEPT = 100;
 /** The last line while more notices wait for their turn. */
-export const moreNotices = (n: number): string => `…and ${n} more`;
+export const moreNotices = (n: number): string => t("page.more_notices", { n });
 /** The status line is rewritten at most this often, ms (screen readers read it on change). */
 const STATUS_EVERY_MS = 500;
 
@@ -73,16 +74,16 @@ export class StatusLine {
   update(g: GameLike): boolean {
     const sim = g.sim;
     const state = g.won
-      ? `Condensed. Score ${g.score}.`
-      : g.allEscaped
-        ? "All the atoms escaped."
-        : g.paused
-          ? "Paused."
-          : "Playing.";
-    const text =
-      `${state} ${sim.nTrapped} atoms in the cup, trap height ${Math.round(g.trapHeight)} px, ` +
-      `temperature ${fmt(sim.temperature)}, critical temperature ${fmt(sim.criticalTemperature)} ` +
-      `(${sim.temperature < sim.criticalTemperature ? "below" : "above"} Tc).`;
+      ? t("page.status_condensed", { n: g.score ?? 0 })
+      : t(g.allEscaped ? "lose.all_escaped" : g.paused ? "page.status_paused" : "status.playing");
+    const text = t("page.status", {
+      state,
+      n: sim.nTrapped,
+      h: Math.round(g.trapHeight),
+      t: fmt(sim.temperature),
+      tc: fmt(sim.criticalTemperature),
+      below: sim.temperature < sim.criticalTemperature ? "yes" : "no",
+    });
     if (text === this.last) return false;
     const now = performance.now();
     if (now - this.at < STATUS_EVERY_MS) return true;
@@ -94,5 +95,5 @@ export class StatusLine {
 }
 
 function fmt(v: number): string {
-  return Number.isFinite(v) ? v.toFixed(1) : "-";
+  return Number.isFinite(v) ? formatNumber(Math.round(v * 10) / 10) : "-";
 }

@@ -10,15 +10,17 @@ import {
 } from "../game/settings";
 import { loadSettings, saveSettings } from "../game/settingsStore";
 import type { KeyValue } from "../game/store";
+import { languageNames, STORAGE_KEY, t, useLocale } from "../i18n";
 import type { Hints } from "./hints";
 
-const NOT_SAVED = "Settings not saved: the changes were dropped.";
-const ADDRESS_USES = (names: string) =>
-  `This visit uses the address's ${names} until you save here.`;
+/** The language row's value meaning "the browser's languages, then the address's". */
+export const AUTO_LANGUAGE = "auto";
 
 export interface OptionsHost {
   storage: KeyValue;
   readonly hints: Hints;
+  /** The language the page starts in when the row says "as the browser". */
+  readonly browserLocale: string;
   notify(text: string): void;
   say(text: string): void;
   /** The settings screen is closed (shown or not is the app's overlay). */
@@ -28,6 +30,9 @@ export interface OptionsHost {
 export class SettingsEditor {
   settings: Settings;
   draft: Settings;
+  /** The language menu's saved choice and draft: a shipped tag or AUTO_LANGUAGE. */
+  language: string;
+  languageDraft: string;
   row = 0;
 
   constructor(
@@ -39,6 +44,16 @@ export class SettingsEditor {
     problems.forEach((t) => host.notify(t));
     this.settings = saved;
     this.draft = saved;
+    this.language = host.storage.getItem(STORAGE_KEY) ?? AUTO_LANGUAGE;
+    this.languageDraft = this.language;
+  }
+
+  /** The screen's rows: the game's settings, then the language menu. */
+  rows(): Array<[string, string]> {
+    const choice = this.languageDraft;
+    const name = languageNames().find((l) => l.tag === choice)?.name;
+    const value = name ?? t("settings.language_browser");
+    return [...describe(this.draft), [t("settings.language"), value]];
   }
 
   /** The settings a restart plays: the saved ones under this visit's address options. */
@@ -49,13 +64,14 @@ export class SettingsEditor {
   /** Open the screen on a fresh draft of the saved settings. */
   open(): void {
     this.draft = this.settings;
+    this.languageDraft = this.language;
     this.row = 0;
     this.sayRow();
   }
 
   /** A key while the screen is open (lower-case KeyboardEvent.key). */
   key(key: string): void {
-    const n = FIELD_NAMES.length;
+    const n = FIELD_NAMES.length + 1;
     if (key === "arrowup") this.row = (this.row + n - 1) % n;
     else if (key === "arrowdown") this.row = (this.row + 1) % n;
     else if (key === "arrowleft" || key === "arrowright") {
@@ -73,7 +89,12 @@ export class SettingsEditor {
 
   change(row: number, d: number): void {
     this.row = row;
-    this.draft = stepSetting(this.draft, FIELD_NAMES[row], d);
+    if (row < FIELD_NAMES.length) this.draft = stepSetting(this.draft, FIELD_NAMES[row], d);
+    else {
+      const choices = [AUTO_LANGUAGE, ...languageNames().map((l) => l.tag)];
+      const i = Math.max(0, choices.indexOf(this.languageDraft));
+      this.languageDraft = choices[(i + d + choices.length) % choices.length];
+    }
     this.sayRow();
   }
 
@@ -83,17 +104,23 @@ export class SettingsEditor {
   }
 
   sayRow(): void {
-    const [label, value] = describe(this.draft)[this.row];
+    const [label, value] = this.rows()[this.row];
     this.host.say(`${label} ${value}`);
   }
 
   close(save: boolean): void {
     this.host.closeOverlay();
     const draft = this.draft;
-    if (sameSettings(draft, this.settings)) return;
+    const newLanguage = this.languageDraft !== this.language;
+    if (sameSettings(draft, this.settings) && !newLanguage) return;
     if (!save) {
       // A panel never drops changes silently (issue 27.1).
-      this.host.notify(NOT_SAVED);
+      this.host.notify(t("page.settings_dropped"));
+      return;
+    }
+    if (newLanguage) this.saveLanguage();
+    if (sameSettings(draft, this.settings)) {
+      this.host.notify(t("page.language_saved"));
       return;
     }
     const base = this.settings;
@@ -105,10 +132,23 @@ export class SettingsEditor {
     if (!problems.length) this.host.notify(this.host.hints.settingsSaved);
   }
 
+  /** The language menu's choice from now on: kept in the browser, the page's words switch. */
+  private saveLanguage(): void {
+    const choice = this.languageDraft;
+    this.language = choice;
+    try {
+      if (choice === AUTO_LANGUAGE) this.host.storage.removeItem(STORAGE_KEY);
+      else this.host.storage.setItem(STORAGE_KEY, choice);
+    } catch {
+      // Kept for this visit: the store has already said why it cannot keep data.
+    }
+    useLocale(choice === AUTO_LANGUAGE ? this.host.browserLocale : choice);
+  }
+
   footer(): string[] {
     const lines = [...this.host.hints.settingsFooter];
     const names = Object.keys(this.overrides);
-    if (names.length) lines.push(ADDRESS_USES(names.join(", ")));
+    if (names.length) lines.push(t("page.address_uses", { names: names.join(", ") }));
     return lines;
   }
 }

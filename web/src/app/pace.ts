@@ -3,10 +3,11 @@
  * over the speed's 30 frames a second. Below 1 the device cannot keep up and the game
  * runs in slow motion (it never takes bigger steps, see MAX_WALL_STEP); the page says so.
  */
+import { formatFixed, t } from "../i18n";
 import { FPS } from "../game/constants";
 
 /** The note while the pace is below real time (pace as "0.87"). */
-export const SLOW_NOTE = (pace: string) => `slow motion ${pace}x: this device`;
+export const SLOW_NOTE = (pace: string) => t("page.slow_motion", { pace });
 /** Pace measured over windows of this much wall clock, ms. */
 const WINDOW_MS = 1000;
 /** A gap longer than this between frames (a hidden tab) starts a new window, ms. */
@@ -48,6 +49,6 @@ export class PaceMeter {
 
   /** The line to show, or null at real time. */
   note(): string | null {
-    return this.slow ? SLOW_NOTE(this.pace.toFixed(2)) : null;
+    return this.slow ? SLOW_NOTE(formatFixed(this.pace, 2)) : null;
   }
 }

@@ -6,6 +6,7 @@
  * (not `0x20`, not `Infinity`), and an option given twice is refused, not half-read.
  */
 import { RADIUS, SEED } from "../limits";
+import { availableLocales, bestMatch, t } from "../i18n";
 import { SPEED_MAX, SPEED_MIN } from "../game/rules";
 import { ESCAPE_RULES } from "../game/constants";
 import { TC_LAWS, maxAtoms, RADIUS_MAX, RADIUS_MIN, type Settings } from "../game/settings";
@@ -16,6 +17,8 @@ export interface PageParams {
   speed: number;
   /** A replay code to watch (checked when decoded), or null. */
   replay: string | null;
+  /** The language asked for (a shipped one, checked), or null. */
+  lang: string | null;
   notices: string[];
 }
 
@@ -30,6 +33,7 @@ export const ADDRESS_OPTIONS = [
   "tc-law",
   "escape",
   "replay",
+  "lang",
 ] as const;
 /** The game's parameter names as the address spells them (for the physics' refusals). */
 export const ADDRESS_NAMES: Readonly<Record<string, string>> = {
@@ -49,7 +53,8 @@ const DECIMAL = /^[+-]?(\d+\.?\d*|\.\d+)([eE][+-]?\d+)?$/;
 export function typed(text: string): string {
   const chars = [...text];
   if (chars.length <= SHOWN_CHARS) return JSON.stringify(text);
-  return `${JSON.stringify(chars.slice(0, SHOWN_CHARS - 4).join("") + "…")} (${chars.length} characters)`;
+  const cut = JSON.stringify(chars.slice(0, SHOWN_CHARS - 4).join("") + "…");
+  return t("page.typed_long", { text: cut, n: chars.length });
 }
 
 /** A plain decimal number, or null (hex, words, empty, Infinity are not numbers here). */
@@ -61,12 +66,23 @@ function decimal(text: string): number | null {
 }
 
 const refusal = (option: string, allowed: string, raw: string): string =>
-  `Address: ${option} must be ${allowed} (got ${typed(raw)}); ignored.`;
+  t("page.address_refused", { option, allowed, got: typed(raw) });
+
+/** "a whole number from 1 to 100000" in the active language; limits as typed in an address. */
+const whole = (low: number, high: number) => t("page.allowed_whole", { low, high: `${high}` });
+const oneOf = (names: readonly string[]) => t("page.allowed_one_of", { list: names.join(", ") });
 
 /** The address's options, each checked once; bad ones named in notices and ignored. */
 export function parseParams(search: string, saved: Settings): PageParams {
   const q = new URLSearchParams(search);
-  const out: PageParams = { overrides: {}, seed: null, speed: 1, replay: null, notices: [] };
+  const out: PageParams = {
+    overrides: {},
+    seed: null,
+    speed: 1,
+    replay: null,
+    lang: null,
+    notices: [],
+  };
   const known = new Set<string>(ADDRESS_OPTIONS);
   const seen = new Set<string>();
   for (const key of q.keys()) {
@@ -74,12 +90,10 @@ export function parseParams(search: string, saved: Settings): PageParams {
     seen.add(key);
     if (!known.has(key))
       out.notices.push(
-        `Address: unknown option ${typed(key)}; known: ${ADDRESS_OPTIONS.join(", ")}.`,
+        t("page.address_unknown", { got: typed(key), known: ADDRESS_OPTIONS.join(", ") }),
       );
     else if (q.getAll(key).length > 1)
-      out.notices.push(
-        `Address: ${key} is given ${q.getAll(key).length} times; give it once. Ignored.`,
-      );
+      out.notices.push(t("page.address_twice", { option: key, n: q.getAll(key).length }));
   }
   const value = (key: string): string | null =>
     q.getAll(key).length === 1 ? (q.get(key) as string) : null;
@@ -89,14 +103,21 @@ export function parseParams(search: string, saved: Settings): PageParams {
   if (r !== null) {
     const v = decimal(r);
     if (v !== null && RADIUS.contains(v)) radius = out.overrides.radius = v;
-    else out.notices.push(refusal("radius", RADIUS.allowed(), r));
+    else
+      out.notices.push(
+        refusal(
+          "radius",
+          t("page.allowed_px", { low: `${RADIUS.low}`, high: `${RADIUS.high}` }),
+          r,
+        ),
+      );
   }
   const n = value("atoms");
   if (n !== null) {
     // Whether they fit the cup at this radius is the loader's word (named by ADDRESS_NAMES).
     const v = decimal(n);
     if (v !== null && Number.isInteger(v) && v >= 1 && v <= URL_ATOMS_MAX) out.overrides.nAtoms = v;
-    else out.notices.push(refusal("atoms", `a whole number from 1 to ${URL_ATOMS_MAX}`, n));
+    else out.notices.push(refusal("atoms", whole(1, URL_ATOMS_MAX), n));
   } else if (out.overrides.radius !== undefined && radius >= RADIUS_MIN && radius <= RADIUS_MAX) {
     // Bigger atoms than saved: the saved count may not fit; take what does.
     out.overrides.nAtoms = Math.min(saved.nAtoms, maxAtoms(radius));
@@ -104,26 +125,39 @@ export function parseParams(search: string, saved: Settings): PageParams {
   const law = value("tc-law");
   if (law !== null) {
     if (law in TC_LAWS) out.overrides.tcLaw = law as keyof typeof TC_LAWS;
-    else out.notices.push(refusal("tc-law", `one of ${Object.keys(TC_LAWS).join(", ")}`, law));
+    else out.notices.push(refusal("tc-law", oneOf(Object.keys(TC_LAWS)), law));
   }
   const escape = value("escape");
   if (escape !== null) {
     const rule = ESCAPE_RULES.find((e) => e === escape);
     if (rule !== undefined) out.overrides.escape = rule;
-    else out.notices.push(refusal("escape", `one of ${ESCAPE_RULES.join(", ")}`, escape));
+    else out.notices.push(refusal("escape", oneOf(ESCAPE_RULES), escape));
   }
   const s = value("seed");
   if (s !== null) {
     const v = decimal(s);
     if (v !== null && Number.isInteger(v) && v >= 0 && v <= SEED_MAX) out.seed = v;
-    else out.notices.push(refusal("seed", `a whole number from 0 to ${SEED_MAX}`, s));
+    else out.notices.push(refusal("seed", whole(0, SEED_MAX), s));
   }
   const speed = value("speed");
   if (speed !== null) {
     const v = decimal(speed);
     if (v !== null && v >= SPEED_MIN && v <= SPEED_MAX) out.speed = v;
-    else out.notices.push(refusal("speed", `a number from ${SPEED_MIN} to ${SPEED_MAX}`, speed));
+    else
+      out.notices.push(
+        refusal(
+          "speed",
+          t("page.allowed_number", { low: `${SPEED_MIN}`, high: `${SPEED_MAX}` }),
+          speed,
+        ),
+      );
   }
   out.replay = value("replay");
+  const lang = value("lang");
+  if (lang !== null) {
+    const tags = availableLocales();
+    if (bestMatch([lang], tags) !== null) out.lang = lang;
+    else out.notices.push(refusal("lang", oneOf(tags), lang));
+  }
   return out;
 }

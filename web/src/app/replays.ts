@@ -3,6 +3,7 @@
  * replay code the player can copy from the win screen (button or key C) into a chat or a
  * learning platform; `evapcool verify` and the page's verify panel check it by replaying.
  */
+import { t } from "../i18n";
 import { recordingOf, type Recording } from "../game/replay";
 import { encode } from "../game/replaycode";
 import type { Game } from "../game/rules";
@@ -56,9 +57,7 @@ export class Replays {
       copied = copyBySelection(code);
     }
     this.host.notify(
-      copied
-        ? `Replay code copied (${code.length} characters): paste it where your class collects them.`
-        : `Copy this replay code by hand: ${code}`,
+      copied ? t("page.code_copied", { n: code.length }) : t("page.code_by_hand", { code }),
     );
   }
 }

@@ -3,13 +3,12 @@ import { HighScoreTable, scoresKey } from "../game/highscores";
 import { settingsKey, type Settings } from "../game/settings";
 import type { KeyValue } from "../game/store";
 import { nameField } from "../view/overlays";
+import { t } from "../i18n";
 import type { Hints } from "./hints";
 import type { Screen } from "./layout";
 import type { GameLike } from "./remote";
 
-const WON = (score: number) => `Temperature below Tc: ${score} atoms, score ${score}`;
-const CLEARED = "The high-score table was cleared.";
-export const NAME_PROMPT = "Top 10! Type your name:";
+const WON = (n: number) => t("page.won_spoken", { n });
 
 export interface ScoringHost {
   readonly game: GameLike;
@@ -139,7 +138,7 @@ export class Scoreboard {
     this.confirmReset = false;
     if (!yes) return;
     this.storedRank = null;
-    if (this.table.reset()) this.host.notify(CLEARED);
+    if (this.table.reset()) this.host.notify(t("scores.cleared"));
     this.takeNotices();
   }
 
@@ -153,18 +152,18 @@ export class Scoreboard {
   buttons(): Array<[string, string]> {
     if (this.confirmReset)
       return [
-        ["Yes, clear", "yes"],
-        ["No", "no"],
+        [t("scores.clear_yes"), "yes"],
+        [t("button.no"), "no"],
       ];
     if (this.readyForNext)
       return [
-        ["Next player", "next"],
-        ["Close", "tableclose"],
+        [t("button.next_player"), "next"],
+        [t("button.close"), "tableclose"],
       ];
     return [
-      ["Close", "tableclose"],
-      ["Clear...", "clear"],
-      ["Verify codes...", "verifycodes"],
+      [t("button.close"), "tableclose"],
+      [t("scores.clear"), "clear"],
+      [t("button.verify_codes"), "verifycodes"],
     ];
   }
 }
@@ -172,5 +171,5 @@ export class Scoreboard {
 /** The settings a table belongs to, in words (its title). */
 export function describeRun(s: Settings): string {
   const law = s.tcLaw === "seed" ? "Tc ~ N^(2/3)" : "Tc ~ N^(2/5)";
-  return `${s.nAtoms} atoms of radius ${s.radius}, ${law}, ${s.escape === "rim" ? "rim" : "knife"}`;
+  return t("page.run", { n: s.nAtoms, radius: s.radius, law, escape: s.escape });
 }

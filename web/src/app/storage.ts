@@ -1,8 +1,8 @@
 /** Where the page keeps scores and settings: the browser's localStorage, or memory. */
+import { t } from "../i18n";
 import { MemoryStore, reason, type KeyValue } from "../game/store";
 
-const NO_STORAGE = (why: string) =>
-  `This browser keeps no data for this page (${why}); scores and settings last this visit.`;
+const NO_STORAGE = (problem: string) => t("page.no_storage", { problem });
 
 /** localStorage if it works here, else a store for this visit only (with a notice why). */
 export function pageStorage(notices: string[]): KeyValue {

@@ -4,8 +4,17 @@
  * the verified ones are ranked by score (ties: fewer frames first), each bad one listed
  * with the reason (damaged, edited, other version, does not replay to the claimed score).
  */
+import { activeTranslator, onLocaleChange, t, type Translator } from "../i18n";
 import { makeSimulation } from "../game/engine";
-import { ReplayError, verify, type Verdict } from "../game/replay";
+import {
+  DAMAGED,
+  EDITED,
+  OTHER_VERSION,
+  ReplayError,
+  verify,
+  WRONG_SCORE,
+  type Verdict,
+} from "../game/replay";
 import { decode } from "../game/replaycode";
 import type { Zoom } from "./layout";
 import type { Screen } from "./layout";
@@ -47,8 +56,13 @@ export class Verifier {
     area.id = "codes";
     area.hidden = true;
     area.spellcheck = false;
-    area.setAttribute("aria-label", "Replay codes to verify, one per line");
-    area.placeholder = "Paste replay codes here, one per line (EC1....)";
+    const words = (tr: Translator) => {
+      area.setAttribute("aria-label", tr.t("verify.label"));
+      area.placeholder = tr.t("verify.placeholder");
+      area.dir = tr.direction;
+    };
+    words(activeTranslator());
+    onLocaleChange(words);
     area.addEventListener("keydown", (ev) => {
       if (ev.key === "Escape") (ev.target as HTMLElement).blur();
       ev.stopPropagation(); // typing here is not the game's keys
@@ -97,23 +111,35 @@ export class Verifier {
     this.results = ranked(this.results);
     this.busy = false;
     const good = this.results.filter((r) => r.verdict).length;
-    this.host.say(`${good} of ${codes.length} codes verified`);
+    this.host.say(t("verify.summary", { good, n: codes.length }));
     this.host.redraw();
   }
 
   /** The lines the panel shows: ranked verified codes, then the rejected ones. */
   lines(): string[] {
-    if (this.busy) return [`Replaying ${this.results.length + 1}...`];
+    if (this.busy) return [t("verify.replaying", { n: this.results.length + 1 })];
     let rank = 0;
     return this.results.map((r) => {
       const short = r.code.length > 18 ? `${r.code.slice(0, 14)}...` : r.code;
-      if (!r.verdict) return `-  rejected (${r.reason})  ${short}`;
+      if (!r.verdict) {
+        const key = REASON_KEYS[r.reason];
+        return t("verify.rejected", { reason: key ? t(key) : r.reason, code: short });
+      }
       rank += 1;
       const v = r.verdict;
-      return `${rank}.  ${v.score} atoms  ${v.frames} frames  ${r.edition}  ${short}`;
+      const args = { rank, n: v.score, frames: v.frames, edition: r.edition, code: short };
+      return t("verify.verified", args);
     });
   }
 }
+
+/** The refusals' words (protocol names shared with the class server) by message key. */
+const REASON_KEYS: Record<string, string> = {
+  [DAMAGED]: "reason.damaged",
+  [EDITED]: "reason.edited",
+  [OTHER_VERSION]: "reason.other_version",
+  [WRONG_SCORE]: "reason.wrong_score",
+};
 
 async function check(code: string): Promise<Checked> {
   try {

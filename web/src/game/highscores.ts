@@ -4,6 +4,7 @@
  * 16 characters. One table per settings combination, each under its own storage key in
  * the desktop's JSON format. A damaged or foreign stored table is set aside and reported.
  */
+import { t } from "../i18n";
 import { formatDate, PREFIX, readKey, setAside, writeKey, type KeyValue } from "./store";
 
 export const FORMAT_VERSION = 1;
@@ -118,8 +119,8 @@ export class HighScoreTable {
       const why = (err as Error).message;
       this.notices.push(
         moved
-          ? `The stored high-score table was damaged (${why}); it was kept as "${moved}" and a new table was started.`
-          : `The stored high-score table is damaged (${why}) and could not be set aside; starting an empty table.`,
+          ? t("page.scores_damaged", { why, name: moved })
+          : t("page.scores_damaged_kept", { why }),
       );
       return [];
     }
@@ -134,13 +135,9 @@ export class HighScoreTable {
     const aside = JSON.stringify({ version: FORMAT_VERSION, entries: bad.map((b) => b.row) });
     const moved = setAside(this.kv, this.key, aside);
     const good = JSON.stringify({ version: FORMAT_VERSION, entries: rows });
-    writeKey(this.kv, this.key, good, "High scores", this.notices);
-    const count = bad.length === 1 ? "1 damaged row" : `${bad.length} damaged rows`;
-    this.notices.push(
-      moved
-        ? `The stored high-score table had ${count} (${bad[0].why}); kept as "${moved}", the other rows are shown.`
-        : `The stored high-score table has ${count} (${bad[0].why}); the other rows are shown.`,
-    );
+    writeKey(this.kv, this.key, good, "scores", this.notices);
+    const args = { n: bad.length, why: bad[0].why, name: moved ?? "" };
+    this.notices.push(t(moved ? "page.rows_damaged" : "page.rows_damaged_kept", args));
     return rows;
   }
 
@@ -203,7 +200,7 @@ export class HighScoreTable {
       this.rows = sortRows([...base, ...this.unsaved]);
     }
     const payload = JSON.stringify({ version: FORMAT_VERSION, entries: this.rows });
-    if (!writeKey(this.kv, this.key, payload, "High scores", this.notices)) {
+    if (!writeKey(this.kv, this.key, payload, "scores", this.notices)) {
       this.rows = sortRows([...this.knownRows(), ...this.unsaved]);
       return false;
     }

@@ -246,7 +246,7 @@ export class Game {
     return this.sim.nTrapped === 0 && !this.sim.won;
   }
 
-  /** Why the gas can no longer condense (say so, offer a restart), or null; `lightest`: mass. */
+  /** Why the gas can no longer condense (a message key: lose.*), or null; `lightest`: mass. */
   tooFewAtoms(lightest = 1): string | null {
     const sim = this.sim;
     if (sim.won || !sim.winRule) return null;
@@ -273,9 +273,9 @@ export function outOfReach(
   criticalTemperature: number,
   escapeEnergy: number,
 ): string | null {
-  if (n <= 0) return "All the atoms escaped.";
+  if (n <= 0) return "lose.all_escaped";
   if (energy / n < criticalTemperature) return null; // condensing now
-  if (n === 1) return "One atom alone cannot cool below Tc.";
-  if (energy <= escapeEnergy) return "No atom can leave any more: T stays above Tc.";
+  if (n === 1) return "lose.one_atom";
+  if (energy <= escapeEnergy) return "lose.stuck";
   return null;
 }

@@ -3,6 +3,7 @@
  * (Python's `game/settings.py`): one clear message per bad value; a stored value that is
  * bad falls back to its default with a notice. No DOM here: `store.ts` persists them.
  */
+import { t } from "../i18n";
 import { ATOM_RADIUS, ESCAPE_RULES, N_ATOMS, TC_EXPONENT_CUP, TC_EXPONENT_SEED } from "./constants";
 import type { EscapeRule } from "./constants";
 import { cupCapacity } from "./capacity";
@@ -121,13 +122,14 @@ export function fromMapping(data: Record<string, unknown>): [Settings, string[]]
   const unknown = Object.keys(data)
     .filter((k) => !known.has(k))
     .sort();
-  if (unknown.length) notices.push(`Settings: ignored unknown entries ${unknown.join(", ")}.`);
+  if (unknown.length) notices.push(t("notice.settings_unknown", { names: unknown.join(", ") }));
   function take<T>(name: FieldName, check: (v: unknown) => T, fallback: T): T {
     if (!(name in data)) return fallback;
     try {
       return check(data[name]);
     } catch (err) {
-      notices.push(`Settings: ${(err as Error).message}; using the default ${pyRepr(fallback)}.`);
+      const problem = (err as Error).message;
+      notices.push(t("notice.settings_bad_value", { problem, default: pyRepr(fallback) }));
       return fallback;
     }
   }
@@ -179,13 +181,13 @@ function roundHalfEven(v: number): number {
   return f % 2 === 0 ? f : f + 1;
 }
 
-/** (label, value) rows for the settings screen. */
+/** (label, value) rows for the settings screen, in the active language. */
 export function describe(s: Settings): Array<[string, string]> {
   return [
-    ["Number of atoms", `${s.nAtoms}  (1 to ${maxAtoms(s.radius)})`],
-    ["Atom radius", `${fmtG(s.radius)} px`],
-    ["Tc law: Tc ~ N^p, p =", s.tcLaw === "seed" ? "2/3 (original)" : "2/5 (this cup)"],
-    ["Escape rule", s.escape === "rim" ? "fly over the rim" : "energy knife"],
+    [t("settings.atoms"), t("settings.atoms_value", { n: s.nAtoms, max: maxAtoms(s.radius) })],
+    [t("settings.radius"), t("settings.radius_value", { radius: s.radius })],
+    [t("settings.tc_law"), t(s.tcLaw === "seed" ? "settings.law_seed" : "settings.law_cup")],
+    [t("settings.escape"), t(s.escape === "rim" ? "settings.escape_rim" : "settings.escape_knife")],
   ];
 }
 

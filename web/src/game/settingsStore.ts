@@ -1,4 +1,5 @@
 /** Settings in the browser's storage: the desktop's settings.json, under one key. */
+import { t } from "../i18n";
 import { DEFAULTS, fromMapping, toMapping, validate, type Settings } from "./settings";
 import { PREFIX, readKey, setAside, writeKey, type KeyValue } from "./store";
 
@@ -22,8 +23,8 @@ export function loadSettings(kv: KeyValue): [Settings, string[]] {
   if (problems.length) {
     // Keep what was stored before its bad values are overwritten by the next save.
     const moved = setAside(kv, SETTINGS_KEY, text);
-    if (moved) problems.push(`The stored settings were kept as "${moved}".`);
-    writeKey(kv, SETTINGS_KEY, JSON.stringify(toMapping(settings)), "Settings", problems);
+    if (moved) problems.push(t("page.settings_kept", { name: moved }));
+    writeKey(kv, SETTINGS_KEY, JSON.stringify(toMapping(settings)), "settings", problems);
   }
   return [settings, [...notices, ...problems]];
 }
@@ -31,8 +32,8 @@ export function loadSettings(kv: KeyValue): [Settings, string[]] {
 function damaged(kv: KeyValue, text: string, why: string): string {
   const moved = setAside(kv, SETTINGS_KEY, text);
   return moved
-    ? `The stored settings were damaged (${why}); they were kept as "${moved}"; using defaults.`
-    : `The stored settings are damaged (${why}); using defaults.`;
+    ? t("page.settings_damaged", { why, name: moved })
+    : t("page.settings_damaged_kept", { why });
 }
 
 /**
@@ -49,7 +50,7 @@ export function saveSettings(
   const mine = validate(settings);
   const s = base ? merged(kv, mine, base) : mine;
   const notices: string[] = [];
-  const ok = writeKey(kv, SETTINGS_KEY, JSON.stringify(toMapping(s)), "Settings", notices);
+  const ok = writeKey(kv, SETTINGS_KEY, JSON.stringify(toMapping(s)), "settings", notices);
   return { saved: ok ? s : mine, notices };
 }
 

@@ -3,6 +3,7 @@
  * a browser with storage switched off, full or forbidden gives notices, not a crash.
  * A stored value that cannot be used is set aside under another key, never deleted.
  */
+import { t } from "../i18n";
 
 /** The part of the Web Storage API we use (localStorage fits it). */
 export interface KeyValue {
@@ -41,7 +42,7 @@ export function readKey(kv: KeyValue, key: string, notices: string[]): string | 
   try {
     return kv.getItem(key);
   } catch (err) {
-    notices.push(`The browser's storage cannot be read (${reason(err)}); nothing is kept.`);
+    notices.push(t("page.storage_unreadable", { problem: reason(err) }));
     return null;
   }
 }
@@ -51,16 +52,14 @@ export function writeKey(
   kv: KeyValue,
   key: string,
   value: string,
-  what: string,
+  what: "scores" | "settings",
   notices: string[],
 ): boolean {
   try {
     kv.setItem(key, value);
     return true;
   } catch (err) {
-    notices.push(
-      `${what} could not be saved in this browser (${reason(err)}); kept for this visit.`,
-    );
+    notices.push(t("page.cannot_save", { what, problem: reason(err) }));
     return false;
   }
 }

@@ -2,6 +2,7 @@
  * Panels over the play area: help, high scores, settings, the name box's frame and the
  * notices. Each draw returns the tap targets it drew (touch users have no keyboard).
  */
+import { decimalMark, formatNumber, t } from "../i18n";
 import { formatSeconds, type Entry } from "../game/highscores";
 import * as C from "./colors";
 import { PLAY_RECT, rect, type Rect } from "./geometry";
@@ -94,7 +95,16 @@ export function drawHelp(
   const panel = rect(box.x, box.y + Math.max(0, (box.h - fit.height) / 2), box.w, fit.height);
   frame(ctx, panel);
   const title = size * 1.4;
-  drawText(ctx, "Controls", title, C.ACCENT, panel.x + panel.w / 2, panel.y + 12, "midtop", true);
+  drawText(
+    ctx,
+    t("controls.title"),
+    title,
+    C.ACCENT,
+    panel.x + panel.w / 2,
+    panel.y + 12,
+    "midtop",
+    true,
+  );
   const colW = (panel.w - 36) / columns;
   let line = 0;
   rows.forEach(([keys], k) => {
@@ -165,8 +175,7 @@ export interface TableCell {
 }
 
 /** Column headers of the score table and the text of an empty one. */
-const TABLE_HEADS = ["#", "name", "atoms", "time", "date"];
-const TABLE_EMPTY = "No scores yet: be the first!";
+const TABLE_HEADS = ["table.rank", "table.name", "table.atoms", "table.time", "table.date"];
 /** Sizes (desktop units) the rows may take: the largest at which every column fits whole. */
 const ROW_SIZE_MAX = 24;
 const ROW_SIZE_MIN = 14;
@@ -182,7 +191,7 @@ function tableColumns(
   const measure = (size: number, n: number) =>
     Array.from({ length: n }, (_, c) =>
       Math.max(
-        textWidth(ctx, TABLE_HEADS[c], size - 2) + 2,
+        textWidth(ctx, t(TABLE_HEADS[c]), size - 2) + 2,
         ...rows.map((r) => textWidth(ctx, r[c], size) + 2),
       ),
     );
@@ -206,13 +215,13 @@ export function drawTable(
   const targets: Target[] = [];
   const cells: TableCell[] = [];
   const rows = Math.max(1, entries.length);
-  const panel = overlay(ctx, "High scores", 130 + 30 * (rows + 1 + footer.length) + 44);
+  const panel = overlay(ctx, t("scores.title"), 130 + 30 * (rows + 1 + footer.length) + 44);
   drawText(ctx, title, 20, C.DIM_TEXT, panel.x + panel.w / 2, panel.y + 48, "midtop");
   const texts = entries.map((e, k) => [
-    `${k + 1}`,
+    formatNumber(k + 1),
     e.name,
-    `${e.score}`,
-    formatSeconds(e.seconds),
+    formatNumber(e.score),
+    formatSeconds(e.seconds).replace(".", decimalMark()),
     e.date.slice(0, 10),
   ]);
   const { size, widths } = tableColumns(ctx, texts, panel.w - 32);
@@ -224,9 +233,9 @@ export function drawTable(
   }
   const y0 = panel.y + 76;
   cols.forEach((cx, c) =>
-    drawText(ctx, TABLE_HEADS[c], size - 2, C.ACCENT, cx, y0, "topleft", true),
+    drawText(ctx, t(TABLE_HEADS[c]), size - 2, C.ACCENT, cx, y0, "topleft", true),
   );
-  if (!entries.length) drawText(ctx, TABLE_EMPTY, 24, C.TEXT, cols[1], y0 + 32, "topleft");
+  if (!entries.length) drawText(ctx, t("scores.empty"), 24, C.TEXT, cols[1], y0 + 32, "topleft");
   texts.forEach((row, k) => {
     const y = panel.y + 108 + 30 * k;
     const mine = highlight === k + 1;
@@ -252,7 +261,7 @@ export function drawSettings(
   footer: string[],
 ): Target[] {
   const targets: Target[] = [];
-  const panel = overlay(ctx, "Settings", 110 + 40 * rows.length + 28 * footer.length + 48);
+  const panel = overlay(ctx, t("settings.title"), 110 + 40 * rows.length + 28 * footer.length + 48);
   rows.forEach(([label, value], k) => {
     const y = panel.y + 60 + 40 * k;
     const row = rect(panel.x + 8, y - 6, panel.w - 16, 34);
@@ -282,8 +291,8 @@ export function drawSettings(
   buttonRow(
     ctx,
     [
-      ["Save", "save"],
-      ["Cancel", "cancel"],
+      [t("button.save"), "save"],
+      [t("button.cancel"), "cancel"],
     ],
     panel.x + panel.w / 2,
     y + 6,
@@ -293,10 +302,9 @@ export function drawSettings(
 }
 
 /** The name box's hint for a keyboard; a touch screen gets only the Store and Skip buttons. */
-export const NAME_KEYS_HINT = "Enter: store   Esc: skip";
-export const NAME_BUTTONS: Array<[string, string]> = [
-  ["Store", "store"],
-  ["Skip", "skip"],
+const nameButtons = (): Array<[string, string]> => [
+  [t("button.store"), "store"],
+  [t("button.skip"), "skip"],
 ];
 
 /**
@@ -321,7 +329,7 @@ export function drawNameFrame(
   const count = `${length}/${maxLength}`;
   drawText(
     ctx,
-    full ? `${count}  (full)` : count,
+    full ? t("win.name_full", { count }) : count,
     22,
     full ? C.ACCENT : C.TEXT,
     field.x + field.w,
@@ -329,9 +337,9 @@ export function drawNameFrame(
     "topright",
     full,
   );
-  if (!coarse) drawText(ctx, NAME_KEYS_HINT, 22, C.TEXT, field.x, below, "topleft");
+  if (!coarse) drawText(ctx, t("win.store_or_skip"), 22, C.TEXT, field.x, below, "topleft");
   const targets: Target[] = [];
-  buttonRow(ctx, NAME_BUTTONS, f.x + f.w / 2, below + 34, targets, buttonHeight);
+  buttonRow(ctx, nameButtons(), f.x + f.w / 2, below + 34, targets, buttonHeight);
   return targets;
 }
 
@@ -375,17 +383,17 @@ export function drawVerify(
   busy: boolean,
   buttonHeight = 34,
 ): Target[] {
-  const panel = overlay(ctx, "Verify replay codes", PLAY_RECT.h - 8);
+  const panel = overlay(ctx, t("verify.title"), PLAY_RECT.h - 8);
   ctx.strokeStyle = C.ACCENT;
   ctx.lineWidth = 2;
   ctx.strokeRect(paste.x - 2, paste.y - 2, paste.w + 4, paste.h + 4);
   const targets: Target[] = [];
   const y = paste.y + paste.h + 12;
   const buttons: Array<[string, string]> = busy
-    ? [["Close", "close"]]
+    ? [[t("button.close"), "close"]]
     : [
-        ["Verify", "verifyrun"],
-        ["Close", "close"],
+        [t("button.verify"), "verifyrun"],
+        [t("button.close"), "close"],
       ];
   buttonRow(ctx, buttons, panel.x + panel.w / 2, y, targets, buttonHeight);
   const rows = lines.flatMap((line) => wrap(ctx, line, 20, panel.w - 36));
@@ -393,7 +401,7 @@ export function drawVerify(
   const fit = Math.max(0, Math.floor((panel.y + panel.h - 12 - top) / 24));
   const shown =
     rows.length > fit
-      ? [...rows.slice(0, fit - 1), `... and ${rows.length - fit + 1} more lines`]
+      ? [...rows.slice(0, fit - 1), t("page.more_lines", { n: rows.length - fit + 1 })]
       : rows;
   shown.forEach((row, k) => drawText(ctx, row, 20, C.TEXT, panel.x + 18, top + 24 * k, "topleft"));
   return targets;

@@ -5,6 +5,7 @@
  * `PathPanel`, the run in the (N, T) plane on log-log axes with T = Tc(N) and the
  * condensate region shaded. Both record once per frame the physics advanced.
  */
+import { decimalMark, formatNumber, t } from "../i18n";
 import type { AtomArrays, SimLike } from "../game/sim";
 import { rect, type Rect } from "./geometry";
 import { drawText, textWidth } from "./text";
@@ -23,14 +24,14 @@ export const KT_FRACTION = 0.4;
 const GAMMA_5_2 = 0.75 * Math.sqrt(Math.PI);
 /** The legends (the desktop's panels'), drawn in the header, never over the plot. */
 const ENERGY_LEGEND: readonly LegendItem[] = [
-  { swatch: "bar", color: BAR, text: "atoms" },
-  { swatch: "line", color: CURVE, text: "equilibrium at T" },
-  { swatch: "bar", color: CUT, text: "cut m g H" },
+  { swatch: "bar", color: BAR, text: "chart.legend.atoms" },
+  { swatch: "line", color: CURVE, text: "chart.legend.equilibrium" },
+  { swatch: "bar", color: CUT, text: "chart.legend.cut" },
 ];
 const PATH_LEGEND: readonly LegendItem[] = [
-  { swatch: "dot", color: PATH, text: "your path" },
-  { swatch: "line", color: TC_LINE, text: "T = Tc(N)" },
-  { swatch: "bar", color: CONDENSATE, text: "condensate, T < Tc" },
+  { swatch: "dot", color: PATH, text: "chart.legend.your_path" },
+  { swatch: "line", color: TC_LINE, text: "chart.legend.tc_line" },
+  { swatch: "bar", color: CONDENSATE, text: "chart.legend.condensate" },
 ];
 
 const fontSize = (r: Rect) => Math.max(18, Math.min(30, Math.floor(r.h / 11)));
@@ -71,7 +72,7 @@ export function logTicks(lo: number, hi: number): number[] {
 
 export function tickText(v: number): string {
   if (v >= 1000) return v.toFixed(0);
-  return String(Number(v.toPrecision(3)));
+  return String(Number(v.toPrecision(3))).replace(".", decimalMark());
 }
 
 /** Energy 1/2 m v^2 + m g y of each atom in `a`, into `out`. */
@@ -115,7 +116,7 @@ function header(
   let x = r.x + pad;
   let y = r.y + Math.floor(1.5 * fs);
   for (const item of items) {
-    const w = SWATCH_W + 6 + textWidth(ctx, item.text, small);
+    const w = SWATCH_W + 6 + textWidth(ctx, t(item.text), small);
     if (x > r.x + pad && x + w > r.x + r.w - pad) {
       x = r.x + pad;
       y += line;
@@ -138,7 +139,7 @@ function header(
           ctx.arc(ix + SWATCH_W / 2, cy, 6, 0, 2 * Math.PI);
           ctx.fill();
         }
-        const tw = drawText(ctx, item.text, small, INK, ix + SWATCH_W + 6, cy, "midleft");
+        const tw = drawText(ctx, t(item.text), small, INK, ix + SWATCH_W + 6, cy, "midleft");
         words.push(rect(ix + SWATCH_W + 6, iy, Math.ceil(tw), line));
         void w;
       }
@@ -268,7 +269,11 @@ export class EnergyPanel {
     const fs = fontSize(r);
     const small = Math.floor(fs * 0.85);
     const readout = this.edges
-      ? `N = ${this.nTrapped}   T = ${tickText(this.temperature)}   kT = ${tickText(this.kt)}`
+      ? t("page.readout_energy", {
+          n: formatNumber(this.nTrapped),
+          t: tickText(this.temperature),
+          kt: tickText(this.kt),
+        })
       : "";
     const head = header(ctx, r, ENERGY_LEGEND, readout, fs, small);
     const plot = margins(r, head.bottom - r.y);
@@ -277,12 +282,28 @@ export class EnergyPanel {
     ctx.rect(r.x, r.y, r.w, r.h);
     ctx.clip();
     blank(ctx, r, plot);
-    drawText(ctx, "Energies of the trapped atoms", fs, INK, r.x + r.w / 2, r.y + 4, "midtop", true);
+    drawText(ctx, t("chart.energies"), fs, INK, r.x + r.w / 2, r.y + 4, "midtop", true);
     const words = head.draw();
-    drawText(ctx, "energy E", small, INK, plot.x + plot.w / 2, r.y + r.h - 2, "midbottom");
-    yLabel(ctx, "atoms per bin", small, r.x + 4, plot.y + plot.h / 2);
+    drawText(
+      ctx,
+      t("chart.axis.energy"),
+      small,
+      INK,
+      plot.x + plot.w / 2,
+      r.y + r.h - 2,
+      "midbottom",
+    );
+    yLabel(ctx, t("chart.axis.per_bin"), small, r.x + 4, plot.y + plot.h / 2);
     if (!this.edges) {
-      drawText(ctx, "no data yet", small, INK, plot.x + plot.w / 2, plot.y + plot.h / 2, "center");
+      drawText(
+        ctx,
+        t("chart.no_data"),
+        small,
+        INK,
+        plot.x + plot.w / 2,
+        plot.y + plot.h / 2,
+        "center",
+      );
     } else {
       const eMax = this.edges[this.edges.length - 1];
       const ex = (e: number) => plot.x + (plot.w * e) / eMax;
@@ -424,8 +445,12 @@ export class PathPanel {
     let readout = "";
     if (this.n.length) {
       const n = this.n[this.n.length - 1];
-      const t = this.t[this.t.length - 1];
-      readout = `N = ${n}   T = ${tickText(t)}   Tc = ${tickText(this.tc(n))}`;
+      const temperature = this.t[this.t.length - 1];
+      readout = t("chart.readout_path", {
+        n: formatNumber(n),
+        t: tickText(temperature),
+        tc: tickText(this.tc(n)),
+      });
     }
     const head = header(ctx, r, PATH_LEGEND, readout, fs, small);
     const plot = margins(r, head.bottom - r.y);
@@ -481,7 +506,7 @@ export class PathPanel {
       ctx.fill();
     }
     ctx.restore();
-    drawText(ctx, "Path to condensation", fs, INK, r.x + r.w / 2, r.y + 4, "midtop", true);
+    drawText(ctx, t("chart.path"), fs, INK, r.x + r.w / 2, r.y + 4, "midtop", true);
     this.drawn = { plot, words: head.draw() };
     ctx.fillStyle = INK;
     for (const v of logTicks(...this.nRange)) {
@@ -497,14 +522,14 @@ export class PathPanel {
     }
     drawText(
       ctx,
-      "atoms in the cup N",
+      t("chart.axis.atoms"),
       small,
       INK,
       plot.x + plot.w / 2,
       r.y + r.h - 2,
       "midbottom",
     );
-    yLabel(ctx, "temperature T", small, r.x + 2, plot.y + plot.h / 2);
+    yLabel(ctx, t("chart.axis.temperature"), small, r.x + 2, plot.y + plot.h / 2);
     ctx.strokeStyle = INK;
     ctx.lineWidth = 2;
     ctx.strokeRect(plot.x, plot.y, plot.w, plot.h);

@@ -3,6 +3,7 @@
  * the device's pixel ratio): borders, title, cup, atoms, thermometer, status and the
  * messages over the play area. Positions and colours follow the desktop applet.
  */
+import { formatNumber, t } from "../i18n";
 import { BORDER_TOP, screenOrigin } from "./screen";
 import type { Game } from "../game/rules";
 import type { AtomArrays, SimLike } from "../game/sim";
@@ -17,6 +18,8 @@ export const UNDER_MESSAGE = PLAY_RECT.y + 150;
 
 // Thermometer in the right border; the mercury top is at SCALE_ZERO - f (SCALE_ZERO - SCALE_FULL).
 export const THERMO_X = 592;
+/** The title's width at most: centred, clear of the speed line (170 px from x = 10). */
+const TITLE_WIDTH = SCENE_W - 2 * 190;
 const TUBE_WIDTH = 20;
 const TUBE_TOP = 72;
 const SCALE_FULL = 88;
@@ -90,10 +93,14 @@ export class Scene {
     ctx.fillRect(0, bottom, SCENE_W, sceneHeight - bottom);
     ctx.fillRect(0, 0, PLAY_RECT.x, sceneHeight);
     ctx.fillRect(PLAY_RECT.x + PLAY_RECT.w, 0, SCENE_W - PLAY_RECT.x - PLAY_RECT.w, sceneHeight);
-    drawText(ctx, "Evaporation cooling", 40, C.TEXT, SCENE_W / 2, BORDER_TOP / 2 + 1, "center");
+    // The title shrinks to stay clear of the speed line whatever its language's length.
+    const title = t("app.title");
+    let titleSize = 40;
+    while (titleSize > 16 && textWidth(ctx, title, titleSize) > TITLE_WIDTH) titleSize -= 1;
+    drawText(ctx, title, titleSize, C.TEXT, SCENE_W / 2, BORDER_TOP / 2 + 1, "center");
     this.drawThermometer(ctx, game.sim);
     // Left of the title whatever the size: the title starts 183 px in at its size of 40.
-    const label = `speed ${speedText(game.speed)}`;
+    const label = t("status.speed", { speed: speedNumber(game.speed) });
     let size = Math.max(22, minTextSize);
     while (size > 12 && textWidth(ctx, label, size) > 170) size -= 1;
     drawText(ctx, label, size, C.DIM_TEXT, 10, BORDER_TOP / 2, "midleft");
@@ -209,22 +216,23 @@ export class Scene {
   /** "Score: N" in large text at the top of the play area (the win). */
   drawScore(ctx: CanvasRenderingContext2D, score: number): void {
     const cx = PLAY_RECT.x + PLAY_RECT.w / 2;
-    shadowed(ctx, `Score: ${score}`, 84, cx, MESSAGE_Y);
-    drawText(ctx, "The gas has condensed!", 30, C.TEXT, cx, MESSAGE_Y + 58, "center", true);
+    shadowed(ctx, t("win.score_big", { n: score }), 84, cx, MESSAGE_Y);
+    drawText(ctx, t("win.condensed"), 30, C.TEXT, cx, MESSAGE_Y + 58, "center", true);
   }
 
   /** The gas can no longer condense: say why and offer a restart. */
   drawTooFew(ctx: CanvasRenderingContext2D, reason: string, retry: string): void {
     const cx = PLAY_RECT.x + PLAY_RECT.w / 2;
-    shadowed(ctx, "Too few atoms left", 52, cx, MESSAGE_Y);
-    const lines = [...wrap(ctx, reason, 26, PLAY_RECT.w - 40), retry];
+    shadowed(ctx, t("lose.too_few"), 52, cx, MESSAGE_Y);
+    const width = PLAY_RECT.w - 40;
+    const lines = [...wrap(ctx, reason, 26, width), ...wrap(ctx, retry, 26, width)];
     lines.forEach((line, k) =>
       drawText(ctx, line, 26, C.TEXT, cx, MESSAGE_Y + 48 + 30 * k, "center", true),
     );
   }
 
   drawStartHint(ctx: CanvasRenderingContext2D, touch: boolean): void {
-    const text = touch ? "Tap play to start" : "Press Space or click play to start";
+    const text = t(touch ? "start.tap_play" : "start.press_space");
     const cx = PLAY_RECT.x + PLAY_RECT.w / 2;
     drawText(ctx, text, 28, C.TEXT, cx, PLAY_RECT.y + 40, "center", true);
   }
@@ -254,5 +262,10 @@ export function frame(ctx: CanvasRenderingContext2D, r: Rect): void {
 
 /** A speed as people write it: 0.3x, 0.25x, 2x (two significant digits, no float noise). */
 export function speedText(s: number): string {
-  return `${Number(s.toPrecision(2))}x`;
+  return `${speedNumber(s)}x`;
+}
+
+/** The speed's number alone, as the active language writes it (0,25 in German). */
+export function speedNumber(s: number): string {
+  return formatNumber(Number(s.toPrecision(2)));
 }

@@ -63,7 +63,7 @@ test("hex, words, a 5 000-digit count and a repeated option are refused by name"
   assert.deepEqual(all, [
     "Address: speed is given 2 times; give it once. Ignored.",
     'Address: radius must be a number from 0.01 to 1000 px (got "abc"); ignored.',
-    'Address: atoms must be a whole number from 1 to 100000 (got "99999999999999999999…" (5000 characters)); ignored.',
+    'Address: atoms must be a whole number from 1 to 100000 (got "99999999999999999999…" (5,000 characters)); ignored.',
     'Address: seed must be a whole number from 0 to 9007199254740991 (got "0x10"); ignored.',
   ]);
   const s = await page.evaluate(async () => await window.evapcool.state());

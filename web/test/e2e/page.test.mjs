@@ -321,7 +321,7 @@ describe("the page", () => {
     // Said at the moment of the win (an atom above the rim may still leave afterwards).
     assert.match(
       await page.locator("#live").textContent(),
-      /^Temperature below Tc: (\d+) atoms, score \1$/,
+      /^Temperature below Tc: ([\d,]+) atoms, score \1$/,
     );
     assert.equal(s.nameBox, true);
     await page.evaluate(() => window.evapcool.runFrames(60));

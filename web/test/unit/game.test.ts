@@ -351,10 +351,10 @@ describe("game rules", () => {
 describe("too few atoms (the desktop's rule)", () => {
   test("out of reach: none left, one alone above Tc, or none can leave any more", async () => {
     const { outOfReach } = await import("../../src/game/rules");
-    expect(outOfReach(0, 0, 10, 5)).toBe("All the atoms escaped.");
-    expect(outOfReach(1, 20, 10, 5)).toBe("One atom alone cannot cool below Tc.");
+    expect(outOfReach(0, 0, 10, 5)).toBe("lose.all_escaped");
+    expect(outOfReach(1, 20, 10, 5)).toBe("lose.one_atom");
     expect(outOfReach(1, 5, 10, 5)).toBeNull(); // below Tc: condensing
-    expect(outOfReach(3, 30, 5, 40)).toBe("No atom can leave any more: T stays above Tc.");
+    expect(outOfReach(3, 30, 5, 40)).toBe("lose.stuck");
     expect(outOfReach(3, 300, 5, 40)).toBeNull(); // one may leave with nearly all of it
   });
 
@@ -366,7 +366,7 @@ describe("too few atoms (the desktop's rule)", () => {
       return s;
     });
     sims[0].nTrapped = 1;
-    expect(game.tooFewAtoms()).toBe("One atom alone cannot cool below Tc.");
+    expect(game.tooFewAtoms()).toBe("lose.one_atom");
     sims[0].won = true;
     expect(game.tooFewAtoms()).toBeNull();
     sims[0].won = false;
@@ -388,7 +388,7 @@ describe("address options", () => {
     const q = parseParams("?atoms=2.5&speed=8&escape=door&zoom=2", DEFAULTS);
     expect(q.overrides).toEqual({});
     expect(q.notices).toEqual([
-      'Address: unknown option "zoom"; known: atoms, radius, seed, speed, tc-law, escape, replay.',
+      'Address: unknown option "zoom"; known: atoms, radius, seed, speed, tc-law, escape, replay, lang.',
       'Address: atoms must be a whole number from 1 to 100000 (got "2.5"); ignored.',
       'Address: escape must be one of rim, knife (got "door"); ignored.',
       'Address: speed must be a number from 0.25 to 4 (got "8"); ignored.',
@@ -400,7 +400,7 @@ describe("address options", () => {
     const long = "9".repeat(5000);
     expect(parseParams(`?radius=abc&atoms=${long}`, DEFAULTS).notices).toEqual([
       'Address: radius must be a number from 0.01 to 1000 px (got "abc"); ignored.',
-      'Address: atoms must be a whole number from 1 to 100000 (got "99999999999999999999…" (5000 characters)); ignored.',
+      'Address: atoms must be a whole number from 1 to 100000 (got "99999999999999999999…" (5,000 characters)); ignored.',
     ]);
     const hex = parseParams("?atoms=0x20&seed=1e3&speed=Infinity", DEFAULTS);
     expect(hex.overrides).toEqual({});

@@ -1,0 +1,61 @@
+/**
+ * The message catalogs for the page (issue 23): `import "virtual:evapcool-catalogs"` gives
+ * English as an object (the words the page can always show) and the other locales as one
+ * deflate-raw stream in base64 (unpacked by src/i18n.ts with DecompressionStream), each cut to
+ * the keys the page shows: the desktop's and the class server's own words stay out.
+ * Used by vite.config.ts, vitest.config.ts and scripts/run.mjs (plain JavaScript).
+ */
+import { readdirSync, readFileSync } from "node:fs";
+import { join, resolve } from "node:path";
+import { deflateRawSync } from "node:zlib";
+
+const VIRTUAL = "virtual:evapcool-catalogs";
+const RESOLVED = "\0evapcool-catalogs";
+/** The catalogs' folder seen from web/ (the Vite root): one JSON file per locale. */
+export const LOCALES_FOLDER = "../src/evapcool/locales";
+/** Keys the page never shows: the desktop's own screens and the class server's pages. */
+export const NOT_ON_THE_PAGE = ["class.", "desk.", "progress."];
+
+/** Every catalog in `dir`, English first, each with the page's keys only. */
+export function pageCatalogs(dir) {
+  const files = readdirSync(dir)
+    .filter((f) => f.endsWith(".json"))
+    .sort((a, b) => (a === "en.json" ? -1 : b === "en.json" ? 1 : a.localeCompare(b)));
+  return files.map((f) => {
+    const catalog = JSON.parse(readFileSync(join(dir, f), "utf8"));
+    const messages = Object.fromEntries(
+      Object.entries(catalog.messages).filter(
+        ([key]) => !NOT_ON_THE_PAGE.some((prefix) => key.startsWith(prefix)),
+      ),
+    );
+    return { meta: catalog.meta, messages };
+  });
+}
+
+/** The Vite plugin; the build prints what the catalogs cost the page. */
+export function catalogs() {
+  let dir = "";
+  let cost = "";
+  return {
+    name: "evapcool-catalogs",
+    configResolved(config) {
+      dir = resolve(config.root, LOCALES_FOLDER);
+    },
+    resolveId: (id) => (id === VIRTUAL ? RESOLVED : null),
+    load(id) {
+      if (id !== RESOLVED) return null;
+      for (const f of readdirSync(dir)) this.addWatchFile(join(dir, f));
+      const [english, ...others] = pageCatalogs(dir);
+      const plain = JSON.stringify(english);
+      const raw = Buffer.from(JSON.stringify(others));
+      const packed = deflateRawSync(raw, { level: 9 }).toString("base64");
+      cost =
+        `evapcool: the page's ${others.length + 1} message catalogs inlined: English ${Buffer.byteLength(plain)} bytes,` +
+        ` the other ${others.length} ${raw.length} bytes packed to ${packed.length} (deflate, base64)`;
+      return `export const english = ${plain};\nexport const packed = ${JSON.stringify(packed)};`;
+    },
+    generateBundle() {
+      if (cost) console.log(cost);
+    },
+  };
+}
