@@ -63,8 +63,9 @@ export default defineConfig({
       input: "index.html",
     },
   },
-  // The physics worker's own bundle (src/app/main.ts imports it inline) holds the core too.
-  worker: { plugins: () => [wasmCore()] },
+  // The physics worker's own bundle (src/app/main.ts imports it inline) gets the core from
+  // the page in its start message: the page holds one copy.
+  worker: { plugins: () => [wasmCore({ fromPage: true })] },
   plugins: [
     wasmCore(),
     catalogs(),

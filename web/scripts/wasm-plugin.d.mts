@@ -7,4 +7,4 @@ export const CLANG_FLAGS: string[];
 /** The core's bytes, freshly compiled from the C sources in folder `dir`. */
 export function compileCore(dir: string): Uint8Array;
 /** The Vite plugin: `virtual:evapcool-wasm` is the compiled core as base64 text. */
-export function wasmCore(): Plugin;
+export function wasmCore(options?: { fromPage?: boolean }): Plugin;

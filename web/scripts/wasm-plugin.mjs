@@ -9,6 +9,7 @@ import { spawnSync } from "node:child_process";
 import { mkdtempSync, readdirSync, readFileSync, rmSync } from "node:fs";
 import { tmpdir } from "node:os";
 import { join, resolve } from "node:path";
+import { deflateRawSync } from "node:zlib";
 
 const VIRTUAL = "virtual:evapcool-wasm";
 const RESOLVED = "\0evapcool-wasm";
@@ -91,10 +92,29 @@ export function compileCore(dir) {
   }
 }
 
-/** The Vite plugin: `virtual:evapcool-wasm` is the compiled core as base64 text. */
-export function wasmCore() {
+/**
+ * Unpacks deflate-raw base64 at import (top-level await); a browser without
+ * DecompressionStream gets no bytes and plays on engine.ts's Engine (the same events).
+ */
+const UNPACK = `async function unpack(text) {
+  try {
+    const packed = Uint8Array.from(atob(text), (c) => c.charCodeAt(0));
+    const stream = new Blob([packed]).stream().pipeThrough(new DecompressionStream("deflate-raw"));
+    return new Uint8Array(await new Response(stream).arrayBuffer());
+  } catch {
+    return new Uint8Array(0);
+  }
+}`;
+
+/**
+ * The Vite plugin: `virtual:evapcool-wasm` is the compiled core's bytes (packed in the page
+ * with deflate), or none with `fromPage` (the physics worker's bundle: the page hands it
+ * the core's bytes).
+ */
+export function wasmCore({ fromPage = false } = {}) {
   let dir = "";
   let bytes = 0;
+  let packedLength = 0;
   return {
     name: "evapcool-wasm-core",
     configResolved(config) {
@@ -109,15 +129,18 @@ export function wasmCore() {
     resolveId: (id) => (id === VIRTUAL ? RESOLVED : null),
     load(id) {
       if (id !== RESOLVED) return null;
+      if (fromPage) return `export default new Uint8Array(0);`;
       for (const f of readdirSync(dir)) this.addWatchFile(join(dir, f));
       const core = compileCore(dir);
       bytes = core.length;
-      return `export default ${JSON.stringify(Buffer.from(core).toString("base64"))};`;
+      const packed = deflateRawSync(core, { level: 9 }).toString("base64");
+      packedLength = packed.length;
+      return `${UNPACK}\nexport default await unpack(${JSON.stringify(packed)});`;
     },
     generateBundle() {
       if (bytes > 0)
         console.log(
-          `evapcool: the WebAssembly core inlined: ${bytes} bytes, ${4 * Math.ceil(bytes / 3)} as base64`,
+          `evapcool: the WebAssembly core inlined: ${bytes} bytes, packed to ${packedLength} (deflate, base64)`,
         );
     },
   };

@@ -4,7 +4,7 @@
  * frame buffers (worker-protocol.ts). Commands are applied in the order the page sent
  * them, between advances, exactly as the page's own loop applies input between frames.
  */
-import { forceWin, makeSimulation, replayGolden } from "../game/engine";
+import { forceWin, makeSimulation, provideCore, replayGolden } from "../game/engine";
 import { Game, MAX_WALL_STEP, type GameConfig } from "../game/rules";
 import {
   bufferBytes,
@@ -171,6 +171,7 @@ function start(config: GameConfig): void {
 function receive(msg: ToWorker): void {
   switch (msg.type) {
     case "start":
+      if (msg.core.length) provideCore(msg.core);
       start(msg.config);
       break;
     case "command":

@@ -17,7 +17,7 @@ import {
   type GameConfig,
   type SimFactory,
 } from "../game/rules";
-import { CLASSIC_ROOM, randomSeed, type Room } from "../game/engine";
+import { CLASSIC_ROOM, coreBytes, randomSeed, type Room } from "../game/engine";
 import type { AtomArrays, SimLike } from "../game/sim";
 import {
   frameViews,
@@ -179,7 +179,7 @@ export class RemoteGame implements GameLike {
     this.check(config);
     worker.onmessage = (ev: MessageEvent<FromWorker>) => this.receive(ev.data);
     worker.onerror = (ev) => this.fail(ev.message || "the physics worker stopped");
-    this.send({ type: "start", config: this.withSeed(config) });
+    this.send({ type: "start", config: this.withSeed(config), core: coreBytes() });
   }
 
   /**

@@ -113,7 +113,7 @@ export type Command =
 
 export type ToWorker =
   /** The first game (a config the page has checked); the worker makes the buffers. */
-  | { type: "start"; config: GameConfig }
+  | { type: "start"; config: GameConfig; core: Uint8Array<ArrayBuffer> }
   | { type: "command"; seq: number; command: Command }
   /** A display frame began: advance by the time since the last one; a drawn buffer back. */
   | { type: "vsync"; frameSeconds: number; buffer: ArrayBuffer | null }

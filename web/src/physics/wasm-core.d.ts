@@ -1,5 +1,5 @@
-/** The WebAssembly core's bytes as base64 text (scripts/wasm-plugin.ts builds them). */
+/** The WebAssembly core's bytes (scripts/wasm-plugin.mjs builds them; empty if not here). */
 declare module "virtual:evapcool-wasm" {
-  const base64: string;
-  export default base64;
+  const bytes: Uint8Array<ArrayBuffer>;
+  export default bytes;
 }

@@ -6,7 +6,7 @@
  * One WebAssembly instance per engine: its memory holds that engine's tables, allocated once.
  * Validation stays in front of it (Simulation, state.ts): the core is handed sound states.
  */
-import wasmBase64 from "virtual:evapcool-wasm";
+import packedCore from "virtual:evapcool-wasm";
 import type { Engine, EngineAtoms, EngineSetup } from "./engine";
 import { power } from "./portable";
 
@@ -108,13 +108,29 @@ const OUT_OF_MEMORY = (n: number) =>
   `nAtoms must fit the engine core's memory (${n} atoms did not: not enough memory)`;
 
 let compiled: WebAssembly.Module | null = null;
+/** The core's bytes handed over by the page (the worker's bundle carries none of its own). */
+let given: Uint8Array<ArrayBuffer> | null = null;
+
+/** The core's bytes: the page's own, or those handed over (empty if neither). */
+export function coreBytes(): Uint8Array<ArrayBuffer> {
+  return given ?? packedCore;
+}
+
+/** Whether this page or worker has the WebAssembly core (else engine.ts's Engine plays). */
+export function haveCore(): boolean {
+  return coreBytes().length > 0;
+}
+
+/** The physics worker gets the core from the page: one copy in the page's file, not two. */
+export function provideCore(bytes: Uint8Array<ArrayBuffer>): void {
+  given = bytes;
+}
 
 /** The core's compiled module (compiled once, synchronously, on first use). */
 function coreModule(): WebAssembly.Module {
   if (compiled === null) {
-    const text = atob(wasmBase64);
-    const bytes = new Uint8Array(text.length);
-    for (let k = 0; k < text.length; k++) bytes[k] = text.charCodeAt(k);
+    const bytes = coreBytes();
+    if (bytes.length === 0) throw new Error("the engine core was not handed to this worker");
     compiled = new WebAssembly.Module(bytes);
   }
   return compiled;

@@ -383,6 +383,7 @@ describe("address options", () => {
       seed: 3,
       speed: 2,
       replay: null,
+      lang: null,
       notices: [],
     });
     const q = parseParams("?atoms=2.5&speed=8&escape=door&zoom=2", DEFAULTS);
@@ -417,7 +418,7 @@ describe("address options", () => {
     const [notice] = parseParams(`?${name}=1`, DEFAULTS).notices;
     // Shortened: the typed name to 24 characters, then the known options' list.
     expect(notice.length).toBeLessThan(80 + ADDRESS_OPTIONS.join(", ").length);
-    expect(notice).toContain("(3000 characters)");
+    expect(notice).toContain("(3,000 characters)");
   });
 
   test("any radius and count in range is accepted or named", () => {

@@ -13,6 +13,7 @@ import { packetSize } from "../../src/view/condensate";
 import { logTicks, niceStep } from "../../src/view/panels";
 import { SliderModel } from "../../src/view/widgets";
 import { actionFor, BINDINGS, helpRows } from "../../src/app/bindings";
+import { t } from "../../src/i18n";
 import { FrameStats } from "../../src/app/stats";
 
 describe("layout", () => {
@@ -155,7 +156,10 @@ describe("keys and help", () => {
     for (const [key, action] of Object.entries(readme)) expect(actionFor(key)).toBe(action);
     expect(actionFor("q")).toBeUndefined();
     const labels = helpRows().map(([k]) => k);
-    for (const b of BINDINGS) expect(labels).toContain(b.label);
+    // Named in the active language (a help.key.* message) or by the key cap itself.
+    for (const b of BINDINGS)
+      expect(labels).toContain(b.label.startsWith("help.") ? t(b.label) : b.label);
+    expect(labels).toContain("Space");
   });
 
   test("frame statistics: median, p95 and the rate over the span", () => {
