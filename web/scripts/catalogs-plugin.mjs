@@ -2,7 +2,7 @@
  * The message catalogs for the page (issue 23): `import "virtual:evapcool-catalogs"` gives
  * English as an object (the words the page can always show) and the other locales as one
  * deflate-raw stream in base64 (unpacked by src/i18n.ts with DecompressionStream), each cut to
- * the keys the page shows: the desktop's and the class server's own words stay out.
+ * the keys the page's code names: the desktop's and the class server's own words stay out.
  * Used by vite.config.ts, vitest.config.ts and scripts/run.mjs (plain JavaScript).
  */
 import { readdirSync, readFileSync } from "node:fs";
@@ -16,8 +16,26 @@ export const LOCALES_FOLDER = "../src/evapcool/locales";
 /** Keys the page never shows: the desktop's own screens and the class server's pages. */
 export const NOT_ON_THE_PAGE = ["class.", "desk.", "progress."];
 
-/** Every catalog in `dir`, English first, each with the page's keys only. */
-export function pageCatalogs(dir) {
+/** The message keys the page's code names (as quoted literals in src/**\/*.ts). */
+export function keysInSource(srcDir) {
+  const found = new Set();
+  const walk = (d) => {
+    for (const entry of readdirSync(d, { withFileTypes: true })) {
+      const path = join(d, entry.name);
+      if (entry.isDirectory()) walk(path);
+      else if (entry.name.endsWith(".ts"))
+        for (const m of readFileSync(path, "utf8").matchAll(
+          /["'`]([a-z_]+(?:\.[a-z0-9_]+)+)["'`]/g,
+        ))
+          found.add(m[1]);
+    }
+  };
+  walk(srcDir);
+  return found;
+}
+
+/** Every catalog in `dir`, English first, each with the keys in `keep` (or all the page's). */
+export function pageCatalogs(dir, keep = null) {
   const files = readdirSync(dir)
     .filter((f) => f.endsWith(".json"))
     .sort((a, b) => (a === "en.json" ? -1 : b === "en.json" ? 1 : a.localeCompare(b)));
@@ -25,7 +43,9 @@ export function pageCatalogs(dir) {
     const catalog = JSON.parse(readFileSync(join(dir, f), "utf8"));
     const messages = Object.fromEntries(
       Object.entries(catalog.messages).filter(
-        ([key]) => !NOT_ON_THE_PAGE.some((prefix) => key.startsWith(prefix)),
+        ([key]) =>
+          !NOT_ON_THE_PAGE.some((prefix) => key.startsWith(prefix)) &&
+          (keep === null || keep.has(key)),
       ),
     );
     return { meta: catalog.meta, messages };
@@ -35,17 +55,20 @@ export function pageCatalogs(dir) {
 /** The Vite plugin; the build prints what the catalogs cost the page. */
 export function catalogs() {
   let dir = "";
+  let src = "";
   let cost = "";
   return {
     name: "evapcool-catalogs",
     configResolved(config) {
       dir = resolve(config.root, LOCALES_FOLDER);
+      src = resolve(config.root, "src");
     },
     resolveId: (id) => (id === VIRTUAL ? RESOLVED : null),
     load(id) {
       if (id !== RESOLVED) return null;
       for (const f of readdirSync(dir)) this.addWatchFile(join(dir, f));
-      const [english, ...others] = pageCatalogs(dir);
+      // The page's own keys only: the desktop's words stay out of its file.
+      const [english, ...others] = pageCatalogs(dir, keysInSource(src));
       const plain = JSON.stringify(english);
       const raw = Buffer.from(JSON.stringify(others));
       const packed = deflateRawSync(raw, { level: 9 }).toString("base64");

@@ -356,3 +356,8 @@ export function formatFixed(value: number, digits: number): string {
   const options = { minimumFractionDigits: digits, maximumFractionDigits: digits };
   return new Intl.NumberFormat(tag === PSEUDO ? FALLBACK : tag, options).format(value);
 }
+
+/** The active language's writing direction (the canvas's ctx.direction). */
+export function textDirection(): "ltr" | "rtl" {
+  return activeTranslator().direction;
+}

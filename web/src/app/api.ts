@@ -2,6 +2,7 @@
  * `window.evapcool`: the applet's state and a few commands for scripts, lecturers' consoles
  * and the end-to-end tests (which check the page through it, and pixels through screenshots).
  */
+import { activeTranslator, missingKeys } from "../i18n";
 import type { App, DrawnControls } from "./app";
 
 export interface PageState {
@@ -43,6 +44,11 @@ export interface PageState {
   autopilot: boolean;
   /** The help's row size as last drawn, logical px (x scale: CSS px). */
   helpSize: number;
+  /** The language the page speaks (a shipped tag, or en-XA) and its direction. */
+  locale: string;
+  direction: "ltr" | "rtl";
+  /** Keys asked for that the language's catalog lacks (shown in English); empty when whole. */
+  missingKeys: string[];
 }
 
 export function exposeApi(app: App): void {
@@ -88,6 +94,9 @@ export function exposeApi(app: App): void {
         physicsMs: app.physicsMs,
         autopilot: app.autopilotEngaged,
         helpSize: app.helpSize,
+        locale: activeTranslator().locale,
+        direction: activeTranslator().direction,
+        missingKeys: [...(missingKeys.get(activeTranslator().locale) ?? [])],
       };
     },
     /** Play n frames of 1/30 s x speed now, drawn (unpauses); resolves once shown. */

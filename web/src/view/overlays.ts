@@ -7,7 +7,7 @@ import { formatSeconds, type Entry } from "../game/highscores";
 import * as C from "./colors";
 import { PLAY_RECT, rect, type Rect } from "./geometry";
 import { frame, UNDER_MESSAGE } from "./scene";
-import { drawText, textWidth, wrap } from "./text";
+import { drawText, fitSize, textWidth, wrap } from "./text";
 
 export interface Target {
   rect: Rect;
@@ -24,7 +24,8 @@ function overlay(ctx: CanvasRenderingContext2D, title: string, height: number): 
     h,
   );
   frame(ctx, panel);
-  drawText(ctx, title, 34, C.ACCENT, panel.x + panel.w / 2, panel.y + 12, "midtop", true);
+  const size = fitSize(ctx, title, 34, panel.w - 20, 18);
+  drawText(ctx, title, size, C.ACCENT, panel.x + panel.w / 2, panel.y + 12, "midtop", true);
   return panel;
 }
 
@@ -272,11 +273,22 @@ export function drawSettings(
       ctx.fill();
       drawText(ctx, ">", 26, C.ACCENT, panel.x + 14, y, "topleft", true);
     }
-    drawText(ctx, label, 24, C.TEXT, panel.x + 34, y, "topleft", k === selected);
     const right = panel.x + panel.w - 16;
     // "<" and ">" on every row so a finger can change any value directly.
     drawText(ctx, ">", 24, C.ACCENT, right, y, "topright", true);
     const vw = drawText(ctx, value, 24, C.ACCENT, right - 26, y, "topright", true);
+    // The label shrinks (to 12 at least) to leave the value its room, as on the desktop.
+    const size = fitSize(ctx, label, 24, panel.w - 34 - vw - 62, 12);
+    drawText(
+      ctx,
+      label,
+      size,
+      C.TEXT,
+      panel.x + 34,
+      y + (24 - size) / 3,
+      "topleft",
+      k === selected,
+    );
     drawText(ctx, "<", 24, C.ACCENT, right - 26 - vw - 10, y, "topright", true);
     const half = Math.max(40, (vw + 40) / 2);
     targets.push({ rect: rect(right - 2 * half, row.y, half, row.h), action: `dec:${k}` });

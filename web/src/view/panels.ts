@@ -8,7 +8,7 @@
 import { decimalMark, formatNumber, t } from "../i18n";
 import type { AtomArrays, SimLike } from "../game/sim";
 import { rect, type Rect } from "./geometry";
-import { drawText, textWidth } from "./text";
+import { drawText, textWidth, fitSize } from "./text";
 
 const BG = "rgb(244,243,238)";
 const PLOT_BG = "rgb(255,255,255)";
@@ -282,7 +282,16 @@ export class EnergyPanel {
     ctx.rect(r.x, r.y, r.w, r.h);
     ctx.clip();
     blank(ctx, r, plot);
-    drawText(ctx, t("chart.energies"), fs, INK, r.x + r.w / 2, r.y + 4, "midtop", true);
+    drawText(
+      ctx,
+      t("chart.energies"),
+      fitSize(ctx, t("chart.energies"), fs, r.w - 8, 12),
+      INK,
+      r.x + r.w / 2,
+      r.y + 4,
+      "midtop",
+      true,
+    );
     const words = head.draw();
     drawText(
       ctx,
@@ -506,7 +515,16 @@ export class PathPanel {
       ctx.fill();
     }
     ctx.restore();
-    drawText(ctx, t("chart.path"), fs, INK, r.x + r.w / 2, r.y + 4, "midtop", true);
+    drawText(
+      ctx,
+      t("chart.path"),
+      fitSize(ctx, t("chart.path"), fs, r.w - 8, 12),
+      INK,
+      r.x + r.w / 2,
+      r.y + 4,
+      "midtop",
+      true,
+    );
     this.drawn = { plot, words: head.draw() };
     ctx.fillStyle = INK;
     for (const v of logTicks(...this.nRange)) {

@@ -10,7 +10,7 @@ import type { AtomArrays, SimLike } from "../game/sim";
 import * as C from "./colors";
 import { PLAY_RECT, SCENE_W, SCENE_H, type Rect } from "./geometry";
 import { AtomLayer, atomSprite } from "./sprites";
-import { drawText, textWidth, wrap } from "./text";
+import { drawText, fitSize, textWidth, wrap } from "./text";
 
 /** Where messages over the play area go (the desktop's), and panels under them. */
 export const MESSAGE_Y = PLAY_RECT.y + 62;
@@ -95,8 +95,7 @@ export class Scene {
     ctx.fillRect(PLAY_RECT.x + PLAY_RECT.w, 0, SCENE_W - PLAY_RECT.x - PLAY_RECT.w, sceneHeight);
     // The title shrinks to stay clear of the speed line whatever its language's length.
     const title = t("app.title");
-    let titleSize = 40;
-    while (titleSize > 16 && textWidth(ctx, title, titleSize) > TITLE_WIDTH) titleSize -= 1;
+    const titleSize = fitSize(ctx, title, 40, TITLE_WIDTH, 16);
     drawText(ctx, title, titleSize, C.TEXT, SCENE_W / 2, BORDER_TOP / 2 + 1, "center");
     this.drawThermometer(ctx, game.sim);
     // Left of the title whatever the size: the title starts 183 px in at its size of 40.
@@ -216,14 +215,19 @@ export class Scene {
   /** "Score: N" in large text at the top of the play area (the win). */
   drawScore(ctx: CanvasRenderingContext2D, score: number): void {
     const cx = PLAY_RECT.x + PLAY_RECT.w / 2;
-    shadowed(ctx, t("win.score_big", { n: score }), 84, cx, MESSAGE_Y);
-    drawText(ctx, t("win.condensed"), 30, C.TEXT, cx, MESSAGE_Y + 58, "center", true);
+    const width = PLAY_RECT.w - 20;
+    const big = t("win.score_big", { n: score });
+    shadowed(ctx, big, fitSize(ctx, big, 84, width, 40), cx, MESSAGE_Y);
+    const line = t("win.condensed");
+    const size = fitSize(ctx, line, 30, width, 16);
+    drawText(ctx, line, size, C.TEXT, cx, MESSAGE_Y + 58, "center", true);
   }
 
   /** The gas can no longer condense: say why and offer a restart. */
   drawTooFew(ctx: CanvasRenderingContext2D, reason: string, retry: string): void {
     const cx = PLAY_RECT.x + PLAY_RECT.w / 2;
-    shadowed(ctx, t("lose.too_few"), 52, cx, MESSAGE_Y);
+    const title = t("lose.too_few");
+    shadowed(ctx, title, fitSize(ctx, title, 52, PLAY_RECT.w - 20, 26), cx, MESSAGE_Y);
     const width = PLAY_RECT.w - 40;
     const lines = [...wrap(ctx, reason, 26, width), ...wrap(ctx, retry, 26, width)];
     lines.forEach((line, k) =>
@@ -234,7 +238,8 @@ export class Scene {
   drawStartHint(ctx: CanvasRenderingContext2D, touch: boolean): void {
     const text = t(touch ? "start.tap_play" : "start.press_space");
     const cx = PLAY_RECT.x + PLAY_RECT.w / 2;
-    drawText(ctx, text, 28, C.TEXT, cx, PLAY_RECT.y + 40, "center", true);
+    const size = fitSize(ctx, text, 28, PLAY_RECT.w - 20, 16);
+    drawText(ctx, text, size, C.TEXT, cx, PLAY_RECT.y + 40, "center", true);
   }
 }
 

@@ -2,7 +2,14 @@
  * Text on the canvas at the desktop's sizes. The desktop uses pygame's bundled bold sans
  * at size s, which pygame renders at 0.6875 s px; its "bold" is emboldened once more.
  */
-export const FONT_FAMILY = "EvapSans, 'Liberation Sans', Arial, Helvetica, sans-serif";
+import { textDirection } from "../i18n";
+
+// Chinese, Japanese, Korean and Arabic letters come from the system's fonts named after
+// Helvetica (the page's own font has Latin only): never boxes where any of these exists.
+export const FONT_FAMILY =
+  "EvapSans, 'Liberation Sans', Arial, Helvetica, 'Noto Sans CJK SC', 'PingFang SC', " +
+  "'Microsoft YaHei', 'Hiragino Sans', 'Yu Gothic', 'Malgun Gothic', 'Noto Sans Arabic', " +
+  "'Noto Naskh Arabic', Tahoma, sans-serif";
 const PYGAME_SCALE = 0.6875;
 
 export type Anchor =
@@ -34,6 +41,8 @@ export function drawText(
 ): number {
   ctx.font = fontFor(size);
   ctx.fillStyle = color;
+  // Arabic runs right to left (bidi order); the anchor still says where the text's box lies.
+  ctx.direction = textDirection();
   ctx.textAlign = anchor.endsWith("left") ? "left" : anchor.endsWith("right") ? "right" : "center";
   ctx.textBaseline =
     anchor.startsWith("top") || anchor === "midtop"
@@ -52,6 +61,20 @@ export function drawText(
     ctx.strokeText(text, x, y + dy);
   }
   return ctx.measureText(text).width;
+}
+
+/** The largest size from `size` down to `min` at which `text` fits `width` (a long
+ * translation shrinks instead of leaving its box). */
+export function fitSize(
+  ctx: CanvasRenderingContext2D,
+  text: string,
+  size: number,
+  width: number,
+  min: number,
+): number {
+  let s = size;
+  while (s > min && textWidth(ctx, text, s) > width) s -= 1;
+  return s;
 }
 
 export function textWidth(ctx: CanvasRenderingContext2D, text: string, size: number): number {
