@@ -4,7 +4,7 @@ import { wasmCore } from "./scripts/wasm-plugin.mjs";
 import { catalogs } from "./scripts/catalogs-plugin.mjs";
 
 export default defineConfig({
-  plugins: [wasmCore(), catalogs()],
+  plugins: [wasmCore(), catalogs({ allKeys: true })],
   test: {
     include: ["test/**/*.test.ts"],
     exclude: ["test/e2e/**", "node_modules/**"],

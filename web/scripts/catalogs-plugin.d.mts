@@ -15,4 +15,4 @@ export function pageCatalogs(
   messages: Record<string, string>;
 }>;
 /** The Vite plugin: `virtual:evapcool-catalogs`. */
-export function catalogs(): Plugin;
+export function catalogs(options?: { allKeys?: boolean }): Plugin;

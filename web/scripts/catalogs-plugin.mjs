@@ -52,8 +52,11 @@ export function pageCatalogs(dir, keep = null) {
   });
 }
 
-/** The Vite plugin; the build prints what the catalogs cost the page. */
-export function catalogs() {
+/**
+ * The Vite plugin; the build prints what the catalogs cost the page. `allKeys`: every
+ * message (the unit tests check the formatting of the desktop's messages too).
+ */
+export function catalogs({ allKeys = false } = {}) {
   let dir = "";
   let src = "";
   let cost = "";
@@ -68,7 +71,7 @@ export function catalogs() {
       if (id !== RESOLVED) return null;
       for (const f of readdirSync(dir)) this.addWatchFile(join(dir, f));
       // The page's own keys only: the desktop's words stay out of its file.
-      const [english, ...others] = pageCatalogs(dir, keysInSource(src));
+      const [english, ...others] = pageCatalogs(dir, allKeys ? null : keysInSource(src));
       const plain = JSON.stringify(english);
       const raw = Buffer.from(JSON.stringify(others));
       const packed = deflateRawSync(raw, { level: 9 }).toString("base64");

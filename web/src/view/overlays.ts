@@ -2,12 +2,12 @@
  * Panels over the play area: help, high scores, settings, the name box's frame and the
  * notices. Each draw returns the tap targets it drew (touch users have no keyboard).
  */
-import { decimalMark, formatNumber, t } from "../i18n";
+import { decimalMark, formatNumber, t, textDirection } from "../i18n";
 import { formatSeconds, type Entry } from "../game/highscores";
 import * as C from "./colors";
 import { PLAY_RECT, rect, type Rect } from "./geometry";
 import { frame, UNDER_MESSAGE } from "./scene";
-import { drawText, fitSize, textWidth, wrap } from "./text";
+import { drawText, fitSize, textWidth, wrap, type Anchor } from "./text";
 
 export interface Target {
   rect: Rect;
@@ -27,6 +27,14 @@ function overlay(ctx: CanvasRenderingContext2D, title: string, height: number): 
   const size = fitSize(ctx, title, 34, panel.w - 20, 18);
   drawText(ctx, title, size, C.ACCENT, panel.x + panel.w / 2, panel.y + 12, "midtop", true);
   return panel;
+}
+
+/**
+ * Where a line starts in the writing direction: left-to-right text starts at `x` in `box`,
+ * right-to-left text (Arabic) at the mirrored place, anchored by its right end.
+ */
+function lineStart(box: Rect, x: number): [number, Anchor] {
+  return textDirection() === "rtl" ? [2 * box.x + box.w - x, "topright"] : [x, "topleft"];
 }
 
 /** A small framed text button (tap target) inside an overlay. */
@@ -113,10 +121,11 @@ export function drawHelp(
     if (k % perColumn === 0) line = 0;
     const x = panel.x + 18 + c * colW;
     const y = panel.y + title + 28 + step * line;
-    drawText(ctx, keys, size, C.ACCENT, x, y, "topleft", true);
-    lines[k].forEach((text, n) =>
-      drawText(ctx, text, size, C.TEXT, x + keyWidth + size * 0.7, y + n * step, "topleft"),
-    );
+    // Right to left: the key column at the right, the words right-aligned beside it.
+    const [kx, kAnchor] = lineStart(panel, x);
+    drawText(ctx, keys, size, C.ACCENT, kx, y, kAnchor, true);
+    const [wx, wAnchor] = lineStart(panel, x + keyWidth + size * 0.7);
+    lines[k].forEach((text, n) => drawText(ctx, text, size, C.TEXT, wx, y + n * step, wAnchor));
     line += lines[k].length;
   });
   const small = Math.max(minSize, size * 0.85);
@@ -263,6 +272,7 @@ export function drawSettings(
 ): Target[] {
   const targets: Target[] = [];
   const panel = overlay(ctx, t("settings.title"), 110 + 40 * rows.length + 28 * footer.length + 48);
+  const rtl = textDirection() === "rtl";
   rows.forEach(([label, value], k) => {
     const y = panel.y + 60 + 40 * k;
     const row = rect(panel.x + 8, y - 6, panel.w - 16, 34);
@@ -271,24 +281,20 @@ export function drawSettings(
       ctx.beginPath();
       ctx.roundRect(row.x, row.y, row.w, row.h, 4);
       ctx.fill();
-      drawText(ctx, ">", 26, C.ACCENT, panel.x + 14, y, "topleft", true);
+      const [mx, mAnchor] = lineStart(panel, panel.x + 14);
+      drawText(ctx, rtl ? "<" : ">", 26, C.ACCENT, mx, y, mAnchor, true);
     }
-    const right = panel.x + panel.w - 16;
+    // "< value >" at the row's end (its left end when right to left): "<" lowers, ">" raises.
+    const vw = textWidth(ctx, value, 24);
+    const block = vw + 62;
+    const right = rtl ? panel.x + 16 + block : panel.x + panel.w - 16;
     // "<" and ">" on every row so a finger can change any value directly.
     drawText(ctx, ">", 24, C.ACCENT, right, y, "topright", true);
-    const vw = drawText(ctx, value, 24, C.ACCENT, right - 26, y, "topright", true);
+    drawText(ctx, value, 24, C.ACCENT, right - 26, y, "topright", true);
     // The label shrinks (to 12 at least) to leave the value its room, as on the desktop.
     const size = fitSize(ctx, label, 24, panel.w - 34 - vw - 62, 12);
-    drawText(
-      ctx,
-      label,
-      size,
-      C.TEXT,
-      panel.x + 34,
-      y + (24 - size) / 3,
-      "topleft",
-      k === selected,
-    );
+    const [lx, lAnchor] = lineStart(panel, panel.x + 34);
+    drawText(ctx, label, size, C.TEXT, lx, y + (24 - size) / 3, lAnchor, k === selected);
     drawText(ctx, "<", 24, C.ACCENT, right - 26 - vw - 10, y, "topright", true);
     const half = Math.max(40, (vw + 40) / 2);
     targets.push({ rect: rect(right - 2 * half, row.y, half, row.h), action: `dec:${k}` });
@@ -339,17 +345,15 @@ export function drawNameFrame(
   const below = field.y + field.h + 8;
   const full = length >= maxLength;
   const count = `${length}/${maxLength}`;
-  drawText(
-    ctx,
-    full ? t("win.name_full", { count }) : count,
-    22,
-    full ? C.ACCENT : C.TEXT,
-    field.x + field.w,
-    below,
-    "topright",
-    full,
-  );
-  if (!coarse) drawText(ctx, t("win.store_or_skip"), 22, C.TEXT, field.x, below, "topleft");
+  // The count sits at the line's end: the right in left-to-right text, the left in Arabic.
+  const rtl = textDirection() === "rtl";
+  const [cx, cAnchor]: [number, Anchor] = rtl
+    ? [field.x, "topleft"]
+    : [field.x + field.w, "topright"];
+  const shown = full ? t("win.name_full", { count }) : count;
+  drawText(ctx, shown, 22, full ? C.ACCENT : C.TEXT, cx, below, cAnchor, full);
+  const [hx, hAnchor] = lineStart(field, field.x);
+  if (!coarse) drawText(ctx, t("win.store_or_skip"), 22, C.TEXT, hx, below, hAnchor);
   const targets: Target[] = [];
   buttonRow(ctx, nameButtons(), f.x + f.w / 2, below + 34, targets, buttonHeight);
   return targets;
@@ -369,9 +373,10 @@ export function drawNotices(ctx: CanvasRenderingContext2D, lines: string[]): Rec
   const box = rect(PLAY_RECT.x + 6, PLAY_RECT.y + PLAY_RECT.h - 6 - h, PLAY_RECT.w - 12, h);
   ctx.fillStyle = C.NOTICE_SHADE;
   ctx.fillRect(box.x, box.y, box.w, box.h);
-  rows.forEach((row, k) =>
-    drawText(ctx, row, 22, C.TEXT, box.x + 10, box.y + 6 + 20 * k, "topleft"),
-  );
+  rows.forEach((row, k) => {
+    const [x, anchor] = lineStart(box, box.x + 10);
+    drawText(ctx, row, 22, C.TEXT, x, box.y + 6 + 20 * k, anchor);
+  });
   return box;
 }
 
@@ -415,6 +420,7 @@ export function drawVerify(
     rows.length > fit
       ? [...rows.slice(0, fit - 1), t("page.more_lines", { n: rows.length - fit + 1 })]
       : rows;
-  shown.forEach((row, k) => drawText(ctx, row, 20, C.TEXT, panel.x + 18, top + 24 * k, "topleft"));
+  const [vx, vAnchor] = lineStart(panel, panel.x + 18);
+  shown.forEach((row, k) => drawText(ctx, row, 20, C.TEXT, vx, top + 24 * k, vAnchor));
   return targets;
 }

@@ -12,6 +12,9 @@ export const FONT_FAMILY =
   "'Noto Naskh Arabic', Tahoma, sans-serif";
 const PYGAME_SCALE = 0.6875;
 
+/** Letters of right-to-left scripts (Hebrew, Arabic and their presentation forms). */
+const RIGHT_TO_LEFT = /[\u0590-\u08ff\ufb1d-\ufdff\ufe70-\ufeff]/;
+
 export type Anchor =
   | "center"
   | "midleft"
@@ -41,8 +44,10 @@ export function drawText(
 ): number {
   ctx.font = fontFor(size);
   ctx.fillStyle = color;
-  // Arabic runs right to left (bidi order); the anchor still says where the text's box lies.
-  ctx.direction = textDirection();
+  // Arabic lines run right to left (bidi order); the anchor still says where the box lies.
+  // Lines without Arabic letters (a key cap, "<", a number) stay left to right: a lone "<"
+  // in a right-to-left run would be drawn mirrored.
+  ctx.direction = textDirection() === "rtl" && RIGHT_TO_LEFT.test(text) ? "rtl" : "ltr";
   ctx.textAlign = anchor.endsWith("left") ? "left" : anchor.endsWith("right") ? "right" : "center";
   ctx.textBaseline =
     anchor.startsWith("top") || anchor === "midtop"
