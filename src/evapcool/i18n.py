@@ -16,6 +16,7 @@ from importlib import resources
 from typing import Any
 
 from babel import Locale
+from babel import numbers as babel_numbers
 from babel.numbers import format_decimal
 
 FALLBACK = "en"
@@ -333,6 +334,11 @@ def t(key: str, **args: Any) -> str:
 def number(value: float) -> str:
     """`value` written the active language's way (decimal mark, grouping)."""
     return active().format_number(value)
+
+
+def decimal_mark() -> str:
+    """The active language's decimal mark (CLDR): "." in English, "," in German."""
+    return str(babel_numbers.get_decimal_symbol(active().babel_locale))
 
 
 def is_rtl() -> bool:

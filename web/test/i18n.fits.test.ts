@@ -117,7 +117,12 @@ async function overflows(tag: string): Promise<string[]> {
     if (key in BOXES) await check(key, ...BOXES[key], [text(key)]);
     else {
       const [size, width] = wrapBox(key);
-      await check(key, size, width, breakUnits(text(key)).map((u) => u.piece));
+      await check(
+        key,
+        size,
+        width,
+        breakUnits(text(key)).map((u) => u.piece),
+      );
     }
   }
   for (const [keys, width] of BUTTON_ROWS) {

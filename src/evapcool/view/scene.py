@@ -359,7 +359,8 @@ class Scene:
             y = panel.top + 84 + step * k
             mine = highlight == k + 1
             color = ACCENT if mine else TEXT
-            cells = (i18n.number(k + 1), e.name, i18n.number(e.score), format_seconds(e.seconds))
+            time = format_seconds(e.seconds).replace(".", i18n.decimal_mark())
+            cells = (i18n.number(k + 1), e.name, i18n.number(e.score), time)
             for x, cell in zip(cols, cells, strict=True):
                 # A long name is cut at its column rather than running into the score.
                 with pen.clip(pygame.Rect(x, y - 4, name_width, step + 4)):

@@ -1,5 +1,5 @@
 /** The page's entry: storage, address options, the applet, and `window.evapcool` for scripts. */
-import { makeSimulation } from "../game/engine";
+import { haveCore, makeSimulation } from "../game/engine";
 import { loadSettings } from "../game/settingsStore";
 import { drawPageIcon } from "../view/icons";
 import { App } from "./app";
@@ -59,6 +59,11 @@ function retitle(tr: Translator): void {
 }
 
 async function main(): Promise<void> {
+  if (!haveCore())
+    throw new Error(
+      "this browser cannot unpack the physics: it lacks DecompressionStream " +
+        "(Chrome or Edge 103, Firefox 113, Safari 16.4 and newer have it)",
+    );
   onLocaleChange(retitle);
   const browser = browserLocale();
   useLocale(chooseLocale([browser], "", savedLocale()));

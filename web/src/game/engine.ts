@@ -5,7 +5,7 @@ import { readTrace, replayTrace, traceText } from "../physics/trace";
 /** The loader's own 64-gon test, for the settings' capacity (game/capacity.ts). */
 export { diskInsideCup } from "../physics/loading";
 /** The WebAssembly core's bytes: the page hands them to its physics worker. */
-export { coreBytes, provideCore } from "../physics/wasm";
+export { coreBytes, haveCore, provideCore } from "../physics/wasm";
 /** A fresh seed of the shared start generator, for a game that names none. */
 export { randomSeed, SEED_PORTABLE_MAX, START_GENERATOR } from "../physics/start";
 /** The room around the cup (the view places it on screen: view/screen.ts). */

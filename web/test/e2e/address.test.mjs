@@ -23,7 +23,7 @@ test("seven bad options: every one is shown, four at a time, the rest counted", 
   assert.equal(first.length, 5);
   assert.equal(first[4], "…and 3 more");
   assert.ok(first.some((n) => n.includes('(got "abc")')));
-  assert.ok(first.some((n) => n.includes('"yyyyyyyyyyyyyyyyyyyy…" (3000 characters)')));
+  assert.ok(first.some((n) => n.includes('"yyyyyyyyyyyyyyyyyyyy…" (3,000 characters)')));
   assert.ok(
     first.every((n) => n.length < 140),
     "every notice fits a few lines",

@@ -19,8 +19,7 @@ const FONT_FAMILY =
   "'Noto Naskh Arabic', Tahoma, sans-serif";
 
 /** The catalog's messages: the expected words come from the same files the page is built from. */
-const catalog = (tag) =>
-  JSON.parse(readFileSync(resolve(LOCALES, `${tag}.json`), "utf8")).messages;
+const catalog = (tag) => JSON.parse(readFileSync(resolve(LOCALES, `${tag}.json`), "utf8")).messages;
 const EN_TITLE = catalog("en")["page.doc_title"];
 
 // launch() in browser.mjs gives one persistent context (shared localStorage, no locale);
@@ -76,10 +75,7 @@ describe("a language from ?lang= (browser en-US)", () => {
       assert.equal(await spoken(page), m["page.playing"]);
       await page.keyboard.press("h");
       assert.equal((await state(page)).overlay, "help");
-      assert.equal(
-        await spoken(page),
-        m["page.panel_shown"].replace("{panel}", m["help.title"]),
-      );
+      assert.equal(await spoken(page), m["page.panel_shown"].replace("{panel}", m["help.title"]));
       // The button names the action it would do: Pause while playing, Play while paused.
       s = await state(page);
       const label = await page.getAttribute('[data-control="pause"]', "aria-label");

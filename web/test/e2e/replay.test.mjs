@@ -100,11 +100,12 @@ describe("replay codes between the editions", { skip: !existsSync(PYTHON) && "no
     );
     const lines = await page.evaluate(() => window.evapcool.app.verifier.lines());
     const [best, second] = [a, b].sort((x, y) => y.score - x.score || x.frames - y.frames);
+    const en = (n) => n.toLocaleString("en"); // the panel writes numbers as English does
     assert.match(
       lines[0],
-      new RegExp(`^1\\.\\s+${best.score} atoms\\s+${best.frames} frames\\s+desktop`),
+      new RegExp(`^1\\.\\s+${en(best.score)} atoms\\s+${en(best.frames)} frames\\s+desktop`),
     );
-    assert.match(lines[1], new RegExp(`^2\\.\\s+${second.score} atoms`));
+    assert.match(lines[1], new RegExp(`^2\\.\\s+${en(second.score)} atoms`));
     assert.ok(lines.some((l) => l.includes("rejected (does not replay to the claimed score)")));
     assert.ok(lines.some((l) => l.includes("rejected (damaged)")));
     assert.deepEqual(log.errors, []);
