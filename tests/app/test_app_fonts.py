@@ -115,3 +115,41 @@ def _array_on(image: pygame.Surface, background) -> np.ndarray:
     flat.fill(background)
     flat.blit(image, (0, 0))
     return pygame.surfarray.array3d(flat).astype(int)
+
+
+@pytest.mark.parametrize(
+    ("text", "rtl", "expected"),
+    [
+        # Arabic with a bracket and Latin inside, right to left: the closing bracket at the
+        # left end, then the Latin run, then the Arabic run holding the opening bracket.
+        ("أسرع (حتى 4x)", True, [(True, ")"), (False, "4x"), (True, "أسرع (حتى ")]),
+        # A key cap first in an Arabic line: the colon and space join the Arabic run (they
+        # stand between two directions), so the line reads "مساعدة :H" as a browser shows it.
+        ("H: مساعدة", True, [(True, ": مساعدة"), (False, "H")]),
+        # An Arabic name in an English line: one run, its words in their order.
+        ("Winner: علي حسن!", False, [(False, "Winner: "), (True, "علي حسن"), (False, "!")]),
+        ("Score 12", False, [(False, "Score 12")]),
+    ],
+)
+def test_bidi_runs_in_visual_order(text, rtl, expected):
+    assert fonts.bidi_runs(text, rtl) == expected
+
+
+def _middle_leans_right(ink: np.ndarray) -> bool:
+    """A ")" bulges right at mid-height of its ends; a "(" left. ink[x, y] booleans."""
+    xs, ys = np.nonzero(ink)
+    top, bottom = ys.min(), ys.max()
+    third = (bottom - top) / 3
+    middle = xs[(ys > top + third) & (ys < bottom - third)].mean()
+    ends = xs[(ys <= top + third / 2) | (ys >= bottom - third / 2)].mean()
+    return bool(middle > ends)
+
+
+def test_a_bracket_in_a_right_to_left_run_is_mirrored():
+    # "(" then an Arabic letter, right to left: the bracket stands at the right end, drawn
+    # as ")" (HarfBuzz mirrors it), as a browser draws it.
+    assert _middle_leans_right((_array(text_image(")", 32, (0, 0, 0))) < 128).any(axis=2))
+    assert not _middle_leans_right((_array(text_image("(", 32, (0, 0, 0))) < 128).any(axis=2))
+    image = _array(fonts._shaped("(ب", 32, (0, 0, 0), False, True)) < 128
+    bracket = image[-text_image(")", 32, (0, 0, 0)).get_width() :]
+    assert _middle_leans_right(bracket.any(axis=2))

@@ -17,6 +17,8 @@ from functools import lru_cache
 import pygame
 import pygame.freetype
 
+from evapcool import i18n
+
 Color = tuple[int, int, int]
 
 #: System font families tried in order for characters the bundled font lacks (names as
@@ -97,7 +99,8 @@ _fonts: dict[tuple[str | None, int, bool, str | None], pygame.font.Font] = {}
 def _on_quit() -> None:
     # Fonts die with pygame's font modules: drop them (coverage, plain data, stays).
     _fonts.clear()
-    text_image.cache_clear()
+    _plain.cache_clear()
+    _shaped.cache_clear()
     for face in _faces or ():
         face.forget_fonts()
 
@@ -205,33 +208,83 @@ def runs(text: str) -> list[tuple[int, str | None, str]]:
     return out
 
 
+def _strong(ch: str) -> str | None:
+    """A character's own direction: "R", "L" (digits too: a number reads left to right
+    inside any line), or None for the neutrals that take their neighbours' direction."""
+    kind = unicodedata.bidirectional(ch)
+    if kind in ("R", "AL"):
+        return "R"
+    if kind in ("L", "EN", "AN"):
+        return "L"
+    return None
+
+
 def _rtl_paragraph(text: str) -> bool:
-    """Unicode's rule for the base direction: the first strong character decides."""
-    for ch in text:
-        kind = unicodedata.bidirectional(ch)
-        if kind in ("R", "AL"):
-            return True
-        if kind == "L":
-            return False
-    return False
+    """The line's base direction: right to left for a line with right-to-left letters in a
+    right-to-left language; otherwise Unicode's rule, the first strong character decides."""
+    if i18n.is_rtl() and any(_strong(ch) == "R" for ch in text):
+        return True
+    return next((d == "R" for d in map(_strong, text) if d is not None), False)
 
 
-@lru_cache(maxsize=4096)
+def bidi_runs(text: str, rtl: bool) -> list[tuple[bool, str]]:
+    """(right to left?, text) runs in visual order, left to right on the screen.
+
+    The bidirectional algorithm's core (UAX #9, without explicit embeddings): a neutral
+    (space, bracket, punctuation) between two characters of one direction takes it, else the
+    line's; the runs of a right-to-left line are laid out from the right. A right-to-left
+    run keeps its logical order here: HarfBuzz draws it right to left and mirrors brackets.
+    """
+    base = "R" if rtl else "L"
+    strong = [_strong(ch) for ch in text]
+    before, after = [base] * len(text), [base] * len(text)
+    last = base
+    for i, d in enumerate(strong):
+        before[i] = last
+        last = d or last
+    last = base
+    for i in range(len(text) - 1, -1, -1):
+        after[i] = last
+        last = strong[i] or last
+    runs_: list[tuple[bool, str]] = []
+    for i, ch in enumerate(text):
+        d = strong[i] or (before[i] if before[i] == after[i] else base)
+        if runs_ and runs_[-1][0] == (d == "R"):
+            runs_[-1] = (runs_[-1][0], runs_[-1][1] + ch)
+        else:
+            runs_.append((d == "R", ch))
+    return runs_[::-1] if rtl else runs_
+
+
 def text_image(text: str, size: int, color: Color, bold: bool = False) -> pygame.Surface:
     """The text rendered (antialiased, transparent background) at this pixel size."""
     if text.isascii():  # the common case: the bundled font alone, as the original
-        return font(size, bold).render(text, True, color)
+        return _plain(text, size, color, bold)
+    # The line's direction depends on the language in use: part of the cache's key.
+    return _shaped(text, size, color, bold, _rtl_paragraph(text))
+
+
+@lru_cache(maxsize=4096)
+def _plain(text: str, size: int, color: Color, bold: bool) -> pygame.Surface:
+    return font(size, bold).render(text, True, color)
+
+
+@lru_cache(maxsize=4096)
+def _shaped(text: str, size: int, color: Color, bold: bool, rtl: bool) -> pygame.Surface:
+    """Runs in visual order, each drawn by the font that has its letters."""
     chain = faces()
     parts = []
-    for k, script, s in runs(text):
-        if not any(unicodedata.category(ch) not in ("Cf", "Mn") for ch in s):
-            continue  # marks alone (a direction mark after a space) draw nothing
-        f = _sdl_font(chain[k].path, size, bold, script)
-        parts.append((f.render(s, True, color), f.get_ascent()))
+    for right_to_left, run in bidi_runs(text, rtl):
+        pieces = runs(run)
+        # A right-to-left run's spaces and brackets are drawn right to left too (mirrored).
+        script = next((sc for _, sc, _ in pieces if sc is not None), "Arab")
+        for k, own, s in pieces[::-1] if right_to_left else pieces:
+            if not any(unicodedata.category(ch) not in ("Cf", "Mn") for ch in s):
+                continue  # marks alone (a direction mark after a space) draw nothing
+            f = _sdl_font(chain[k].path, size, bold, script if right_to_left else own)
+            parts.append((f.render(s, True, color), f.get_ascent()))
     if not parts:
         return font(size, bold).render("", True, color)
-    if _rtl_paragraph(text):
-        parts.reverse()
     ascent = max(a for _, a in parts)
     height = max(ascent - a + img.get_height() for img, a in parts)
     out = pygame.Surface((sum(img.get_width() for img, _ in parts), height), pygame.SRCALPHA)

@@ -315,11 +315,12 @@ class Scene:
         col = panel.left + 18 + max(text_size(k, size, True)[0] for k, _ in rows) + 16
         for k, (keys, what) in enumerate(rows):
             y = panel.top + 52 + step * k
-            pen.text(keys, size, ACCENT, True, topleft=(panel.left + 18, y))
-            pen.text(what, size, TEXT, topleft=(col, y))
+            # Right to left: the keys at the right, their descriptions right-aligned beside.
+            pen.text(keys, size, ACCENT, True, **_start(panel, panel.left + 18, y))
+            pen.text(what, size, TEXT, **_start(panel, col, y))
         for k, line in enumerate(footer):
             y = panel.top + 56 + step * (len(rows) + k)
-            pen.text(line, size, (190, 220, 255), topleft=(panel.left + 18, y))
+            pen.text(line, size, (190, 220, 255), **_start(panel, panel.left + 18, y))
         return panel
 
     def draw_table(
@@ -382,14 +383,17 @@ class Scene:
         )
         for k, (label, value) in enumerate(rows):
             y = panel.top + 60 + 40 * k
+            rtl = i18n.is_rtl()
             if k == selected:
                 pen.box((60, 60, 110), (panel.left + 8, y - 6, panel.w - 16, 34), 0, 4)
-                pen.text(">", 26, ACCENT, True, topleft=(panel.left + 14, y))
+                pen.text("<" if rtl else ">", 26, ACCENT, True, **_start(panel, panel.left + 14, y))
             shown = f"< {value} >" if k == selected else value
             room = SETTING_ROW - text_size(f"< {value} >", 24, True)[0]
             size = fit_size(label, 24, room, k == selected)
-            pen.text(label, size, TEXT, k == selected, topleft=(panel.left + 34, y))
-            pen.text(shown, 24, ACCENT, True, topright=(panel.right - 16, y))
+            pen.text(label, size, TEXT, k == selected, **_start(panel, panel.left + 34, y))
+            # The value at the row's other end: the left one in a right-to-left language.
+            end = {"topleft": (panel.left + 16, y)} if rtl else {"topright": (panel.right - 16, y)}
+            pen.text(shown, 24, ACCENT, True, **end)
         y = panel.top + 72 + 40 * len(rows)
         for line in footer:
             pen.text(line, 22, TEXT, midtop=(panel.centerx, y))
@@ -406,14 +410,13 @@ class Scene:
         box.draw(pen, field, 32)
         count = f"{len(box.text)}/{box.max_length}"
         full = len(box.text) >= box.max_length
-        pen.text(
-            i18n.t("win.name_full", count=count) if full else count,
-            22,
-            ACCENT if full else TEXT,
-            full,
-            topright=(field.right, field.bottom + 8),
-        )
-        pen.text(i18n.t("win.store_or_skip"), 22, TEXT, topleft=(field.left, field.bottom + 8))
+        # The count at the line's end, the keys' hint at its start (mirrored right to left).
+        below = field.bottom + 8
+        rtl = i18n.is_rtl()
+        end = {"topleft": (field.left, below)} if rtl else {"topright": (field.right, below)}
+        shown = i18n.t("win.name_full", count=count) if full else count
+        pen.text(shown, 22, ACCENT if full else TEXT, full, **end)
+        pen.text(i18n.t("win.store_or_skip"), 22, TEXT, **_start(field, field.left, below))
         return field
 
     def draw_replay_button(self, pen: Pen, label: str, hover: bool) -> pygame.Rect:
@@ -436,8 +439,16 @@ class Scene:
         box.midbottom = (PLAY_RECT.centerx, bottom - 6)
         _shade(pen, box, NOTICE_SHADE)
         for k, row in enumerate(wrapped):
-            pen.text(row, 22, TEXT, topleft=(box.left + 10, box.top + 6 + 20 * k))
+            pen.text(row, 22, TEXT, **_start(box, box.left + 10, box.top + 6 + 20 * k))
         return box
+
+
+def _start(panel: pygame.Rect, x: float, y: float) -> dict[str, tuple[float, float]]:
+    """Where a line starts: at x, or, in a right-to-left language, at its mirror in the
+    panel, anchored by the line's right end."""
+    if i18n.is_rtl():
+        return {"topright": (panel.left + panel.right - x, y)}
+    return {"topleft": (x, y)}
 
 
 #: The status texts' room at each end of the top border, and the title's between them.
