@@ -346,14 +346,17 @@ class Scene:
         cols = (panel.left + 16, panel.left + 50, panel.left + 222, panel.left + 292)
         y = panel.top + 54
         heads = ("table.rank", "table.name", "table.atoms", "table.time")
+        # Right to left: the columns from the right (rank at the right, date at the left).
+        rtl = i18n.is_rtl()
         for x, head, room in zip(cols, heads, TABLE_HEADS[:4], strict=True):
             text = i18n.t(head)
-            pen.text(text, fit_size(text, 22, room, True), ACCENT, True, topleft=(x, y))
+            pen.text(text, fit_size(text, 22, room, True), ACCENT, True, **_start(panel, x, y))
         date = i18n.t("table.date")
         size = fit_size(date, 22, TABLE_HEADS[-1], True)
-        pen.text(date, size, ACCENT, True, topright=(panel.right - 16, y))
+        date_at = {"topleft": (panel.left + 16, y)} if rtl else {"topright": (panel.right - 16, y)}
+        pen.text(date, size, ACCENT, True, **date_at)
         if not entries:
-            pen.text(i18n.t("scores.empty"), 24, TEXT, topleft=(cols[1], y + 30))
+            pen.text(i18n.t("scores.empty"), 24, TEXT, **_start(panel, cols[1], y + 30))
         size = min(24, step - 4)
         name_width = cols[2] - cols[1] - 8
         for k, e in enumerate(entries):
@@ -364,9 +367,15 @@ class Scene:
             cells = (i18n.number(k + 1), e.name, i18n.number(e.score), time)
             for x, cell in zip(cols, cells, strict=True):
                 # A long name is cut at its column rather than running into the score.
-                with pen.clip(pygame.Rect(x, y - 4, name_width, step + 4)):
-                    pen.text(cell, size, color, mine, topleft=(x, y))
-            pen.text(e.date[:10], min(22, size), color, topright=(panel.right - 16, y + 1))
+                left = panel.left + panel.right - x - name_width if rtl else x
+                with pen.clip(pygame.Rect(left, y - 4, name_width, step + 4)):
+                    pen.text(cell, size, color, mine, **_start(panel, x, y))
+            date_at = (
+                {"topleft": (panel.left + 16, y + 1)}
+                if rtl
+                else {"topright": (panel.right - 16, y + 1)}
+            )
+            pen.text(e.date[:10], min(22, size), color, **date_at)
         y = panel.top + 84 + step * rows + 8
         for line in footer:
             pen.text(line, 24, ACCENT, True, midtop=(panel.centerx, y))

@@ -71,6 +71,8 @@ function buttonRow(
   h = 34,
 ): void {
   const size = Math.round((24 * h) / 34);
+  // Right to left: the first button at the right.
+  if (textDirection() === "rtl") buttons = [...buttons].reverse();
   const widths = buttons.map(([label]) => textWidth(ctx, label, size) + (28 * h) / 34);
   const gap = 16;
   let x = cx - (widths.reduce((a, b) => a + b, 0) + gap * (buttons.length - 1)) / 2;
@@ -242,17 +244,21 @@ export function drawTable(
     x += w + COLUMN_GAP;
   }
   const y0 = panel.y + 76;
-  cols.forEach((cx, c) =>
-    drawText(ctx, t(TABLE_HEADS[c]), size - 2, C.ACCENT, cx, y0, "topleft", true),
-  );
-  if (!entries.length) drawText(ctx, t("scores.empty"), 24, C.TEXT, cols[1], y0 + 32, "topleft");
+  // Right to left: the rank column at the right, each word right-aligned in its column.
+  cols.forEach((cx, c) => {
+    const [hx, anchor] = lineStart(panel, cx);
+    drawText(ctx, t(TABLE_HEADS[c]), size - 2, C.ACCENT, hx, y0, anchor, true);
+  });
+  const [ex, eAnchor] = lineStart(panel, cols[1]);
+  if (!entries.length) drawText(ctx, t("scores.empty"), 24, C.TEXT, ex, y0 + 32, eAnchor);
   texts.forEach((row, k) => {
     const y = panel.y + 108 + 30 * k;
     const mine = highlight === k + 1;
     const color = mine ? C.ACCENT : C.TEXT;
     cols.forEach((cx, c) => {
-      const w = drawText(ctx, row[c], size, color, cx, y, "topleft", mine);
-      cells.push({ text: row[c], rect: rect(cx, y, w, 30) });
+      const [px, anchor] = lineStart(panel, cx);
+      const w = drawText(ctx, row[c], size, color, px, y, anchor, mine);
+      cells.push({ text: row[c], rect: rect(anchor === "topright" ? px - w : px, y, w, 30) });
     });
   });
   let y = panel.y + 108 + 30 * rows + 14;
