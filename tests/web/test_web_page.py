@@ -50,3 +50,16 @@ def test_bad_option_is_one_line(capsys) -> None:
         main(["web", "--bogus"])
     assert exc.value.code == 2
     assert capsys.readouterr().err.count("\n") == 1
+
+
+def test_without_javascript_the_page_says_so_in_every_language() -> None:
+    from evapcool import i18n
+
+    text = page_path().read_text(encoding="utf-8")
+    noscript = re.search(r"<noscript\s*>(.*?)</noscript\s*>", text, re.S)
+    assert noscript is not None
+    said = dict(re.findall(r'<p[^>]* lang="([^"]+)"[^>]*>([^<]*)</p>', noscript.group(1)))
+    assert set(said) == set(i18n.shipped_locales())
+    for tag, line in said.items():
+        assert line == i18n.load_catalog(tag)["messages"]["page.noscript"]
+    assert 'lang="ar" dir="rtl"' in noscript.group(1)

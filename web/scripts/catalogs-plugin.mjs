@@ -52,6 +52,10 @@ export function pageCatalogs(dir, keep = null) {
   });
 }
 
+function escapeHtml(text) {
+  return text.replace(/&/g, "&amp;").replace(/</g, "&lt;").replace(/>/g, "&gt;");
+}
+
 /**
  * The Vite plugin; the build prints what the catalogs cost the page. `allKeys`: every
  * message (the unit tests check the formatting of the desktop's messages too).
@@ -79,6 +83,18 @@ export function catalogs({ allKeys = false } = {}) {
         `evapcool: the page's ${others.length + 1} message catalogs inlined: English ${Buffer.byteLength(plain)} bytes,` +
         ` the other ${others.length} ${raw.length} bytes packed to ${packed.length} (deflate, base64)`;
       return `export const english = ${plain};\nexport const packed = ${JSON.stringify(packed)};`;
+    },
+    // Without JavaScript nothing can choose a language: the page says so in every one.
+    transformIndexHtml(html) {
+      const say = pageCatalogs(dir)
+        .map(({ meta, messages }, k) => {
+          const id = k === 0 ? ' id="noscript"' : "";
+          return `<p${id} lang="${meta.tag}" dir="${meta.direction}">${escapeHtml(messages["page.noscript"])}</p>`;
+        })
+        .join("");
+      const pattern = /<p id="noscript">[^<]*<\/p>/;
+      if (!pattern.test(html)) throw new Error('index.html lacks <p id="noscript">');
+      return html.replace(pattern, () => say);
     },
     generateBundle() {
       if (cost) console.log(cost);

@@ -182,3 +182,18 @@ describe("CJK and Arabic letters are drawn, not boxes", () => {
     });
   }
 });
+
+test("without JavaScript the page says so in every shipped language", async () => {
+  const context = await browser.newContext({ javaScriptEnabled: false, viewport: VIEWPORT });
+  const page = await context.newPage();
+  await page.goto(PAGE_URL);
+  const said = await page.evaluate(() =>
+    [...document.querySelectorAll("noscript p")].map((p) => [p.lang, p.textContent]),
+  );
+  const tags = ["ar", "de", "en", "es", "fr", "it", "ja", "ko", "nl", "pl", "pt-BR", "zh-CN"];
+  assert.deepEqual(said.map(([tag]) => tag).sort(), tags);
+  for (const [tag, text] of said) assert.equal(text, catalog(tag)["page.noscript"]);
+  // Shown, not hidden: the first paragraph has a box on the screen.
+  assert.ok(await page.locator("#noscript").isVisible());
+  await context.close();
+});
