@@ -218,6 +218,8 @@ class Catalog:
         self.messages: dict[str, str] = data["messages"]
         self.english: dict[str, str] = load_catalog(FALLBACK)["messages"]
         self.babel_locale = Locale.parse("en" if tag == PSEUDO else tag, sep="-")
+        # Messages are drawn every frame: each is parsed once per catalog.
+        self._parsed: dict[str, list[Any]] = {}
 
     def t(self, key: str, **args: Any) -> str:
         """The message ``key`` formatted with ``args``; English if this locale lacks it."""
@@ -227,7 +229,10 @@ class Catalog:
             missing_keys.setdefault(self.locale, set()).add(key)
             text = self.english[key]
             babel_locale = Locale.parse(FALLBACK)
-        return _render(parse_message(text, key), args, babel_locale, None)
+        nodes = self._parsed.get(text)
+        if nodes is None:
+            nodes = self._parsed[text] = parse_message(text, key)
+        return _render(nodes, args, babel_locale, None)
 
     def format_number(self, value: float) -> str:
         """A number with the locale's decimal mark and grouping."""

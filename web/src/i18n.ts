@@ -263,6 +263,13 @@ export function createTranslator(locale: string): Translator {
   });
   const own = tools(intlTag);
   const english = tools(FALLBACK);
+  // Messages are drawn every frame: each is parsed once per translator.
+  const parsed = new Map<string, Node[]>();
+  const nodesOf = (key: string, text: string): Node[] => {
+    let nodes = parsed.get(text);
+    if (nodes === undefined) parsed.set(text, (nodes = parseMessage(text, key)));
+    return nodes;
+  };
   return {
     locale: tag,
     direction: catalog.meta.direction === "rtl" ? "rtl" : "ltr",
@@ -275,7 +282,7 @@ export function createTranslator(locale: string): Translator {
         text = en.messages[key] ?? key;
         use = english;
       }
-      return render(parseMessage(text, key), args, use, 0);
+      return render(nodesOf(key, text), args, use, 0);
     },
     formatNumber: (value) => own.number.format(value),
   };
@@ -350,11 +357,19 @@ export function decimalMark(): string {
   return formatNumber(0.5).replace(/[^.,٫]/g, "") || ".";
 }
 
+const fixedFormats = new Map<string, Intl.NumberFormat>();
+
 /** `value` with exactly `digits` decimals as the active language writes it (0,60 in German). */
 export function formatFixed(value: number, digits: number): string {
   const tag = activeTranslator().locale;
-  const options = { minimumFractionDigits: digits, maximumFractionDigits: digits };
-  return new Intl.NumberFormat(tag === PSEUDO ? FALLBACK : tag, options).format(value);
+  const key = `${tag}|${digits}`;
+  let format = fixedFormats.get(key);
+  if (format === undefined) {
+    const options = { minimumFractionDigits: digits, maximumFractionDigits: digits };
+    format = new Intl.NumberFormat(tag === PSEUDO ? FALLBACK : tag, options);
+    fixedFormats.set(key, format);
+  }
+  return format.format(value);
 }
 
 /** The active language's writing direction (the canvas's ctx.direction). */

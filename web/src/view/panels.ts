@@ -75,6 +75,12 @@ export function tickText(v: number): string {
   return String(Number(v.toPrecision(3))).replace(".", decimalMark());
 }
 
+/** A panel's title at the top, centred, shrunk (to 12) to fit a long translation. */
+function panelTitle(ctx: CanvasRenderingContext2D, r: Rect, title: string, size: number): void {
+  const fitted = fitSize(ctx, title, size, r.w - 8, 12);
+  drawText(ctx, title, fitted, INK, r.x + r.w / 2, r.y + 4, "midtop", true);
+}
+
 /** Energy 1/2 m v^2 + m g y of each atom in `a`, into `out`. */
 export function energies(a: AtomArrays, g: number, out: Float64Array): Float64Array {
   for (let i = 0; i < a.count; i++) {
@@ -282,16 +288,7 @@ export class EnergyPanel {
     ctx.rect(r.x, r.y, r.w, r.h);
     ctx.clip();
     blank(ctx, r, plot);
-    drawText(
-      ctx,
-      t("chart.energies"),
-      fitSize(ctx, t("chart.energies"), fs, r.w - 8, 12),
-      INK,
-      r.x + r.w / 2,
-      r.y + 4,
-      "midtop",
-      true,
-    );
+    panelTitle(ctx, r, t("chart.energies"), fs);
     const words = head.draw();
     drawText(
       ctx,
@@ -515,16 +512,7 @@ export class PathPanel {
       ctx.fill();
     }
     ctx.restore();
-    drawText(
-      ctx,
-      t("chart.path"),
-      fitSize(ctx, t("chart.path"), fs, r.w - 8, 12),
-      INK,
-      r.x + r.w / 2,
-      r.y + 4,
-      "midtop",
-      true,
-    );
+    panelTitle(ctx, r, t("chart.path"), fs);
     this.drawn = { plot, words: head.draw() };
     ctx.fillStyle = INK;
     for (const v of logTicks(...this.nRange)) {
