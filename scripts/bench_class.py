@@ -15,7 +15,6 @@ from __future__ import annotations
 
 import argparse
 import asyncio
-import json
 import random
 import sys
 import tempfile
@@ -25,7 +24,7 @@ from pathlib import Path
 import httpx
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tests"))
-from classhelp import Server, open_challenge, start_server, student_games
+from classhelp import Server, open_challenge, start_server, student_games, watch_board
 
 
 def quantile(values: list[float], q: float) -> float:
@@ -40,14 +39,6 @@ async def send_all(server: Server, challenge: object, entries, starts: list[floa
     seen: dict[str, float] = {}
     bad: list[str] = []
     limit = asyncio.Semaphore(gate)
-
-    async def watch(client: httpx.AsyncClient) -> None:
-        async with client.stream("GET", server.base + "/api/stream") as events:
-            async for line in events.aiter_lines():
-                if line.startswith("data: "):
-                    now = time.perf_counter()
-                    for e in json.loads(line[6:])["entries"]:
-                        seen.setdefault(e["name"], now)
 
     async def join(client: httpx.AsyncClient, name: str) -> dict[str, str]:
         joined = await client.post(server.base + "/api/join", json={"name": name})
@@ -74,7 +65,7 @@ async def send_all(server: Server, challenge: object, entries, starts: list[floa
         tokens = dict(
             zip(names, await asyncio.gather(*(join(client, n) for n in names)), strict=True)
         )
-        watcher = asyncio.create_task(watch(client))
+        watcher = asyncio.create_task(watch_board(client, server, seen))
         await asyncio.sleep(0.3)
         t0 = time.perf_counter()
         await asyncio.gather(

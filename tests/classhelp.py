@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import contextlib
 import dataclasses
+import json
 import os
 import re
 import signal
@@ -13,6 +14,8 @@ import sys
 import time
 from dataclasses import dataclass
 from pathlib import Path
+
+import httpx
 
 import evapcool
 from evapcool.game.replay import Recorder, Recording, Settings, encode
@@ -185,3 +188,13 @@ def join(server: Server, name: str) -> dict[str, str]:
     answer = httpx.post(server.base + "/api/join", json={"name": name})
     assert answer.status_code == 200, answer.text
     return {"Authorization": f"Bearer {answer.json()['token']}"}
+
+
+async def watch_board(client: httpx.AsyncClient, server: Server, seen: dict[str, float]) -> None:
+    """Follow the leaderboard's stream; note when each name first shows (perf_counter)."""
+    async with client.stream("GET", server.base + "/api/stream") as events:
+        async for line in events.aiter_lines():
+            if line.startswith("data: "):
+                now = time.perf_counter()
+                for e in json.loads(line[6:])["entries"]:
+                    seen.setdefault(e["name"], now)

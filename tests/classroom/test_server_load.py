@@ -7,13 +7,12 @@ Prints the 95th-percentile latency of submit -> 200 and of submit -> seen on the
 from __future__ import annotations
 
 import asyncio
-import json
 import statistics
 import time
 from pathlib import Path
 
 import httpx
-from classhelp import Server, open_challenge, start_server, student_games
+from classhelp import Server, open_challenge, start_server, student_games, watch_board
 
 STUDENTS = 300
 FORGED_EVERY = 10  # one student in ten claims more than their game gives
@@ -36,14 +35,6 @@ async def _run(server: Server, challenge: object, entries: list[tuple[str, str, 
     statuses: dict[str, int] = {}
     gate = asyncio.Semaphore(CONCURRENCY)
 
-    async def watch(client: httpx.AsyncClient) -> None:
-        async with client.stream("GET", server.base + "/api/stream") as events:
-            async for line in events.aiter_lines():
-                if line.startswith("data: "):
-                    now = time.perf_counter()
-                    for e in json.loads(line[6:])["entries"]:
-                        seen.setdefault(e["name"], now)
-
     async def student(client: httpx.AsyncClient, name: str, game: str) -> None:
         async with gate:
             joined = await client.post(server.base + "/api/join", json={"name": name})
@@ -59,7 +50,7 @@ async def _run(server: Server, challenge: object, entries: list[tuple[str, str, 
 
     limits = httpx.Limits(max_connections=CONCURRENCY + 10)
     async with httpx.AsyncClient(timeout=300, limits=limits) as client:
-        watcher = asyncio.create_task(watch(client))
+        watcher = asyncio.create_task(watch_board(client, server, seen))
         await asyncio.sleep(0.2)
         start = time.perf_counter()
         await asyncio.gather(*(student(client, n, g) for n, g, _ in entries))

@@ -25,80 +25,76 @@ export interface Hints {
   readonly youHaveTheTrap: string;
 }
 
-const pilot = (name: string) => t("autopilot.label", { name });
+/** Each hint's message: [for a keyboard, for a touch screen]. */
+const WORDS = {
+  tooFewSpoken: ["hint.too_few", "hint.touch.too_few"],
+  tooFewLine: ["lose.try_again", "hint.touch.try_again"],
+  notTop: ["notice.not_top10", "hint.touch.not_top10"],
+  stored: ["hint.stored", "hint.touch.stored"],
+  notStored: ["win.not_stored", "hint.touch.not_stored"],
+  tableFooter: ["table.footer", "hint.touch.table_footer"],
+  nextFooter: ["win.next_player", "hint.touch.next_player"],
+  confirmClear: ["table.clear_confirm", "hint.touch.clear_confirm"],
+  confirmClearSpoken: ["scores.clear_confirm", "hint.touch.clear_confirm_spoken"],
+  hiddenPause: ["status.paused_hidden", "hint.touch.paused_hidden"],
+  settingsSaved: ["settings.saved", "hint.touch.settings_saved"],
+  choose: ["help.choose_change", "hint.touch.choose_change"],
+  saveCancel: ["settings.save_cancel", "hint.touch.save_cancel"],
+  autopilotPlays: ["notice.autopilot_plays", "hint.touch.autopilot_plays"],
+  youHaveTheTrap: ["notice.you_have_trap", "hint.touch.you_have_trap"],
+} as const;
 
-export const KEY_HINTS: Hints = {
-  touch: false,
-  tooFewSpoken: (reason) => t("hint.too_few", { reason: t(reason) }),
-  get tooFewLine() {
-    return t("lose.try_again");
-  },
-  notTop: (n) => t("notice.not_top10", { n }),
-  stored: (rank) => t("hint.stored", { rank }),
-  get notStored() {
-    return t("win.not_stored");
-  },
-  get tableFooter() {
-    return t("table.footer");
-  },
-  get nextFooter() {
-    return t("win.next_player");
-  },
-  get confirmClear() {
-    return t("table.clear_confirm");
-  },
-  get confirmClearSpoken() {
-    return t("scores.clear_confirm");
-  },
-  get hiddenPause() {
-    return t("status.paused_hidden");
-  },
-  get settingsSaved() {
-    return t("settings.saved");
-  },
-  get settingsFooter() {
-    return [t("help.choose_change"), t("settings.save_cancel")];
-  },
-  autopilotPlays: (name) => t("notice.autopilot_plays", { name: pilot(name) }),
-  get youHaveTheTrap() {
-    return t("notice.you_have_trap");
-  },
-};
+/** The hints of one kind of device, read from the active catalog each time they are asked. */
+class DeviceHints implements Hints {
+  constructor(readonly touch: boolean) {}
 
-export const TOUCH_HINTS: Hints = {
-  touch: true,
-  tooFewSpoken: (reason) => t("hint.touch.too_few", { reason: t(reason) }),
+  private say(which: keyof typeof WORDS, args?: Record<string, string | number>): string {
+    return t(WORDS[which][this.touch ? 1 : 0], args);
+  }
+
+  tooFewSpoken(reason: string): string {
+    return this.say("tooFewSpoken", { reason: t(reason) });
+  }
   get tooFewLine() {
-    return t("hint.touch.try_again");
-  },
-  notTop: (n) => t("hint.touch.not_top10", { n }),
-  stored: (rank) => t("hint.touch.stored", { rank }),
+    return this.say("tooFewLine");
+  }
+  notTop(n: number): string {
+    return this.say("notTop", { n });
+  }
+  stored(rank: number): string {
+    return this.say("stored", { rank });
+  }
   get notStored() {
-    return t("hint.touch.not_stored");
-  },
+    return this.say("notStored");
+  }
   get tableFooter() {
-    return t("hint.touch.table_footer");
-  },
+    return this.say("tableFooter");
+  }
   get nextFooter() {
-    return t("hint.touch.next_player");
-  },
+    return this.say("nextFooter");
+  }
   get confirmClear() {
-    return t("hint.touch.clear_confirm");
-  },
+    return this.say("confirmClear");
+  }
   get confirmClearSpoken() {
-    return t("hint.touch.clear_confirm_spoken");
-  },
+    return this.say("confirmClearSpoken");
+  }
   get hiddenPause() {
-    return t("hint.touch.paused_hidden");
-  },
+    return this.say("hiddenPause");
+  }
   get settingsSaved() {
-    return t("hint.touch.settings_saved");
-  },
+    return this.say("settingsSaved");
+  }
   get settingsFooter() {
-    return [t("hint.touch.choose_change"), t("hint.touch.save_cancel")];
-  },
-  autopilotPlays: (name) => t("hint.touch.autopilot_plays", { name: pilot(name) }),
+    return [this.say("choose"), this.say("saveCancel")];
+  }
+  autopilotPlays(name: string): string {
+    return this.say("autopilotPlays", { name: t("autopilot.label", { name }) });
+  }
   get youHaveTheTrap() {
-    return t("hint.touch.you_have_trap");
-  },
-};
+    return this.say("youHaveTheTrap");
+  }
+}
+
+export const KEY_HINTS: Hints = new DeviceHints(false);
+export const TOUCH_HINTS: Hints = new DeviceHints(true);

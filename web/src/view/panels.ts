@@ -165,6 +165,11 @@ function blank(ctx: CanvasRenderingContext2D, r: Rect, plot: Rect): void {
   ctx.fillRect(plot.x, plot.y, plot.w, plot.h);
 }
 
+/** The x axis's name, centred under the plot at the panel's bottom edge. */
+function xLabel(ctx: CanvasRenderingContext2D, text: string, size: number, plot: Rect, r: Rect) {
+  drawText(ctx, text, size, INK, plot.x + plot.w / 2, r.y + r.h - 2, "midbottom");
+}
+
 function yLabel(ctx: CanvasRenderingContext2D, text: string, size: number, x: number, cy: number) {
   ctx.save();
   ctx.translate(x, cy);
@@ -290,15 +295,7 @@ export class EnergyPanel {
     blank(ctx, r, plot);
     panelTitle(ctx, r, t("chart.energies"), fs);
     const words = head.draw();
-    drawText(
-      ctx,
-      t("chart.axis.energy"),
-      small,
-      INK,
-      plot.x + plot.w / 2,
-      r.y + r.h - 2,
-      "midbottom",
-    );
+    xLabel(ctx, t("chart.axis.energy"), small, plot, r);
     yLabel(ctx, t("chart.axis.per_bin"), small, r.x + 4, plot.y + plot.h / 2);
     if (!this.edges) {
       drawText(
@@ -526,15 +523,7 @@ export class PathPanel {
       ctx.fillRect(plot.x - 5, y - 1, 5, 2);
       drawText(ctx, tickText(v), small, INK, plot.x - 6, y, "midright");
     }
-    drawText(
-      ctx,
-      t("chart.axis.atoms"),
-      small,
-      INK,
-      plot.x + plot.w / 2,
-      r.y + r.h - 2,
-      "midbottom",
-    );
+    xLabel(ctx, t("chart.axis.atoms"), small, plot, r);
     yLabel(ctx, t("chart.axis.temperature"), small, r.x + 2, plot.y + plot.h / 2);
     ctx.strokeStyle = INK;
     ctx.lineWidth = 2;
