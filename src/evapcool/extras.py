@@ -13,7 +13,6 @@ from types import ModuleType
 
 #: import name -> the extra that installs it.
 EXTRA_OF = {
-    "numba": "fast",
     "matplotlib": "lab",
     "pandas": "cluster",
     "pyarrow": "cluster",
@@ -26,7 +25,7 @@ EXTRA_OF = {
 }
 
 #: From this many atoms the NumPy engine is slower than real time (docs/benchmarks.md:
-#: about 18 ms a frame at 300 atoms, growing faster than N): without numba, say so.
+#: about 18 ms a frame at 300 atoms, growing faster than N): without the compiled core, say so.
 SLOW_REFERENCE_ATOMS = 400
 
 
@@ -35,7 +34,7 @@ class MissingExtraError(ImportError):
 
 
 class SlowEngineWarning(UserWarning):
-    """Many atoms and no numba: the NumPy engine runs them, slower than real time."""
+    """Many atoms and no compiled core: the NumPy engine runs them, slower than real time."""
 
 
 def install_hint(extra: str) -> str:
@@ -78,6 +77,6 @@ def missing_message(module: str, feature: str, hint: str | None = None) -> str:
 
 def slow_engine_message(n_atoms: int) -> str:
     return (
-        f"{n_atoms} atoms without numba: the NumPy engine runs them slower than real time "
-        f"(seconds a frame at a few thousand); for the fast engine: {install_hint('fast')}"
+        f"{n_atoms} atoms without the compiled core: the NumPy engine runs them slower than "
+        "real time (seconds a frame at a few thousand); reinstall evapcool with a C compiler"
     )

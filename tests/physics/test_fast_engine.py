@@ -12,7 +12,6 @@ from hypothesis import strategies as st
 from evapcool import Simulation
 from evapcool.physics.world import TRAPPED
 
-pytest.importorskip("numba")
 
 
 def _pair_run(

@@ -54,7 +54,6 @@ def test_reference_engine_writes_the_committed_trace(name: str) -> None:
 
 @pytest.mark.parametrize("name", sorted(CASES))
 def test_fast_engine_replays_the_committed_trace(name: str) -> None:
-    pytest.importorskip("numba")
     committed = (GOLDEN / f"{name}.json").read_text(encoding="utf-8")
     assert trace_text(replay(read_trace(committed), "fast")) == committed
 

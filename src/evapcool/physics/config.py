@@ -14,7 +14,6 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from evapcool import limits
-from evapcool.extras import available
 from evapcool.limits import ParameterError, Range, bad_value
 from evapcool.physics.room import Room, check_room
 from evapcool.physics.validation import check_start
@@ -110,7 +109,10 @@ class SimulationConfig:
 
 
 def fast_available() -> bool:
-    return available("numba")
+    """True if the compiled core (engine 'fast') is installed."""
+    from evapcool.physics.core import available
+
+    return available()
 
 
 def check_engine_size(engine: str, n: int) -> None:
@@ -126,8 +128,8 @@ def check_engine_size(engine: str, n: int) -> None:
     if engine == "auto" and not fast_available():
         raise ParameterError(
             "n_atoms",
-            f"must be at most {limits.REFERENCE_MAX_ATOMS} without numba "
-            f"(got {n}); install numba for the fast engine",
+            f"must be at most {limits.REFERENCE_MAX_ATOMS} without the compiled core "
+            f"(got {n}); reinstall evapcool with a C compiler for it",
         )
 
 

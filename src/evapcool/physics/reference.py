@@ -3,8 +3,8 @@
 Simple enough to check by reading: after every event the rows of the
 atoms involved are recomputed against all others, and the next event is the
 minimum of the pair table and the per-atom wall/exit times. O(N) work per
-event plus an O(N^2) scan, fine up to a few hundred atoms. The fast engine
-(physics/fast/) must reproduce its event sequence exactly.
+event plus an O(N^2) scan, fine up to a few hundred atoms. The compiled core
+(core/*.c, physics/core.py) must reproduce its event sequence exactly.
 """
 
 from __future__ import annotations
@@ -237,6 +237,10 @@ class ReferenceEngine:
                 else:
                     self._exit_event(i, t)
         w.time = t_end
+
+    def force_win(self) -> None:
+        """Latch the win now (demonstrations and tests)."""
+        self.w.won = True
 
     def set_trap_height(self, height: float) -> None:
         """New rim height; with the knife rule, atoms above m g H go at once."""

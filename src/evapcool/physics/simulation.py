@@ -1,6 +1,6 @@
 """`Simulation`: the public face of the physics (SPEC section 3).
 
-Pure model: NumPy (and Numba through the fast engine), never pygame.
+Pure model: NumPy and the compiled core (physics/core.py), never pygame.
 """
 
 from __future__ import annotations
@@ -15,7 +15,6 @@ from evapcool import limits
 from evapcool.extras import (
     SLOW_REFERENCE_ATOMS,
     SlowEngineWarning,
-    check,
     slow_engine_message,
 )
 from evapcool.physics.config import (
@@ -48,7 +47,7 @@ from evapcool.physics.world import (
 )
 
 if TYPE_CHECKING:
-    from evapcool.physics.fast import FastEngine
+    from evapcool.physics.core import CoreEngine
     from evapcool.physics.reference import ReferenceEngine
 
 #: Public names; the applet's constants are defined in physics/constants.py (below
@@ -67,8 +66,10 @@ __all__ = [
     "TRAP_HEIGHT",
     "Simulation",
 ]
-#: engine="auto" uses the fast engine from this many atoms on (docs/benchmarks.md).
-AUTO_FAST_MIN_ATOMS = 100
+#: engine="auto" uses the compiled core ("fast") from this many atoms on: from the first,
+#: as it has no start-up cost and is faster than the NumPy engine at any size
+#: (docs/benchmarks.md).
+AUTO_FAST_MIN_ATOMS = 1
 
 
 class Simulation:
@@ -198,16 +199,15 @@ class Simulation:
 
         return to_state(self)
 
-    def _make_engine(self, engine: str, n: int) -> ReferenceEngine | FastEngine:
+    def _make_engine(self, engine: str, n: int) -> ReferenceEngine | CoreEngine:
         if engine == "auto":
             engine = "fast" if n >= AUTO_FAST_MIN_ATOMS and fast_available() else "reference"
             if engine == "reference" and n >= SLOW_REFERENCE_ATOMS:
                 warnings.warn(slow_engine_message(n), SlowEngineWarning, stacklevel=4)
         if engine == "fast":
-            check("numba", "the fast engine")
-            from evapcool.physics.fast import FastEngine
+            from evapcool.physics.core import CoreEngine
 
-            return FastEngine(self._world)
+            return CoreEngine(self._world)
         from evapcool.physics.reference import ReferenceEngine
 
         return ReferenceEngine(self._world)
@@ -236,7 +236,7 @@ class Simulation:
 
     @property
     def engine(self) -> str:
-        """Name of the engine in use: 'reference' or 'fast'."""
+        """Name of the engine in use: 'reference', or 'fast' (the compiled core)."""
         return self._engine.name
 
     # -- the trap ---------------------------------------------------------------
@@ -394,4 +394,4 @@ class Simulation:
 
     def force_win(self) -> None:
         """Declare the gas condensed now (demonstrations and tests)."""
-        self._world.won = True
+        self._engine.force_win()

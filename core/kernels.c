@@ -148,3 +148,10 @@ void settle_wall(State *s, double a, double keep, double v_floor) {
   s->vx = ux;
   s->vy = uy;
 }
+
+/*
+ * a * b + c as two roundings. A build that fuses it into one (a multiply-add: -ffp-contract
+ * on) gives other bits for some inputs, and then other events: the tests call this with
+ * such inputs to catch a build that contracts.
+ */
+double core_contraction_probe(double a, double b, double c) { return a * b + c; }

@@ -1,7 +1,8 @@
 /*
- * The WebAssembly engine's tables: the web twin of src/evapcool/physics/fast/tables.py,
- * with its field names. One engine per WebAssembly instance: the tables are globals,
- * allocated once at the start (no allocation per event).
+ * The engine core's tables, written once for both editions: compiled to WebAssembly for the
+ * page (web/scripts/wasm-plugin.mjs) and natively as the Python package's extension
+ * (setup.py, src/evapcool/physics/_core.c). An engine is a `Core`: its scalars and tables,
+ * allocated once at the start (no allocation per event); a process may hold several.
  *
  * Row i of the three per-atom tables belongs to the same atom, but not to atom i of the
  * World: rows are renumbered in cell order now and then (driver.c), and `atom` holds the
@@ -14,7 +15,12 @@
 #include <stdint.h>
 
 #define INF __builtin_inf()
+#ifdef __wasm__
 #define EXPORT(name) __attribute__((export_name(#name)))
+#else
+#define EXPORT(name)
+
+#endif
 
 /* What the pair scan reads of every neighbour, one 64-byte line. */
 typedef struct {
@@ -97,17 +103,30 @@ enum { KIND_NONE = 0, KIND_PAIR, KIND_WALL, KIND_EXIT, KIND_CROSS_X, KIND_CROSS_
 /* Ranks order events of equal time: crossings, then solo events, then pairs. */
 enum { RANK_CROSS = -1, RANK_SOLO = 0, RANK_PAIR = 1 };
 
-/* Everything the engine works on. */
-extern Run run;
-extern State *state;
-extern Queued *queued;
-extern Plan *plan;
-extern HeapEntry *heap;
-extern int32_t *bins;  /* first row of each list: n_bins ring lists, overflow, no event */
-extern int32_t *cells; /* first row of each cell (row-major), then the next row in cell */
-extern int32_t *row_of; /* row of every World atom */
-extern double *tc_table; /* critical temperature for every atom count, seed Eq. (46) */
-extern LogLine *event_log;
+/* One engine: its scalars and tables (no globals, so a process may hold several). */
+typedef struct Core {
+  Run run;
+  State *state;
+  Queued *queued;
+  Plan *plan;
+  HeapEntry *heap;
+  int32_t *bins;      /* first row of each list: n_bins ring lists, overflow, no event */
+  int32_t *cells;     /* first row of each cell (row-major), then the next row in cell */
+  int32_t *row_of;    /* row of every World atom */
+  double *tc_table;   /* critical temperature for every atom count, seed Eq. (46) */
+  LogLine *event_log;
+  /* spare tables for renumbering (swapped with the live ones) and its order */
+  State *state2;
+  Queued *queued2;
+  Plan *plan2;
+  int32_t *order;
+  double *inputs;     /* where the caller writes the atoms before load() */
+  double state_out[4]; /* where state_at writes: x, y, vx, vy */
+  int32_t out_of_memory;
+  /* every block taken (memory.c frees them with the engine) */
+  void *blocks[24];
+  int32_t n_blocks;
+} Core;
 
 /* kernels.c */
 double flight_x(double x, double vx, double dt);
@@ -122,36 +141,62 @@ void bounce_wall(State *s, double a, double v_min);
 void settle_wall(State *s, double a, double keep, double v_floor);
 
 /* calendar.c */
-void calendar_init(int32_t n);
-void file_atom(int32_t i);
-int32_t calendar_top(void);
-void calendar_rebuild(double now);
+void calendar_init(Core *core, int32_t n);
+void file_atom(Core *core, int32_t i);
+int32_t calendar_top(Core *core);
+void calendar_rebuild(Core *core, double now);
 
 /* grid.c */
-int32_t grid_shape(void);
-int32_t grid_errors(void);
-int32_t cell_of(double u, double u0, int32_t n);
-void link(int32_t i, int32_t cx, int32_t cy);
-void unlink(int32_t i);
+int32_t grid_shape(Core *core);
+int32_t grid_errors(Core *core);
+int32_t cell_of(Core *core, double u, double u0, int32_t n);
+void cell_link(Core *core, int32_t i, int32_t cx, int32_t cy);
+void cell_unlink(Core *core, int32_t i);
 
 /* predict.c */
-void scan(int32_t i, int32_t x0, int32_t x1, int32_t y0, int32_t y1);
-void predict_real(int32_t i);
-void predict_crossing(int32_t i);
-void set_key(int32_t i);
-void load_key(int32_t i);
-void predict(int32_t i);
+void scan(Core *core, int32_t i, int32_t x0, int32_t x1, int32_t y0, int32_t y1);
+void predict_real(Core *core, int32_t i);
+void predict_crossing(Core *core, int32_t i);
+void set_key(Core *core, int32_t i);
+void load_key(Core *core, int32_t i);
+void predict(Core *core, int32_t i);
 
 /* events.c */
-double energy(int32_t i);
-void move(int32_t i);
-int32_t knife(int32_t i);
-int32_t pair_event(int32_t i, double te, int32_t *second);
-int32_t wall_event(int32_t i, double te);
-void exit_event(int32_t i, double te);
-int32_t crossing_event(int32_t i, double te, int32_t kind);
+double energy(Core *core, int32_t i);
+void fly_to_clock(Core *core, int32_t i);
+int32_t knife(Core *core, int32_t i);
+int32_t pair_event(Core *core, int32_t i, double te, int32_t *second);
+int32_t wall_event(Core *core, int32_t i, double te);
+void exit_event(Core *core, int32_t i, double te);
+int32_t crossing_event(Core *core, int32_t i, double te, int32_t kind);
 
 /* driver.c */
-void renumber(void);
+void renumber(Core *core);
+
+/* memory.c: n zeroed bytes on a 64-byte line, 0 if none are left */
+void *core_take(Core *core, uintptr_t bytes);
+Core *core_new(void);
+void core_free(Core *core);
+
+
+/* The entry points (driver.c, tables.c, grid.c): what the wrappers call. */
+double *core_allocate(Core *core, int32_t n, int32_t log_capacity);
+void core_load(Core *core, const double *in, double gravity, double curvature, double x_left,
+               double x_right, double y_bottom, int32_t knife_rule, int32_t win_rule,
+               int32_t record, double time, int32_t won, double pairs, double walls);
+int32_t core_start(Core *core, double energy_sum, double trap_height);
+int32_t core_advance_to(Core *core, double t_end);
+void core_set_trap_height(Core *core, double height);
+int32_t core_status_of(Core *core, int32_t a);
+double core_stored_of(Core *core, int32_t a, int32_t k);
+double core_atom_energy(Core *core, int32_t a);
+double *core_state_at(Core *core, int32_t a, double t);
+double core_sequential_energy_sum(Core *core);
+void core_force_win(Core *core);
+int32_t core_grid_errors(Core *core);
+double core_contraction_probe(double a, double b, double c);
+
+/* core_advance_to's answers: every event up to t_end done, or the log to be emptied first. */
+enum { CORE_DONE = 0, CORE_LOG_FULL = 1 };
 
 #endif

@@ -11,38 +11,38 @@
 #define MAX_CELLS_PER_ATOM 8
 
 /* The cell column (or row) of coordinate u, clamped to the grid. */
-int32_t cell_of(double u, double u0, int32_t n) {
-  double c = __builtin_floor((u - u0) / run.cell);
+int32_t cell_of(Core *core, double u, double u0, int32_t n) {
+  double c = __builtin_floor((u - u0) / core->run.cell);
   if (c < 0) return 0;
   if (c > n - 1) return n - 1;
   return (int32_t)c;
 }
 
 /* File row i first in cell (cx, cy). */
-void link(int32_t i, int32_t cx, int32_t cy) {
-  Plan *p = &plan[i];
+void cell_link(Core *core, int32_t i, int32_t cx, int32_t cy) {
+  Plan *p = &core->plan[i];
   p->cell_x = cx;
   p->cell_y = cy;
-  int32_t c = cy * run.nx + cx;
-  int32_t q = cells[c];
-  cells[run.n_cells + i] = q;
+  int32_t c = cy * core->run.nx + cx;
+  int32_t q = core->cells[c];
+  core->cells[core->run.n_cells + i] = q;
   p->cell_prev = -1;
-  if (q >= 0) plan[q].cell_prev = i;
-  cells[c] = i;
+  if (q >= 0) core->plan[q].cell_prev = i;
+  core->cells[c] = i;
 }
 
 /* Take row i out of its cell. */
-void unlink(int32_t i) {
-  Plan *pl = &plan[i];
+void cell_unlink(Core *core, int32_t i) {
+  Plan *pl = &core->plan[i];
   int32_t p = pl->cell_prev;
-  int32_t q = cells[run.n_cells + i];
-  int32_t c = pl->cell_y * run.nx + pl->cell_x;
+  int32_t q = core->cells[core->run.n_cells + i];
+  int32_t c = pl->cell_y * core->run.nx + pl->cell_x;
   if (p >= 0)
-    cells[run.n_cells + p] = q;
-  else if (cells[c] == i)
-    cells[c] = q;
-  if (q >= 0) plan[q].cell_prev = p;
-  cells[run.n_cells + i] = -1;
+    core->cells[core->run.n_cells + p] = q;
+  else if (core->cells[c] == i)
+    core->cells[c] = q;
+  if (q >= 0) core->plan[q].cell_prev = p;
+  core->cells[core->run.n_cells + i] = -1;
   pl->cell_prev = -1;
 }
 
@@ -52,13 +52,13 @@ void unlink(int32_t i) {
  * most 8 cells per atom; beyond it atoms sit in the edge cells, which reach to infinity.
  * Sets run.cell, nx, ny, grid_x0, grid_y0, n_cells (engine.ts's gridShape).
  */
-EXPORT(grid_shape) int32_t grid_shape(void) {
-  int32_t n = run.n_atoms;
+int32_t grid_shape(Core *core) {
+  int32_t n = core->run.n_atoms;
   double r_max = 0, top = 1;
   for (int32_t r = 0; r < n; r++) {
-    if (plan[r].status != TRAPPED) continue;
-    if (state[r].radius > r_max) r_max = state[r].radius;
-    double h = energy(r) / (queued[r].mass * run.gravity);
+    if (core->plan[r].status != TRAPPED) continue;
+    if (core->state[r].radius > r_max) r_max = core->state[r].radius;
+    double h = energy(core, r) / (core->queued[r].mass * core->run.gravity);
     if (h > top) top = h;
   }
   double cs = r_max > 0 ? CELL_FACTOR * 2 * r_max : 1;
@@ -67,7 +67,7 @@ EXPORT(grid_shape) int32_t grid_shape(void) {
   double y_top = top + cs;
   double nx, ny;
   for (;;) {
-    double half_w = __builtin_sqrt(y_top / run.curvature) + cs;
+    double half_w = __builtin_sqrt(y_top / core->run.curvature) + cs;
     nx = __builtin_ceil((2 * half_w) / cs);
     ny = __builtin_ceil((y_top + 0.5 * cs) / cs);
     if (nx < 1) nx = 1;
@@ -75,26 +75,26 @@ EXPORT(grid_shape) int32_t grid_shape(void) {
     if (nx * ny <= max_cells || y_top <= cs) break;
     y_top *= 0.8;
   }
-  run.cell = cs;
-  run.nx = (int32_t)nx;
-  run.ny = (int32_t)ny;
-  run.grid_x0 = -0.5 * nx * cs;
-  run.grid_y0 = -0.5 * cs;
-  run.n_cells = run.nx * run.ny;
-  return run.n_cells;
+  core->run.cell = cs;
+  core->run.nx = (int32_t)nx;
+  core->run.ny = (int32_t)ny;
+  core->run.grid_x0 = -0.5 * nx * cs;
+  core->run.grid_y0 = -0.5 * cs;
+  core->run.n_cells = core->run.nx * core->run.ny;
+  return core->run.n_cells;
 }
 
 /* Trapped atoms filed more than one cell away from their cell now (0 if sound). */
-EXPORT(grid_errors) int32_t grid_errors(void) {
-  if (run.won) return 0;
+EXPORT(core_grid_errors) int32_t core_grid_errors(Core *core) {
+  if (core->run.won) return 0;
   int32_t bad = 0;
-  for (int32_t r = 0; r < run.n_atoms; r++) {
-    if (plan[r].status != TRAPPED) continue;
-    const State *s = &state[r];
-    double dt = run.time - s->t;
-    int32_t cx = cell_of(flight_x(s->x, s->vx, dt), run.grid_x0, run.nx);
-    int32_t cy = cell_of(flight_y(s->y, s->vy, 0.5 * run.gravity, dt), run.grid_y0, run.ny);
-    int32_t ex = cx - plan[r].cell_x, ey = cy - plan[r].cell_y;
+  for (int32_t r = 0; r < core->run.n_atoms; r++) {
+    if (core->plan[r].status != TRAPPED) continue;
+    const State *s = &core->state[r];
+    double dt = core->run.time - s->t;
+    int32_t cx = cell_of(core, flight_x(s->x, s->vx, dt), core->run.grid_x0, core->run.nx);
+    int32_t cy = cell_of(core, flight_y(s->y, s->vy, 0.5 * core->run.gravity, dt), core->run.grid_y0, core->run.ny);
+    int32_t ex = cx - core->plan[r].cell_x, ey = cy - core->plan[r].cell_y;
     if (ex > 1 || ex < -1 || ey > 1 || ey < -1) bad++;
   }
   return bad;

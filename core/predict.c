@@ -9,22 +9,22 @@
  * earlier pair replaces i's real event; on a tie the solo event stays and pairs go in
  * (lower, higher) World index order, as in the reference engine.
  */
-void scan(int32_t i, int32_t x0, int32_t x1, int32_t y0, int32_t y1) {
-  const State *s = &state[i];
-  const double ri = s->radius, g = run.gravity;
+void scan(Core *core, int32_t i, int32_t x0, int32_t x1, int32_t y0, int32_t y1) {
+  const State *s = &core->state[i];
+  const double ri = s->radius, g = core->run.gravity;
   const int64_t ii = s->atom;
-  const int32_t nx = run.nx, nc = run.n_cells;
-  Plan *p = &plan[i];
-  double bt = queued[i].real_t;
+  const int32_t nx = core->run.nx, nc = core->run.n_cells;
+  Plan *p = &core->plan[i];
+  double bt = core->queued[i].real_t;
   int pair = p->real_rank == RANK_PAIR;
   int64_t ba = p->real_a, bb = p->real_b;
   int32_t best = -1;
   for (int32_t cy = y0; cy <= y1; cy++) {
     const int32_t row_start = cy * nx;
     for (int32_t cx = x0; cx <= x1; cx++) {
-      for (int32_t j = cells[row_start + cx]; j >= 0; j = cells[nc + j]) {
+      for (int32_t j = core->cells[row_start + cx]; j >= 0; j = core->cells[nc + j]) {
         if (j == i) continue;
-        const State *q = &state[j];
+        const State *q = &core->state[j];
         double t = pair_contact_time(s, q, ri + q->radius, g);
         if (t <= bt) {
           int64_t jj = q->atom; /* rare: only now the partner's World index */
@@ -41,50 +41,50 @@ void scan(int32_t i, int32_t x0, int32_t x1, int32_t y0, int32_t y1) {
     }
   }
   if (best >= 0) {
-    queued[i].real_t = bt;
+    core->queued[i].real_t = bt;
     p->real_rank = RANK_PAIR;
     p->real_a = (int32_t)ba;
     p->real_b = (int32_t)bb;
     p->real_kind = KIND_PAIR;
     p->partner = best;
-    p->partner_count = (int32_t)state[best].count;
+    p->partner_count = (int32_t)core->state[best].count;
   }
 }
 
 /* Row i's real event: wall (SPEC 2.1) or pair if trapped, exit if escaped. */
-void predict_real(int32_t i) {
-  const State *s = &state[i];
-  Plan *p = &plan[i];
+void predict_real(Core *core, int32_t i) {
+  const State *s = &core->state[i];
+  Plan *p = &core->plan[i];
   int32_t st = p->status;
   double t = INF;
   int32_t kind = KIND_NONE;
   if (st == TRAPPED) {
-    t = wall_contact_time(s, run.curvature, run.gravity);
+    t = wall_contact_time(s, core->run.curvature, core->run.gravity);
     kind = KIND_WALL;
   } else if (st == ESCAPED) {
     double rad = s->radius;
-    t = exit_time(s, run.x_left - rad, run.x_right + rad, run.y_bottom - rad, run.gravity);
+    t = exit_time(s, core->run.x_left - rad, core->run.x_right + rad, core->run.y_bottom - rad, core->run.gravity);
     kind = KIND_EXIT;
   }
-  queued[i].real_t = t;
+  core->queued[i].real_t = t;
   p->real_rank = RANK_SOLO;
   p->real_a = p->atom;
   p->real_b = 0;
   p->real_kind = kind;
-  if (st == TRAPPED && !run.won) {
+  if (st == TRAPPED && !core->run.won) {
     int32_t cx = p->cell_x, cy = p->cell_y;
-    scan(i, cx > 0 ? cx - 1 : 0, cx < run.nx - 1 ? cx + 1 : run.nx - 1, cy > 0 ? cy - 1 : 0,
-         cy < run.ny - 1 ? cy + 1 : run.ny - 1);
+    scan(core, i, cx > 0 ? cx - 1 : 0, cx < core->run.nx - 1 ? cx + 1 : core->run.nx - 1, cy > 0 ? cy - 1 : 0,
+         cy < core->run.ny - 1 ? cy + 1 : core->run.ny - 1);
   }
 }
 
 /* Time of the next y crossing of row i's arc and the row it enters (inf if none). */
-static double crossing_y(const State *s, int32_t cy, double taken, int32_t *to) {
-  const double g = run.gravity, cs = run.cell;
+static double crossing_y(Core *core, const State *s, int32_t cy, double taken, int32_t *to) {
+  const double g = core->run.gravity, cs = core->run.cell;
   double y = s->y, vy = s->vy, t0 = s->t;
   double tc = INF;
-  if (vy > 0.0 && cy < run.ny - 1) {
-    double d = run.grid_y0 + (cy + 1) * cs - y;
+  if (vy > 0.0 && cy < core->run.ny - 1) {
+    double d = core->run.grid_y0 + (cy + 1) * cs - y;
     double disc = vy * vy - 2.0 * g * d;
     if (disc > 0.0) {
       double sq = __builtin_sqrt(disc);
@@ -97,7 +97,7 @@ static double crossing_y(const State *s, int32_t cy, double taken, int32_t *to) 
     }
   }
   if (tc == INF && cy > 0) {
-    double h = y - (run.grid_y0 + cy * cs);
+    double h = y - (core->run.grid_y0 + cy * cs);
     double disc = vy * vy + 2.0 * g * h;
     if (disc < 0.0) disc = 0.0;
     double sq = __builtin_sqrt(disc);
@@ -122,41 +122,41 @@ static double crossing_y(const State *s, int32_t cy, double taken, int32_t *to) 
  * down through the bottom edge; roots at or before the arc's last y crossing are ones
  * already taken. Edge cells reach to infinity: no outer edge.
  */
-void predict_crossing(int32_t i) {
-  Plan *p = &plan[i];
+void predict_crossing(Core *core, int32_t i) {
+  Plan *p = &core->plan[i];
   double bt = INF;
   int32_t bk = KIND_NONE, barg = 0;
-  if (p->status == TRAPPED && !run.won) {
-    const State *s = &state[i];
-    const double cs = run.cell;
+  if (p->status == TRAPPED && !core->run.won) {
+    const State *s = &core->state[i];
+    const double cs = core->run.cell;
     double x = s->x, vx = s->vx, t0 = s->t;
     int32_t cx = p->cell_x, cy = p->cell_y;
-    if (vx > 0.0 && cx < run.nx - 1) {
-      bt = t0 + (run.grid_x0 + (cx + 1) * cs - x) / vx;
+    if (vx > 0.0 && cx < core->run.nx - 1) {
+      bt = t0 + (core->run.grid_x0 + (cx + 1) * cs - x) / vx;
       bk = KIND_CROSS_X;
       barg = cx + 1;
     } else if (vx < 0.0 && cx > 0) {
-      bt = t0 + (run.grid_x0 + cx * cs - x) / vx;
+      bt = t0 + (core->run.grid_x0 + cx * cs - x) / vx;
       bk = KIND_CROSS_X;
       barg = cx - 1;
     }
     int32_t to = 0;
-    double tc = crossing_y(s, cy, queued[i].arc_cross_t, &to);
+    double tc = crossing_y(core, s, cy, core->queued[i].arc_cross_t, &to);
     if (tc < bt) {
       bt = tc;
       bk = KIND_CROSS_Y;
       barg = to;
     }
   }
-  queued[i].cross_t = bt;
+  core->queued[i].cross_t = bt;
   p->cross_axis = bk;
   p->cross_to = barg;
 }
 
 /* Row i's key from the earlier of its crossing and its real event, not filed. */
-void load_key(int32_t i) {
-  Queued *u = &queued[i];
-  Plan *p = &plan[i];
+void load_key(Core *core, int32_t i) {
+  Queued *u = &core->queued[i];
+  Plan *p = &core->plan[i];
   if (u->cross_t <= u->real_t) {
     u->key_t = u->cross_t;
     p->rank = RANK_CROSS;
@@ -171,14 +171,14 @@ void load_key(int32_t i) {
 }
 
 /* Row i's key, re-filed. */
-void set_key(int32_t i) {
-  load_key(i);
-  file_atom(i);
+void set_key(Core *core, int32_t i) {
+  load_key(core, i);
+  file_atom(core, i);
 }
 
 /* Everything about row i from its stored state. */
-void predict(int32_t i) {
-  predict_real(i);
-  predict_crossing(i);
-  set_key(i);
+void predict(Core *core, int32_t i) {
+  predict_real(core, i);
+  predict_crossing(core, i);
+  set_key(core, i);
 }

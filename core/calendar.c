@@ -1,0 +1,232 @@
+/*
+ * The event calendar: one key per row, (key_t, rank, tie_a, tie_b), the least handed out
+ * first (Paul, J. Comput. Phys. 221, 615 (2007); Smallenburg 2022), the twin of
+ * calendar.py and web/src/physics/queue.ts.
+ *
+ * Time is cut into bins of width bin_width from bin_base. Rows whose key lies in the current
+ * bin or earlier sit in a small indexed 4-ary heap ordered by the full key; later ones sit,
+ * unordered, in the doubly linked list of their bin (a ring of n_bins lists), beyond the
+ * ring in an overflow list, and with no event (time infinity) in a list of their own. The
+ * bin of a time is monotone in the time, so the heap's root is the least key of all.
+ */
+#include "tables.h"
+
+/* The bin width aims at this many events per bin (the heap's typical size). */
+#define EVENTS_PER_BIN 8
+/* The ring spans about this many events per row into the future. */
+#define RING_EVENTS_PER_ATOM 2
+
+/* The ring's size: a power of two >= 16 near 2 n / 8 (queue.ts's rule). */
+void calendar_init(Core *core, int32_t n) {
+  double want = __builtin_floor((double)(RING_EVENTS_PER_ATOM * n) / EVENTS_PER_BIN);
+  if (want < 1) want = 1;
+  int32_t nb = 1;
+  while (nb < want) nb <<= 1;
+  core->run.n_bins = nb < 16 ? 16 : nb;
+  for (int32_t r = 0; r < n; r++) {
+    core->queued[r].key_t = INF;
+    core->queued[r].heap_pos = -1;
+    core->queued[r].bin = -1;
+  }
+}
+
+/* True if the key (t, plan x) comes before the key (u, plan y). */
+static inline int comes_before(Core *core, double t, int32_t x, double u, int32_t y) {
+  if (t != u) return t < u;
+  const Plan *p = &core->plan[x], *q = &core->plan[y];
+  if (p->rank != q->rank) return p->rank < q->rank;
+  if (p->tie_a != q->tie_a) return p->tie_a < q->tie_a;
+  return p->tie_b < q->tie_b;
+}
+
+/* Move the heap entry at place p up or down to its place (children 4p+1..4p+4). */
+static void sift(Core *core, int32_t p) {
+  HeapEntry e = core->heap[p];
+  int32_t n = core->run.heap_size;
+  while (p > 0) {
+    int32_t q = (p - 1) >> 2;
+    if (!comes_before(core, e.t, e.row, core->heap[q].t, core->heap[q].row)) break;
+    core->heap[p] = core->heap[q];
+    core->queued[core->heap[p].row].heap_pos = p;
+    p = q;
+  }
+  for (;;) {
+    int32_t c = 4 * p + 1;
+    if (c >= n) break;
+    int32_t end = c + 4 <= n ? c + 4 : n;
+    for (int32_t d = c + 1; d < end; d++)
+      if (comes_before(core, core->heap[d].t, core->heap[d].row, core->heap[c].t, core->heap[c].row)) c = d;
+    if (!comes_before(core, core->heap[c].t, core->heap[c].row, e.t, e.row)) break;
+    core->heap[p] = core->heap[c];
+    core->queued[core->heap[p].row].heap_pos = p;
+    p = c;
+  }
+  core->heap[p] = e;
+  core->queued[e.row].heap_pos = p;
+}
+
+static void list_add(Core *core, int32_t r, int32_t l) {
+  int32_t h = core->bins[l];
+  core->queued[r].bin = l;
+  core->queued[r].next = h;
+  core->queued[r].prev = -1;
+  if (h >= 0) core->queued[h].prev = r;
+  core->bins[l] = r;
+  if (l < core->run.n_bins)
+    core->run.n_ring++;
+  else if (l == core->run.n_bins)
+    core->run.n_over++;
+}
+
+static void list_remove(Core *core, int32_t r) {
+  Queued *u = &core->queued[r];
+  int32_t l = u->bin, p = u->prev, q = u->next;
+  if (p >= 0)
+    core->queued[p].next = q;
+  else
+    core->bins[l] = q;
+  if (q >= 0) core->queued[q].prev = p;
+  u->bin = -1;
+  if (l < core->run.n_bins)
+    core->run.n_ring--;
+  else if (l == core->run.n_bins)
+    core->run.n_over--;
+}
+
+/* File row r under its key time: in the heap if its bin has come, else in a list. */
+void file_atom(Core *core, int32_t r) {
+  Queued *u = &core->queued[r];
+  double t = u->key_t;
+  double q = (t - core->run.bin_base) / core->run.bin_width;
+  int32_t p = u->heap_pos;
+  if (q < (double)(core->run.bin + 1)) {
+    if (p < 0) {
+      if (u->bin >= 0) list_remove(core, r);
+      p = core->run.heap_size++;
+      core->heap[p].row = r;
+    }
+    core->heap[p].t = t;
+    sift(core, p);
+    return;
+  }
+  int32_t nb = core->run.n_bins;
+  int32_t l = t == INF                      ? nb + 1
+              : q < (double)(core->run.bin + nb) ? (int32_t)((int64_t)__builtin_floor(q) % nb)
+                                           : nb;
+  if (p < 0) {
+    int32_t was = u->bin;
+    if (was == l) return; /* lists are unordered: nothing to do */
+    if (was >= 0) list_remove(core, r);
+    list_add(core, r, l);
+    return;
+  }
+  list_add(core, r, l);
+  u->heap_pos = -1;
+  int32_t last = --core->run.heap_size;
+  if (p == last) return;
+  core->heap[p] = core->heap[last];
+  core->queued[core->heap[p].row].heap_pos = p;
+  sift(core, p);
+}
+
+static void reset(Core *core, double base, double width) {
+  int32_t n = core->run.n_atoms;
+  for (int32_t l = 0; l < core->run.n_bins + 2; l++) core->bins[l] = -1;
+  for (int32_t r = 0; r < n; r++) {
+    core->queued[r].heap_pos = -1;
+    core->queued[r].bin = -1;
+  }
+  core->run.heap_size = 0;
+  core->run.n_ring = 0;
+  core->run.n_over = 0;
+  core->run.bin_base = base;
+  core->run.bin_width = width;
+  core->run.bin = 0;
+  core->run.scan_bin = 0;
+  for (int32_t r = 0; r < n; r++) file_atom(core, r);
+}
+
+/*
+ * Bin width from the event rate of the bulk: the mean time to the pending events, trimmed
+ * twice to the bulk (a few atoms far above the cup would dominate it), over their count.
+ */
+static double bin_width(Core *core, double now) {
+  double m = INF;
+  int32_t c = 0;
+  for (int pass = 0; pass < 3; pass++) {
+    double s = 0;
+    c = 0;
+    for (int32_t r = 0; r < core->run.n_atoms; r++) {
+      double g = core->queued[r].key_t - now;
+      if (g < m * 3) {
+        s += g > 0 ? g : 0;
+        c++;
+      }
+    }
+    if (c == 0 || !(s > 0)) return 1;
+    m = s / c;
+  }
+  return (EVENTS_PER_BIN * m) / c;
+}
+
+/* Empty the calendar and file every row again from `now`, the bin width refitted. */
+void calendar_rebuild(Core *core, double now) { reset(core, now, bin_width(core, now)); }
+
+/* Nothing in the ring: jump to the overflow's earliest bin; 0 if no row has an event. */
+static int jump_to_overflow(Core *core) {
+  double m = INF;
+  for (int32_t j = core->bins[core->run.n_bins]; j >= 0; j = core->queued[j].next)
+    if (core->queued[j].key_t < m) m = core->queued[j].key_t;
+  if (!(m < INF)) return 0; /* only a NaN could do this: nothing to hand out */
+  double q = (m - core->run.bin_base) / core->run.bin_width;
+  if (q > 1e15) {
+    reset(core, m, core->run.bin_width); /* far beyond: start the bins there */
+    return 2;
+  }
+  core->run.bin = (int64_t)__builtin_floor(q) - 1;
+  core->run.scan_bin = core->run.bin - core->run.n_bins;
+  return 1;
+}
+
+/* Fill the empty heap from the next non-empty bin; 0 if no row has an event. */
+static int next_bin(Core *core) {
+  int32_t nb = core->run.n_bins;
+  while (core->run.heap_size == 0) {
+    if (core->run.n_ring == 0) {
+      if (core->run.n_over == 0) return 0;
+      int jumped = jump_to_overflow(core);
+      if (jumped == 0) return 0;
+      if (jumped == 2) continue;
+    }
+    int64_t cb = ++core->run.bin;
+    if (cb >= core->run.scan_bin + nb) {
+      /* The ring moved on by its length: re-file the overflow list. */
+      core->run.scan_bin = cb;
+      for (int32_t j = core->bins[nb]; j >= 0;) {
+        int32_t k = core->queued[j].next;
+        file_atom(core, j);
+        j = k;
+      }
+    }
+    int32_t s = (int32_t)(cb % nb);
+    int32_t j = core->bins[s];
+    core->bins[s] = -1;
+    while (j >= 0) {
+      int32_t k = core->queued[j].next;
+      core->queued[j].bin = -1;
+      core->run.n_ring--;
+      int32_t p = core->run.heap_size++;
+      core->heap[p].row = j;
+      core->heap[p].t = core->queued[j].key_t;
+      sift(core, p);
+      j = k;
+    }
+  }
+  return 1;
+}
+
+/* The row with the least key, or -1 if no row has a finite key. */
+int32_t calendar_top(Core *core) {
+  if (core->run.heap_size == 0 && !next_bin(core)) return -1;
+  return core->heap[0].row;
+}

@@ -1,0 +1,69 @@
+/*
+ * Reading the tables by World index, and the scalars, for the TypeScript wrapper
+ * (web/src/physics/wasm.ts); the tables themselves are declared in tables.h.
+ */
+#include "tables.h"
+
+EXPORT(core_status_of) int32_t core_status_of(Core *core, int32_t a) { return core->plan[core->row_of[a]].status; }
+
+/* Stored value k of World atom a: 0 x, 1 y, 2 vx, 3 vy, 4 t, 5 radius, 6 mass. */
+EXPORT(core_stored_of) double core_stored_of(Core *core, int32_t a, int32_t k) {
+  int32_t r = core->row_of[a];
+  const State *s = &core->state[r];
+  switch (k) {
+  case 0: return s->x;
+  case 1: return s->y;
+  case 2: return s->vx;
+  case 3: return s->vy;
+  case 4: return s->t;
+  case 5: return s->radius;
+  default: return core->queued[r].mass;
+  }
+}
+
+/* World atom a's energy 1/2 m v^2 + m g y from its stored state (conserved in flight). */
+EXPORT(core_atom_energy) double core_atom_energy(Core *core, int32_t a) { return energy(core, core->row_of[a]); }
+
+/* Position and velocity of World atom a carried to time t, into state_out. */
+EXPORT(core_state_at) double *core_state_at(Core *core, int32_t a, double t) {
+  const State *s = &core->state[core->row_of[a]];
+  double dt = t - s->t;
+  core->state_out[0] = flight_x(s->x, s->vx, dt);
+  core->state_out[1] = flight_y(s->y, s->vy, 0.5 * core->run.gravity, dt);
+  core->state_out[2] = s->vx;
+  core->state_out[3] = flight_vy(s->vy, core->run.gravity, dt);
+  return core->state_out;
+}
+
+/* Sum of trapped energies added in World index order (the engines continue it). */
+EXPORT(core_sequential_energy_sum) double core_sequential_energy_sum(Core *core) {
+  double total = 0.0;
+  for (int32_t a = 0; a < core->run.n_atoms; a++)
+    if (core_status_of(core, a) == TRAPPED) total += core_atom_energy(core, a);
+  return total;
+}
+
+EXPORT(core_force_win) void core_force_win(Core *core) { core->run.won = 1; }
+EXPORT(core_tc_table_address) double *core_tc_table_address(Core *core) { return core->tc_table; }
+EXPORT(core_log_address) LogLine *core_log_address(Core *core) { return core->event_log; }
+/* The log was copied out: start it again. */
+EXPORT(core_log_clear) void core_log_clear(Core *core) { core->run.n_log = 0; }
+
+/* The scalars, by name. */
+#define READ(type, field) \
+  EXPORT(core_##field) type core_##field(const Core *core) { return core->run.field; }
+READ(double, time)
+READ(double, energy_sum)
+READ(double, x_rim)
+READ(double, trap_height)
+READ(int32_t, won)
+READ(int32_t, n_trapped)
+READ(double, pairs)
+READ(double, walls)
+READ(double, crossings)
+READ(double, stale)
+READ(double, renumbered)
+READ(int32_t, n_log)
+READ(int32_t, nx)
+READ(int32_t, ny)
+READ(double, cell)

@@ -1,0 +1,257 @@
+/*
+ * evapcool.physics._core: the engine core (core/*.c, the same source the page compiles to
+ * WebAssembly) bound to CPython. One `Core` object is one engine; physics/core.py's
+ * CoreEngine drives it over a World. The arrays pass as buffers (NumPy arrays), read or
+ * written in one pass in C: no Python object per atom.
+ */
+#define PY_SSIZE_T_CLEAN
+#include <Python.h>
+
+#include "tables.h"
+
+typedef struct {
+  PyObject_HEAD Core *core;
+  int32_t n, log_capacity;
+} CoreObject;
+
+static void core_dealloc(CoreObject *self) {
+  core_free(self->core);
+  Py_TYPE(self)->tp_free((PyObject *)self);
+}
+
+/* Core(n_atoms, log_capacity): the tables of an engine of n atoms, allocated once. */
+static int core_init(CoreObject *self, PyObject *args, PyObject *kwds) {
+  static char *names[] = {"n_atoms", "log_capacity", NULL};
+  int n, log_capacity;
+  if (!PyArg_ParseTupleAndKeywords(args, kwds, "ii", names, &n, &log_capacity)) return -1;
+  if (n < 1 || log_capacity < 1) {
+    PyErr_SetString(PyExc_ValueError, "n_atoms and log_capacity must be at least 1");
+    return -1;
+  }
+  if (self->core) return 0;
+  self->core = core_new();
+  if (!self->core || !core_allocate(self->core, n, log_capacity)) {
+    PyErr_NoMemory();
+    return -1;
+  }
+  self->n = n;
+  self->log_capacity = log_capacity;
+  return 0;
+}
+
+/* A C-contiguous buffer of `count` items of `size` bytes, or an exception. */
+static int get_buffer(PyObject *obj, Py_buffer *view, Py_ssize_t count, Py_ssize_t size,
+                      int writable, const char *what) {
+  int flags = PyBUF_C_CONTIGUOUS | (writable ? PyBUF_WRITABLE : 0);
+  if (PyObject_GetBuffer(obj, view, flags) < 0) return -1;
+  if (view->len != count * size) {
+    PyErr_Format(PyExc_ValueError, "%s: %zd bytes, expected %zd", what, view->len, count * size);
+    PyBuffer_Release(view);
+    return -1;
+  }
+  return 0;
+}
+
+static Core *ready(CoreObject *self) {
+  if (!self->core) PyErr_SetString(PyExc_RuntimeError, "the core was not set up");
+  return self->core;
+}
+
+/*
+ * load(inputs, status, gravity, curvature, x_left, x_right, y_bottom, knife, win_rule,
+ * record, time, won, pairs, walls): the atoms (inputs: x, y, vx, vy, t, radius, mass, n
+ * float64 each; status: n int32) and the fixed parameters.
+ */
+static PyObject *core_py_load(CoreObject *self, PyObject *args) {
+  Core *core = ready(self);
+  if (!core) return NULL;
+  PyObject *inputs, *status;
+  double g, a, xl, xr, yb, time, pairs, walls;
+  int knife, win_rule, record, won;
+  if (!PyArg_ParseTuple(args, "OOdddddpppdpdd", &inputs, &status, &g, &a, &xl, &xr, &yb,
+                        &knife, &win_rule, &record, &time, &won, &pairs, &walls))
+    return NULL;
+  Py_buffer in, st;
+  if (get_buffer(inputs, &in, 7 * (Py_ssize_t)self->n, 8, 0, "inputs") < 0) return NULL;
+  if (get_buffer(status, &st, self->n, 4, 0, "status") < 0) {
+    PyBuffer_Release(&in);
+    return NULL;
+  }
+  double *place = core->inputs;
+  memcpy(place, in.buf, (size_t)in.len);
+  memcpy(place + 7 * (Py_ssize_t)self->n, st.buf, (size_t)st.len);
+  PyBuffer_Release(&in);
+  PyBuffer_Release(&st);
+  core_load(core, place, g, a, xl, xr, yb, knife, win_rule, record, time, won, pairs, walls);
+  Py_RETURN_NONE;
+}
+
+/* set_tc_table(table): Tc(N) for N = 0..n (float64), seed Eq. (46). */
+static PyObject *core_py_set_tc_table(CoreObject *self, PyObject *arg) {
+  Core *core = ready(self);
+  if (!core) return NULL;
+  Py_buffer view;
+  if (get_buffer(arg, &view, (Py_ssize_t)self->n + 1, 8, 0, "tc_table") < 0) return NULL;
+  memcpy(core->tc_table, view.buf, (size_t)view.len);
+  PyBuffer_Release(&view);
+  Py_RETURN_NONE;
+}
+
+/* start(energy_sum, trap_height): the grid, the cells and every prediction. */
+static PyObject *core_py_start(CoreObject *self, PyObject *args) {
+  Core *core = ready(self);
+  double energy_sum, height;
+  if (!core || !PyArg_ParseTuple(args, "dd", &energy_sum, &height)) return NULL;
+  if (!core_start(core, energy_sum, height)) return PyErr_NoMemory();
+  Py_RETURN_NONE;
+}
+
+/* advance_to(t_end) -> 0 when done, 1 when the log must be emptied first (take_log). */
+static PyObject *core_py_advance_to(CoreObject *self, PyObject *arg) {
+  Core *core = ready(self);
+  if (!core) return NULL;
+  double t_end = PyFloat_AsDouble(arg);
+  if (t_end == -1.0 && PyErr_Occurred()) return NULL;
+  int32_t status;
+  Py_BEGIN_ALLOW_THREADS status = core_advance_to(core, t_end);
+  Py_END_ALLOW_THREADS return PyLong_FromLong(status);
+}
+
+static PyObject *core_py_set_trap_height(CoreObject *self, PyObject *arg) {
+  Core *core = ready(self);
+  if (!core) return NULL;
+  double h = PyFloat_AsDouble(arg);
+  if (h == -1.0 && PyErr_Occurred()) return NULL;
+  core_set_trap_height(core, h);
+  Py_RETURN_NONE;
+}
+
+/* take_log() -> the log lines since the last take (bytes: int32 kind, a, b, pad; f64 t). */
+static PyObject *core_py_take_log(CoreObject *self, PyObject *Py_UNUSED(ignored)) {
+  Core *core = ready(self);
+  if (!core) return NULL;
+  PyObject *out = PyBytes_FromStringAndSize((const char *)core->event_log,
+                                            (Py_ssize_t)core->run.n_log * sizeof(LogLine));
+  core->run.n_log = 0;
+  return out;
+}
+
+/* export(pos, vel, t_atom, status, counter): every atom's stored state, by World index,
+ * into the World's arrays ((n, 2) f64, (n, 2) f64, n f64, n int8, n int64). */
+static PyObject *core_py_export(CoreObject *self, PyObject *args) {
+  Core *core = ready(self);
+  PyObject *objs[5];
+  if (!core || !PyArg_ParseTuple(args, "OOOOO", &objs[0], &objs[1], &objs[2], &objs[3], &objs[4]))
+    return NULL;
+  const Py_ssize_t n = self->n, counts[5] = {2 * n, 2 * n, n, n, n}, sizes[5] = {8, 8, 8, 1, 8};
+  static const char *what[5] = {"pos", "vel", "t_atom", "status", "counter"};
+  Py_buffer v[5];
+  for (int k = 0; k < 5; k++)
+    if (get_buffer(objs[k], &v[k], counts[k], sizes[k], 1, what[k]) < 0) {
+      while (k--) PyBuffer_Release(&v[k]);
+      return NULL;
+    }
+  double *pos = v[0].buf, *vel = v[1].buf, *t = v[2].buf;
+  int8_t *status = v[3].buf;
+  int64_t *counter = v[4].buf;
+  for (Py_ssize_t a = 0; a < n; a++) {
+    int32_t r = core->row_of[a];
+    const State *s = &core->state[r];
+    pos[2 * a] = s->x;
+    pos[2 * a + 1] = s->y;
+    vel[2 * a] = s->vx;
+    vel[2 * a + 1] = s->vy;
+    t[a] = s->t;
+    status[a] = (int8_t)core->plan[r].status;
+    counter[a] = s->count;
+  }
+  for (int k = 0; k < 5; k++) PyBuffer_Release(&v[k]);
+  Py_RETURN_NONE;
+}
+
+/* scalars() -> (time, energy_sum, won, n_trapped, pairs, walls, crossings, stale). */
+static PyObject *core_py_scalars(CoreObject *self, PyObject *Py_UNUSED(ignored)) {
+  Core *core = ready(self);
+  if (!core) return NULL;
+  const Run *r = &core->run;
+  return Py_BuildValue("(ddOiLLLL)", r->time, r->energy_sum, r->won ? Py_True : Py_False,
+                       r->n_trapped, (long long)r->pairs, (long long)r->walls,
+                       (long long)r->crossings, (long long)r->stale);
+}
+
+static PyObject *core_py_force_win(CoreObject *self, PyObject *Py_UNUSED(ignored)) {
+  Core *core = ready(self);
+  if (!core) return NULL;
+  core_force_win(core);
+  Py_RETURN_NONE;
+}
+
+/* grid() -> (columns, rows, cell edge px). */
+static PyObject *core_py_grid(CoreObject *self, PyObject *Py_UNUSED(ignored)) {
+  Core *core = ready(self);
+  if (!core) return NULL;
+  return Py_BuildValue("(iid)", core->run.nx, core->run.ny, core->run.cell);
+}
+
+static PyObject *core_py_grid_errors(CoreObject *self, PyObject *Py_UNUSED(ignored)) {
+  Core *core = ready(self);
+  if (!core) return NULL;
+  return PyLong_FromLong(core_grid_errors(core));
+}
+
+static PyMethodDef core_methods[] = {
+    {"load", (PyCFunction)core_py_load, METH_VARARGS, "The atoms and the fixed parameters."},
+    {"set_tc_table", (PyCFunction)core_py_set_tc_table, METH_O, "Tc(N) for N = 0..n."},
+    {"start", (PyCFunction)core_py_start, METH_VARARGS, "The grid and every prediction."},
+    {"advance_to", (PyCFunction)core_py_advance_to, METH_O, "Events up to t_end: 0 done, 1 log full."},
+    {"set_trap_height", (PyCFunction)core_py_set_trap_height, METH_O, "New rim height."},
+    {"take_log", (PyCFunction)core_py_take_log, METH_NOARGS, "The log lines since the last take."},
+    {"export", (PyCFunction)core_py_export, METH_VARARGS, "Stored states into the World's arrays."},
+    {"scalars", (PyCFunction)core_py_scalars, METH_NOARGS, "The clock, sums and counts."},
+    {"force_win", (PyCFunction)core_py_force_win, METH_NOARGS, "Latch the win."},
+    {"grid", (PyCFunction)core_py_grid, METH_NOARGS, "(columns, rows, cell edge)."},
+    {"grid_errors", (PyCFunction)core_py_grid_errors, METH_NOARGS, "Atoms filed in a far cell."},
+    {NULL, NULL, 0, NULL},
+};
+
+static PyTypeObject CoreType = {
+    PyVarObject_HEAD_INIT(NULL, 0).tp_name = "evapcool.physics._core.Core",
+    .tp_basicsize = sizeof(CoreObject),
+    .tp_flags = Py_TPFLAGS_DEFAULT,
+    .tp_doc = "One engine of the core: its scalars and tables.",
+    .tp_new = PyType_GenericNew,
+    .tp_init = (initproc)core_init,
+    .tp_dealloc = (destructor)core_dealloc,
+    .tp_methods = core_methods,
+};
+
+/* contraction_probe(a, b, c) -> a * b + c as the core computes it (two roundings). */
+static PyObject *contraction_probe(PyObject *Py_UNUSED(module), PyObject *args) {
+  double a, b, c;
+  if (!PyArg_ParseTuple(args, "ddd", &a, &b, &c)) return NULL;
+  return PyFloat_FromDouble(core_contraction_probe(a, b, c));
+}
+
+static PyMethodDef module_methods[] = {
+    {"contraction_probe", contraction_probe, METH_VARARGS, "a * b + c, rounded twice."},
+    {NULL, NULL, 0, NULL},
+};
+
+static struct PyModuleDef core_module = {
+    PyModuleDef_HEAD_INIT, "evapcool.physics._core",
+    "The engine core (core/*.c) bound to CPython.", -1, module_methods,
+};
+
+PyMODINIT_FUNC PyInit__core(void) {
+  if (PyType_Ready(&CoreType) < 0) return NULL;
+  PyObject *m = PyModule_Create(&core_module);
+  if (!m) return NULL;
+  Py_INCREF(&CoreType);
+  if (PyModule_AddObject(m, "Core", (PyObject *)&CoreType) < 0) {
+    Py_DECREF(&CoreType);
+    Py_DECREF(m);
+    return NULL;
+  }
+  PyModule_AddIntConstant(m, "LOG_LINE_BYTES", (long)sizeof(LogLine));
+  return m;
+}

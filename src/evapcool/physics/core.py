@@ -1,0 +1,149 @@
+"""`CoreEngine`: the compiled engine core (core/*.c) over a World, a drop-in for ReferenceEngine.
+
+The core is the same C source the page runs as WebAssembly, built natively as the extension
+`evapcool.physics._core` (setup.py): cells, an event calendar, one pending event per atom.
+It processes the reference engine's events in the reference engine's order, bit for bit
+(tests/physics/test_core_engine.py, the golden traces). Where the extension could not be
+built (an sdist installed without a C compiler) `available()` is False and the game, the
+lab and the server play on the reference engine, saying so once (`missing_note`).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from evapcool.physics.world import World
+
+try:
+    from evapcool.physics import _core
+except ImportError:  # no compiled core in this install
+    _core = None  # type: ignore[assignment]
+
+#: Lines of the core's event log buffer (emptied into the World when full).
+LOG_CAPACITY = 1 << 16
+#: One log line in C: int32 kind, a, b, padding; float64 time (core/tables.h LogLine).
+LOG_LINE = np.dtype([("kind", "<i4"), ("a", "<i4"), ("b", "<i4"), ("pad", "<i4"), ("t", "<f8")])
+#: core_advance_to's answer when the log must be emptied before it goes on.
+LOG_FULL = 1
+
+
+def available() -> bool:
+    """True if the compiled core is installed."""
+    return _core is not None
+
+
+def missing_note() -> str:
+    """One line: the compiled core is missing, what that costs and how to get it."""
+    return (
+        "evapcool: the compiled engine core is not installed (built without a C compiler): "
+        "playing on the reference engine, slower beyond a few hundred atoms; reinstall with "
+        "a C compiler (pip install --force-reinstall --no-binary evapcool evapcool) for it"
+    )
+
+
+def contraction_probe(a: float, b: float, c: float) -> float:
+    """a * b + c computed by the core: differs from Python's for some inputs if the build
+    fused it into a multiply-add (which would change events)."""
+    assert _core is not None
+    return float(_core.contraction_probe(a, b, c))
+
+
+class CoreEngine:
+    """Event-driven hard disks in the cup, in the compiled core."""
+
+    name = "fast"
+
+    def __init__(self, world: World) -> None:
+        if _core is None:
+            raise ImportError(missing_note())
+        self.w = world
+        n = len(world.radius)
+        # A knife may log every atom at once: the buffer holds them all.
+        self.core = _core.Core(n, max(LOG_CAPACITY, n + 8) if world.record_events else 1)
+        inputs = np.concatenate(
+            [world.pos[:, 0], world.pos[:, 1], world.vel[:, 0], world.vel[:, 1],
+             world.t_atom, world.radius, world.mass]
+        )  # fmt: skip
+        self.core.load(
+            inputs, world.status.astype(np.int32), world.gravity, world.curvature,
+            world.x_left, world.x_right, world.y_bottom, world.knife, world.win_rule,
+            world.record_events, world.time, world.won, world.pair_count, world.wall_count,
+        )  # fmt: skip
+        self._tc_key: tuple[float, float, bool] | None = None
+        self._update_tc_table()
+        self.core.start(world.energy_sum, world.trap_height)
+        self._crossings = 0
+        self._stale = 0
+
+    def _update_tc_table(self) -> None:
+        """Tc(N) for every N by the World's own expression (the same portable power)."""
+        w = self.w
+        key = (w.tc0, w.tc_exponent, w.win_rule)
+        if key != self._tc_key:
+            self.core.set_tc_table(np.array([w.win_threshold_of(m) for m in range(w.n_initial + 1)]))
+            self._tc_key = key
+
+    def _sync(self) -> None:
+        """The core's clock, sums and stored states into the World (one pass in C)."""
+        w = self.w
+        self.core.export(w.pos, w.vel, w.t_atom, w.status, w.counter)
+        time, energy_sum, won, n_trapped, pairs, walls, crossings, stale = self.core.scalars()
+        w.time = time
+        w.energy_sum = energy_sum
+        w.won = won
+        w.n_trapped = n_trapped
+        w.pair_count = pairs
+        w.wall_count = walls
+        self._crossings = crossings
+        self._stale = stale
+
+    def _take_log(self) -> None:
+        if self.w.record_events:
+            lines = np.frombuffer(self.core.take_log(), dtype=LOG_LINE)
+            self.w.log.extend(
+                (int(k), int(a), int(b), float(t))
+                for k, a, b, t in zip(lines["kind"], lines["a"], lines["b"], lines["t"])
+            )
+
+    # -- public -------------------------------------------------------------------
+    def advance_to(self, t_end: float) -> None:
+        """Process every event with time <= t_end in time order, then set the clock."""
+        self._update_tc_table()
+        while self.core.advance_to(float(t_end)) == LOG_FULL:
+            self._take_log()
+        self._take_log()
+        self._sync()
+
+    def set_trap_height(self, height: float) -> None:
+        """New rim height; with the knife rule, atoms above m g H go at once."""
+        self.w.trap_height = height
+        self._update_tc_table()
+        self.core.set_trap_height(float(height))
+        self._take_log()
+        self._sync()
+
+    def force_win(self) -> None:
+        """Latch the win now (demonstrations and tests)."""
+        self.core.force_win()
+        self.w.won = True
+
+    # -- diagnostics --------------------------------------------------------------
+    @property
+    def crossing_count(self) -> int:
+        """Cell-crossing events processed so far."""
+        return self._crossings
+
+    @property
+    def stale_count(self) -> int:
+        """Pair events found stale (partner changed) and re-predicted so far."""
+        return self._stale
+
+    @property
+    def grid_shape(self) -> tuple[int, int, float]:
+        """(columns, rows, cell edge in px) of the cell grid."""
+        nx, ny, cell = self.core.grid()
+        return int(nx), int(ny), float(cell)
+
+    def grid_errors(self) -> int:
+        """Trapped atoms filed more than one cell away from where they are now (0 if sound)."""
+        return int(self.core.grid_errors())
