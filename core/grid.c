@@ -49,7 +49,8 @@ void cell_unlink(Core *core, int32_t i) {
 /*
  * Cells: 1.1 of the largest contact distance, over the region the trapped atoms can reach
  * (below the height of the most energetic one, y <= E / (m g)), as long as that takes at
- * most 8 cells per atom; beyond it atoms sit in the edge cells, which reach to infinity.
+ * most 8 cells per atom (plus 64); beyond it atoms sit in the edge cells, which reach to
+ * infinity.
  * Sets run.cell, nx, ny, grid_x0, grid_y0, n_cells (engine.ts's gridShape).
  */
 int32_t grid_shape(Core *core) {
@@ -63,7 +64,8 @@ int32_t grid_shape(Core *core) {
   }
   double cs = r_max > 0 ? CELL_FACTOR * 2 * r_max : 1;
   double max_cells = (double)MAX_CELLS_PER_ATOM * n + 64;
-  /* Box: |x| <= sqrt(y_top / a) + cs, 0 <= y <= y_top; shrink y_top until it fits. */
+  /* Box: |x| <= sqrt(y_top / a) + cs, 0 <= y <= y_top; shrink y_top until it fits, and
+   * once y_top is down to a cell, widen the cells (tiny atoms in a wide cup). */
   double y_top = top + cs;
   double nx, ny;
   for (;;) {
@@ -72,8 +74,11 @@ int32_t grid_shape(Core *core) {
     ny = __builtin_ceil((y_top + 0.5 * cs) / cs);
     if (nx < 1) nx = 1;
     if (ny < 1) ny = 1;
-    if (nx * ny <= max_cells || y_top <= cs) break;
-    y_top *= 0.8;
+    if (nx * ny <= max_cells) break;
+    if (y_top > cs)
+      y_top *= 0.8;
+    else
+      cs *= 1.25;
   }
   core->run.cell = cs;
   core->run.nx = (int32_t)nx;

@@ -84,35 +84,6 @@ def white(r, g, b):
     return (r >= 250) & (g >= 250) & (b >= 250)
 
 
-def fake_fast_engine(monkeypatch, steps: int = 4, seconds: float = 0.1) -> list:
-    """Make every game look like a first start of the fast engine: a stand-in for
-    `evapcool.physics.fast` whose prepare(progress) takes `steps` steps of `seconds`.
-    Returns the list of (done, total, what) reports it makes."""
-    import sys
-    import time
-    import types
-
-    import evapcool.physics
-    from evapcool.app import warmup
-
-    reports = []
-
-    def prepare(progress=None):
-        for k in range(steps):
-            time.sleep(seconds)
-            reports.append((k + 1, steps, f"compiling part {k + 1}"))
-            if progress is not None:
-                progress(k + 1, steps, f"compiling part {k + 1}")
-
-    fake = types.ModuleType("evapcool.physics.fast")
-    fake.prepare = prepare
-    monkeypatch.setitem(sys.modules, "evapcool.physics.fast", fake)
-    monkeypatch.setattr(evapcool.physics, "fast", fake, raising=False)
-    monkeypatch.setattr(warmup, "_fast_ready", False)
-    monkeypatch.setattr(warmup, "uses_fast_engine", lambda config: True)
-    return reports
-
-
 def blends(px: np.ndarray, background: tuple, inks: list[tuple], tolerance: int = 3) -> np.ndarray:
     """Which pixels are a blend of the background and one of the inks (antialiased text)."""
     px = px.astype(float)

@@ -30,13 +30,26 @@ def _one_error_line(text: str, prefix: str, extra: str) -> None:
     assert "Traceback" not in text
 
 
-def test_lab_fast_engine_without_numba_names_the_extra(monkeypatch, capsys, tmp_path):
-    _without(monkeypatch, "numba")
+def _without_core(monkeypatch: pytest.MonkeyPatch) -> None:
+    """As an sdist installed without a C compiler: no evapcool.physics._core."""
+    _without(monkeypatch, "evapcool.physics._core")
+
+
+def _one_core_line(text: str, prefix: str) -> None:
+    lines = text.strip().splitlines()
+    assert len(lines) == 1, text
+    assert lines[0].startswith(prefix), text
+    assert "C compiler" in lines[0] and "Traceback" not in text
+
+
+def test_lab_fast_engine_without_the_core_says_how_to_get_it(monkeypatch, capsys, tmp_path):
+    _without_core(monkeypatch)
     out = tmp_path / "run.csv"
     status = main(["lab", "--engine", "fast", "--frames", "5", "--out", str(out)])
     assert status == 2
-    _one_error_line(
-        capsys.readouterr().err, "evapcool lab: error: the fast engine needs numba", "fast"
+    _one_core_line(
+        capsys.readouterr().err,
+        "evapcool lab: error: the fast engine needs the compiled engine core",
     )
     assert not out.exists()
 
@@ -55,23 +68,23 @@ def test_lab_plot_without_matplotlib_is_refused_before_the_run(monkeypatch, caps
         run_experiment(frames=1_000_000, plot=png)
 
 
-def test_bench_fast_without_numba_is_one_line(monkeypatch, capsys):
-    _without(monkeypatch, "numba")
+def test_bench_fast_without_the_core_is_one_line(monkeypatch, capsys):
+    _without_core(monkeypatch)
     assert main(["bench", "--engine", "fast", "--quick"]) == 2
-    _one_error_line(capsys.readouterr().err, "evapcool bench: error:", "fast")
+    _one_core_line(capsys.readouterr().err, "evapcool bench: error:")
 
 
-def test_bench_section_without_numba_is_skipped_with_the_extra(monkeypatch, capsys):
-    _without(monkeypatch, "numba")
+def test_bench_section_without_the_core_is_skipped_saying_why(monkeypatch, capsys):
+    _without_core(monkeypatch)
     assert main(["bench", "--only", "fast", "--quick"]) == 0
     out = capsys.readouterr().out
-    assert out.startswith("[fast] skipped: ") and "pip install 'evapcool[fast]'" in out
+    assert out.startswith("[fast] skipped: ") and "C compiler" in out
     assert len(out.strip().splitlines()) == 1
 
 
-def test_many_atoms_without_numba_warn_that_numpy_is_slow(monkeypatch):
-    _without(monkeypatch, "numba")
-    with pytest.warns(SlowEngineWarning, match=r"500 atoms without numba.*evapcool\[fast\]"):
+def test_many_atoms_without_the_core_warn_that_numpy_is_slow(monkeypatch):
+    _without_core(monkeypatch)
+    with pytest.warns(SlowEngineWarning, match=r"500 atoms without the compiled engine core"):
         sim = Simulation(n_atoms=500, radius=2.0, seed=1)
     assert sim.engine == "reference"
     with warnings.catch_warnings():
@@ -79,21 +92,28 @@ def test_many_atoms_without_numba_warn_that_numpy_is_slow(monkeypatch):
         Simulation(n_atoms=49, radius=12.0, seed=1)  # the classic count: no word
 
 
-def test_many_atoms_without_numba_on_the_command_line_is_a_note(monkeypatch, capsys, tmp_path):
-    _without(monkeypatch, "numba")
+def test_without_the_core_the_game_plays_on_the_reference_engine(monkeypatch):
+    _without_core(monkeypatch)
+    sim = Simulation.classic(seed=1)
+    sim.advance(30.0)
+    assert sim.engine == "reference" and sim.collision_count > 0
+
+
+def test_many_atoms_without_the_core_on_the_command_line_is_a_note(monkeypatch, capsys, tmp_path):
+    _without_core(monkeypatch)
     out = tmp_path / "run.csv"
     args = ["lab", "--atoms", "500", "--radius", "2", "--frames", "1", "--out", str(out)]
     assert main(args) == 0
     err = capsys.readouterr().err.splitlines()
-    notes = [line for line in err if "without numba" in line]
-    assert len(notes) == 1 and notes[0].startswith("evapcool lab: note: 500 atoms without numba")
-    assert "pip install 'evapcool[fast]'" in notes[0]
+    notes = [line for line in err if "without the compiled engine core" in line]
+    assert len(notes) == 1, err
+    assert notes[0].startswith("evapcool lab: note: 500 atoms without the compiled engine core")
     assert out.exists()
 
 
 def test_python_api_raises_missing_extra_error(monkeypatch):
-    _without(monkeypatch, "numba")
-    with pytest.raises(MissingExtraError, match=r"evapcool\[fast\]"):
+    _without_core(monkeypatch)
+    with pytest.raises(MissingExtraError, match=r"compiled engine core.*C compiler"):
         Simulation.classic(seed=1, engine="fast")
     assert issubclass(MissingExtraError, ImportError)
 

@@ -37,7 +37,8 @@ def note_line(command: str | None, message: str) -> str:
 def versions() -> dict[str, str | None]:
     """Versions of Python, evapcool and the numeric libraries (None: not installed).
 
-    Read from the installed packages' metadata, so numba is never imported for this.
+    Read from the installed packages' metadata (nothing heavy is imported for this); "core":
+    the compiler that built the engine core, None where it was not built.
     """
     from importlib import metadata
 
@@ -45,9 +46,13 @@ def versions() -> dict[str, str | None]:
         "python": platform.python_version(),
         "evapcool": __version__,
     }
-    for dist in ("numpy", "numba", "matplotlib", "pygame-ce"):
+    for dist in ("numpy", "matplotlib", "pygame-ce"):
         try:
             found[dist] = metadata.version(dist)
         except metadata.PackageNotFoundError:
             found[dist] = None
+    from evapcool.physics.core import compiled
+
+    module = compiled()
+    found["core"] = None if module is None else str(module.COMPILER)
     return found

@@ -42,7 +42,7 @@ def install_hint(extra: str) -> str:
 
 
 def available(module: str) -> bool:
-    """Whether `module` can be imported, without importing it (numba takes seconds)."""
+    """Whether `module` can be imported, without importing it (some take seconds)."""
     try:
         return importlib.util.find_spec(module) is not None
     except (ImportError, ValueError):
@@ -52,7 +52,7 @@ def available(module: str) -> bool:
 def check(module: str, feature: str, hint: str | None = None) -> None:
     """MissingExtraError naming the extra (or `hint`) if `module` is not installed.
 
-    Nothing is imported: numba alone takes seconds.
+    Nothing is imported: some packages (pandas, dask) take seconds.
     """
     if not available(module):
         raise MissingExtraError(missing_message(module, feature, hint))
@@ -77,6 +77,7 @@ def missing_message(module: str, feature: str, hint: str | None = None) -> str:
 
 def slow_engine_message(n_atoms: int) -> str:
     return (
-        f"{n_atoms} atoms without the compiled core: the NumPy engine runs them slower than "
-        "real time (seconds a frame at a few thousand); reinstall evapcool with a C compiler"
+        f"{n_atoms} atoms without the compiled engine core: the NumPy engine runs them slower "
+        "than real time (seconds a frame at a few thousand); reinstall evapcool where a C "
+        "compiler is at hand (or from a wheel)"
     )

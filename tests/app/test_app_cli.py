@@ -123,20 +123,6 @@ def test_zero_frames_still_draws_the_start(tmp_path, capsys):
     assert img.get_at((20, 300))[:3] == (79, 79, 79)
 
 
-def test_a_slow_start_says_why_once(monkeypatch, capsys):
-    """A first start of the fast engine: the window shows the progress, stderr says why once."""
-    from apphelp import fake_fast_engine
-
-    from evapcool.app import applet
-
-    fake_fast_engine(monkeypatch, steps=4, seconds=0.15)
-    monkeypatch.setattr(applet, "SLOW_BUILD_NOTICE_S", 0.2)
-    rc, _, err = run(["--frames", "2", "--seed", "1"], capsys)
-    assert rc == 0
-    assert err.count("compiles the fast engine") == 1
-    assert len(err.strip().splitlines()) == 1
-
-
 def test_no_display_is_one_line_with_the_headless_way_exit_2(monkeypatch, capsys):
     monkeypatch.delenv("DISPLAY", raising=False)
     monkeypatch.delenv("WAYLAND_DISPLAY", raising=False)

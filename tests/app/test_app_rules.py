@@ -107,10 +107,9 @@ def test_all_escaped():
     assert g.all_escaped and g.score is None
 
 
-def test_missing_fast_engine_falls_back_to_reference(monkeypatch):
-    # As in the lean executable, where numba is left out.
-    monkeypatch.setitem(sys.modules, "numba", None)
-    monkeypatch.setitem(sys.modules, "evapcool.physics.fast", None)
+def test_missing_core_falls_back_to_reference(monkeypatch):
+    # As an sdist installed without a C compiler: no compiled core.
+    monkeypatch.setitem(sys.modules, "evapcool.physics._core", None)
     g = Game(GameConfig(n_atoms=400, radius=3.0, seed=1))
     assert g.sim.engine == "reference"
 

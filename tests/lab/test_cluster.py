@@ -126,31 +126,6 @@ def test_a_worker_killed_mid_sweep_loses_no_finished_run(tmp_path):
         c.close()
 
 
-def test_workers_compile_the_fast_engine_once_each_not_once_per_task(tmp_path):
-    from evapcool.lab.cluster import compiled_versions, connect
-
-    spec = tmp_path / "spec.toml"
-    spec.write_text(SPEC)
-    c = Cluster(tmp_path / "dask", workers=2)  # fresh workers: nothing compiled yet
-    try:
-        with connect(c.address) as engine:  # a client comes: the workers warm up
-            warm = engine.client.run(compiled_versions)
-            r = evapcool("sweep", str(spec), "--scheduler", c.address, "--out", "o",
-                         cwd=tmp_path)  # fmt: skip
-            assert r.returncode == 0, r.stderr
-            after = engine.client.run(compiled_versions)
-    finally:
-        c.close()
-    runs = pd.read_parquet(tmp_path / "o" / "runs.parquet")
-    assert len(runs) == 16 and runs["worker"].nunique() == 2  # both workers ran runs
-    # Compiled (or loaded from the cache) before the first task; 16 runs compiled nothing.
-    assert len(warm) == 2 and min(warm.values()) > 0
-    assert after == warm
-
-
-# -- the optimizer -------------------------------------------------------------------------------
-
-
 def test_search_on_a_scheduler_matches_the_local_cluster(cluster, tmp_path):
     r1 = evapcool("optimize", "--study", "a.db", "--trials", "6", "--workers", "2", *SEARCH,
                   cwd=tmp_path)  # fmt: skip

@@ -24,8 +24,8 @@ EQUILIBRATE, MEASURE, STEP = 1500.0, 3000.0, 5.0
 
 
 def lab_engine() -> str:
-    """The fast engine if built ("auto" picks it here), else the reference (~15 s)."""
-    default = "auto" if importlib.util.find_spec("evapcool.physics.fast") else "reference"
+    """The compiled core if built ("auto" picks it here), else the reference (~15 s)."""
+    default = "auto" if importlib.util.find_spec("evapcool.physics._core") else "reference"
     return os.environ.get("EVAPCOOL_LAB_ENGINE", default)
 
 

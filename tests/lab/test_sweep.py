@@ -211,7 +211,7 @@ def test_sweep_returns_tidy_tables_and_writes_them(swept):
     assert not (folder / "out" / "parts").exists()
     on_disk = pd.read_parquet(folder / "out" / "runs.parquet")
     pd.testing.assert_frame_equal(on_disk, runs)
-    for col in ("numpy_version", "evapcool_version", "numba_version", "python_version", "host"):
+    for col in ("numpy_version", "evapcool_version", "core_compiler", "python_version", "host"):
         assert runs[col].notna().all()
 
 

@@ -121,7 +121,6 @@ def test_power_edge_values() -> None:
 #: Files and the calls they may make: none of them decides a start, an event or the win.
 ALLOWED = {
     "physics/calendar.py": "log2 sizes the calendar's ring (performance, not events)",
-    "physics/fast/calendar.py": "log2 sizes the calendar's ring",
     "physics/validation.py": "log2 levels the grid; hypot in refusal checks",
     "physics/state.py": "hypot in an error message",
     "physics/trace.py": "builds golden test states; their starts are stored in the traces",
@@ -143,9 +142,7 @@ def test_the_physics_uses_only_portable_arithmetic() -> None:
     offenders = []
     for path in files:
         rel = f"physics/{path.name}"
-        if path.parent.name == "fast":
-            rel = f"physics/fast/{path.name}"
-        elif path.parent.name == "game":
+        if path.parent.name == "game":
             rel = f"game/{path.name}"
         if rel in ALLOWED:
             continue

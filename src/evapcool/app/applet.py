@@ -19,7 +19,6 @@ from dataclasses import replace
 import pygame
 
 from evapcool.about import note_line
-from evapcool.app import warmup
 from evapcool.app.charts import ChartColumn
 from evapcool.app.classlink import Challenge, ClassLink, Event
 from evapcool.app.controls import SceneControls
@@ -35,7 +34,14 @@ from evapcool.app.window import Window
 from evapcool.app.words import t
 from evapcool.game.autopilot import Autopilot
 from evapcool.game.replay import Recording
-from evapcool.game.rules import HEIGHT_MAX, HEIGHT_MIN, MAX_WALL_STEP, Game, GameConfig
+from evapcool.game.rules import (
+    HEIGHT_MAX,
+    HEIGHT_MIN,
+    MAX_WALL_STEP,
+    Game,
+    GameConfig,
+    make_simulation,
+)
 from evapcool.game.settings import Settings
 from evapcool.physics.simulation import FPS, Simulation
 from evapcool.view.icons import window_icon
@@ -46,7 +52,6 @@ from evapcool.view.scene import (
     SCENE_SIZE,
     UNDER_MESSAGE,
     Scene,
-    draw_progress,
 )
 from evapcool.view.widgets import Pointer
 
@@ -55,10 +60,6 @@ TITLE = "app.title"  # the window's title, in the chosen language
 TARGET_FPS = 60
 #: Trap height change per arrow-key press (key repeat is on), px.
 HEIGHT_STEP = 5.0
-#: Making a simulation quicker than this shows no progress screen (no flash).
-QUIET_BUILD_S = 0.15
-#: A build slower than this also says why on stderr, once (headless runs).
-SLOW_BUILD_NOTICE_S = 2.0
 _SUBMIT = (pygame.K_RETURN, pygame.K_KP_ENTER)
 #: A folder argument that names no folder (the command line's --data-dir says the same).
 BAD_FOLDER = "{name} must name a folder (got {value!r})"
@@ -155,10 +156,6 @@ def _word(label: str) -> str:
     return t(label) if label.startswith("help.key.") else label
 
 
-class StartCancelledError(Exception):
-    """The player closed the window before the first game was ready."""
-
-
 class App:
     """The applet: owns the window, the game, the input machine and the main loop."""
 
@@ -178,8 +175,7 @@ class App:
         classroom: ClassLink | None = None,
         replay: Recording | None = None,
     ) -> None:
-        """game: what to play, or the config to make it from (behind a progress screen
-        when the fast engine must be readied first). data_dir / config_dir: where scores
+        """game: what to play, or the config to make it from. data_dir / config_dir: where scores
         and settings live (default $EVAPCOOL_DATA_DIR / $EVAPCOOL_CONFIG_DIR, else the
         user folders). settings: the saved settings (read from config_dir if None);
         overrides: this run's command-line values on top (never saved); notices: shown
@@ -228,9 +224,6 @@ class App:
             except BaseException:
                 self.close()
                 raise
-            if sim is None:
-                self.close()
-                raise StartCancelledError("the window was closed while the game was being made")
             game = Game(game, sim=sim)
         self.game = game
         game.on_win.append(self._on_win)
@@ -336,38 +329,9 @@ class App:
         self.running = False
 
     # -- making and restarting games ------------------------------------------------------------
-    def build_simulation(self, config: GameConfig) -> Simulation | None:
-        """make_simulation(config), behind a progress screen if the fast engine must be
-        readied first; None if the player closed the window meanwhile."""
-        builder = warmup.SimulationBuilder(config).start()
-        if not warmup.needs_warmup(config) or builder.wait(QUIET_BUILD_S):
-            return builder.result()
-        said = False
-        while not builder.done:
-            for event in pygame.event.get():
-                self._window_event(event)
-                if event.type == pygame.QUIT or (
-                    event.type == pygame.KEYDOWN and event.key == pygame.K_ESCAPE
-                ):
-                    self.running = False
-                    return None
-            if not said and self.log is not None and builder.elapsed > SLOW_BUILD_NOTICE_S:
-                self.log(f"{builder.what}... {t(warmup.COMPILE_NOTE)}")
-                said = True
-            what, fraction = builder.state
-            self.draw_progress(what, fraction, builder.elapsed)
-            self.clock.tick(30)
-        return builder.result()
-
-    def draw_progress(self, what: str, fraction: float | None, elapsed: float) -> pygame.Rect:
-        """The progress screen (its bar's rectangle in window pixels)."""
-        lay = arrange(self.window.size, 0)
-        surface = self.window.surface
-        surface.fill((0, 0, 0))
-        pen = Pen(surface, lay.scale, lay.scene.topleft)
-        bar = draw_progress(pen, what, fraction, elapsed, t(warmup.COMPILE_NOTE))
-        self.window.flip()
-        return bar
+    def build_simulation(self, config: GameConfig) -> Simulation:
+        """A new simulation for config (the compiled core starts at once: no progress screen)."""
+        return make_simulation(config)
 
     def restart(self) -> None:
         """New atoms with the current settings, trap at 400, paused; ends any name entry."""
@@ -388,10 +352,7 @@ class App:
             config = replace(config, seed=self.watching.seed)
         self.input.end_drag()  # a drag never carries into the new game
         try:
-            sim = self.build_simulation(config)
-            if sim is None:
-                return
-            self.game.restart(config, sim=sim)
+            self.game.restart(config, sim=self.build_simulation(config))
         except ValueError as exc:  # settings are validated; this is a guard, not a path
             self.notify(t("notice.settings_failed", problem=exc))
             self.game.restart()
@@ -660,7 +621,6 @@ __all__ = [
     "TARGET_FPS",
     "App",
     "Binding",
-    "StartCancelledError",
     "default_bindings",
 ]
 

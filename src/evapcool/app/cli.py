@@ -304,10 +304,9 @@ def main(argv: list[str] | None = None) -> int:
         os.environ.setdefault("SDL_VIDEODRIVER", "dummy")  # headless: no window needed
     import pygame  # only now: bad arguments should not pay for SDL start-up
 
-    from evapcool.app.applet import App, StartCancelledError, stderr_log
+    from evapcool.app.applet import App, stderr_log
 
     try:
-        # The window opens at once; a first start of the fast engine shows its progress.
         app = App(
             config,
             fullscreen=args.fullscreen,
@@ -321,8 +320,6 @@ def main(argv: list[str] | None = None) -> int:
             classroom=link,
             replay=watched,
         )
-    except StartCancelledError:
-        return 0
     except ValueError as exc:
         print(error_line(None, _user_message(exc)), file=sys.stderr)
         return 2

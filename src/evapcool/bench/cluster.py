@@ -86,14 +86,13 @@ def _game_ms(n: int = 60) -> tuple[float, float]:
 
 
 def run(args) -> None:
-    from evapcool.lab.cluster import MissingExtraError, require_extra, warm_fast_engine
+    from evapcool.lab.cluster import MissingExtraError, require_extra
 
     try:
         require_extra("sweep")
     except MissingExtraError as exc:
         print(f"[cluster] {exc}")
         return
-    warm_fast_engine()
     repeats = 1 if getattr(args, "quick", False) else 3
     runs = _runs()
     load0 = os.getloadavg()

@@ -1,23 +1,20 @@
-"""Bench section 'fast': the fast engine's throughput, scaling, frame time and start-up.
+"""Bench section 'fast': the compiled core's throughput, scaling, frame time and start-up.
 
-Figures (issues 4, 13 and 17): collisions and events per second at 10 000 atoms; a
+Figures (issues 4, 13, 17 and 32): collisions and events per second at 10 000 atoms; a
 scaling table at constant packing (radius = sqrt(10 000 / N)); the same gas with 1 %
 of its atoms 100 times hotter (issue 13: cells must not widen for them); the classic
-49-atom start's physics time per frame; the first start with an empty compile cache
-and later starts with a warm one, in fresh processes; and where the fast engine
-overtakes the reference engine (for AUTO_FAST_MIN_ATOMS). Compilation is warmed up
-first. Rates use process CPU time: the machine is shared, wall time is noisier.
+49-atom start's physics time per frame and the cost of one call into the core; the first
+frame of a fresh process; and the core against the reference engine per frame. Rates use
+process CPU time: the machine is shared, wall time is noisier.
 """
 
 from __future__ import annotations
 
 import argparse
 import math
-import os
 import statistics
 import subprocess
 import sys
-import tempfile
 import time
 
 import numpy as np
@@ -37,12 +34,6 @@ _FIRST_FRAME_CODE = (
     "import time; t0 = time.perf_counter(); c0 = time.process_time()\n"
     "from evapcool import Simulation\n"
     "s = Simulation.classic(seed=1, engine={engine!r}); s.advance(1.0)\n"
-    "print(time.perf_counter() - t0, time.process_time() - c0)\n"
-)
-_PREPARE_CODE = (
-    "import time; t0 = time.perf_counter(); c0 = time.process_time()\n"
-    "from evapcool.physics import fast\n"
-    "fast.prepare(lambda done, total, what: None)\n"
     "print(time.perf_counter() - t0, time.process_time() - c0)\n"
 )
 
@@ -94,13 +85,10 @@ def frame_median_ms(engine: str, n: int, frames: int, radius: float = 12.0) -> f
     return statistics.median(times) * 1e3
 
 
-def _fresh_process(code: str, cache_dir: str | None = None) -> tuple[float, float]:
+def _fresh_process(code: str) -> tuple[float, float]:
     """(wall, CPU) seconds the code prints, run in a fresh Python process."""
-    env = dict(os.environ)
-    if cache_dir is not None:
-        env["NUMBA_CACHE_DIR"] = cache_dir
     out = subprocess.run(
-        [sys.executable, "-c", code], capture_output=True, text=True, check=True, env=env
+        [sys.executable, "-c", code], capture_output=True, text=True, check=True
     ).stdout
     wall, cpu = out.strip().splitlines()[-1].split()
     return float(wall), float(cpu)
@@ -115,12 +103,6 @@ def startup_seconds(engine: str, repeats: int) -> tuple[float, float]:
         walls.append(time.perf_counter() - t)
         inner.append(inside)
     return statistics.median(walls), statistics.median(inner)
-
-
-def cold_start_seconds(code: str) -> tuple[float, float]:
-    """(wall, CPU) seconds of `code` in a fresh process with an empty compile cache."""
-    with tempfile.TemporaryDirectory(prefix="evapcool-cold-") as cache:
-        return _fresh_process(code, cache)
 
 
 def _print_scaling(frames: int, quick: bool) -> None:
@@ -174,39 +156,32 @@ def _print_outliers(frames: int, quick: bool) -> None:
 
 
 def _print_startup(quick: bool) -> None:
-    reps = 2 if quick else 5
+    reps = 3 if quick else 7
     for engine in ("fast", "reference"):
         wall, inner = startup_seconds(engine, reps)
         print(
-            f"  start-up to first frame, fresh process, warm cache, engine={engine}: {wall:.2f} s "
-            f"(of which {inner:.2f} s import + build + first frame)"
+            f"  first frame of a fresh process, engine={engine}: median {wall:.2f} s "
+            f"(of which {inner:.3f} s import + start + first frame), {reps} runs"
         )
-    cold = {"first": [], "prepare": []}
-    for _ in range(1 if quick else COLD_REPEATS):  # interleaved: load bursts spoil one run
-        cold["first"].append(cold_start_seconds(_FIRST_FRAME_CODE.format(engine="fast")))
-        cold["prepare"].append(cold_start_seconds(_PREPARE_CODE))
-    labels = {
-        "first": "first start, empty compile cache (import + compile + first frame)",
-        "prepare": "fast.prepare(), empty compile cache (everything the engine can need)",
-    }
-    for key, label in labels.items():
-        wall = statistics.median(w for w, _ in cold[key])
-        cpu = statistics.median(c for _, c in cold[key])
-        each = ", ".join(f"{w:.1f}/{c:.1f}" for w, c in cold[key])
-        target = "; target < 15 s" if key == "first" else ""
-        print(
-            f"  {label}: median {wall:.1f} s wall, {cpu:.1f} s CPU{target} "
-            f"(runs, wall/CPU s: {each})"
-        )
+
+
+def call_overhead_us(calls: int = 20_000) -> float:
+    """Median microseconds of one advance() that processes no event (the 49-atom start at a
+    time no event falls in): the cost of crossing from Python into the core and back."""
+    sim = Simulation(n_atoms=49, radius=12.0, seed=1, trap_height=450.0, engine="fast")
+    sim.advance(1.0)
+    samples = []
+    for _ in range(5):
+        t = time.perf_counter()
+        for _ in range(calls):
+            sim.advance(1e-12)
+        samples.append((time.perf_counter() - t) / calls * 1e6)
+    return statistics.median(samples)
 
 
 def run(args: argparse.Namespace) -> None:
     """Print the fast engine's figures."""
     quick = bool(getattr(args, "quick", False))
-    from evapcool.physics import fast
-
-    fast.prepare(lambda done, total, what: None)  # compile (or load from the cache)
-
     frames = 10 if quick else 30
     r = throughput(10_000, frames)
     print("[fast] Simulation(n_atoms=10000, radius=1.0, seed=1, trap_height=450, engine='fast')")
@@ -222,9 +197,10 @@ def run(args: argparse.Namespace) -> None:
     nf = 300 if quick else 900
     med = frame_median_ms("fast", 49, nf)
     print(f"  classic start (49 atoms, R = 12, H = 450): median {med:.4f} ms physics per frame")
+    print(f"  one call into the core that processes no event: median {call_overhead_us():.2f} us")
     _print_startup(quick)
 
-    print("  fast vs reference, median ms per frame (cup start, H = 450, R = 12 scaled):")
+    print("  the core vs reference, median ms per frame (cup start, H = 450, R = 12 scaled):")
     counts = (25, 49, 100, 200) if quick else (25, 49, 75, 100, 150, 200, 300)
     for n in counts:
         radius = min(12.0, 12.0 * math.sqrt(49 / n))

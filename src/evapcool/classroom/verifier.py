@@ -8,7 +8,6 @@ from __future__ import annotations
 
 from typing import Any
 
-from evapcool.extras import available
 from evapcool.game.replay import (
     DAMAGED,
     EDITED,
@@ -22,8 +21,8 @@ from evapcool.game.replay import (
     verify,
 )
 
-#: The fast engine when numba is there (the same results, about 14x faster at 49 atoms).
-ENGINE = "fast" if available("numba") else "auto"
+#: The compiled core where it is built, else the reference engine (the same results).
+ENGINE = "auto"
 #: Fields a ReplayError(EDITED) message may start with (Recording.check's wording).
 EDITED_FIELDS = (
     "settings.n_atoms",
@@ -40,7 +39,7 @@ SETTING_NAMES = ("n_atoms", "radius", "escape", "tc_exponent")
 
 
 def warm() -> None:
-    """Compile the engine once in this worker (numba's first call), before real games."""
+    """Play a tiny game once in this worker (imports, first allocations) before real games."""
     rec = Recording(Settings(n_atoms=8), 1, ((450.0, 2),), won=False, score=0, frames=2)
     replay(rec, ENGINE)
 

@@ -70,7 +70,7 @@ def check_speed(speed: object) -> float:
 
 
 def make_simulation(config: GameConfig) -> Simulation:
-    """A fresh simulation for config; the reference engine if the fast one can't load."""
+    """A fresh simulation for config; the reference engine if the compiled core is missing."""
 
     # Checked once, here at the game's boundary; the fallback below is not checked again.
     checked = SimulationConfig.checked(
@@ -91,7 +91,7 @@ def make_simulation(config: GameConfig) -> Simulation:
     try:
         return Simulation.from_config(checked)
     except ImportError:
-        # numba (or the fast engine) missing, e.g. in the lean executable.
+        # The compiled core missing (an sdist installed without a C compiler).
         if config.engine == "fast":
             raise
         return Simulation.from_config(replace(checked, engine="reference"))

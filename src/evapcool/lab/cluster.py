@@ -2,8 +2,7 @@
 
 Runs are Dask tasks. By default a LocalCluster with one single-threaded worker process per
 core; `scheduler="tcp://host:8786"` attaches to a running cluster instead (docs/cluster.md).
-Each worker warms the fast engine once when it joins (compiled, or loaded from Numba's
-cache), never once per task. Results come back as tasks finish, so a worker that dies
+Results come back as tasks finish, so a worker that dies
 loses only what it was running: Dask runs that again elsewhere.
 
 dask, distributed, pandas and pyarrow are the optional extra `cluster`; they are imported
@@ -94,31 +93,6 @@ def check_workers(workers: object) -> int | None:
 # -- what runs on the workers ------------------------------------------------------------------
 
 
-def warm_fast_engine() -> float:
-    """Compile (or load from Numba's cache) the fast engine in this process; seconds taken."""
-    start = time.perf_counter()
-    from evapcool.physics import fast
-
-    prepare = getattr(fast, "prepare", None)
-    if prepare is not None:
-        prepare()
-    else:  # until physics.fast has prepare(): one tiny run touches every compiled path
-        from evapcool.physics.simulation import Simulation
-
-        sim = Simulation(n_atoms=4, radius=3.0, seed=0, engine="fast", escape="rim")
-        sim.advance(5.0)
-        sim.trap_height = 5.0
-        sim.advance(5.0)
-    return time.perf_counter() - start
-
-
-def compiled_versions() -> int:
-    """Compiled versions of the fast engine's functions in this process: after a worker's
-    warm-up, tasks add none (`client.run(compiled_versions)` asks every worker)."""
-    jit = sys.modules.get("evapcool.physics.fast.jit")
-    return 0 if jit is None else sum(len(d.overloads) for d in jit.REGISTRY)
-
-
 def worker_environment() -> dict[str, str]:
     """Versions and host of the process a run executes in (stored with every run)."""
     import numpy
@@ -133,24 +107,10 @@ def worker_environment() -> dict[str, str]:
         "platform": platform.platform(terse=True),
     }
     with contextlib.suppress(ImportError):
-        import numba
+        from evapcool.physics import _core
 
-        env["numba_version"] = numba.__version__
+        env["core_compiler"] = _core.COMPILER
     return env
-
-
-def _warm_plugin():
-    from distributed.diagnostics.plugin import WorkerPlugin
-
-    class WarmFastEngine(WorkerPlugin):
-        """Run once per worker as it starts: the fast engine is ready before the first task."""
-
-        name = "evapcool-warm-fast-engine"
-
-        def setup(self, worker) -> None:
-            worker.evapcool_warmup_seconds = warm_fast_engine()
-
-    return WarmFastEngine()
 
 
 # -- the client --------------------------------------------------------------------------------
@@ -200,7 +160,6 @@ def connect(
         client = Client(scheduler, timeout="10s")
         description = f"scheduler {scheduler}"
     try:
-        client.register_plugin(_warm_plugin())
         engine = Engine(client, description)
         if scheduler is not None:
             _check_versions(engine)

@@ -282,7 +282,7 @@ def _make_simulation(cfg: LabConfig, schedule: Schedule) -> Simulation:
                 sep=": ",
             ) from None
     h0 = schedule.fixed_height(0.0) if schedule.kind == "ramp" else math.inf
-    check_engine_size(cfg.engine, cfg.n_atoms)  # the one check LabConfig leaves: auto, no numba
+    check_engine_size(cfg.engine, cfg.n_atoms)  # the one check LabConfig leaves: auto, no core
     # cfg was checked once (LabConfig.checked); the physics trusts it. A thermal start is new
     # data: its positions are checked (in the cup, apart) as they join the config.
     config = SimulationConfig(

@@ -71,7 +71,7 @@ RESULT_COLUMNS = (
     "wall_collision_rate", "cooling_efficiency", "phase_space_density_gain",
 )  # fmt: skip
 ENV_COLUMNS = (
-    "evapcool_version", "python_version", "numpy_version", "numba_version", "host", "platform",
+    "evapcool_version", "python_version", "numpy_version", "core_compiler", "host", "platform",
     "worker", "cpu_seconds", "wall_seconds",
 )  # fmt: skip
 

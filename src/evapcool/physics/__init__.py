@@ -1,1 +1,1 @@
-"""The model: exact event-driven hard disks in a parabolic cup (NumPy/Numba, no pygame)."""
+"""The model: exact event-driven hard disks in a parabolic cup (NumPy, the compiled core)."""

@@ -253,5 +253,10 @@ PyMODINIT_FUNC PyInit__core(void) {
     return NULL;
   }
   PyModule_AddIntConstant(m, "LOG_LINE_BYTES", (long)sizeof(LogLine));
+#ifdef __VERSION__
+  PyModule_AddStringConstant(m, "COMPILER", __VERSION__);
+#else
+  PyModule_AddStringConstant(m, "COMPILER", "unknown");
+#endif
   return m;
 }

@@ -10,14 +10,13 @@ lab and the server play on the reference engine, saying so once (`missing_note`)
 
 from __future__ import annotations
 
+import importlib
+from types import ModuleType
+
 import numpy as np
 
+from evapcool.extras import MissingExtraError
 from evapcool.physics.world import World
-
-try:
-    from evapcool.physics import _core
-except ImportError:  # no compiled core in this install
-    _core = None  # type: ignore[assignment]
 
 #: Lines of the core's event log buffer (emptied into the World when full).
 LOG_CAPACITY = 1 << 16
@@ -27,25 +26,43 @@ LOG_LINE = np.dtype([("kind", "<i4"), ("a", "<i4"), ("b", "<i4"), ("pad", "<i4")
 LOG_FULL = 1
 
 
+#: How to get the core where it is missing (the wheels carry it; an sdist compiles it).
+REINSTALL = "reinstall evapcool where a C compiler is at hand (or from a wheel)"
+
+
+def compiled() -> ModuleType | None:
+    """The extension evapcool.physics._core, or None where it was not built."""
+    try:
+        return importlib.import_module("evapcool.physics._core")
+    except ImportError:
+        return None
+
+
 def available() -> bool:
     """True if the compiled core is installed."""
-    return _core is not None
+    return compiled() is not None
+
+
+def missing_message(feature: str) -> str:
+    """'FEATURE needs the compiled engine core, ...': one line saying how to get it."""
+    return f"{feature} needs the compiled engine core, which this install lacks: {REINSTALL}"
 
 
 def missing_note() -> str:
-    """One line: the compiled core is missing, what that costs and how to get it."""
+    """One line for the start of a program that falls back to the reference engine."""
     return (
-        "evapcool: the compiled engine core is not installed (built without a C compiler): "
-        "playing on the reference engine, slower beyond a few hundred atoms; reinstall with "
-        "a C compiler (pip install --force-reinstall --no-binary evapcool evapcool) for it"
+        "the compiled engine core is not installed (no C compiler when evapcool was built): "
+        f"playing on the reference engine, slower beyond a few hundred atoms; {REINSTALL}"
     )
 
 
 def contraction_probe(a: float, b: float, c: float) -> float:
     """a * b + c computed by the core: differs from Python's for some inputs if the build
     fused it into a multiply-add (which would change events)."""
-    assert _core is not None
-    return float(_core.contraction_probe(a, b, c))
+    module = compiled()
+    if module is None:
+        raise MissingExtraError(missing_message("contraction_probe"))
+    return float(module.contraction_probe(a, b, c))
 
 
 class CoreEngine:
@@ -54,12 +71,13 @@ class CoreEngine:
     name = "fast"
 
     def __init__(self, world: World) -> None:
-        if _core is None:
-            raise ImportError(missing_note())
+        module = compiled()
+        if module is None:
+            raise MissingExtraError(missing_message("the fast engine"))
         self.w = world
         n = len(world.radius)
         # A knife may log every atom at once: the buffer holds them all.
-        self.core = _core.Core(n, max(LOG_CAPACITY, n + 8) if world.record_events else 1)
+        self.core = module.Core(n, max(LOG_CAPACITY, n + 8) if world.record_events else 1)
         inputs = np.concatenate(
             [world.pos[:, 0], world.pos[:, 1], world.vel[:, 0], world.vel[:, 1],
              world.t_atom, world.radius, world.mass]
@@ -80,7 +98,8 @@ class CoreEngine:
         w = self.w
         key = (w.tc0, w.tc_exponent, w.win_rule)
         if key != self._tc_key:
-            self.core.set_tc_table(np.array([w.win_threshold_of(m) for m in range(w.n_initial + 1)]))
+            table = [w.win_threshold_of(m) for m in range(w.n_initial + 1)]
+            self.core.set_tc_table(np.array(table))
             self._tc_key = key
 
     def _sync(self) -> None:
@@ -100,10 +119,8 @@ class CoreEngine:
     def _take_log(self) -> None:
         if self.w.record_events:
             lines = np.frombuffer(self.core.take_log(), dtype=LOG_LINE)
-            self.w.log.extend(
-                (int(k), int(a), int(b), float(t))
-                for k, a, b, t in zip(lines["kind"], lines["a"], lines["b"], lines["t"])
-            )
+            kinds, a, b, t = (lines[f].tolist() for f in ("kind", "a", "b", "t"))
+            self.w.log.extend(zip(kinds, a, b, t, strict=True))
 
     # -- public -------------------------------------------------------------------
     def advance_to(self, t_end: float) -> None:

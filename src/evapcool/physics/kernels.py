@@ -1,9 +1,9 @@
 """Scalar event kernels: free flight, contact times and collision rules.
 
-Every function here is plain Python on floats with ``math`` only, so the fast
-engine compiles these very functions with Numba and the reference engine's
-NumPy code mirrors them operation for operation. Both engines therefore do
-the same floating-point arithmetic and process the same events.
+Every function here is plain Python on floats with ``math`` only; the compiled
+core (core/kernels.c) and the reference engine's NumPy code perform their
+operations in the same order, so both engines do the same floating-point
+arithmetic and process the same events.
 
 Coordinates are trap coordinates (see docs/model.md): x right, y up, origin at
 the lowest point an atom centre can reach; the centre-wall is y = a x^2.

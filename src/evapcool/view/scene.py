@@ -489,37 +489,6 @@ def _help_rows(
     raise AssertionError("unreachable")
 
 
-def draw_progress(
-    pen: Pen, what: str, fraction: float | None, elapsed: float, note: str = ""
-) -> pygame.Rect:
-    """A scene-sized 'please wait' screen: a bar (filled to fraction, or a moving block
-    when the share done is unknown), what is happening and the time so far; the bar."""
-    pen.fill(BACKGROUND, PLAY_RECT)
-    Scene().draw_borders(pen)
-    cx = PLAY_RECT.centerx
-    ready = i18n.t("app.getting_ready")
-    size = fit_size(ready, 44, PLAY_RECT.width - 16, True, 22)
-    pen.text(ready, size, TEXT, True, center=(cx, PLAY_RECT.top + 150))
-    bar = pygame.Rect(PLAY_RECT.left + 40, PLAY_RECT.top + 230, PLAY_RECT.width - 80, 28)
-    pen.box(GLASS, bar)
-    inner = bar.inflate(-6, -6)
-    if fraction is None:
-        block = inner.w // 4
-        x = inner.left + round((inner.w - block) * (0.5 + 0.5 * math.sin(2.0 * elapsed)))
-        pen.fill(MERCURY, (x, inner.top, block, inner.h))
-    else:
-        done = round(inner.w * min(1.0, max(0.0, fraction)))
-        if done:
-            pen.fill(MERCURY, (inner.left, inner.top, done, inner.h))
-    pen.box(CUP_COLOR, bar, width=2)
-    for k, line in enumerate(wrap(what, 26, bar.w, True)):
-        pen.text(line, 26, TEXT, True, midtop=(cx, bar.bottom + 14 + 28 * k))
-    pen.text(i18n.t("progress.seconds", s=round(elapsed)), 26, TEXT, midtop=(cx, bar.bottom + 80))
-    for k, line in enumerate(wrap(note, 22, bar.w)):
-        pen.text(line, 22, (225, 225, 225), midtop=(cx, bar.bottom + 130 + 24 * k))
-    return pen.rect(bar)
-
-
 def _pieces(text: str, size: int, width: float, bold: bool) -> list[str]:
     """The words of text; a word wider than the width (Chinese, Japanese: no spaces) is cut
     into runs of characters that fit."""

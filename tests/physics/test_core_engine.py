@@ -1,4 +1,5 @@
-"""The fast engine (issue 4): the reference engine's events exactly, and sound at 10 000 atoms."""
+"""The compiled core (engine 'fast', issue 32): the reference engine's events exactly, sound at
+10 000 atoms, built without contraction."""
 
 from __future__ import annotations
 
@@ -11,7 +12,6 @@ from hypothesis import strategies as st
 
 from evapcool import Simulation
 from evapcool.physics.world import TRAPPED
-
 
 
 def _pair_run(
@@ -38,24 +38,19 @@ def _pair_run(
 
 
 def _assert_same(ref: Simulation, fast: Simulation) -> None:
-    """Same events (atoms, order, times to 1e-9 relative) and the same end state to 1e-6 px."""
-    a, b = ref.event_log, fast.event_log
-    assert len(a) == len(b)
-    for k, (ea, eb) in enumerate(zip(a, b, strict=True)):
-        assert ea[:3] == eb[:3], f"event {k}: {ea} != {eb}"
-        assert eb[3] == pytest.approx(ea[3], rel=1e-9, abs=1e-12), f"event {k}"
+    """The same events (atoms, order and times, to the last bit) and the same end state."""
+    assert fast.event_log == ref.event_log
     wa, wb = ref._world, fast._world
-    np.testing.assert_array_equal(wa.status, wb.status)
-    np.testing.assert_allclose(wb.pos, wa.pos, rtol=0, atol=1e-6)
-    np.testing.assert_allclose(wb.vel, wa.vel, rtol=0, atol=1e-6)
-    np.testing.assert_allclose(fast.positions, ref.positions, rtol=0, atol=1e-6)
+    for name in ("status", "pos", "vel", "t_atom"):
+        np.testing.assert_array_equal(getattr(wb, name), getattr(wa, name), err_msg=name)
+    np.testing.assert_array_equal(fast.positions, ref.positions)
     assert (fast.pair_collision_count, fast.wall_collision_count, fast.n_trapped, fast.won) == (
         ref.pair_collision_count,
         ref.wall_collision_count,
         ref.n_trapped,
         ref.won,
     )
-    assert fast.total_energy() == pytest.approx(ref.total_energy(), rel=1e-12)
+    assert wb.energy_sum == wa.energy_sum
     assert fast._engine.grid_errors() == 0
 
 
@@ -107,6 +102,48 @@ def test_same_events_win_by_cooling() -> None:
     _assert_same(ref, fast)
 
 
+@settings(max_examples=10, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(
+    seed=st.integers(0, 2**31 - 1),
+    n=st.integers(2, 60),
+    hot=st.floats(1.0, 8.0),
+    rule=st.sampled_from(["rim", "knife"]),
+    fall=st.floats(0.3, 0.95),
+)
+def test_same_events_random_states(seed: int, n: int, hot: float, rule: str, fall: float) -> None:
+    """Mixed radii and masses, a few hot atoms, either escape rule, a rim falling in steps:
+    the reference engine and the core agree to the last bit (issue 32)."""
+    rng = np.random.default_rng(seed)
+    start = Simulation(n_atoms=n, radius=8.0, seed=seed % 1000, engine="reference")
+    radii = rng.uniform(2.0, 8.0, n)  # placed for radius 8: no overlaps
+    masses = rng.uniform(0.5, 3.0, n)
+    vel = start._world.vel.copy()
+    vel[rng.random(n) < 0.1] *= hot
+    sims = [
+        Simulation(n, radius=radii, mass=masses, positions=start._world.pos, velocities=vel,
+                   engine=e, escape=rule, record_events=True, trap_height=450.0)
+        for e in ("reference", "fast")
+    ]  # fmt: skip
+    height = 450.0
+    for frame in range(120):
+        if frame % 20 == 19:
+            height = max(25.0, height * fall)
+        for sim in sims:
+            if frame % 20 == 19:
+                sim.trap_height = height
+            sim.advance(1.0)
+    _assert_same(*sims)
+
+
+def test_the_core_is_built_without_contraction() -> None:
+    """0.1 * 10 - 1 is 0 with two roundings and 2^-54 fused: a build that contracts a * b + c
+    into a multiply-add (and so changes events) fails here."""
+    from evapcool.physics.core import contraction_probe
+
+    assert 0.1 * 10.0 - 1.0 == 0.0
+    assert contraction_probe(0.1, 10.0, -1.0) == 0.0
+
+
 @settings(max_examples=8, deadline=None, suppress_health_check=[HealthCheck.too_slow])
 @given(
     seed=st.integers(0, 10_000),
@@ -125,8 +162,8 @@ def test_same_events_random_systems(
 
 
 def test_atoms_far_above_the_grid_still_collide() -> None:
-    # Two trapped atoms thrown far above the rim (H = 60) fly in the attic, the grid's
-    # top row, meet there and bounce apart, exactly as in the reference engine.
+    # Two trapped atoms thrown far above the rim (H = 60) fly in the top row of cells, which
+    # reaches up to infinity, meet there and bounce apart, exactly as in the reference engine.
     pos = [(-30.0, 100.0), (30.0, 100.0), (0.0, 5.0), (10.0, 5.0), (-10.0, 5.0)]
     vel = [(1.0, 20.0), (-1.0, 20.0), (0.5, 0.0), (-0.5, 0.0), (0.1, 0.0)]
     sims = [
@@ -144,20 +181,18 @@ def test_atoms_far_above_the_grid_still_collide() -> None:
     for sim in sims:
         sim.advance(80.0)
     ref, fast = sims
-    assert fast._engine.grid.top < 100.0  # the meeting point, about 600 px up, is far above
     assert ("pair", 0, 1) in {e[:3] for e in ref.event_log}
     _assert_same(ref, fast)
 
 
-def test_raising_the_rim_rebuilds_the_grid_with_the_same_events() -> None:
+def test_raising_the_rim_keeps_the_same_events() -> None:
     ref, fast = _pair_run(50, 3, 700, changes={150: 120.0, 300: 350.0}, radius=6.0,
                           trap_height=60.0)  # fmt: skip
-    assert fast._engine.grid.reach >= 350.0
     _assert_same(ref, fast)
 
 
 def test_hot_atoms_do_not_widen_the_cells() -> None:
-    """Issue 13: the grid depends on the atoms' size and the trap, never on their energies."""
+    """Issue 13: the cells' size depends on the atoms' size, never on their energies."""
     cold = Simulation(n_atoms=2000, radius=2.0, seed=4, trap_height=450.0, engine="fast")
     vel = cold._world.vel.copy()
     vel[::20] *= 10.0  # 5 % of the atoms 100 times hotter (under the speed limit of a start)
@@ -165,35 +200,26 @@ def test_hot_atoms_do_not_widen_the_cells() -> None:
         n_atoms=2000, radius=2.0, positions=cold._world.pos, velocities=vel,
         trap_height=450.0, engine="fast",
     )  # fmt: skip
-    assert hot._engine.grid_shape == cold._engine.grid_shape
-    assert hot._engine.grid_shape[2] == pytest.approx(1.1 * 2 * 2.0)
+    assert hot._engine.grid_shape[2] == cold._engine.grid_shape[2] == pytest.approx(1.1 * 2 * 2.0)
     hot.advance(5.0)
-    assert hot._engine.off_grid_count > 0  # some of them fly in the attic ...
-    assert hot._engine.grid_errors() == 0  # ... filed where they are
+    assert hot._engine.grid_errors() == 0  # every atom filed where it is
 
 
-@settings(max_examples=200, deadline=None)
+@settings(max_examples=25, deadline=None)
 @given(
-    n=st.integers(1, 300_000),
-    radius=st.floats(1e-3, 30.0),
-    height=st.one_of(st.floats(1.0, 1e6), st.just(math.inf)),
-    curvature=st.floats(1e-5, 1.0),
-    width=st.integers(160, 100_000),
+    n=st.integers(1, 3000),
+    radius=st.floats(0.01, 2.0),
+    speed=st.floats(0.0, 3.0),
 )
-def test_grid_memory_is_bounded(n, radius, height, curvature, width) -> None:
-    """At most 16 cells per atom (or 4096) for any input; cells at least a contact wide."""
-    from types import SimpleNamespace
-
-    from evapcool.physics.fast import grid
-
-    world = SimpleNamespace(
-        radius=np.array([radius]), curvature=curvature, x_left=-0.4 * width,
-        x_right=0.6 * width,
-    )  # fmt: skip
-    g = grid.geometry(world, height)
-    assert g.nx * g.ny <= max(grid.MAX_CELLS_PER_ATOM * n, grid.MIN_CELLS)
-    assert g.cell >= 2.0 * radius
-    assert g.top >= min(height, grid.reach(world, height)) + g.cell  # the rim is inside
+def test_grid_memory_is_bounded(n, radius, speed) -> None:
+    """At most 8 cells per atom (plus 64) whatever the gas; cells at least a contact wide."""
+    start = Simulation(n_atoms=n, radius=radius, seed=n, engine="reference" if n < 9 else "fast")
+    vel = start._world.vel * (1.0 + speed)  # hotter: the grid must not grow with the energy
+    sim = Simulation(n_atoms=n, radius=radius, positions=start._world.pos, velocities=vel,
+                     engine="fast", trap_height=450.0)  # fmt: skip
+    nx, ny, cell = sim._engine.grid_shape
+    assert nx * ny <= 8 * n + 64
+    assert cell >= 2.0 * radius
 
 
 def _min_gap(pos: np.ndarray, radius: float) -> float:
@@ -242,15 +268,16 @@ G = 10.0 / 30.0
 CELL = 1.1 * 2 * 12.0
 
 
-def _edges_through(monkeypatch: pytest.MonkeyPatch, x: float, y: float) -> None:
-    """Make the grid of the next engines have a column edge at x and a row edge at y."""
-    from evapcool.physics.fast import grid
-
-    def geometry(world, height):
-        nx, ny = 40, 30
-        return grid.Grid(x - 20 * CELL, y - 5 * CELL, CELL, nx, ny, 450.0)
-
-    monkeypatch.setattr(grid, "geometry", geometry)
+def _on_core_edges(x: float, lift: float) -> tuple[float, float]:
+    """A point near (x, a x^2 + lift) on a column edge and a row edge of the core's grid for
+    one atom resting there (the core sizes its grid from the atom's height: settle it)."""
+    y = A * x * x + lift
+    for _ in range(4):
+        nx, _, cell = _one_atom("fast", x, y, 0.0, 0.0)._engine.grid_shape
+        x0, y0 = -0.5 * nx * cell, -0.5 * cell
+        x = x0 + round((x - x0) / cell) * cell
+        y = y0 + math.ceil((A * x * x + lift - y0) / cell) * cell
+    return x, y
 
 
 def _one_atom(engine: str, x: float, y: float, vx: float, vy: float) -> Simulation:
@@ -282,19 +309,18 @@ def _bound(sim: Simulation) -> float:
 
 
 @pytest.mark.parametrize(
-    ("x", "y", "vx", "vy"),
+    ("x", "lift", "vx", "vy"),
     [
-        (0.0, 0.0, 0.0, 0.0),  # at rest in the vertex, on a column and a row edge
-        (0.0, 1e-300, 0.0, 0.0),
-        (50.0, 25.0, 0.0, 0.0),  # at rest on the slope, on both edges: rolls
+        (0.0, 0.0, 0.0, 0.0),  # at rest near the vertex, on a column and a row edge
+        (50.0, 0.0, 0.0, 0.0),  # at rest on the slope, on both edges: rolls
         (0.0, 40.0, 0.0, 0.0),  # dropped along a column edge
         (0.0, 40.0, 0.0, 3.0),  # thrown up along it
         (-30.0, 40.0, 2.0, 0.0),  # at the top of its arc on a row edge, moving along it
-        (20.0, 4.0, 1e-9, 0.0),  # hopping on the wall across a row edge
+        (20.0, 0.0, 1e-9, 0.0),  # hopping on the wall across a row edge
     ],
 )
-def test_atom_on_cell_edges_advances_with_bounded_events(monkeypatch, x, y, vx, vy) -> None:
-    _edges_through(monkeypatch, x, y)
+def test_atom_on_cell_edges_advances_with_bounded_events(x, lift, vx, vy) -> None:
+    x, y = _on_core_edges(x, lift)
     ref = _one_atom("reference", x, y, vx, vy)
     fast = _one_atom("fast", x, y, vx, vy)
     counts = _events_per_frame(fast, 30)
@@ -311,9 +337,7 @@ def test_atom_on_cell_edges_advances_with_bounded_events(monkeypatch, x, y, vx, 
     angle=st.sampled_from([0.0, 0.5 * math.pi, math.pi, 1.5 * math.pi, 0.3]),
 )
 def test_any_state_on_cell_edges_advances_with_bounded_events(x, lift, speed, angle) -> None:
-    with pytest.MonkeyPatch.context() as mp:
-        y = A * x * x + lift
-        _edges_through(mp, x, y)
-        sim = _one_atom("fast", x, y, speed * math.cos(angle), speed * math.sin(angle))
-        counts = _events_per_frame(sim, 3)
-        assert max(counts) <= _bound(sim)
+    x, y = _on_core_edges(x, lift)
+    sim = _one_atom("fast", x, y, speed * math.cos(angle), speed * math.sin(angle))
+    counts = _events_per_frame(sim, 3)
+    assert max(counts) <= _bound(sim)
