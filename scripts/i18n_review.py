@@ -65,7 +65,8 @@ def check(folder: Path, tags: list[str]) -> int:
         for key in stale_keys(read(folder, tag), english):
             print(f"{tag} {key}: translate again from: {english[key]}")
             found += 1
-    print(f"{found} stale translations in {len(tags)} catalogs")
+    noun = "translation" if found == 1 else "translations"
+    print(f"{found} stale {noun} in {len(tags)} catalogs")
     return 1 if found else 0
 
 
