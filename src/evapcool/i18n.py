@@ -7,6 +7,7 @@ Plural categories and number formats come from Babel (CLDR), as ``Intl`` does in
 
 from __future__ import annotations
 
+import hashlib
 import json
 import locale as system_locale
 import os
@@ -47,6 +48,22 @@ def load_catalog(tag: str) -> dict[str, Any]:
     text = (resources.files("evapcool") / "locales" / f"{tag}.json").read_text("utf-8")
     data: dict[str, Any] = json.loads(text)
     return data
+
+
+#: A catalog's optional third section: per message, a hash of the English it translates
+#: (written by scripts/i18n_review.py; the loaders of both editions read meta and messages only).
+SOURCES = "sources"
+
+
+def source_hash(english: str) -> str:
+    """The short hash kept beside a translation: of the English message it was made from."""
+    return hashlib.sha256(english.encode("utf-8")).hexdigest()[:10]
+
+
+def stale_keys(catalog: Mapping[str, Any], english: Mapping[str, str]) -> list[str]:
+    """Keys whose English changed since their translation was made (or was never recorded)."""
+    sources = catalog.get(SOURCES, {})
+    return sorted(k for k in catalog["messages"] if sources.get(k) != source_hash(english[k]))
 
 
 def _split_tag(tag: str) -> list[str]:

@@ -1,5 +1,8 @@
+import { readFileSync } from "node:fs";
+import { resolve } from "node:path";
 import { describe, expect, it } from "vitest";
 import golden from "./golden/i18n.json";
+import { pageCatalogs } from "../scripts/catalogs-plugin.mjs";
 import {
   CATALOGS,
   PSEUDO,
@@ -32,6 +35,21 @@ describe("catalogs", () => {
       for (const offered of pluralSelectors(parseMessage(text, key))) {
         for (const c of categories) expect(offered.has(c), `${key} ${c}`).toBe(true);
       }
+    }
+  });
+});
+
+describe("what the page carries", () => {
+  const folder = resolve(import.meta.dirname, "../../src/evapcool/locales");
+
+  it("each catalog's meta and messages, never the hashes of the English they translate", () => {
+    const files = pageCatalogs(folder);
+    expect(files.length).toBe(tags.length);
+    for (const file of files) {
+      expect(Object.keys(file).sort()).toEqual(["messages", "meta"]);
+      const onDisk = JSON.parse(readFileSync(resolve(folder, `${file.meta.tag}.json`), "utf8"));
+      // The translated files do keep them (tests/test_i18n_stale.py reads them).
+      expect("sources" in onDisk).toBe(file.meta.tag !== "en");
     }
   });
 });

@@ -47,15 +47,15 @@ function savedLocale(): string | null {
 
 /** The page's own words outside the canvas, and the text direction, in language `tr`. */
 function retitle(tr: Translator): void {
+  // The document's direction: the name box, the spoken lines and the notices inherit it.
   document.documentElement.lang = tr.locale;
+  document.documentElement.dir = tr.direction;
   document.title = tr.t("page.doc_title");
   document.querySelector('meta[name="description"]')?.setAttribute("content", tr.t("page.about"));
   const canvas = document.getElementById("scene");
   canvas?.setAttribute("aria-label", tr.t("page.canvas_label"));
   if (canvas) canvas.textContent = tr.t("page.canvas_text");
   document.getElementById("name")?.setAttribute("aria-label", tr.t("page.name_label"));
-  for (const id of ["name", "live", "status", "fatal"])
-    document.getElementById(id)?.setAttribute("dir", tr.direction);
 }
 
 async function main(): Promise<void> {

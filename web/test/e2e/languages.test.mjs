@@ -67,6 +67,15 @@ describe("a language from ?lang= (browser en-US)", () => {
       assert.equal(s.locale, tag);
       assert.equal(s.direction, tag === "ar" ? "rtl" : "ltr");
       assert.equal(await page.evaluate(() => document.documentElement.lang), tag);
+      // The document's direction, which the name box and the spoken lines inherit.
+      const dir = tag === "ar" ? "rtl" : "ltr";
+      const directions = await page.evaluate(() => [
+        document.documentElement.dir,
+        ...["name", "live", "status"].map(
+          (id) => getComputedStyle(document.getElementById(id)).direction,
+        ),
+      ]);
+      assert.deepEqual(directions, [dir, dir, dir, dir]);
       const title = await page.title();
       assert.notEqual(title, EN_TITLE, "the tab's title is translated");
       assert.equal(title, m["page.doc_title"]);
@@ -127,6 +136,7 @@ describe("which source wins", () => {
     const context = await newContext("en-US");
     const { page } = await open(context);
     assert.equal((await state(page)).locale, "en");
+    assert.equal(await page.evaluate(() => document.documentElement.dir), "ltr");
     await page.keyboard.press("o");
     assert.equal((await state(page)).overlay, "settings");
     for (let k = 0; k < 4; k++) await page.keyboard.press("ArrowDown"); // 5th row: Language
@@ -137,6 +147,7 @@ describe("which source wins", () => {
     assert.equal(s.overlay, null);
     assert.equal(s.locale, "ar");
     assert.equal(s.direction, "rtl");
+    assert.equal(await page.evaluate(() => document.documentElement.dir), "rtl");
     assert.equal(await page.evaluate(() => localStorage.getItem("evapcool.lang")), "ar");
     await page.reload();
     await page.waitForFunction(() => window.evapcool !== undefined);
