@@ -50,7 +50,6 @@ BOXES: dict[str, tuple[int, bool, int]] = {
     "win.store_or_skip": (22, False, PLAY_RECT.width - 100 - 70),  # beside "16/16"
     "win.name_full": (22, True, 150),
     "lose.too_few": (26, True, WIDE),
-    "app.getting_ready": (22, True, WIDE),
     "replay.button": (12, True, REPLAY_RECT.width - 16),
     "controls.trap_height": (24, False, 336),
     "help.key.space": (16, True, 150),  # the help's key column
@@ -64,10 +63,10 @@ BOXES: dict[str, tuple[int, bool, int]] = {
 #: The settings screen's rows: label (24) and "< value >" (24 bold) share one line.
 #: Wrapped messages: notices (22 px in the play area), the help (at least 16 px beside its
 #: key column), footers, the too-few reason, the progress screen.
-WRAPPED = ("notice.", "progress.", "lose.", "start.", "help.", "table.footer", "table.clear")
+WRAPPED = ("notice.", "lose.", "start.", "help.", "table.footer", "table.clear")
 WRAPPED += ("table.autopilot_row", "settings.overrides", "settings.max_atoms", "settings.save")
 WRAPPED += ("win.next_player", "win.not_stored", "scores.", "settings.saved", "desk.", "replay.")
-WRAPPED += ("storage.", "status.slow", "app.compiling_fast", "app.loading_fast", "help.choose")
+WRAPPED += ("storage.", "status.slow", "help.choose")
 WRAP_WIDTH = HELP_WIDTH - 150 - 16
 SAMPLE = {"n": 12345, "p": 0.667, "height": 400, "percent": 87, "problem": "disk full"}
 SAMPLE |= {"radius": 2.5, "mode": "autopilot", "name": "Anonymous"}

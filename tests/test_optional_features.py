@@ -13,7 +13,7 @@ import pytest
 
 from evapcool import Simulation
 from evapcool.cli import main
-from evapcool.extras import MissingExtraError, SlowEngineWarning
+from evapcool.extras import CoreMissingWarning, MissingExtraError, SlowEngineWarning
 from evapcool.lab import run_experiment
 
 
@@ -32,7 +32,10 @@ def _one_error_line(text: str, prefix: str, extra: str) -> None:
 
 def _without_core(monkeypatch: pytest.MonkeyPatch) -> None:
     """As an sdist installed without a C compiler: no evapcool.physics._core."""
+    from evapcool.physics import simulation
+
     _without(monkeypatch, "evapcool.physics._core")
+    monkeypatch.setattr(simulation, "_said_core_missing", False)  # a fresh process
 
 
 def _one_core_line(text: str, prefix: str) -> None:
@@ -94,9 +97,21 @@ def test_many_atoms_without_the_core_warn_that_numpy_is_slow(monkeypatch):
 
 def test_without_the_core_the_game_plays_on_the_reference_engine(monkeypatch):
     _without_core(monkeypatch)
-    sim = Simulation.classic(seed=1)
+    with pytest.warns(CoreMissingWarning, match="playing on the reference engine"):
+        sim = Simulation.classic(seed=1)
     sim.advance(30.0)
     assert sim.engine == "reference" and sim.collision_count > 0
+
+
+def test_without_the_core_the_applet_says_so_once_and_plays(monkeypatch, capsys, tmp_path):
+    _without_core(monkeypatch)
+    shot = tmp_path / "shot.png"
+    folders = ["--data-dir", str(tmp_path / "d"), "--config-dir", str(tmp_path / "c")]
+    assert main(["--frames", "30", "--screenshot", str(shot), *folders]) == 0
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1, err
+    assert err[0].startswith("evapcool: note: the compiled engine core is not")
+    assert "reference engine" in err[0] and shot.exists()
 
 
 def test_many_atoms_without_the_core_on_the_command_line_is_a_note(monkeypatch, capsys, tmp_path):
@@ -105,6 +120,7 @@ def test_many_atoms_without_the_core_on_the_command_line_is_a_note(monkeypatch, 
     args = ["lab", "--atoms", "500", "--radius", "2", "--frames", "1", "--out", str(out)]
     assert main(args) == 0
     err = capsys.readouterr().err.splitlines()
+    assert err[0].startswith("evapcool lab: note: the compiled engine core is not installed")
     notes = [line for line in err if "without the compiled engine core" in line]
     assert len(notes) == 1, err
     assert notes[0].startswith("evapcool lab: note: 500 atoms without the compiled engine core")

@@ -10,7 +10,12 @@ from collections.abc import Callable
 from typing import TextIO
 
 from evapcool.about import __version__, error_line, note_line
-from evapcool.extras import MissingExtraError, SlowEngineWarning, missing_message
+from evapcool.extras import (
+    CoreMissingWarning,
+    MissingExtraError,
+    SlowEngineWarning,
+    missing_message,
+)
 
 #: Subcommands: the module whose main(argv) runs each, and its line in `evapcool --help`.
 SUBCOMMANDS = {
@@ -64,7 +69,7 @@ def _note_printer(command: str | None) -> Callable[..., None]:
         file: TextIO | None = None,
         line: str | None = None,
     ) -> None:
-        if issubclass(category, SlowEngineWarning):
+        if issubclass(category, (SlowEngineWarning, CoreMissingWarning)):
             print(note_line(command, str(message)), file=sys.stderr, flush=True)
         else:
             _default_showwarning(message, category, filename, lineno, file, line)

@@ -33,6 +33,10 @@ class MissingExtraError(ImportError):
     """An optional dependency is not installed; the message says which extra installs it."""
 
 
+class CoreMissingWarning(UserWarning):
+    """No compiled engine core in this install: the reference engine plays (said once)."""
+
+
 class SlowEngineWarning(UserWarning):
     """Many atoms and no compiled core: the NumPy engine runs them, slower than real time."""
 

@@ -14,6 +14,7 @@ from numpy.typing import ArrayLike
 from evapcool import limits
 from evapcool.extras import (
     SLOW_REFERENCE_ATOMS,
+    CoreMissingWarning,
     SlowEngineWarning,
     slow_engine_message,
 )
@@ -70,6 +71,19 @@ __all__ = [
 #: as it has no start-up cost and is faster than the NumPy engine at any size
 #: (docs/benchmarks.md).
 AUTO_FAST_MIN_ATOMS = 1
+
+
+_said_core_missing = False
+
+
+def _say_the_core_is_missing() -> None:
+    """The first fallback of a process to the reference engine says why (a note, once)."""
+    global _said_core_missing
+    if not _said_core_missing:
+        _said_core_missing = True
+        from evapcool.physics.core import missing_note
+
+        warnings.warn(missing_note(), CoreMissingWarning, stacklevel=5)
 
 
 class Simulation:
@@ -202,6 +216,8 @@ class Simulation:
     def _make_engine(self, engine: str, n: int) -> ReferenceEngine | CoreEngine:
         if engine == "auto":
             engine = "fast" if n >= AUTO_FAST_MIN_ATOMS and fast_available() else "reference"
+            if engine == "reference" and not fast_available():
+                _say_the_core_is_missing()
             if engine == "reference" and n >= SLOW_REFERENCE_ATOMS:
                 warnings.warn(slow_engine_message(n), SlowEngineWarning, stacklevel=4)
         if engine == "fast":
