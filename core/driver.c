@@ -30,24 +30,25 @@ static void repredict(Core *core, int32_t first, int full, int32_t second) {
   if (second >= 0 && !knife(core, second)) predict(core, second);
 }
 
+#ifndef CORE_LOOKAHEAD
 /*
- * Ask for the lines of the rows of the next few events (the heap's root's children) while
- * this event is processed (speed only: nothing read changes a result). Natively a prefetch
- * instruction; wasm has none, but a load nobody waits for lets the CPU fetch the lines in
- * the shadow of the work. Measured faster at every size (docs/benchmarks.md).
+ * Touch the lines of the rows of the next few events (the heap's root's children) while
+ * this event is processed (speed only: nothing read changes a result). WebAssembly has no
+ * prefetch instruction, but a load nobody waits for lets the CPU fetch the lines in the
+ * shadow of the work. Measured faster at every size (docs/benchmarks.md).
  */
-#ifdef __wasm__
 static volatile double touch_sink; /* where the touches land: a read the compiler must keep */
-#define TOUCH(core, r) (touch_sink = core->state[r].x + core->queued[r].real_t + core->plan[r].cell_x)
-#else
-#define TOUCH(core, r) \
-  (__builtin_prefetch(&core->state[r]), __builtin_prefetch(&core->queued[r]), \
-   __builtin_prefetch(&core->plan[r]))
-#endif
-static inline void touch_ahead(Core *core) {
+static inline int32_t touch_ahead(Core *core) {
   int32_t end = core->run.heap_size < 5 ? core->run.heap_size : 5;
-  for (int32_t p = 1; p < end; p++) TOUCH(core, core->heap[p].row);
+  for (int32_t p = 1; p < end; p++) {
+    int32_t r = core->heap[p].row;
+    touch_sink = core->state[r].x + core->queued[r].real_t + core->plan[r].cell_x;
+  }
+  return -1;
 }
+#define look_before(core, i, kind) touch_ahead(core)
+#define look_after(core, next) ((void)(next))
+#endif
 
 /* Process every event with time <= t_end in key order, then set the clock. */
 EXPORT(core_advance_to) int32_t core_advance_to(Core *core, double t_end) {
@@ -64,8 +65,8 @@ EXPORT(core_advance_to) int32_t core_advance_to(Core *core, double t_end) {
     if (i < 0) break;
     double te = core->queued[i].key_t;
     if (!(te <= t_end)) break;
-    touch_ahead(core);
     int32_t kind = event_kind(core, i);
+    int32_t next = look_before(core, i, kind);
     int32_t first = i, second = -1, full = 1;
     if (kind == KIND_PAIR)
       first = pair_event(core, i, te, &second);
@@ -77,6 +78,7 @@ EXPORT(core_advance_to) int32_t core_advance_to(Core *core, double t_end) {
       exit_event(core, i, te);
     else
       break;
+    look_after(core, next);
     repredict(core, first, full, second);
   }
   core->run.time = t_end;

@@ -15,6 +15,11 @@
 #include <stdint.h>
 
 #define INF __builtin_inf()
+/* Native builds ask for memory ahead of the loop (lookahead.c); -DCORE_NO_LOOKAHEAD turns it
+ * off. WebAssembly has no prefetch: there the loop touches the next rows instead. */
+#if !defined(__wasm__) && !defined(CORE_NO_LOOKAHEAD)
+#define CORE_LOOKAHEAD 1
+#endif
 #ifdef __wasm__
 #define EXPORT(name) __attribute__((export_name(#name)))
 #else
@@ -172,6 +177,10 @@ int32_t crossing_event(Core *core, int32_t i, double te, int32_t kind);
 
 /* driver.c */
 void renumber(Core *core);
+
+/* lookahead.c (native builds) */
+int32_t look_before(Core *core, int32_t i, int32_t kind);
+void look_after(Core *core, int32_t next);
 
 /* memory.c: n zeroed bytes on a 64-byte line, 0 if none are left */
 void *core_take(Core *core, uintptr_t bytes);
