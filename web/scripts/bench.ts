@@ -81,20 +81,29 @@ type BenchGlobal = { EvapcoolBench: typeof import("./bench-core"); benchSim?: un
  * ThreadTime), so a busy machine does not count; frame times by performance.now().
  */
 async function browserReport(quick: boolean): Promise<{ report: BenchReport; version: string }> {
+  // A module (the core's bytes are unpacked by a top-level await) that hands bench-core's
+  // functions to the page as globalThis.EvapcoolBench.
+  const entry = "\0evapcool-bench";
   const out = await build({
     configFile: false,
     logLevel: "error",
     root: WEB,
-    plugins: [wasmCore()],
+    plugins: [
+      wasmCore(),
+      {
+        name: "evapcool-bench-entry",
+        resolveId: (id) => (id === entry ? entry : null),
+        load: (id) =>
+          id === entry
+            ? `import * as bench from ${JSON.stringify(resolve(WEB, "scripts/bench-core.ts"))};\n` +
+              "globalThis.EvapcoolBench = bench;"
+            : null,
+      },
+    ],
     build: {
       write: false,
       minify: false,
-      lib: {
-        entry: resolve(WEB, "scripts/bench-core.ts"),
-        name: "EvapcoolBench",
-        formats: ["iife"],
-        fileName: "bench",
-      },
+      rollupOptions: { input: entry, output: { format: "es" } },
     },
   });
   const result = Array.isArray(out) ? out[0] : out;
@@ -119,7 +128,8 @@ async function browserReport(quick: boolean): Promise<{ report: BenchReport; ver
       }),
     );
     await page.goto(url);
-    await page.addScriptTag({ content: code });
+    await page.addScriptTag({ content: code, type: "module" });
+    await page.waitForFunction(() => "EvapcoolBench" in globalThis);
     const cdp = await context.newCDPSession(page);
     await cdp.send("Performance.enable");
     const threadMs = async (): Promise<number> => {
