@@ -2,9 +2,9 @@
  * Scalar event kernels: free flight, contact times and collision rules.
  *
  * Each performs the floating-point operations of its namesake in
- * src/evapcool/physics/kernels.py and web/src/physics/kernels.ts in the same order.
- * Compiled with -ffp-contract=off (no fused multiply-add; wasm32 has none anyway) and
- * __builtin_sqrt (f64.sqrt, correctly rounded), so all three compute the same bits.
+ * src/evapcool/physics/kernels.py in the same order. Compiled with -ffp-contract=off (no
+ * fused multiply-add; wasm32 has none anyway) and __builtin_sqrt (correctly rounded), so
+ * the reference engine and both builds of the core compute the same bits.
  */
 #include "tables.h"
 

@@ -124,7 +124,6 @@ ALLOWED = {
     "physics/validation.py": "log2 levels the grid; hypot in refusal checks",
     "physics/state.py": "hypot in an error message",
     "physics/trace.py": "builds golden test states; their starts are stored in the traces",
-    "physics/calendar.ts": "log2 sizes the calendar's ring",
     "physics/state.ts": "hypot in an error message",
     "physics/validation.ts": "hypot in refusal checks",
 }

@@ -1,22 +1,12 @@
 /**
- * The web engine's benchmark figures, the same in Node and in a browser page (issue 11):
- * the classic start's physics time per frame, collisions per second at 10 000 atoms, and
- * the scaling table at constant packing. The methods are those of `evapcool bench --only
- * fast` (src/evapcool/bench/fast.py): H = 450, a warm-up frame, radius = sqrt(10 000 / N),
+ * The web engine's benchmark figures, the same in Node and in a browser page (issues 11, 32):
+ * the WebAssembly core's (core/*.c) physics time per frame at the classic start, collisions
+ * per second at 10 000 atoms, and the scaling table at constant packing (1 000, 10 000 and
+ * 100 000 atoms). The methods are those of `evapcool bench --only fast`
+ * (src/evapcool/bench/fast.py): H = 450, a warm-up frame, radius = sqrt(10 000 / N),
  * interleaved repeats and medians.
  */
 import { Simulation } from "../src/physics/index";
-import { Engine } from "../src/physics/engine";
-import { setEngineCore } from "../src/physics/simulation";
-
-/** The engine cores compared: engine.ts's TypeScript and the WebAssembly core (web/wasm/). */
-export const CORES = ["ts", "wasm"] as const;
-export type Core = (typeof CORES)[number];
-
-/** Simulations made from now on run on this core. */
-export function useCore(core: Core): void {
-  setEngineCore(core === "ts" ? (setup, atoms) => new Engine(setup, atoms) : null);
-}
 
 export interface Throughput {
   n: number;
@@ -30,7 +20,7 @@ export interface Throughput {
   msPerFrame: number;
 }
 
-/** One core's figures. */
+/** The core's figures. */
 export interface CoreReport {
   classic: { frames: number; medianMs: number; p95Ms: number; block: number };
   big: Throughput;
@@ -40,7 +30,7 @@ export interface CoreReport {
 
 export interface BenchReport {
   clock: string;
-  cores: Record<Core, CoreReport>;
+  core: CoreReport;
 }
 
 function median(xs: number[]): number {
@@ -84,14 +74,10 @@ export function classicTimes(frames: number, now: () => number): number[] {
   return times;
 }
 
-/** The JIT's warm-up: every hot path of both cores compiled (the knife's too). */
+/** The warm-up: the core compiled by the WebAssembly tiers, every hot path run (the knife's too). */
 export function warmUp(): void {
-  for (const core of CORES) {
-    useCore(core);
-    new Simulation({ nAtoms: 400, radius: 3, seed: 0, escape: "knife" }).advance(20);
-    work(prepare(10_000), 3);
-  }
-  useCore("ts");
+  new Simulation({ nAtoms: 400, radius: 3, seed: 0, escape: "knife" }).advance(20);
+  work(prepare(10_000), 3);
 }
 
 /** Where the figures are measured: here (Node) or in a page (driven from Node). */
@@ -102,13 +88,12 @@ export interface Runner {
   throughput(
     n: number,
     frames: number,
-    core: Core,
   ): Promise<{ collisions: number; events: number; ms: number }>;
-  classicTimes(frames: number, core: Core): Promise<number[]>;
+  classicTimes(frames: number): Promise<number[]>;
 }
 
-async function measure(runner: Runner, n: number, frames: number, core: Core): Promise<Throughput> {
-  const r = await runner.throughput(n, frames, core);
+async function measure(runner: Runner, n: number, frames: number): Promise<Throughput> {
+  const r = await runner.throughput(n, frames);
   return {
     n,
     radius: Math.sqrt(10_000 / n),
@@ -122,62 +107,50 @@ async function measure(runner: Runner, n: number, frames: number, core: Core): P
 }
 
 /**
- * Every figure, the cores interleaved (each measurement of one core beside the other's);
- * quick: fewer frames and one run of the table.
+ * Every figure, the sizes interleaved (each repeat runs every size once); quick: fewer frames
+ * and one run of the table.
  */
 export async function runAll(runner: Runner, quick = false): Promise<BenchReport> {
   await runner.warmUp();
   const frames = quick ? 10 : 30;
   const sizes = [1_000, 10_000, 100_000];
   const repeats = quick ? 1 : 3;
-  const big = new Map<Core, Throughput>();
-  for (const core of CORES) big.set(core, await measure(runner, 10_000, frames, core));
-  const runs = new Map<string, Throughput[]>();
+  const big = await measure(runner, 10_000, frames);
+  const runs = new Map<number, Throughput[]>(sizes.map((n) => [n, []]));
   for (let r = 0; r < repeats; r++)
     for (const n of sizes)
-      for (const core of CORES) {
-        const fr = Math.max(2, Math.floor((frames * 10_000) / n));
-        const key = `${core} ${n}`;
-        runs.set(key, [...(runs.get(key) ?? []), await measure(runner, n, fr, core)]);
-      }
+      runs.get(n)!.push(await measure(runner, n, Math.max(2, Math.floor((frames * 10_000) / n))));
   const nf = quick ? 300 : 900;
-  const times = new Map<Core, number[]>(CORES.map((c) => [c, []]));
-  for (let r = 0; r < 3; r++)
-    for (const core of CORES) times.get(core)!.push(...(await runner.classicTimes(nf / 3, core)));
-  const cores = {} as Record<Core, CoreReport>;
-  for (const core of CORES) {
-    const scaling = sizes.map((n) => {
-      const rs = runs.get(`${core} ${n}`)!;
-      return {
-        n,
-        runs: rs,
-        medianCollPerS: median(rs.map((x) => x.collPerS)),
-        medianEventsPerS: median(rs.map((x) => x.eventsPerS)),
-      };
-    });
-    const rates = scaling.map((x) => x.medianCollPerS);
-    const t = times.get(core)!;
-    cores[core] = {
-      classic: { frames: nf, medianMs: median(t), p95Ms: quantile(t, 0.95), block: 1 },
-      big: big.get(core)!,
-      scaling,
-      maxOverMin: Math.max(...rates) / Math.min(...rates),
+  const times: number[] = [];
+  for (let r = 0; r < 3; r++) times.push(...(await runner.classicTimes(nf / 3)));
+  const scaling = sizes.map((n) => {
+    const rs = runs.get(n)!;
+    return {
+      n,
+      runs: rs,
+      medianCollPerS: median(rs.map((x) => x.collPerS)),
+      medianEventsPerS: median(rs.map((x) => x.eventsPerS)),
     };
-  }
-  return { clock: runner.clock, cores };
+  });
+  const rates = scaling.map((x) => x.medianCollPerS);
+  const core: CoreReport = {
+    classic: { frames: nf, medianMs: median(times), p95Ms: quantile(times, 0.95), block: 1 },
+    big,
+    scaling,
+    maxOverMin: Math.max(...rates) / Math.min(...rates),
+  };
+  return { clock: runner.clock, core };
 }
 
 /** The report as text lines. */
 export function describe(where: string, report: BenchReport): string[] {
-  const out = [`[${where}] timing: ${report.clock}`];
-  for (const core of CORES) out.push(...describeCore(core, report.cores[core]));
-  return out;
+  return [`[${where}] timing: ${report.clock}`, ...describeCore(report.core)];
 }
 
-function describeCore(core: Core, r: CoreReport): string[] {
+function describeCore(r: CoreReport): string[] {
   const M = (x: number) => (x / 1e6).toFixed(3) + " M";
   const out = [
-    ` ${core} engine core:`,
+    ` the WebAssembly core (core/*.c):`,
     `  classic start (49 atoms, R = 12, H = 450): median ${r.classic.medianMs.toFixed(4)} ms, ` +
       `p95 ${r.classic.p95Ms.toFixed(4)} ms physics per frame over ${r.classic.frames} frames` +
       "",

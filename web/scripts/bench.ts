@@ -1,13 +1,13 @@
 /**
- * npm run bench [-- --quick] [-- --numba] [-- --node-only | --browser-only]
+ * npm run bench [-- --quick] [-- --native] [-- --node-only | --browser-only]
  *
- * The web engine's figures (scripts/bench-core.ts) for both engine cores, the TypeScript
- * engine and the WebAssembly core, interleaved: in Node, then in headless Chromium
- * (/usr/bin/chromium through playwright-core, a fresh profile, the page served with
- * cross-origin isolation so performance.now() is fine-grained). Rates are per second of CPU
- * time in both (the machine is shared), frame times by the wall clock. --numba also measures
- * the Numba engine in this session (the project's .venv, or EVAPCOOL_PYTHON) at 1 000,
- * 10 000 and 100 000 atoms for the ratios.
+ * The web engine's figures (scripts/bench-core.ts), the WebAssembly core's: in Node, then in
+ * headless Chromium (/usr/bin/chromium through playwright-core, a fresh profile, the page
+ * served with cross-origin isolation so performance.now() is fine-grained). Rates are per
+ * second of CPU time in both (the machine is shared), frame times by the wall clock.
+ * --native also measures the same C built natively, the Python package's engine "fast", in
+ * this session (the project's .venv, or EVAPCOOL_PYTHON) at 1 000, 10 000 and 100 000 atoms
+ * for the ratios.
  */
 import { spawnSync } from "node:child_process";
 import { existsSync, mkdtempSync, rmSync } from "node:fs";
@@ -17,12 +17,10 @@ import { fileURLToPath } from "node:url";
 import { chromium } from "playwright-core";
 import { build } from "vite";
 import {
-  CORES,
   classicTimes,
   describe,
   prepare,
   runAll,
-  useCore,
   warmUp,
   work,
   type BenchReport,
@@ -42,7 +40,7 @@ const CHROMIUM_FLAGS = [
   "--disable-component-update",
   "--disable-sync",
 ];
-const NUMBA_SNIPPET = `
+const NATIVE_SNIPPET = `
 import json, statistics
 from evapcool import Simulation
 from evapcool.bench.fast import throughput
@@ -53,8 +51,8 @@ for _ in range(REPEATS):
         runs[n].append(throughput(n, max(2, FRAMES * 10_000 // n))["coll_per_s"])
 print(json.dumps([statistics.median(runs[n]) for n in SIZES]))
 `;
-/** Numba's sizes: the scaling table's. */
-const NUMBA_SIZES = [1_000, 10_000, 100_000];
+/** The native core's sizes: the scaling table's. */
+const NATIVE_SIZES = [1_000, 10_000, 100_000];
 
 /** Node: rates per second of this process's CPU time, frame times by the wall clock. */
 function nodeRunner(): Runner {
@@ -65,17 +63,13 @@ function nodeRunner(): Runner {
   return {
     clock: `Node ${process.version}; rates per second of process CPU time, frames by the wall clock`,
     warmUp: async () => warmUp(),
-    throughput: async (n, frames, core) => {
-      useCore(core);
+    throughput: async (n, frames) => {
       const sim = prepare(n);
       const t0 = cpu();
       const r = work(sim, frames);
       return { ...r, ms: cpu() - t0 };
     },
-    classicTimes: async (frames, core) => {
-      useCore(core);
-      return classicTimes(frames, () => performance.now());
-    },
+    classicTimes: async (frames) => classicTimes(frames, () => performance.now()),
   };
 }
 
@@ -87,20 +81,29 @@ type BenchGlobal = { EvapcoolBench: typeof import("./bench-core"); benchSim?: un
  * ThreadTime), so a busy machine does not count; frame times by performance.now().
  */
 async function browserReport(quick: boolean): Promise<{ report: BenchReport; version: string }> {
+  // A module (the core's bytes are unpacked by a top-level await) that hands bench-core's
+  // functions to the page as globalThis.EvapcoolBench.
+  const entry = "\0evapcool-bench";
   const out = await build({
     configFile: false,
     logLevel: "error",
     root: WEB,
-    plugins: [wasmCore()],
+    plugins: [
+      wasmCore(),
+      {
+        name: "evapcool-bench-entry",
+        resolveId: (id) => (id === entry ? entry : null),
+        load: (id) =>
+          id === entry
+            ? `import * as bench from ${JSON.stringify(resolve(WEB, "scripts/bench-core.ts"))};\n` +
+              "globalThis.EvapcoolBench = bench;"
+            : null,
+      },
+    ],
     build: {
       write: false,
       minify: false,
-      lib: {
-        entry: resolve(WEB, "scripts/bench-core.ts"),
-        name: "EvapcoolBench",
-        formats: ["iife"],
-        fileName: "bench",
-      },
+      rollupOptions: { input: entry, output: { format: "es" } },
     },
   });
   const result = Array.isArray(out) ? out[0] : out;
@@ -125,7 +128,8 @@ async function browserReport(quick: boolean): Promise<{ report: BenchReport; ver
       }),
     );
     await page.goto(url);
-    await page.addScriptTag({ content: code });
+    await page.addScriptTag({ content: code, type: "module" });
+    await page.waitForFunction(() => "EvapcoolBench" in globalThis);
     const cdp = await context.newCDPSession(page);
     await cdp.send("Performance.enable");
     const threadMs = async (): Promise<number> => {
@@ -138,15 +142,11 @@ async function browserReport(quick: boolean): Promise<{ report: BenchReport; ver
         "(DevTools ThreadTime), frames by performance.now() (cross-origin isolated)",
       warmUp: () =>
         page.evaluate(() => (globalThis as unknown as BenchGlobal).EvapcoolBench.warmUp()),
-      throughput: async (n, frames, core) => {
-        await page.evaluate(
-          ([n, core]) => {
-            const g = globalThis as unknown as BenchGlobal;
-            g.EvapcoolBench.useCore(core);
-            g.benchSim = g.EvapcoolBench.prepare(n);
-          },
-          [n, core] as const,
-        );
+      throughput: async (n, frames) => {
+        await page.evaluate((n) => {
+          const g = globalThis as unknown as BenchGlobal;
+          g.benchSim = g.EvapcoolBench.prepare(n);
+        }, n);
         const t0 = await threadMs();
         const r = await page.evaluate((frames) => {
           const g = globalThis as unknown as BenchGlobal;
@@ -155,15 +155,11 @@ async function browserReport(quick: boolean): Promise<{ report: BenchReport; ver
         const ms = (await threadMs()) - t0;
         return { ...r, ms };
       },
-      classicTimes: (frames, core) =>
-        page.evaluate(
-          ([frames, core]) => {
-            const bench = (globalThis as unknown as BenchGlobal).EvapcoolBench;
-            bench.useCore(core);
-            return bench.classicTimes(frames, () => performance.now());
-          },
-          [frames, core] as const,
-        ),
+      classicTimes: (frames) =>
+        page.evaluate((frames) => {
+          const bench = (globalThis as unknown as BenchGlobal).EvapcoolBench;
+          return bench.classicTimes(frames, () => performance.now());
+        }, frames),
     };
     const report = await runAll(runner, quick);
     return { report, version: context.browser()?.version() ?? "?" };
@@ -173,31 +169,31 @@ async function browserReport(quick: boolean): Promise<{ report: BenchReport; ver
   }
 }
 
-/** The Numba engine's collisions/s at NUMBA_SIZES (process CPU time; medians), or null. */
-function numbaCollisionsPerS(frames: number, repeats: number): number[] | null {
+/** The native core's collisions/s at NATIVE_SIZES (process CPU time; medians), or null. */
+function nativeCollisionsPerS(frames: number, repeats: number): number[] | null {
   const python =
     process.env.EVAPCOOL_PYTHON ??
     [resolve(WEB, "../.venv/bin/python"), "python3"].find((p) => p === "python3" || existsSync(p))!;
-  const code = NUMBA_SNIPPET.replace("FRAMES", String(frames))
+  const code = NATIVE_SNIPPET.replace("FRAMES", String(frames))
     .replace("REPEATS", String(repeats))
-    .replaceAll("SIZES", JSON.stringify(NUMBA_SIZES));
+    .replaceAll("SIZES", JSON.stringify(NATIVE_SIZES));
   const run = spawnSync(python, ["-c", code], { encoding: "utf8" });
   if (run.status !== 0) {
-    console.error(`[numba] could not run the Numba engine with ${python}:\n${run.stderr.trim()}`);
+    console.error(`[native] could not run the native core with ${python}:\n${run.stderr.trim()}`);
     return null;
   }
   const rs = JSON.parse(run.stdout.trim().split("\n").pop()!) as number[];
   const text = rs.map(
-    (r, k) => `${NUMBA_SIZES[k].toLocaleString("en")}: ${Math.round(r).toLocaleString("en")}`,
+    (r, k) => `${NATIVE_SIZES[k].toLocaleString("en")}: ${Math.round(r).toLocaleString("en")}`,
   );
   console.log(
-    `[numba] same session, ${python}: collisions/s (process CPU time, median of ${repeats}) at constant packing, atoms ${text.join(", ")}`,
+    `[native] same session, ${python}, engine "fast": collisions/s (process CPU time, median of ${repeats}) at constant packing, atoms ${text.join(", ")}`,
   );
   return rs;
 }
 
 export async function main(args: string[]): Promise<number> {
-  const known = new Set(["--quick", "--numba", "--node-only", "--browser-only"]);
+  const known = new Set(["--quick", "--native", "--node-only", "--browser-only"]);
   for (const a of args)
     if (!known.has(a)) {
       console.error(`bench: unknown argument ${a} (known: ${[...known].join(", ")})`);
@@ -208,14 +204,12 @@ export async function main(args: string[]): Promise<number> {
   const rates: [string, number, number[]][] = [];
   const note = (where: string, r: BenchReport) => {
     for (const line of describe(where, r)) console.log(line);
-    for (const core of CORES) {
-      const c = r.cores[core];
-      rates.push([`${where} ${core}`, c.big.collPerS, c.scaling.map((x) => x.medianCollPerS)]);
-    }
+    const c = r.core;
+    rates.push([`${where} wasm`, c.big.collPerS, c.scaling.map((x) => x.medianCollPerS)]);
   };
   if (!args.includes("--browser-only")) note("node", await runAll(nodeRunner(), quick));
-  const numba = args.includes("--numba")
-    ? numbaCollisionsPerS(quick ? 10 : 30, quick ? 1 : 3)
+  const native = args.includes("--native")
+    ? nativeCollisionsPerS(quick ? 10 : 30, quick ? 1 : 3)
     : null;
   if (!args.includes("--node-only")) {
     if (!existsSync(CHROMIUM)) {
@@ -227,11 +221,11 @@ export async function main(args: string[]): Promise<number> {
     const { report, version } = await browserReport(quick);
     note(`chromium ${version}`, report);
   }
-  if (numba !== null)
+  if (native !== null)
     for (const [where, rate, table] of rates) {
-      const each = table.map((x, k) => (x / numba[k]).toFixed(2)).join(" / ");
+      const each = table.map((x, k) => (x / native[k]).toFixed(2)).join(" / ");
       console.log(
-        `  ${where} / numba at 10 000 atoms: ${(rate / numba[1]).toFixed(2)} (target >= 0.9); ` +
+        `  ${where} / native at 10 000 atoms: ${(rate / native[1]).toFixed(2)}; ` +
           `the table's 1 000 / 10 000 / 100 000 atoms: ${each}`,
       );
     }

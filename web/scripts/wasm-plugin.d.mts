@@ -1,7 +1,7 @@
 import type { Plugin } from "vite";
 
-/** web/wasm/ seen from web/ (the Vite root): the core's C sources. */
-export const WASM_FOLDER: string;
+/** The core's C sources, core/ at the top of the repository, seen from web/ (the Vite root). */
+export const CORE_FOLDER: string;
 /** clang's flags for the core. */
 export const CLANG_FLAGS: string[];
 /** The core's bytes, freshly compiled from the C sources in folder `dir`. */

@@ -1,6 +1,7 @@
 /**
- * The WebAssembly engine core's build (issue 24): compiles web/wasm/*.c with Debian's clang
- * and lld for wasm32 and serves the module as base64 text to `import "virtual:evapcool-wasm"`
+ * The WebAssembly engine core's build (issues 24, 32): compiles the one physics core, core/*.c
+ * at the top of the repository (the Python package builds the same files natively,
+ * setup.py), with Debian's clang and lld for wasm32 and serves the module as base64 text to `import "virtual:evapcool-wasm"`
  * (src/physics/wasm.ts), so the page stays one file. Used by vite.config.ts,
  * vitest.config.ts and the scripts' own builds (plain JavaScript: scripts/run.mjs loads it
  * in Node 20; types in wasm-plugin.d.mts).
@@ -13,8 +14,8 @@ import { deflateRawSync } from "node:zlib";
 
 const VIRTUAL = "virtual:evapcool-wasm";
 const RESOLVED = "\0evapcool-wasm";
-/** web/wasm/ seen from web/ (the Vite root). */
-export const WASM_FOLDER = "wasm";
+/** The core's C sources, core/ at the top of the repository, seen from web/ (the Vite root). */
+export const CORE_FOLDER = "../core";
 
 /**
  * IEEE arithmetic as written: no contraction into fused multiply-adds, no fast-math; link-time
@@ -94,7 +95,7 @@ export function compileCore(dir) {
 
 /**
  * Unpacks deflate-raw base64 at import (top-level await); a browser without
- * DecompressionStream gets no bytes and plays on engine.ts's Engine (the same events).
+ * DecompressionStream gets no bytes, and the page says it cannot start (src/app/main.ts).
  */
 const UNPACK = `async function unpack(text) {
   try {
@@ -118,7 +119,7 @@ export function wasmCore({ fromPage = false } = {}) {
   return {
     name: "evapcool-wasm-core",
     configResolved(config) {
-      dir = resolve(config.root, WASM_FOLDER);
+      dir = resolve(config.root, CORE_FOLDER);
     },
     buildStart() {
       if (spawnSync(CLANG, ["--version"]).error) {

@@ -1,5 +1,6 @@
-// Invariants of the exact model, over random gases (fast-check): energy kept, no overlap,
-// no centre below the wall, no NaN, consistent counts, and exact resumption from a state.
+// Invariants of the exact model, over random gases (fast-check), through the WebAssembly core
+// (Simulation's one engine, test/wasm.test.ts): energy kept, no overlap, no centre below the
+// wall, no NaN, consistent counts, and exact resumption from a state.
 import fc from "fast-check";
 import { describe, expect, it } from "vitest";
 import { Simulation, type SimulationOptions } from "../src/physics/index";

@@ -3,9 +3,7 @@
 // each (scripts/refusals.py, checked by tests/web/test_refusals.py).
 import { readFileSync } from "node:fs";
 import { describe, expect, test } from "vitest";
-import { afterEach } from "vitest";
-import { Simulation, setEngineCore, type EngineFactory } from "../src/physics/simulation";
-import { Engine } from "../src/physics/engine";
+import { Simulation } from "../src/physics/simulation";
 import { CURVATURE, N_ATOMS, TRAP_HEIGHT, pyFloat, pyG } from "../src/limits";
 
 interface Fixture {
@@ -26,19 +24,11 @@ function refusal(make: () => unknown): string {
   throw new Error("the web edition accepted a case the Python edition refuses");
 }
 
-const CORES: Record<"wasm" | "ts", EngineFactory | null> = {
-  wasm: null,
-  ts: (setup, atoms) => new Engine(setup, atoms),
-};
-afterEach(() => setEngineCore(null));
-
-describe.each(["wasm", "ts"] as const)("refusals on the %s engine", (core) => {
+describe("refusals on the WebAssembly core", () => {
   test.each(FIXTURE.states.map((c) => [c.case, c] as const))("state: %s", (_, c) => {
-    setEngineCore(CORES[core]);
     expect(refusal(() => Simulation.fromState(c.state as never))).toBe(c.message);
   });
   test.each(FIXTURE.parameters.map((c) => [c.case, c] as const))("parameter: %s", (_, c) => {
-    setEngineCore(CORES[core]);
     expect(refusal(() => new Simulation({ [c.web]: c.value }))).toBe(c.web + c.refusal);
   });
 });

@@ -1,4 +1,5 @@
-// The web Simulation: analytic cases, lifecycle, the win, the start, the state, bad input.
+// The web Simulation on the WebAssembly core: analytic cases, lifecycle, the win, the start,
+// the state, bad input.
 import { describe, expect, it } from "vitest";
 import {
   GRAVITY,

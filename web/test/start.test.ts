@@ -1,16 +1,14 @@
 // The shared start generator and the win (issue 22.1): the starts and the autopilot's won games
 // the Python edition wrote (scripts/golden_starts.py -> golden/starts.json, wins.json) come out
-// of the page's engines bit for bit, on both cores.
+// of the page's engine, the WebAssembly core, bit for bit.
 import { readFileSync } from "node:fs";
 import fc from "fast-check";
-import { afterEach, describe, expect, it } from "vitest";
+import { describe, expect, it } from "vitest";
 import { Game } from "../src/game/rules";
 import { makeSimulation } from "../src/game/engine";
-import { Engine, type EngineAtoms, type EngineSetup } from "../src/physics/engine";
 import { power } from "../src/physics/portable";
-import { Simulation, setEngineCore, type EngineFactory } from "../src/physics/simulation";
+import { Simulation } from "../src/physics/simulation";
 import { diskPoints, SEED_PORTABLE_MAX, Stream } from "../src/physics/start";
-import { WasmEngine } from "../src/physics/wasm";
 
 interface StartCase {
   atoms: number;
@@ -33,10 +31,6 @@ const read = (name: string) =>
   JSON.parse(readFileSync(new URL(`./golden/${name}`, import.meta.url), "utf8"));
 const STARTS: StartCase[] = read("starts.json").cases;
 const WINS: Recording[] = read("wins.json").recordings;
-const CORES: [string, EngineFactory][] = [
-  ["wasm", (s: EngineSetup, a: EngineAtoms) => new WasmEngine(s, a)],
-  ["ts", (s: EngineSetup, a: EngineAtoms) => new Engine(s, a)],
-];
 
 /** The bits of a float as hex (0 and -0 differ). */
 function bits(x: number): string {
@@ -68,24 +62,19 @@ function replay(rec: Recording): { won: boolean; score: number; frames: number }
   return { won: false, score: 0, frames };
 }
 
-afterEach(() => setEngineCore(null));
-
-for (const [core, factory] of CORES)
-  describe(`the ${core} core`, () => {
-    for (const c of STARTS)
-      it(`starts ${c.atoms} atoms of radius ${c.radius} from seed ${c.seed} as Python does`, () => {
-        setEngineCore(factory);
-        const sim = new Simulation({ nAtoms: c.atoms, radius: c.radius, seed: c.seed });
-        expect(Array.from(sim.positions, bits)).toEqual(c.positions.map(bits));
-        expect(Array.from(sim.velocities, bits)).toEqual(c.velocities.map(bits));
-        expect(bits(sim.criticalTemperature)).toBe(bits(c.critical_temperature));
-      });
-    for (const rec of WINS)
-      it(`replays the won game of seed ${rec.seed} (${rec.settings.escape}, p = ${rec.settings.tc_exponent}) to its score`, () => {
-        setEngineCore(factory);
-        expect(replay(rec)).toEqual({ won: rec.won, score: rec.score, frames: rec.frames });
-      });
-  });
+describe("the WebAssembly core", () => {
+  for (const c of STARTS)
+    it(`starts ${c.atoms} atoms of radius ${c.radius} from seed ${c.seed} as Python does`, () => {
+      const sim = new Simulation({ nAtoms: c.atoms, radius: c.radius, seed: c.seed });
+      expect(Array.from(sim.positions, bits)).toEqual(c.positions.map(bits));
+      expect(Array.from(sim.velocities, bits)).toEqual(c.velocities.map(bits));
+      expect(bits(sim.criticalTemperature)).toBe(bits(c.critical_temperature));
+    });
+  for (const rec of WINS)
+    it(`replays the won game of seed ${rec.seed} (${rec.settings.escape}, p = ${rec.settings.tc_exponent}) to its score`, () => {
+      expect(replay(rec)).toEqual({ won: rec.won, score: rec.score, frames: rec.frames });
+    });
+});
 
 describe("the start generator", () => {
   it("refuses a seed a double cannot hold or a negative one", () => {

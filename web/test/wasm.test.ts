@@ -1,11 +1,12 @@
-// The two engine cores: the WebAssembly core (web/wasm/, src/physics/wasm.ts; the page's and
-// Simulation's default) and the TypeScript engine (src/physics/engine.ts). Every golden trace
-// replayed through each, the same text as the Python engines wrote, bit for bit; and the two
-// side by side on runs longer than the traces (renumbering, the knife, the win, 20 000 atoms).
+// The engine: the one physics core (core/*.c at the top of the repository) compiled to
+// WebAssembly and driven by src/physics/wasm.ts, Simulation's only engine. Every golden trace
+// replayed through it, the same text as the Python engines wrote, bit for bit; and runs longer
+// than the traces (renumbering, the knife, the win, 20 000 atoms) giving the very events, end
+// state and statistics the retired TypeScript engine gave (test/cases/retired-engine.json).
+import { createHash } from "node:crypto";
 import { readdirSync, readFileSync } from "node:fs";
-import { afterEach, describe, expect, it } from "vitest";
-import { Engine, type EngineAtoms, type EngineSetup } from "../src/physics/engine";
-import { Simulation, setEngineCore, type EngineFactory } from "../src/physics/simulation";
+import { describe, expect, it } from "vitest";
+import { Simulation } from "../src/physics/simulation";
 import { readTrace, replayTrace, traceText } from "../src/physics/trace";
 import { WasmEngine } from "../src/physics/wasm";
 
@@ -16,44 +17,45 @@ const FILES = readdirSync(DIR)
   .filter((f) => readFileSync(new URL(f, DIR), "utf8").slice(0, 200).includes('"evapcool-trace"'))
   .sort();
 
-const CORES: [string, EngineFactory, Function][] = [
-  ["wasm", (s: EngineSetup, a: EngineAtoms) => new WasmEngine(s, a), WasmEngine],
-  ["ts", (s: EngineSetup, a: EngineAtoms) => new Engine(s, a), Engine],
-];
+/** What the retired TypeScript engine gave on each long run. */
+interface Retired {
+  frames: number;
+  events: number;
+  pairs: number;
+  walls: number;
+  won: boolean;
+  stats: Simulation["engineStats"];
+  sha256: string;
+}
+const RETIRED = JSON.parse(
+  readFileSync(new URL("./cases/retired-engine.json", import.meta.url), "utf8"),
+).cases as Record<string, Retired>;
 
-afterEach(() => setEngineCore(null));
+const engineOf = (sim: Simulation) => (sim as unknown as { engine: unknown }).engine;
 
-describe("Simulation's engine core", () => {
-  it("is the WebAssembly core unless another is set", () => {
-    const engineOf = (sim: Simulation) => (sim as unknown as { engine: unknown }).engine;
+describe("Simulation's engine", () => {
+  it("is the WebAssembly core, for a start and for a state", () => {
     expect(engineOf(Simulation.classic(1))).toBeInstanceOf(WasmEngine);
-    setEngineCore(CORES[1][1]);
-    expect(engineOf(Simulation.classic(1))).toBeInstanceOf(Engine);
-    setEngineCore(null);
-    expect(engineOf(Simulation.classic(1))).toBeInstanceOf(WasmEngine);
+    const golden = readTrace(readFileSync(new URL(FILES[0], DIR), "utf8"));
+    expect(engineOf(Simulation.fromState(golden.start))).toBeInstanceOf(WasmEngine);
   });
 });
 
-for (const [name, core, kind] of CORES)
-  describe(`the ${name} core replays the golden traces`, () => {
-    for (const file of FILES)
-      it(`${file}: the same text, bit for bit`, () => {
-        setEngineCore(core);
-        const text = readFileSync(new URL(file, DIR), "utf8");
-        const golden = readTrace(text);
-        const sim = Simulation.fromState(golden.start);
-        expect((sim as unknown as { engine: unknown }).engine).toBeInstanceOf(kind);
-        expect(traceText(replayTrace(golden))).toBe(text);
-      });
-  });
+describe("the WebAssembly core replays the golden traces", () => {
+  it("finds them", () => expect(FILES.length).toBeGreaterThanOrEqual(14));
+  for (const file of FILES)
+    it(`${file}: the same text, bit for bit`, () => {
+      const text = readFileSync(new URL(file, DIR), "utf8");
+      expect(traceText(replayTrace(readTrace(text)))).toBe(text);
+    });
+});
 
 describe("bad states", () => {
   const start = () =>
     JSON.parse(
       JSON.stringify(readTrace(readFileSync(new URL("classic-1.json", DIR), "utf8")).start),
     );
-  const message = (core: EngineFactory, state: unknown): string => {
-    setEngineCore(core);
+  const message = (state: unknown): string => {
     try {
       Simulation.fromState(state as Parameters<typeof Simulation.fromState>[0]);
     } catch (e) {
@@ -62,20 +64,18 @@ describe("bad states", () => {
     }
     throw new Error("no RangeError");
   };
-  it("the same RangeError on both cores: a wrong energy sum (checked by the core's sum)", () => {
+  it("a wrong energy sum is refused, checked by the core's sum", () => {
     const s = start();
+    const sum = s.energy_sum;
     s.energy_sum *= 1.5;
-    const m = message(CORES[0][1], s);
-    expect(m).toMatch(/state\.energy_sum/);
-    expect(message(CORES[1][1], s)).toBe(m);
+    expect(message(s)).toMatch(/^state\.energy_sum must be the trapped atoms' energy sum, /);
+    expect(message(s)).toContain(`energy sum, ${sum} `); // the core sums the start's own
   });
-  it("the same RangeError on both cores: overlapping atoms", () => {
+  it("overlapping atoms are refused", () => {
     const s = start();
     s.atoms.x[1] = s.atoms.x[0];
     s.atoms.y[1] = s.atoms.y[0];
-    const m = message(CORES[0][1], s);
-    expect(m).toMatch(/state\.atoms/);
-    expect(message(CORES[1][1], s)).toBe(m);
+    expect(message(s)).toMatch(/state\.atoms/);
   });
 });
 
@@ -88,57 +88,76 @@ function lowering(sim: Simulation, frames: number): void {
   }
 }
 
-/** A run's events, end state and statistics as text, on the engine core given. */
-function run(core: EngineFactory, make: () => Simulation, frames: number): string {
-  setEngineCore(core);
-  const sim = make();
-  lowering(sim, frames);
+/** A run's events, end state and statistics as text, and what retired-engine.json keeps. */
+function outcome(sim: Simulation): Retired {
   const lines: string[] = [];
   for (let k = 0; k < sim.eventCount; k++) lines.push(JSON.stringify(sim.eventAt(k)));
   lines.push(JSON.stringify(sim.toState()));
   lines.push(JSON.stringify(sim.engineStats));
-  return lines.join("\n");
+  return {
+    frames: 0,
+    events: sim.eventCount,
+    pairs: sim.pairCollisionCount,
+    walls: sim.wallCollisionCount,
+    won: sim.won,
+    stats: sim.engineStats,
+    sha256: createHash("sha256").update(lines.join("\n")).digest("hex"),
+  };
 }
 
-describe("the two cores side by side", () => {
-  const cases: [string, () => Simulation, number][] = [
-    [
-      "2 000 atoms, renumbered many times",
-      () =>
-        new Simulation({ nAtoms: 2000, radius: 2, seed: 3, trapHeight: 450, recordEvents: true }),
-      60,
-    ],
-    [
-      "400 atoms, the knife",
-      () =>
-        new Simulation({ nAtoms: 400, radius: 3, seed: 5, escape: "knife", recordEvents: true }),
-      120,
-    ],
-    [
-      "20 000 atoms",
-      () =>
-        new Simulation({
-          nAtoms: 20_000,
-          radius: 0.7,
-          seed: 2,
-          trapHeight: 450,
-          recordEvents: true,
-        }),
-      4,
-    ],
-    ["the classic start to the win", () => Simulation.classic(7, { recordEvents: true }), 1500],
-  ];
-  for (const [name, make, frames] of cases)
+const RUNS: [string, string, () => Simulation][] = [
+  [
+    "2000-renumbered",
+    "2 000 atoms, renumbered many times",
+    () => new Simulation({ nAtoms: 2000, radius: 2, seed: 3, trapHeight: 450, recordEvents: true }),
+  ],
+  [
+    "400-knife",
+    "400 atoms, the knife",
+    () => new Simulation({ nAtoms: 400, radius: 3, seed: 5, escape: "knife", recordEvents: true }),
+  ],
+  [
+    "20000",
+    "20 000 atoms",
+    () =>
+      new Simulation({ nAtoms: 20_000, radius: 0.7, seed: 2, trapHeight: 450, recordEvents: true }),
+  ],
+  [
+    "classic-win",
+    "the classic start to the win",
+    () => Simulation.classic(7, { recordEvents: true }),
+  ],
+];
+
+describe("longer runs, as the retired TypeScript engine ran them", () => {
+  for (const [key, name, make] of RUNS)
     it(`${name}: the same events, state and statistics`, () => {
-      const ts = run(CORES[1][1], make, frames);
-      const wasm = run(CORES[0][1], make, frames);
-      expect(wasm.length).toBeGreaterThan(1000);
-      expect(wasm === ts).toBe(true);
-    }, 60_000); // two full runs of up to 20 000 atoms: seconds on a busy 2-core machine
+      const want = RETIRED[key];
+      const sim = make();
+      lowering(sim, want.frames);
+      expect(want.events).toBeGreaterThan(1000);
+      expect(outcome(sim)).toEqual({ ...want, frames: 0 });
+    }, 60_000); // up to 20 000 atoms: seconds on a busy 2-core machine
 
   it("the classic start reaches the win within the run compared", () => {
     const sim = Simulation.classic(7);
-    lowering(sim, 1500);
+    lowering(sim, RETIRED["classic-win"].frames);
     expect(sim.won).toBe(true);
+  });
+
+  it("engines side by side in one process keep their own state", () => {
+    const want = RETIRED["400-knife"];
+    const make = RUNS[1][2];
+    const a = make();
+    const b = make();
+    const other = Simulation.classic(3, { escape: "knife" });
+    const start = a.trapHeight;
+    for (let f = 0; f < want.frames; f++)
+      for (const sim of [a, other, b]) {
+        sim.advance(1);
+        sim.trapHeight = start * (1 - 0.8 * Math.min(1, f / 1000));
+      }
+    expect(outcome(a)).toEqual({ ...want, frames: 0 });
+    expect(outcome(b)).toEqual({ ...want, frames: 0 });
   });
 });

@@ -22,7 +22,6 @@ import {
   type EventName,
 } from "./constants";
 import { checkedConfig, type SimulationConfig, type SimulationOptions } from "./config";
-import { STORED, type EngineAtoms, type EngineSetup } from "./engine";
 import { loadCup } from "./loading";
 import { escapeBox, roomTop, type Room } from "./room";
 import { randomSeed } from "./start";
@@ -36,7 +35,7 @@ import {
   type SimulationState,
   type StateInput,
 } from "./state";
-import { WasmEngine, type EngineCore } from "./wasm";
+import { STORED, WasmEngine, type EngineAtoms, type EngineCore } from "./wasm";
 import { checkStart, checkWorld } from "./validation";
 import {
   CURVATURE as CURVATURE_RANGE,
@@ -124,19 +123,6 @@ export function pairwiseSum(a: Float64Array, start: number, n: number): number {
   return pairwiseSum(a, start, n2) + pairwiseSum(a, start + n2, n - n2);
 }
 
-/**
- * Builds an engine core: wasm.ts's WebAssembly core, the page's (the faster of the two,
- * docs/benchmarks.md), or engine.ts's Engine (the same events, bit for bit).
- */
-export type EngineFactory = (setup: EngineSetup, atoms: EngineAtoms) => EngineCore;
-const wasmCore: EngineFactory = (setup, atoms) => new WasmEngine(setup, atoms);
-let makeEngine = wasmCore;
-
-/** Simulations made from now on run on this engine core (null: the WebAssembly core). */
-export function setEngineCore(factory: EngineFactory | null): void {
-  makeEngine = factory ?? wasmCore;
-}
-
 /** Hard disks in a parabolic cup under gravity, advanced event by event, exactly. */
 export class Simulation {
   private engine!: EngineCore;
@@ -218,7 +204,7 @@ export class Simulation {
     const [xLeft, xRight, yBottom] = escapeBox(room, atoms.radius[0]);
     this.scratch = new Float64Array(4);
     this.roomAround = room;
-    this.engine = makeEngine(
+    this.engine = new WasmEngine(
       {
         curvature: rules.curvature,
         gravity: rules.gravity,

@@ -17,7 +17,6 @@ import {
   pyG,
   type Range,
 } from "../limits";
-import { flightVy, flightX, flightY } from "./kernels";
 import { firstOverlap } from "./state";
 
 /** What `checkWorld` reads of a parsed state. */
@@ -55,8 +54,9 @@ export function checkWorld(w: WorldLimitsInput): void {
     if (!w.trapped(i)) continue;
     const dt = w.time - w.t[i];
     ids.push(i);
-    pos.push(flightX(w.x[i], w.vx[i], dt), flightY(w.y[i], w.vy[i], halfG, dt));
-    vel.push(w.vx[i], flightVy(w.vy[i], w.gravity, dt));
+    // free flight to now, seed Eqs. (3) and (4), as Python's World.state_at carries them
+    pos.push(w.x[i] + w.vx[i] * dt, w.y[i] + w.vy[i] * dt - halfG * dt * dt);
+    vel.push(w.vx[i], w.vy[i] - w.gravity * dt);
   }
   if (!pos.every(Number.isFinite) || !vel.every(Number.isFinite))
     throw new RangeError("positions and velocities must be finite");
