@@ -16,7 +16,14 @@ from setuptools.command.build_ext import build_ext
 
 CORE = sorted(str(p).replace("\\", "/") for p in Path("core").glob("*.c"))
 
-UNIX_FLAGS = ["-std=c11", "-O3", "-ffp-contract=off", "-fno-fast-math", "-fvisibility=hidden", "-flto"]
+UNIX_FLAGS = [
+    "-std=c11",
+    "-O3",
+    "-ffp-contract=off",
+    "-fno-fast-math",
+    "-fvisibility=hidden",
+    "-flto",
+]
 # MSVC: precise semantics and no contraction (cl 19.30 and later contract only with /fp:contract).
 MSVC_FLAGS = ["/O2", "/fp:precise"]
 
@@ -31,7 +38,9 @@ class ExactBuildExt(build_ext):
 
     def build_extensions(self) -> None:
         msvc = self.compiler.compiler_type == "msvc"
-        flags = MSVC_FLAGS if msvc else UNIX_FLAGS + (["-msse2", "-mfpmath=sse"] if x86_32() else [])
+        flags = (
+            MSVC_FLAGS if msvc else UNIX_FLAGS + (["-msse2", "-mfpmath=sse"] if x86_32() else [])
+        )
         for ext in self.extensions:
             ext.extra_compile_args = [*flags, *ext.extra_compile_args]
             if not msvc:  # the kernels inline across the room files, as in the wasm build

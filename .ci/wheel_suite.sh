@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# The wheel built from the sdist, on another Python: installed lean and checked
+# The wheel built from the sdist by another Python (the compiled core is built for it),
+# on that Python: installed lean and checked
 # (.ci/check_lean.py), then with the test extras, the quick suite run from the unpacked
 # sdist (its own tests, conftest and helpers). `floors` pins every requirement to the
 # lowest version pyproject.toml allows (.ci/floors.py): CI proves the declared floors.
@@ -8,9 +9,13 @@ set -euo pipefail
 py=$1 name=$2 mode=${3:-latest}
 root=$(pwd)
 dist=${DIST:-$root/dist}
-wheel=$(ls "$dist"/*.whl) sdist=$(ls "$dist"/*.tar.gz)
+sdist=$(ls "$dist"/*.tar.gz)
 work=$(mktemp -d "/tmp/evapcool-$name.XXXXXX")
 trap 'rm -rf "$work"' EXIT
+echo "== [$name] the wheel built from the sdist with $("$py" --version)"
+uv build -q --wheel -p "$py" -o "$work/wheel" "$sdist"
+wheel=$(ls "$work"/wheel/*.whl)
+echo "   $(basename "$wheel")"
 constraints=() app_constraints=()
 if [ "$mode" = floors ]; then  # the caller's Python (3.11+) reads pyproject.toml
   python3 "$root/.ci/floors.py" --dependencies "$root" > "$work/floors-applet.txt"

@@ -31,11 +31,14 @@ def _setup_flags() -> list[str]:
 
 def _probe(tmp_path: Path, flags: list[str]) -> float:
     lib = tmp_path / f"probe{len(list(tmp_path.iterdir()))}.so"
-    subprocess.run(
+    built = subprocess.run(
         [CC, *flags, "-march=native", "-shared", "-fPIC", "-I", str(ROOT / "core"),
          str(ROOT / "core" / "kernels.c"), "-o", str(lib)],
-        check=True, capture_output=True,
+        capture_output=True, text=True,
     )  # fmt: skip
+    if built.returncode != 0 and "native" in built.stderr:
+        pytest.skip(f"this compiler has no -march=native: {built.stderr.strip()[:200]}")
+    assert built.returncode == 0, built.stderr
     probe = ctypes.CDLL(str(lib)).core_contraction_probe
     probe.restype = ctypes.c_double
     probe.argtypes = [ctypes.c_double] * 3
