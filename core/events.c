@@ -4,14 +4,6 @@
  */
 #include "tables.h"
 
-/* An elastic bounce leaves the wall at least this fast along the normal (constants.ts). */
-#define WALL_MIN_NORMAL_SPEED 1e-3
-/* After the win, wall bounces keep 1 - 0.2 of the speed (seed Eq. 34)... */
-#define WIN_DAMPING 0.2
-/* ...but only while the speed is at least this... */
-#define WIN_DAMPING_MIN_SPEED 1.0
-/* ...and leave the wall at least this fast along the normal. */
-#define WIN_NORMAL_SPEED_FLOOR 0.25
 
 /* Energy of row i from its stored state (conserved in flight). */
 double energy(Core *core, int32_t i) {

@@ -100,9 +100,8 @@ typedef struct {
   int32_t heap_size, n_bins, n_ring, n_over;
 } Run;
 
-/* Lifecycle (SPEC 2.3) and log kinds, as in constants.ts. */
-enum { TRAPPED = 0, ESCAPED = 1, GONE = 2 };
-enum { EV_PAIR = 0, EV_WALL = 1, EV_ESCAPE = 2, EV_GONE = 3, EV_KNIFE = 4 };
+/* Lifecycle (SPEC 2.3) and log kinds, the wall's and the win's numbers: world.py's. */
+#include "model.h"
 /* Event kinds inside the engine. */
 enum { KIND_NONE = 0, KIND_PAIR, KIND_WALL, KIND_EXIT, KIND_CROSS_X, KIND_CROSS_Y };
 /* Ranks order events of equal time: crossings, then solo events, then pairs. */

@@ -20,12 +20,6 @@ export const TC_EXPONENT_CUP = 2 / 5;
 
 /** An elastic bounce leaves the wall at least this fast along the normal, px / frame. */
 export const WALL_MIN_NORMAL_SPEED = 1e-3;
-/** After the win, wall bounces keep 1 - 0.2 of the speed (seed Eq. 34)... */
-export const WIN_DAMPING = 0.2;
-/** ...but only while the speed is at least this, px / frame. */
-export const WIN_DAMPING_MIN_SPEED = 1.0;
-/** A damped bounce leaves the wall at least this fast along the normal, px / frame. */
-export const WIN_NORMAL_SPEED_FLOOR = 0.25;
 
 export type EscapeRule = "rim" | "knife";
 export const ESCAPE_RULES: readonly EscapeRule[] = ["rim", "knife"];
@@ -37,11 +31,6 @@ export const GONE = 2;
 export const STATUS_NAMES = ["trapped", "escaped", "gone"] as const;
 export type StatusName = (typeof STATUS_NAMES)[number];
 
-/** Event kinds of the event log, as in Python's world.EVENT_NAMES. */
-export const EV_PAIR = 0;
-export const EV_WALL = 1;
-export const EV_ESCAPE = 2;
-export const EV_GONE = 3;
-export const EV_KNIFE = 4;
+/** Event kinds of the event log by their codes (core/model.h), as Python's world.EVENT_NAMES. */
 export const EVENT_NAMES = ["pair", "wall", "escape", "gone", "knife"] as const;
 export type EventName = (typeof EVENT_NAMES)[number];
