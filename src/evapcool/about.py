@@ -37,8 +37,7 @@ def note_line(command: str | None, message: str) -> str:
 def versions() -> dict[str, str | None]:
     """Versions of Python, evapcool and the numeric libraries (None: not installed).
 
-    Read from the installed packages' metadata (nothing heavy is imported for this); "core":
-    the compiler that built the engine core, None where it was not built.
+    Read from the installed packages' metadata (nothing heavy is imported for this).
     """
     from importlib import metadata
 
@@ -51,8 +50,4 @@ def versions() -> dict[str, str | None]:
             found[dist] = metadata.version(dist)
         except metadata.PackageNotFoundError:
             found[dist] = None
-    from evapcool.physics.core import compiled
-
-    module = compiled()
-    found["core"] = None if module is None else str(module.COMPILER)
     return found

@@ -15,6 +15,7 @@ from typing import TYPE_CHECKING, Any, Protocol
 
 from evapcool.about import versions
 from evapcool.extras import check
+from evapcool.physics.core import compiled
 
 if TYPE_CHECKING:
     import numpy as np
@@ -44,8 +45,11 @@ class LabResult(Protocol):
 
 def run_info(sim: Simulation) -> dict[str, Any]:
     """Metadata a run records besides its parameters: the engine that ran it and the
-    versions of Python, evapcool and the numeric libraries."""
-    return {"engine": sim.engine, "versions": versions()}
+    versions of Python, evapcool and the numeric libraries; "core": the compiler that built
+    the engine core (None where it was not built)."""
+    module = compiled()
+    found = {**versions(), "core": None if module is None else str(module.COMPILER)}
+    return {"engine": sim.engine, "versions": found}
 
 
 def _engine(result: LabResult) -> str:
