@@ -206,6 +206,7 @@ EXPORT(core_load) void core_load(Core *core, const double *in, double gravity, d
   core->run.record = record;
   core->run.time = time;
   core->run.won = won;
+  core->run.score = -1; /* the game fixes it at the end of the frame the win is seen */
   core->run.pairs = pairs;
   core->run.walls = walls;
   core->run.n_trapped = 0;

@@ -44,7 +44,6 @@ EXPORT(core_sequential_energy_sum) double core_sequential_energy_sum(Core *core)
 }
 
 EXPORT(core_force_win) void core_force_win(Core *core) { core->run.won = 1; }
-EXPORT(core_tc_table_address) double *core_tc_table_address(Core *core) { return core->tc_table; }
 EXPORT(core_log_address) LogLine *core_log_address(Core *core) { return core->event_log; }
 /* The log was copied out: start it again. */
 EXPORT(core_log_clear) void core_log_clear(Core *core) { core->run.n_log = 0; }
@@ -67,3 +66,4 @@ READ(int32_t, n_log)
 READ(int32_t, nx)
 READ(int32_t, ny)
 READ(double, cell)
+READ(int32_t, score)

@@ -91,6 +91,10 @@ typedef struct {
   double time, energy_sum, x_rim, trap_height;
   int32_t won, n_trapped;
   double pairs, walls;
+  /* the game (game.c): atoms trapped at the end of the frame the win was seen (-1 before)
+   * and that frame */
+  int32_t score;
+  double win_frame;
   /* engine-only counts */
   double crossings, stale, renumbered;
   int32_t since_maintain, n_log, log_capacity;
@@ -203,6 +207,19 @@ double core_sequential_energy_sum(Core *core);
 void core_force_win(Core *core);
 int32_t core_grid_errors(Core *core);
 double core_contraction_probe(double a, double b, double c);
+
+/* start.c: the start from a seed, the cup's capacity, portable powers and the Tc table. */
+int32_t core_load_cup(double *pos, double *vel, int32_t n, double radius, double curvature,
+                      double y_top, uint32_t seed_lo, uint32_t seed_hi);
+int32_t core_cup_capacity(double radius, double curvature, double y_top);
+double core_power(double x, double p);
+void core_fill_tc_table(Core *core, double tc0, double exponent);
+
+/* game.c: the game's whole frame, its end (the win seen, the score fixed), a replay. */
+int32_t core_frame_end(Core *core);
+int32_t core_frame(Core *core, double height);
+int32_t core_replay(Core *core, const double *runs, int32_t n_runs, int32_t limit);
+double *core_buffer(Core *core, int32_t n);
 
 /* core_advance_to's answers: every event up to t_end done, or the log to be emptied first. */
 enum { CORE_DONE = 0, CORE_LOG_FULL = 1 };

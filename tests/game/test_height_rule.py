@@ -138,3 +138,22 @@ def test_playback_holds_a_recordings_heights_and_ignores_the_player() -> None:
     while game.won_at is None and game.sim.time < rec.frames + 5:
         game.update(0.7 / 30.0)
     assert (game.won, game.score, round(game.won_at * 30)) == (rec.won, rec.score, rec.frames)
+
+
+def test_the_win_is_seen_at_its_frames_end_before_a_height_asked_in_it_applies() -> None:
+    """The replay's order (core/game.c, Simulation.frame): the score is the atoms trapped at
+    the end of the win's frame; a height asked during that frame applies after, so a knife
+    cut it makes cannot change the score (nor make the live game disagree with its replay)."""
+    for engine in ("reference", "fast"):
+        games = [Game(GameConfig(seed=3, engine=engine, escape="knife")) for _ in range(2)]
+        for game in games:
+            game.toggle_pause()
+            game._advance(0.5)
+        cut, kept = games
+        assert cut.set_trap_height(25.0)  # held for the next frame: the knife cuts at t = 1
+        for game in games:
+            game.sim.force_win()  # the gas condenses within this frame
+            game._advance(0.5)
+        assert kept.won_at == cut.won_at == 1.0 / 30.0
+        assert cut.sim.n_trapped < kept.sim.n_trapped  # the cut came, after the frame's end
+        assert cut.score == kept.score == kept.sim.n_trapped

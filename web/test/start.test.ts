@@ -6,9 +6,9 @@ import fc from "fast-check";
 import { describe, expect, it } from "vitest";
 import { Game } from "../src/game/rules";
 import { makeSimulation } from "../src/game/engine";
-import { power } from "../src/physics/portable";
 import { Simulation } from "../src/physics/simulation";
-import { diskPoints, SEED_PORTABLE_MAX, Stream } from "../src/physics/start";
+import { SEED_PORTABLE_MAX } from "../src/physics/start";
+import { loadCup, power } from "../src/physics/wasm";
 
 interface StartCase {
   atoms: number;
@@ -76,37 +76,35 @@ describe("the WebAssembly core", () => {
     });
 });
 
-describe("the start generator", () => {
+describe("the start generator (the core's)", () => {
   it("refuses a seed a double cannot hold or a negative one", () => {
-    expect(() => new Stream(2 ** 53, 1)).toThrow(RangeError);
-    expect(() => new Stream(-1, 1)).toThrow(/seed must be a whole number/);
-    expect(() => new Stream(SEED_PORTABLE_MAX, 1)).not.toThrow();
+    expect(() => loadCup(49, 12, 0.01, 532, 2 ** 53)).toThrow(RangeError);
+    expect(() => loadCup(49, 12, 0.01, 532, -1)).toThrow(/seed must be a whole number/);
+    expect(() => loadCup(49, 12, 0.01, 532, SEED_PORTABLE_MAX)).not.toThrow();
   });
 
-  it("puts every point in its disk or ring, in [-1, 1)", () => {
-    fc.assert(
-      fc.property(fc.integer({ min: 0, max: SEED_PORTABLE_MAX }), fc.boolean(), (seed, ring) => {
-        const inner = ring ? 1 / 16 : 0;
-        const p = diskPoints(seed, 3, 64, inner);
-        for (let i = 0; i < 64; i++) {
-          const r2 = p[2 * i] * p[2 * i] + p[2 * i + 1] * p[2 * i + 1];
-          if (!(r2 >= inner && r2 < 1)) return false;
-        }
-        return true;
-      }),
-      { numRuns: 200 },
+  it("refuses more atoms than the cup holds, saying how many fit", () => {
+    expect(() => loadCup(200, 12, 0.01, 400, 1)).toThrow(
+      /nAtoms: 200 atoms of radius 12 do not fit in the cup below the window top \(at most \d+ fit\)/,
     );
   });
 
-  it("gives doubles in [0, 1) whose mean is near 1/2", () => {
-    const s = new Stream(12345, 2);
-    let sum = 0;
-    for (let k = 0; k < 20000; k++) {
-      const u = s.uniform(k);
-      expect(u >= 0 && u < 1).toBe(true);
-      sum += u;
-    }
-    expect(Math.abs(sum / 20000 - 0.5)).toBeLessThan(0.01);
+  it("places atoms apart, at speeds of their rows, the same from the same seed", () => {
+    fc.assert(
+      fc.property(fc.integer({ min: 0, max: SEED_PORTABLE_MAX }), (seed) => {
+        const { positions: p, velocities: v } = loadCup(64, 5, 0.01, 2000, seed);
+        const again = loadCup(64, 5, 0.01, 2000, seed);
+        if (!again.positions.every((x, k) => Object.is(x, p[k]))) return false;
+        for (let i = 0; i < 64; i++) {
+          const speed = Math.hypot(v[2 * i], v[2 * i + 1]);
+          if (!(speed >= 100 / 30 && speed < 100 / 30 + 10)) return false;
+          for (let j = 0; j < i; j++)
+            if (Math.hypot(p[2 * i] - p[2 * j], p[2 * i + 1] - p[2 * j + 1]) < 10) return false;
+        }
+        return true;
+      }),
+      { numRuns: 100 },
+    );
   });
 });
 

@@ -255,18 +255,15 @@ class Verdict:
 
 def replay(rec: Recording, engine: str = "auto") -> Verdict:
     """Play the recording headless with the game's rules: each frame hold its height and
-    advance one whole frame; stop at the win or at the end of the moves."""
+    advance one whole frame; stop at the win or at the end of the moves (`Simulation.replay`:
+    in one call to the compiled core where it is installed)."""
     game = Game(rec.settings.game_config(rec.seed, engine))
     game.toggle_pause()
-    frames = 0
-    for height, n in rec.moves:
-        for _ in range(n):
-            game.set_trap_height(height)
-            game.run_frames(1)
-            frames += 1
-            if game.won:
-                return Verdict(True, int(game.score or 0), frames)
-    return Verdict(False, 0, frames)
+    # The slider's clamp, as Game.set_trap_height applies it.
+    moves = [(min(HEIGHT_MAX, max(HEIGHT_MIN, float(h))), n) for h, n in rec.moves]
+    frames = game.sim.replay(moves, min(rec.n_frames, 2**31 - 1))
+    score = game.sim.score
+    return Verdict(score is not None, score or 0, frames)
 
 
 def verify(rec: Recording, engine: str = "auto") -> Verdict:

@@ -3,12 +3,13 @@
 Pure state, no pygame: the view and the app read and drive it, tests drive it
 directly. Time is physics frames (1/30 s) unless a name says seconds.
 
-When the player's trap height takes effect (the page's rule, web/src/game/rules.ts): at
-the next whole physics frame, t = k. The game advances in pieces that stop at each whole
-frame, apply the height asked for since the last one and check the win, so a run depends
-on what the player did in which frame, never on the display's rate. Paused, or standing
-on a whole frame, the height applies at once. (`Simulation.trap_height = H` itself
-applies at once: docs/model.md.)
+When the player's trap height takes effect (both editions' rule, written once in the
+compiled core: core/game.c, `Simulation.frame`): at the next whole physics frame, t = k.
+The game advances in pieces that stop at each whole frame, see the win there (the score
+fixed then) and apply the height asked for since the last one, so a run depends on what
+the player did in which frame, never on the display's rate. Paused, or standing on a
+whole frame, the height applies at once. (`Simulation.trap_height = H` itself applies at
+once: docs/model.md.)
 """
 
 from __future__ import annotations
@@ -243,28 +244,35 @@ class Game:
         return self._advance(1.0) if self.paused else 0.0
 
     def _advance(self, frames: float) -> float:
-        """Advance frames in pieces that stop at each whole frame: the held height applies
-        there, and the win is checked there only, so a game (its win, its score) depends on
-        the heights of whole frames, not on the display's step (replays rely on it)."""
+        """Advance frames in pieces that stop at each whole frame: the win is seen and the
+        score fixed at the frame's end, then the held height applies (Simulation.frame's
+        rule, the core's), so a game (its win, its score) depends on the heights of whole
+        frames, not on the display's step (replays rely on it)."""
         sim = self.sim
         end = sim.time + frames
         while sim.time < end:
             boundary = math.floor(sim.time) + 1.0
-            sim.advance(min(boundary, end) - sim.time)
+            if float(sim.time).is_integer() and end >= boundary:
+                sim.frame(sim.trap_height)  # a whole frame in one step
+            else:
+                sim.advance(min(boundary, end) - sim.time)
+                if sim.time >= boundary:
+                    sim.frame_end()
             if sim.time >= boundary:
                 if self.won_at is None:  # the moves end with the frame of the win
                     for listener in self.on_frame:
                         listener(sim.trap_height)
                 self._frames_done += 1
+                self._check_win()
                 self._scripted()
                 self._apply_pending()
-                self._check_win()
         return frames
 
     def _check_win(self) -> None:
-        if self.sim.won and self.won_at is None:
+        """The win seen at a frame's end (the score fixed there), once."""
+        if self.sim.score is not None and self.won_at is None:
             self.won_at = self.play_time
-            self._won_with = self.sim.n_trapped
+            self._won_with = self.sim.score
             for callback in list(self.on_win):
                 callback(self)
 

@@ -86,17 +86,6 @@ static PyObject *core_py_load(CoreObject *self, PyObject *args) {
   Py_RETURN_NONE;
 }
 
-/* set_tc_table(table): Tc(N) for N = 0..n (float64), seed Eq. (46). */
-static PyObject *core_py_set_tc_table(CoreObject *self, PyObject *arg) {
-  Core *core = ready(self);
-  if (!core) return NULL;
-  Py_buffer view;
-  if (get_buffer(arg, &view, (Py_ssize_t)self->n + 1, 8, 0, "tc_table") < 0) return NULL;
-  memcpy(core->tc_table, view.buf, (size_t)view.len);
-  PyBuffer_Release(&view);
-  Py_RETURN_NONE;
-}
-
 /* start(energy_sum, trap_height): the grid, the cells and every prediction. */
 static PyObject *core_py_start(CoreObject *self, PyObject *args) {
   Core *core = ready(self);
@@ -169,14 +158,15 @@ static PyObject *core_py_export(CoreObject *self, PyObject *args) {
   Py_RETURN_NONE;
 }
 
-/* scalars() -> (time, energy_sum, won, n_trapped, pairs, walls, crossings, stale). */
+/* scalars() -> (time, energy_sum, won, n_trapped, pairs, walls, crossings, stale,
+ * trap_height). */
 static PyObject *core_py_scalars(CoreObject *self, PyObject *Py_UNUSED(ignored)) {
   Core *core = ready(self);
   if (!core) return NULL;
   const Run *r = &core->run;
-  return Py_BuildValue("(ddOiLLLL)", r->time, r->energy_sum, r->won ? Py_True : Py_False,
+  return Py_BuildValue("(ddOiLLLLd)", r->time, r->energy_sum, r->won ? Py_True : Py_False,
                        r->n_trapped, (long long)r->pairs, (long long)r->walls,
-                       (long long)r->crossings, (long long)r->stale);
+                       (long long)r->crossings, (long long)r->stale, r->trap_height);
 }
 
 static PyObject *core_py_force_win(CoreObject *self, PyObject *Py_UNUSED(ignored)) {
@@ -199,9 +189,63 @@ static PyObject *core_py_grid_errors(CoreObject *self, PyObject *Py_UNUSED(ignor
   return PyLong_FromLong(core_grid_errors(core));
 }
 
+
+/* fill_tc_table(tc0, exponent): Tc(N) = Tc0 (N / N0)^p for N = 0..N0, the core's own power. */
+static PyObject *core_py_fill_tc_table(CoreObject *self, PyObject *args) {
+  Core *core = ready(self);
+  double tc0, exponent;
+  if (!core || !PyArg_ParseTuple(args, "dd", &tc0, &exponent)) return NULL;
+  core_fill_tc_table(core, tc0, exponent);
+  Py_RETURN_NONE;
+}
+
+/* frame(height) -> 0 when the whole frame is done, 1 when the log must be emptied first. */
+static PyObject *core_py_frame(CoreObject *self, PyObject *arg) {
+  Core *core = ready(self);
+  if (!core) return NULL;
+  double h = PyFloat_AsDouble(arg);
+  if (h == -1.0 && PyErr_Occurred()) return NULL;
+  int32_t status;
+  Py_BEGIN_ALLOW_THREADS status = core_frame(core, h);
+  Py_END_ALLOW_THREADS return PyLong_FromLong(status);
+}
+
+/* frame_end() -> True at the whole frame the win is first seen (the score fixed then). */
+static PyObject *core_py_frame_end(CoreObject *self, PyObject *Py_UNUSED(ignored)) {
+  Core *core = ready(self);
+  if (!core) return NULL;
+  return PyBool_FromLong(core_frame_end(core));
+}
+
+/* score() -> (atoms trapped at the end of the win's frame, that frame), or None before. */
+static PyObject *core_py_score(CoreObject *self, PyObject *Py_UNUSED(ignored)) {
+  Core *core = ready(self);
+  if (!core) return NULL;
+  if (core->run.score < 0) Py_RETURN_NONE;
+  return Py_BuildValue("(id)", core->run.score, core->run.win_frame);
+}
+
+/* replay(runs, limit) -> frames played: runs float64 (height, frames) pairs. */
+static PyObject *core_py_replay(CoreObject *self, PyObject *args) {
+  Core *core = ready(self);
+  PyObject *runs;
+  int limit;
+  if (!core || !PyArg_ParseTuple(args, "Oi", &runs, &limit)) return NULL;
+  Py_buffer view;
+  if (PyObject_GetBuffer(runs, &view, PyBUF_C_CONTIGUOUS) < 0) return NULL;
+  if (view.len % 16 != 0) {
+    PyBuffer_Release(&view);
+    PyErr_SetString(PyExc_ValueError, "runs: float64 (height, frames) pairs");
+    return NULL;
+  }
+  int32_t frames;
+  Py_BEGIN_ALLOW_THREADS frames = core_replay(core, view.buf, (int32_t)(view.len / 16), limit);
+  Py_END_ALLOW_THREADS PyBuffer_Release(&view);
+  return PyLong_FromLong(frames);
+}
+
 static PyMethodDef core_methods[] = {
     {"load", (PyCFunction)core_py_load, METH_VARARGS, "The atoms and the fixed parameters."},
-    {"set_tc_table", (PyCFunction)core_py_set_tc_table, METH_O, "Tc(N) for N = 0..n."},
     {"start", (PyCFunction)core_py_start, METH_VARARGS, "The grid and every prediction."},
     {"advance_to", (PyCFunction)core_py_advance_to, METH_O, "Events up to t_end: 0 done, 1 log full."},
     {"set_trap_height", (PyCFunction)core_py_set_trap_height, METH_O, "New rim height."},
@@ -211,6 +255,11 @@ static PyMethodDef core_methods[] = {
     {"force_win", (PyCFunction)core_py_force_win, METH_NOARGS, "Latch the win."},
     {"grid", (PyCFunction)core_py_grid, METH_NOARGS, "(columns, rows, cell edge)."},
     {"grid_errors", (PyCFunction)core_py_grid_errors, METH_NOARGS, "Atoms filed in a far cell."},
+    {"fill_tc_table", (PyCFunction)core_py_fill_tc_table, METH_VARARGS, "Tc(N) for N = 0..n."},
+    {"frame", (PyCFunction)core_py_frame, METH_O, "One whole frame, the height held: 0 done, 1 log full."},
+    {"frame_end", (PyCFunction)core_py_frame_end, METH_NOARGS, "A whole frame's end: True if the win is seen."},
+    {"score", (PyCFunction)core_py_score, METH_NOARGS, "(score, frame of the win) or None."},
+    {"replay", (PyCFunction)core_py_replay, METH_VARARGS, "Frames played of (height, frames) runs."},
     {NULL, NULL, 0, NULL},
 };
 
@@ -232,8 +281,49 @@ static PyObject *contraction_probe(PyObject *Py_UNUSED(module), PyObject *args) 
   return PyFloat_FromDouble(core_contraction_probe(a, b, c));
 }
 
+
+/* load_cup(pos, vel, radius, curvature, y_top, seed) -> atoms placed: the start from a seed
+ * into pos and vel ((n, 2) float64 each); fewer than n if they do not fit, -1 for
+ * impossible odds (core/start.c). */
+static PyObject *load_cup(PyObject *Py_UNUSED(module), PyObject *args) {
+  PyObject *objs[2];
+  double radius, curvature, y_top;
+  unsigned long long seed;
+  if (!PyArg_ParseTuple(args, "OOdddK", &objs[0], &objs[1], &radius, &curvature, &y_top, &seed))
+    return NULL;
+  Py_buffer v[2];
+  if (PyObject_GetBuffer(objs[0], &v[0], PyBUF_C_CONTIGUOUS | PyBUF_WRITABLE) < 0) return NULL;
+  Py_ssize_t n = v[0].len / 16;
+  if (get_buffer(objs[1], &v[1], 2 * n, 8, 1, "vel") < 0) {
+    PyBuffer_Release(&v[0]);
+    return NULL;
+  }
+  int32_t placed = n < 1 ? 0 : core_load_cup(v[0].buf, v[1].buf, (int32_t)n, radius, curvature, y_top,
+                                             (uint32_t)seed, (uint32_t)(seed >> 32));
+  PyBuffer_Release(&v[0]);
+  PyBuffer_Release(&v[1]);
+  return PyLong_FromLong(placed);
+}
+
+/* cup_capacity(radius, curvature, y_top) -> atoms the loading places below y_top. */
+static PyObject *cup_capacity(PyObject *Py_UNUSED(module), PyObject *args) {
+  double radius, curvature, y_top;
+  if (!PyArg_ParseTuple(args, "ddd", &radius, &curvature, &y_top)) return NULL;
+  return PyLong_FromLong(core_cup_capacity(radius, curvature, y_top));
+}
+
+/* power(x, p) -> x^p from products and square roots (core/start.c). */
+static PyObject *power(PyObject *Py_UNUSED(module), PyObject *args) {
+  double x, p;
+  if (!PyArg_ParseTuple(args, "dd", &x, &p)) return NULL;
+  return PyFloat_FromDouble(core_power(x, p));
+}
+
 static PyMethodDef module_methods[] = {
     {"contraction_probe", contraction_probe, METH_VARARGS, "a * b + c, rounded twice."},
+    {"load_cup", load_cup, METH_VARARGS, "The start from a seed into pos and vel."},
+    {"cup_capacity", cup_capacity, METH_VARARGS, "Atoms the loading places below y_top."},
+    {"power", power, METH_VARARGS, "x^p from products and square roots."},
     {NULL, NULL, 0, NULL},
 };
 

@@ -94,20 +94,22 @@ class CoreEngine:
         self._stale = 0
 
     def _update_tc_table(self) -> None:
-        """Tc(N) for every N by the World's own expression (the same portable power)."""
+        """Tc(N) for every N, by the core's power (the World's portable power's twin)."""
         w = self.w
         key = (w.tc0, w.tc_exponent, w.win_rule)
         if key != self._tc_key:
-            table = [w.win_threshold_of(m) for m in range(w.n_initial + 1)]
-            self.core.set_tc_table(np.array(table))
+            self.core.fill_tc_table(w.tc0, w.tc_exponent)
             self._tc_key = key
 
     def _sync(self) -> None:
         """The core's clock, sums and stored states into the World (one pass in C)."""
         w = self.w
         self.core.export(w.pos, w.vel, w.t_atom, w.status, w.counter)
-        time, energy_sum, won, n_trapped, pairs, walls, crossings, stale = self.core.scalars()
+        time, energy_sum, won, n_trapped, pairs, walls, crossings, stale, height = (
+            self.core.scalars()
+        )
         w.time = time
+        w.trap_height = height
         w.energy_sum = energy_sum
         w.won = won
         w.n_trapped = n_trapped
@@ -143,6 +145,34 @@ class CoreEngine:
         """Latch the win now (demonstrations and tests)."""
         self.core.force_win()
         self.w.won = True
+
+    # -- the game's frame (core/game.c) -----------------------------------------------
+    def frame(self, height: float) -> None:
+        """One whole frame from a whole frame, the trap at height during it (from its start,
+        not after the win), then its end: the win seen, the score fixed."""
+        self._update_tc_table()
+        while self.core.frame(float(height)) == LOG_FULL:
+            self._take_log()
+        self._take_log()
+        self._sync()
+
+    def frame_end(self) -> None:
+        """The end of a whole frame reached otherwise: the win seen, the score fixed."""
+        self.core.frame_end()
+
+    @property
+    def score(self) -> int | None:
+        """Atoms trapped at the end of the frame the win was seen in; None before."""
+        fixed = self.core.score()
+        return None if fixed is None else int(fixed[0])
+
+    def replay(self, runs: np.ndarray, limit: int) -> int:
+        """(height, frames) runs from a whole frame, up to the win or limit frames: the
+        frames played (no event log is kept)."""
+        self._update_tc_table()
+        frames = int(self.core.replay(np.ascontiguousarray(runs, dtype=np.float64), limit))
+        self._sync()
+        return frames
 
     # -- diagnostics --------------------------------------------------------------
     @property

@@ -7,6 +7,8 @@ are uniform in [v0 + k dv, v0 + (k + 1) dv] with k = (height of the row) /
 40 px, the original's row spacing: hotter atoms start higher for every R.
 The random numbers and the arithmetic are the shared start generator's
 (`physics.start`, issue 22.1): the same seed gives the same start in the page.
+The compiled core computes the same start (core/start.c, both editions' generator);
+this module is its readable oracle and the fallback where the core is missing.
 """
 
 from __future__ import annotations
@@ -16,6 +18,7 @@ import math
 import numpy as np
 
 from evapcool.limits import ParameterError
+from evapcool.physics.core import compiled
 from evapcool.physics.start import STREAM_DIRECTION, STREAM_JITTER, STREAM_SPEED, disk_points
 from evapcool.physics.start import uniforms as _uniforms
 
@@ -97,6 +100,16 @@ def _row(yc: float, need: int, m: int, spacing: float, jitter: float, a: float) 
         k = min(m, 2 * k)
 
 
+def _too_many(n: int, radius: float, curvature: float, found: int) -> ParameterError:
+    return ParameterError(
+        "n_atoms",
+        f"{n} atoms of radius {radius:g} do not fit in the cup "
+        f"(curvature {curvature:g}) below the window top (at most {found} fit)",
+        joint=("radius", "curvature"),
+        sep=": ",
+    )
+
+
 def cell_centres(n: int, radius: float, curvature: float, y_top: float) -> np.ndarray:
     """Centres of the first n cells, row by row from the bottom, centre-out in a row.
 
@@ -114,13 +127,7 @@ def cell_centres(n: int, radius: float, curvature: float, y_top: float) -> np.nd
     while found < n:
         yc = y0 + k * spacing
         if yc + cell > y_top:
-            raise ParameterError(
-                "n_atoms",
-                f"{n} atoms of radius {radius:g} do not fit in the cup "
-                f"(curvature {curvature:g}) below the window top (at most {found} fit)",
-                joint=("radius", "curvature"),
-                sep=": ",
-            )
+            raise _too_many(n, radius, curvature, found)
         m = int(math.sqrt(yc / curvature) / spacing) + 1
         xs = _row(yc, n - found, m, spacing, jitter, curvature)
         rows.append(np.column_stack((xs, np.full(len(xs), yc))))
@@ -140,7 +147,29 @@ def load_cup(
 
     Each atom sits at a uniform point of the jitter disk round its cell centre and moves
     in a uniform direction (a point of the ring 1/16 <= r^2 < 1, normalised by sqrt).
+    Computed by the compiled core where it is installed, else by `load_cup_reference`:
+    the same bits.
     """
+    module = compiled()
+    if module is None:
+        return load_cup_reference(n, radius, curvature, y_top, seed)
+    pos, vel = np.empty((n, 2)), np.empty((n, 2))
+    placed = module.load_cup(pos, vel, radius, curvature, y_top, seed)
+    if placed < 0:
+        raise RuntimeError(f"no point in the disk for an atom (seed {seed}): impossible odds")
+    if placed < n:
+        raise _too_many(n, radius, curvature, placed)
+    return pos, vel
+
+
+def load_cup_reference(
+    n: int,
+    radius: float,
+    curvature: float,
+    y_top: float,
+    seed: int,
+) -> tuple[np.ndarray, np.ndarray]:
+    """load_cup in NumPy: the readable oracle of core/start.c, the fallback without it."""
     centres = cell_centres(n, radius, curvature, y_top)
     jitter = radius * 8.0 / 12.0
     offset = disk_points(seed, STREAM_JITTER, n)
@@ -161,6 +190,9 @@ def capacity(radius: float, curvature: float, y_top: float) -> int:
     The count `cell_centres` fills before it would raise: whole rows of cells whose
     disks (cell radius R * 20/12) stay under y_top, wherever the jitter puts them.
     """
+    module = compiled()
+    if module is not None:
+        return int(module.cup_capacity(radius, curvature, y_top))
     jitter = radius * 8.0 / 12.0
     cell = radius + jitter
     spacing = 2.0 * cell

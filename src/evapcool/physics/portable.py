@@ -2,7 +2,8 @@
 
 IEEE 754 rounds + - * / and sqrt exactly, so Python, TypeScript and C agree on them bit
 for bit; pow, exp, log, sin and cos are left to each platform's library and may not.
-What decides a start, an event or the win uses only this module (twin: `portable.ts`).
+What decides a start, an event or the win uses only this module (twin: `core_power` in
+core/start.c, which the compiled core's Tc table and the page use).
 """
 
 from __future__ import annotations

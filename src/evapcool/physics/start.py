@@ -2,9 +2,10 @@
 
 Random numbers come from a counter-based hash (MurmurHash3's 32-bit finalizer, applied to
 the seed, a stream number and a counter), so the k-th number of a stream needs no state and
-NumPy computes a million of them at once while the page computes them one by one, with
+NumPy computes a million of them at once while the core computes them one by one, with
 the same bits. Everything that turns them into a start uses only + - * / and sqrt, which
-IEEE 754 rounds exactly in every language; `web/src/physics/start.ts` is the twin, and the
+IEEE 754 rounds exactly in every language; `core/start.c` is the twin both editions run
+(this module is its readable oracle and the fallback without the compiled core), and the
 golden starts in `web/test/golden/starts.json` hold both to it.
 """
 

@@ -33,8 +33,6 @@ let free: ArrayBuffer[] = [];
 let capacity = 0;
 let seq = 0;
 let physicsMs = 0;
-/** The score at the moment of the win (atoms may still leave in the rest of an advance). */
-let scoreAtWin: number | null = null;
 /** State changed since the last frame posted. */
 let changed = false;
 /** A display frame began since the last advance. */
@@ -79,7 +77,6 @@ function apply(command: Command): void {
     case "restart":
       makeRoom(command.config.nAtoms);
       g.restart(command.config);
-      scoreAtWin = null;
       break;
     case "forceWin":
       forceWin(g.sim);
@@ -124,7 +121,8 @@ function publish(): void {
   h[HEADER.escapedCount] = v.escaped.count;
   h[HEADER.capacity] = capacity;
   h[HEADER.physicsMs] = physicsMs;
-  h[HEADER.scoreAtWin] = scoreAtWin ?? NaN;
+  // The score the core fixed at the win's frame (atoms may still leave after it).
+  h[HEADER.scoreAtWin] = g.sim.score ?? NaN;
   changed = false;
   post({ type: "frame", buffer }, [buffer]);
 }
@@ -163,7 +161,6 @@ tick.port1.onmessage = () => {
 function start(config: GameConfig): void {
   makeRoom(config.nAtoms);
   game = new Game(makeSimulation, config);
-  game.onWin.push((g) => (scoreAtWin = g.score));
   changed = true;
   publish();
 }

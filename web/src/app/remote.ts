@@ -28,10 +28,10 @@ import {
   type ToWorker,
 } from "./worker-protocol";
 
-/** What the page uses of a game: the page's own `Game`, or the worker's seen through this. */
-export type GameLike = Pick<
+/** What the page uses of a game: the page's own `Game`, or the worker's seen through this
+ * (whose sim the page only reads: a SimLike). */
+export type GameLike = { readonly sim: SimLike } & Pick<
   Game,
-  | "sim"
   | "config"
   | "paused"
   | "speed"

@@ -2,8 +2,8 @@
 import { Simulation, type AtomSnapshot } from "../physics/index";
 import { readTrace, replayTrace, traceText } from "../physics/trace";
 
-/** The loader's own 64-gon test, for the settings' capacity (game/capacity.ts). */
-export { diskInsideCup } from "../physics/loading";
+/** The start's own count of the atoms a cup holds, for the settings (game/capacity.ts). */
+export { startCapacity } from "../physics/wasm";
 /** The WebAssembly core's bytes: the page hands them to its physics worker. */
 export { coreBytes, haveCore, provideCore } from "../physics/wasm";
 /** A fresh seed of the shared start generator, for a game that names none. */
@@ -24,10 +24,10 @@ export {
   type EscapeRule,
 } from "../physics/constants";
 import type { GameConfig } from "./rules";
-import type { AtomArrays, SimLike } from "./sim";
+import type { AtomArrays, GameSim, SimLike } from "./sim";
 
 /** The physics' Simulation with snapshots kept between frames (no allocation per frame). */
-export class EngineSim implements SimLike {
+export class EngineSim implements GameSim {
   private trappedSnap: AtomSnapshot | undefined;
   private escapedSnap: AtomSnapshot | undefined;
   private temperatureKey = "";
@@ -99,6 +99,18 @@ export class EngineSim implements SimLike {
   advance(dt: number): void {
     this.sim.advance(dt);
   }
+  frame(height: number): void {
+    this.sim.frame(height);
+  }
+  frameEnd(): void {
+    this.sim.frameEnd();
+  }
+  get score() {
+    return this.sim.score;
+  }
+  replay(runs: ReadonlyArray<readonly [number, number]>, limit: number): number {
+    return this.sim.replay(runs, limit);
+  }
   trapped(): AtomArrays {
     return (this.trappedSnap = this.sim.atoms("trapped", this.trappedSnap));
   }
@@ -107,7 +119,7 @@ export class EngineSim implements SimLike {
   }
 }
 
-export function makeSimulation(config: GameConfig): SimLike {
+export function makeSimulation(config: GameConfig): GameSim {
   const sim = new Simulation({
     nAtoms: config.nAtoms,
     radius: config.radius,

@@ -99,20 +99,18 @@ export interface Verdict {
 }
 
 /** Play the recording headless with the game's rules: hold each frame's height for one whole
- * frame; stop at the win or at the end of the moves (Python's replay). */
+ * frame; stop at the win or at the end of the moves (the core's replay, core/game.c). */
 export function replay(rec: Recording, factory: SimFactory): Verdict {
   const game = new Game(factory, configOf(rec.settings, rec.seed));
   game.paused = false;
-  let frames = 0;
-  for (const [height, n] of rec.moves) {
-    for (let k = 0; k < n; k++) {
-      game.setTrapHeight(height);
-      game.runFrames(1);
-      frames += 1;
-      if (game.won) return { won: true, score: game.score ?? 0, frames };
-    }
-  }
-  return { won: false, score: 0, frames };
+  // The slider's clamp, as Game.setTrapHeight applies it.
+  const runs = rec.moves.map(
+    ([h, n]) => [Math.min(HEIGHT_MAX, Math.max(HEIGHT_MIN, h)), n] as const,
+  );
+  const all = rec.moves.reduce((sum, [, n]) => sum + n, 0);
+  const frames = game.sim.replay(runs, Math.min(all, 2 ** 31 - 1));
+  const score = game.sim.score;
+  return { won: score !== null, score: score ?? 0, frames };
 }
 
 /** The replayed result if it is the one claimed, else ReplayError(WRONG_SCORE). */

@@ -5,11 +5,13 @@
  * Time: the physics runs in whole frames of 1/30 s of play (x speed). Trap-height
  * changes wait for the next frame boundary, so a run depends on what the player did
  * in which frame, never on the display's rate; between boundaries the exact physics is
- * advanced to the moment drawn, so motion stays smooth at 60 or 120 Hz.
+ * advanced to the moment drawn, so motion stays smooth at 60 or 120 Hz. The whole frame,
+ * the win seen at its end and the score fixed there are the core's (core/game.c, the same
+ * C as the desktop's: GameSim).
  */
 import { MoveRecorder } from "./moves";
 import { FPS, N_ATOMS, ATOM_RADIUS, TC_EXPONENT_SEED, type EscapeRule } from "./constants";
-import type { SimLike } from "./sim";
+import type { GameSim } from "./sim";
 
 export const HEIGHT_MIN = 25;
 export const HEIGHT_MAX = 450;
@@ -42,7 +44,7 @@ export const DEFAULT_CONFIG: GameConfig = {
   escape: "rim",
 };
 
-export type SimFactory = (config: GameConfig) => SimLike;
+export type SimFactory = (config: GameConfig) => GameSim;
 
 /** The speed as a number, or RangeError naming the allowed range. */
 export function checkSpeed(speed: unknown): number {
@@ -57,7 +59,7 @@ export function checkSpeed(speed: unknown): number {
 export class Game {
   config: GameConfig;
   speed: number;
-  sim!: SimLike;
+  sim!: GameSim;
   private pausedNow = true;
   /** Play time (s) at which the win was first seen; null before. */
   wonAt: number | null = null;
@@ -73,8 +75,6 @@ export class Game {
   private script: number[] | null = null;
   /** A trap height asked for since the last frame boundary (applied there). */
   private pendingHeight: number | null = null;
-  /** Atoms in the cup at the whole frame the win was seen (the score). */
-  private wonWith: number | null = null;
 
   constructor(
     private readonly factory: SimFactory,
@@ -93,7 +93,6 @@ export class Game {
     this.sim = sim;
     this.paused = true;
     this.wonAt = null;
-    this.wonWith = null;
     this.pendingHeight = null;
     this.moves = new MoveRecorder();
     this.script = null;
@@ -194,34 +193,38 @@ export class Game {
     return this.advance(1);
   }
 
-  /** Advance `frames`, stopping at each whole frame to apply input and check the win. */
+  /** Advance `frames`, stopping at each whole frame: the win is seen and the score fixed at
+   * its end, then the held height applies (the core's frame rule: GameSim.frame), so a game
+   * (its win, its score) depends on the heights of whole frames, not on the display's step. */
   private advance(frames: number): number {
     const sim = this.sim;
     const end = sim.time + frames;
     while (sim.time < end) {
       const boundary = Math.floor(sim.time) + 1;
-      const target = Math.min(boundary, end);
-      sim.advance(target - sim.time);
+      if (Number.isInteger(sim.time) && end >= boundary) {
+        sim.frame(sim.trapHeight); // a whole frame in one step
+      } else {
+        sim.advance(Math.min(boundary, end) - sim.time);
+        if (sim.time >= boundary) sim.frameEnd();
+      }
       if (sim.time >= boundary) {
         if (this.wonAt === null) {
           // The moves end with the frame of the win.
           this.moves.frame(sim.trapHeight);
           for (const listener of this.onFrame) listener(sim.trapHeight);
         }
+        this.checkWin();
         this.scripted();
         this.applyPending();
-        // The win is checked at whole frames only: a game (its win, its score) depends on
-        // the heights of whole frames, not on the display's step (replays rely on it).
-        this.checkWin();
       }
     }
     return frames;
   }
 
+  /** The win seen at a frame's end (the score fixed there), once. */
   private checkWin(): void {
-    if (this.sim.won && this.wonAt === null) {
+    if (this.sim.score !== null && this.wonAt === null) {
       this.wonAt = this.playTime;
-      this.wonWith = this.sim.nTrapped;
       for (const callback of [...this.onWin]) callback(this);
     }
   }
@@ -238,7 +241,7 @@ export class Game {
   /** Atoms in the cup when the win was seen (at a whole frame, fixed then); null before. */
   get score(): number | null {
     if (!this.sim.won) return null;
-    return this.wonWith ?? this.sim.nTrapped;
+    return this.sim.score ?? this.sim.nTrapped;
   }
 
   /** Every atom has left the cup: nothing can happen but a restart. */

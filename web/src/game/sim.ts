@@ -42,6 +42,23 @@ export interface SimLike {
   escaped(): AtomArrays;
 }
 
+/**
+ * A simulation the game plays: the frame step, its win and score and the replay are the
+ * core's (core/game.c, the same C in both editions), so every edition scores a game alike.
+ */
+export interface GameSim extends SimLike {
+  /** One whole frame from a whole frame, the trap at `height` during it (from its start, not
+   * after the win), then its end: the win seen, the score fixed. */
+  frame(height: number): void;
+  /** The end of a whole frame reached by advance: the win seen, the score fixed. */
+  frameEnd(): void;
+  /** Atoms trapped at the end of the whole frame the win was seen in; null before. */
+  readonly score: number | null;
+  /** [height, frames] runs from a whole frame, up to the win or `limit` frames: the frames
+   * played. */
+  replay(runs: ReadonlyArray<readonly [number, number]>, limit: number): number;
+}
+
 export function emptyAtoms(): AtomArrays {
   const z = () => new Float64Array(0);
   return { x: z(), y: z(), vx: z(), vy: z(), radius: z(), mass: z(), count: 0 };

@@ -22,7 +22,6 @@ import {
   type EventName,
 } from "./constants";
 import { checkedConfig, type SimulationConfig, type SimulationOptions } from "./config";
-import { loadCup } from "./loading";
 import { escapeBox, roomTop, type Room } from "./room";
 import { randomSeed } from "./start";
 import {
@@ -35,7 +34,7 @@ import {
   type SimulationState,
   type StateInput,
 } from "./state";
-import { STORED, WasmEngine, type EngineAtoms, type EngineCore } from "./wasm";
+import { STORED, WasmEngine, loadCup, type EngineAtoms, type EngineCore } from "./wasm";
 import { checkStart, checkWorld } from "./validation";
 import {
   CURVATURE as CURVATURE_RANGE,
@@ -582,6 +581,32 @@ export class Simulation {
   /** Declare the gas condensed now (demonstrations and tests). */
   forceWin(): void {
     this.engine.forceWin();
+  }
+
+  // -- the game's frame (core/game.c: written once for both editions) -------------------
+  /**
+   * One whole frame from a whole frame, the trap at `height` during it: the height takes
+   * effect at the frame's start (not after the win: the score is the atoms left), and the
+   * frame's end sees the win and fixes the score. height: within the trap's limits.
+   */
+  frame(height: number): void {
+    this.engine.frame(height);
+  }
+
+  /** The end of a whole frame reached by advance: the win seen now, the score fixed. */
+  frameEnd(): void {
+    this.engine.frameEnd();
+  }
+
+  /** Atoms trapped at the end of the whole frame the win was seen in; null before. */
+  get score(): number | null {
+    return this.engine.score;
+  }
+
+  /** Hold each [height, frames] run's height for that many whole frames (frame), from a whole
+   * frame, up to the end of the frame the win is seen in or `limit` frames: the frames played. */
+  replay(runs: ReadonlyArray<readonly [number, number]>, limit: number): number {
+    return this.engine.replay(runs, limit);
   }
 
   // -- counters --------------------------------------------------------------------------

@@ -9,7 +9,8 @@
  * the core is handed sound states.
  */
 import packedCore from "virtual:evapcool-wasm";
-import { power } from "./portable";
+import { ParameterError, pyG } from "../limits";
+import { SEED_PORTABLE_MAX } from "./start";
 
 /** Everything an engine needs besides the atoms. */
 export interface EngineSetup {
@@ -97,6 +98,16 @@ export interface EngineCore {
   gridErrors(): number;
   /** Event k of the log: [kind, i, j, time] with world indices. */
   logEntry(k: number): [number, number, number, number];
+  /** One whole frame from a whole frame, the trap at `height` during it (from its start,
+   * not after the win), then its end: the win seen, the score fixed (core/game.c). */
+  frame(height: number): void;
+  /** The end of a whole frame reached by advanceTo: the win seen, the score fixed. */
+  frameEnd(): void;
+  /** Atoms trapped at the end of the whole frame the win was seen in; null before. */
+  readonly score: number | null;
+  /** [height, frames] runs from a whole frame, up to the win or `limit` frames: the frames
+   * played (no event log is kept). */
+  replay(runs: ReadonlyArray<readonly [number, number]>, limit: number): number;
 }
 
 /** A Core's address in the instance's memory (core/tables.h). */
@@ -133,7 +144,6 @@ interface CoreExports {
   core_state_at(core: Core, i: number, t: number): number;
   core_sequential_energy_sum(core: Core): number;
   core_grid_errors(core: Core): number;
-  core_tc_table_address(core: Core): number;
   core_log_address(core: Core): number;
   core_log_clear(core: Core): void;
   core_time(core: Core): number;
@@ -151,6 +161,24 @@ interface CoreExports {
   core_nx(core: Core): number;
   core_ny(core: Core): number;
   core_cell(core: Core): number;
+  core_score(core: Core): number;
+  core_fill_tc_table(core: Core, tc0: number, exponent: number): void;
+  core_power(x: number, p: number): number;
+  core_frame(core: Core, height: number): number;
+  core_frame_end(core: Core): number;
+  core_replay(core: Core, runs: number, nRuns: number, limit: number): number;
+  core_buffer(core: Core, n: number): number;
+  core_load_cup(
+    pos: number,
+    vel: number,
+    n: number,
+    radius: number,
+    curvature: number,
+    yTop: number,
+    seedLo: number,
+    seedHi: number,
+  ): number;
+  core_cup_capacity(radius: number, curvature: number, yTop: number): number;
 }
 
 /** core_advance_to's answer (CORE_LOG_FULL) when the log must be emptied before it goes on. */
@@ -191,6 +219,69 @@ function coreModule(): WebAssembly.Module {
     compiled = new WebAssembly.Module(bytes);
   }
   return compiled;
+}
+
+/** A fresh instance of the core (its own memory: an engine, or one start computed). */
+function instance(): CoreExports {
+  return new WebAssembly.Instance(coreModule(), {}).exports as unknown as CoreExports;
+}
+
+/**
+ * The start from a seed (core/start.c, the shared start generator of both editions): positions
+ * and velocities ([x0, y0, ...], [vx0, vy0, ...]) of n atoms of equal radius, rows of cells from
+ * the bottom, each atom at a uniform point of its cell's jitter disk, moving in a uniform
+ * direction. ParameterError if they do not fit below yTop; RangeError for a bad seed.
+ */
+export function loadCup(
+  n: number,
+  radius: number,
+  curvature: number,
+  yTop: number,
+  seed: number,
+): { positions: Float64Array; velocities: Float64Array } {
+  if (!Number.isSafeInteger(seed) || seed < 0)
+    throw new RangeError(
+      `seed must be a whole number from 0 to ${SEED_PORTABLE_MAX} (got ${seed})`,
+    );
+  const c = instance();
+  const at = c.core_buffer(c.core_new(), 4 * n);
+  if (at === 0) throw new RangeError(OUT_OF_MEMORY(n));
+  const placed = c.core_load_cup(
+    at,
+    at + 16 * n,
+    n,
+    radius,
+    curvature,
+    yTop,
+    seed >>> 0,
+    Math.floor(seed / 4294967296) >>> 0,
+  );
+  if (placed < 0)
+    throw new Error(`no point in the disk for an atom (seed ${seed}): impossible odds`);
+  if (placed < n)
+    throw new ParameterError(
+      "nAtoms",
+      `${n} atoms of radius ${pyG(radius)} do not fit in the cup below the window top ` +
+        `(at most ${placed} fit)`,
+      ": ",
+    );
+  const out = new Float64Array(c.memory.buffer, at, 4 * n);
+  return { positions: out.slice(0, 2 * n), velocities: out.slice(2 * n) };
+}
+
+/** An instance for the core's functions that take no memory: one serves every call. */
+let tools: CoreExports | null = null;
+
+/** How many atoms of this radius the start places with every disk below yTop (core/start.c). */
+export function startCapacity(radius: number, curvature: number, yTop: number): number {
+  tools ??= instance();
+  return tools.core_cup_capacity(radius, curvature, yTop);
+}
+
+/** x^p for x >= 0 and 0 < p <= 10 from products and square roots: the same bits everywhere. */
+export function power(x: number, p: number): number {
+  tools ??= instance();
+  return tools.core_power(x, p);
 }
 
 /** The atoms' columns where core_allocate placed the inputs: 7 columns of doubles, then status. */
@@ -240,8 +331,7 @@ export class WasmEngine implements EngineCore {
     this.winRule = setup.winRule;
     this.tcExponent = setup.tcExponent;
     this.recordEvents = setup.recordEvents;
-    const instance = new WebAssembly.Instance(coreModule(), {});
-    const c = instance.exports as unknown as CoreExports;
+    const c = instance();
     this.c = c;
     const core = c.core_new();
     if (core === 0) throw new RangeError(OUT_OF_MEMORY(n));
@@ -271,8 +361,7 @@ export class WasmEngine implements EngineCore {
     this.initialTemperature = atoms.initialTemperature ?? (nTrapped > 0 ? energySum / nTrapped : 0);
     // seed Eq. (46): Tc0 is 3/4 of the starting temperature; the core reads Tc(N) from a table.
     this.tc0 = 0.75 * this.initialTemperature;
-    const table = new Float64Array(c.memory.buffer, c.core_tc_table_address(core), n + 1);
-    for (let k = 0; k <= n; k++) table[k] = this.criticalTemperatureOf(k);
+    c.core_fill_tc_table(core, this.tc0, this.tcExponent);
     if (!c.core_start(core, energySum, setup.trapHeight)) throw new RangeError(OUT_OF_MEMORY(n));
     this.gridColumns = c.core_nx(core);
     this.gridRows = c.core_ny(core);
@@ -329,8 +418,30 @@ export class WasmEngine implements EngineCore {
     this.c.core_force_win(this.core);
   }
 
+  frame(height: number): void {
+    while (this.c.core_frame(this.core, height) === LOG_FULL) this.drainLog();
+    this.drainLog();
+  }
+
+  frameEnd(): void {
+    this.c.core_frame_end(this.core);
+  }
+
+  get score(): number | null {
+    const score = this.c.core_score(this.core);
+    return score < 0 ? null : score;
+  }
+
+  replay(runs: ReadonlyArray<readonly [number, number]>, limit: number): number {
+    const at = this.c.core_buffer(this.core, 2 * runs.length);
+    if (at === 0 && runs.length > 0) throw new RangeError(OUT_OF_MEMORY(this.nAtoms));
+    const buffer = new Float64Array(this.c.memory.buffer, at, 2 * runs.length);
+    runs.forEach(([height, frames], k) => buffer.set([height, frames], 2 * k));
+    return this.c.core_replay(this.core, at, runs.length, limit);
+  }
+
   criticalTemperatureOf(nTrapped: number): number {
-    return this.tc0 * power(nTrapped / this.nAtoms, this.tcExponent);
+    return this.tc0 * this.c.core_power(nTrapped / this.nAtoms, this.tcExponent);
   }
 
   sequentialEnergySum(): number {

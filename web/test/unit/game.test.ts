@@ -245,6 +245,19 @@ class FakeSim implements SimLike {
     this.heights.push([this.time, this.trapHeight]);
     if (this.temperature < this.criticalTemperature) this.won = true;
   }
+  // The core's frame rule (core/game.c), as GameSim promises it.
+  score: number | null = null;
+  frame(height: number) {
+    if (!this.won && height !== this.trapHeight) this.trapHeight = height;
+    this.advance(1);
+    this.frameEnd();
+  }
+  frameEnd() {
+    if (this.won && this.score === null) this.score = this.nTrapped;
+  }
+  replay(): number {
+    throw new Error("the game's rules never replay");
+  }
   trapped(): AtomArrays {
     const z = new Float64Array(0);
     return { x: z, y: z, vx: z, vy: z, radius: z, mass: z, count: 0 };

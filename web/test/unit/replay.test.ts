@@ -2,7 +2,7 @@
 // evapcool.game.replay, checked by replaying with the game's own rules.
 import fc from "fast-check";
 import { describe, expect, test } from "vitest";
-import { makeSimulation } from "../../src/game/engine";
+import { forceWin, makeSimulation } from "../../src/game/engine";
 import {
   DAMAGED,
   EDITED,
@@ -105,4 +105,24 @@ describe("replay codes", () => {
       { numRuns: 60 },
     );
   });
+});
+
+test("the win is seen at its frame's end, before a height asked in that frame applies", () => {
+  // The replay's order (core/game.c): a knife cut made by that height cannot change the score.
+  const games = [0, 1].map(() => new Game(makeSimulation, { seed: 3, escape: "knife" }));
+  for (const game of games) {
+    game.paused = false;
+    game.update(0.5 / 30);
+  }
+  const [cut, kept] = games;
+  expect(cut.setTrapHeight(25)).toBe(true); // held for the next frame: the knife cuts at t = 1
+  for (const game of games) {
+    forceWin(game.sim); // the gas condenses within this frame
+    game.update(0.5 / 30);
+  }
+  expect(cut.wonAt).toBe(1 / 30);
+  expect(kept.wonAt).toBe(1 / 30);
+  expect(cut.sim.nTrapped).toBeLessThan(kept.sim.nTrapped);
+  expect(cut.score).toBe(kept.sim.nTrapped);
+  expect(kept.score).toBe(kept.sim.nTrapped);
 });
