@@ -1,7 +1,6 @@
 /*
  * The event calendar: one key per row, (key_t, rank, tie_a, tie_b), the least handed out
- * first (Paul, J. Comput. Phys. 221, 615 (2007); Smallenburg 2022), the twin of
- * calendar.py and web/src/physics/queue.ts.
+ * first (Paul, J. Comput. Phys. 221, 615 (2007); Smallenburg 2022).
  *
  * Time is cut into bins of width bin_width from bin_base. Rows whose key lies in the current
  * bin or earlier sit in a small indexed 4-ary heap ordered by the full key; later ones sit,
@@ -16,7 +15,7 @@
 /* The ring spans about this many events per row into the future. */
 #define RING_EVENTS_PER_ATOM 2
 
-/* The ring's size: a power of two >= 16 near 2 n / 8 (queue.ts's rule). */
+/* The ring's size: a power of two >= 16 near 2 n / 8. */
 void calendar_init(Core *core, int32_t n) {
   double want = __builtin_floor((double)(RING_EVENTS_PER_ATOM * n) / EVENTS_PER_BIN);
   if (want < 1) want = 1;

@@ -1,5 +1,5 @@
 /*
- * What each event does (twin of events.py): one handler per event kind, the clock, the
+ * What each event does, as the reference engine (physics/reference.py) does it: one handler per event kind, the clock, the
  * log, the win rule and leaving the trap.
  */
 #include "tables.h"

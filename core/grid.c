@@ -1,5 +1,5 @@
 /*
- * The cell grid (twin of grid.py): trapped atoms in cells 1.1 contact distances wide, the
+ * The cell grid: trapped atoms in cells 1.1 contact distances wide, the
  * edge cells reaching to infinity. `cells` holds the first row of every cell (row-major),
  * then the next row in the same cell for every row; plan.cell_prev links back.
  */
@@ -51,7 +51,7 @@ void cell_unlink(Core *core, int32_t i) {
  * (below the height of the most energetic one, y <= E / (m g)), as long as that takes at
  * most 8 cells per atom (plus 64); beyond it atoms sit in the edge cells, which reach to
  * infinity.
- * Sets run.cell, nx, ny, grid_x0, grid_y0, n_cells (engine.ts's gridShape).
+ * Sets run.cell, nx, ny, grid_x0, grid_y0, n_cells.
  */
 int32_t grid_shape(Core *core) {
   int32_t n = core->run.n_atoms;

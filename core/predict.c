@@ -1,5 +1,5 @@
 /*
- * Predictions (twin of predict.py): each row keeps only its earliest real event (wall, exit
+ * Predictions: each row keeps only its earliest real event (wall, exit
  * or pair) and its next cell crossing; the key is the earlier of the two.
  */
 #include "tables.h"

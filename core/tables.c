@@ -1,6 +1,6 @@
 /*
  * Reading the tables by World index, and the scalars, for the TypeScript wrapper
- * (web/src/physics/wasm.ts); the tables themselves are declared in tables.h.
+ * (web/src/physics/wasm.ts, src/evapcool/physics/_coremodule.c); the tables themselves are declared in tables.h.
  */
 #include "tables.h"
 

@@ -1,7 +1,7 @@
 /*
  * The engine core's tables, written once for both editions: compiled to WebAssembly for the
  * page (web/scripts/wasm-plugin.mjs) and natively as the Python package's extension
- * (setup.py, src/evapcool/physics/_core.c). An engine is a `Core`: its scalars and tables,
+ * (setup.py, src/evapcool/physics/_coremodule.c). An engine is a `Core`: its scalars and tables,
  * allocated once at the start (no allocation per event); a process may hold several.
  *
  * Row i of the three per-atom tables belongs to the same atom, but not to atom i of the
