@@ -3,7 +3,7 @@
  * name box, the settings screen, play), taps on the drawn panels, and the window's events
  * (resize, pixel ratio, another tab's scores, hiding, full screen).
  */
-import { NAME_MAX } from "../game/highscores";
+import { cutName, NAME_CODE_POINTS } from "../game/highscores";
 import { atLeast, contains, MIN_TARGET_CSS } from "../view/geometry";
 import type { Target } from "../view/overlays";
 import type { App } from "./app";
@@ -86,7 +86,8 @@ export class Input {
         return;
       if (this.key(ev.key)) ev.preventDefault();
     });
-    nameInput.maxLength = NAME_MAX * 2; // code points are cut by the table; this bounds typing
+    // The table keeps whole characters (cutName); this bounds typing in UTF-16 units.
+    nameInput.maxLength = NAME_CODE_POINTS * 2;
     nameInput.addEventListener("keydown", (ev) => {
       if (ev.isComposing) return;
       if (ev.key === "Enter") {
@@ -99,8 +100,8 @@ export class Input {
       ev.stopPropagation();
     });
     nameInput.addEventListener("input", () => {
-      const chars = Array.from(nameInput.value);
-      if (chars.length > NAME_MAX) nameInput.value = chars.slice(0, NAME_MAX).join("");
+      const cut = cutName(nameInput.value);
+      if (cut !== nameInput.value) nameInput.value = cut;
     });
   }
 

@@ -11,8 +11,9 @@ export const NOTICE_SECONDS = 8;
 export const NOTICE_MAX = 5;
 /** Notices shown at once; the rest follow page by page, counted on the last line. */
 const NOTICE_PAGE = NOTICE_MAX - 1;
-/** Notices kept at most (older ones are dropped, each was spoken when it came). */
-const NOTICE_KEPT = 100;
+/** Notices kept at most: beyond, the newest are counted on the last kept line instead
+ * (each was spoken when it came), so the first is always shown. */
+export const NOTICE_KEPT = 100;
 /** The last line while more notices wait for their turn. */
 export const moreNotices = (n: number): string => t("page.more_notices", { n });
 /** The status line is rewritten at most this often, ms (screen readers read it on change). */
@@ -21,6 +22,8 @@ const STATUS_EVERY_MS = 500;
 export class Notices {
   /** [text, shown from, shown until] (applet clock, s). */
   private list: Array<[string, number, number]> = [];
+  /** Notices past NOTICE_KEPT not kept, counted on the last kept line. */
+  private dropped = 0;
 
   constructor(
     private readonly live: HTMLElement,
@@ -35,11 +38,17 @@ export class Notices {
     this.changed();
     const now = this.clock();
     this.list = this.list.filter(([, , until]) => until > now);
+    if (this.list.length < NOTICE_KEPT) this.dropped = 0;
+    this.say(text);
+    if (this.list.length >= NOTICE_KEPT) {
+      // Full: the last kept line says how many more came (they were spoken).
+      this.dropped += 1;
+      this.list[NOTICE_KEPT - 1][0] = moreNotices(this.dropped + 1);
+      return;
+    }
     const page = Math.floor(this.list.length / NOTICE_PAGE);
     const from = page === 0 ? now : Math.max(now, this.list[page * NOTICE_PAGE - 1][2]);
     this.list.push([text, from, from + NOTICE_SECONDS]);
-    this.list.splice(0, Math.max(0, this.list.length - NOTICE_KEPT));
-    this.say(text);
   }
 
   /** The notices showing now, oldest first, and a line counting those still to come. */

@@ -122,7 +122,7 @@ export class Verifier {
     return this.results.map((r) => {
       const short = r.code.length > 18 ? `${r.code.slice(0, 14)}...` : r.code;
       if (!r.verdict) {
-        const key = REASON_KEYS[r.reason];
+        const key = Object.hasOwn(REASON_KEYS, r.reason) ? REASON_KEYS[r.reason] : null;
         return t("verify.rejected", { reason: key ? t(key) : r.reason, code: short });
       }
       rank += 1;

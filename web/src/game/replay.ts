@@ -17,6 +17,12 @@ export const EDITION_VERSION: string = version;
 export const MAX_FRAMES = 36_000;
 export const MAX_ATOMS = 400;
 export const MAX_CODE_CHARS = 200_000;
+/** The longest a run [height,frames], comma, can be written: a height as JSON writes a float
+ * (at most 24 characters, "1.2345678901234567e-100"), frames of at most 5 digits. */
+const RUN_CHARS = 32;
+/** The longest recording's JSON: one run per frame of the longest game, and its other fields.
+ * A code unpacking to more is refused as it unpacks, before it is all in memory. */
+export const MAX_JSON_BYTES = MAX_FRAMES * RUN_CHARS + 4096;
 
 /** Why a code or recording is rejected (the reasons both editions give). */
 export const DAMAGED = "damaged";

@@ -124,7 +124,7 @@ export function fromMapping(data: Record<string, unknown>): [Settings, string[]]
     .sort();
   if (unknown.length) notices.push(t("notice.settings_unknown", { names: unknown.join(", ") }));
   function take<T>(name: FieldName, check: (v: unknown) => T, fallback: T): T {
-    if (!(name in data)) return fallback;
+    if (!Object.hasOwn(data, name)) return fallback;
     try {
       return check(data[name]);
     } catch (err) {
