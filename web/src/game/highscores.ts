@@ -5,7 +5,6 @@
  * the desktop's JSON format. A damaged or foreign stored table is set aside and reported.
  */
 import { t } from "../i18n";
-import { shown } from "../limits";
 import { formatDate, PREFIX, readKey, setAside, writeKey, type KeyValue } from "./store";
 
 export const FORMAT_VERSION = 1;
@@ -92,6 +91,12 @@ function validDate(date: string): boolean {
   t.setUTCFullYear(y, mo - 1, d);
   const real = t.getUTCMonth() === mo - 1 && t.getUTCDate() === d;
   return y >= 1 && real && h < 24 && mi < 60 && s < 60;
+}
+
+/** A stored value as a refusal quotes it: its JSON, cut to 40 characters. */
+function shown(value: unknown): string {
+  const chars = Array.from(JSON.stringify(value) ?? String(value));
+  return chars.length <= 40 ? chars.join("") : `${chars.slice(0, 39).join("")}…`;
 }
 
 /** Parse one stored row; throws Error saying what is off. */
