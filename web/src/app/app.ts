@@ -75,6 +75,8 @@ export interface AppOptions {
   notices?: string[];
   /** The physics worker to play in (absent: the page's own loop plays). */
   worker?: Worker | null;
+  /** Makes the verify panel's worker (absent: the panel replays codes in the page). */
+  verifyWorker?: () => Worker;
   /** The language of the browser and the address (the language menu's "as the browser"). */
   browserLocale?: string;
 }
@@ -212,7 +214,9 @@ export class App implements Animated {
         screen: this.screen,
         overlayZoom: () => this.overlayZoom(),
         say: (t) => this.say(t),
+        notify: (t) => this.notify(t),
         redraw: () => (this.dirty = true),
+        makeWorker: () => opts.verifyWorker?.() ?? null,
       },
       el.root,
     );

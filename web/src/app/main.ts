@@ -95,6 +95,7 @@ async function main(): Promise<void> {
       config: { seed: params.seed, speed: params.speed },
       notices: [...notices, ...params.notices],
       worker,
+      verifyWorker: () => new PhysicsWorker({ name: "evapcool verify" }),
       browserLocale: browser,
     },
   );

@@ -1,0 +1,48 @@
+/**
+ * One pasted replay code checked: decoded in the page (bounded: replaycode.ts refuses a
+ * code as it unpacks past the longest game), then replayed with the game's rules, in the
+ * verify panel's worker (physics.worker.ts) or the page's own loop where no worker runs.
+ */
+import { makeSimulation } from "../game/engine";
+import { ReplayError, verify, type Recording, type Verdict } from "../game/replay";
+import { decode } from "../game/replaycode";
+
+/** One pasted code's outcome. */
+export interface Checked {
+  code: string;
+  verdict: Verdict | null;
+  edition: string;
+  reason: string;
+}
+
+/** A code to replay (its recording), or its outcome already (it could not be decoded). */
+export type Decoded = { code: string; recording: Recording } | Checked;
+
+const refused = (code: string, err: unknown): Checked => {
+  const reason = err instanceof ReplayError ? err.reason : (err as Error).message;
+  return { code, verdict: null, edition: "", reason };
+};
+
+export async function decodeCode(code: string): Promise<Decoded> {
+  try {
+    return { code, recording: await decode(code) };
+  } catch (err) {
+    return refused(code, err);
+  }
+}
+
+/** The outcome of replaying a decoded code (the long part: up to 36 000 frames). */
+export function replayed(item: Decoded): Checked {
+  if (!("recording" in item)) return item;
+  const { code, recording } = item;
+  try {
+    return {
+      code,
+      verdict: verify(recording, makeSimulation),
+      edition: recording.edition,
+      reason: "",
+    };
+  } catch (err) {
+    return refused(code, err);
+  }
+}
