@@ -22,7 +22,9 @@ const STATUS_EVERY_MS = 500;
 export class Notices {
   /** [text, shown from, shown until] (applet clock, s). */
   private list: Array<[string, number, number]> = [];
-  /** Notices past NOTICE_KEPT not kept, counted on the last kept line. */
+  /** The last kept line when full: it counts itself and `dropped` more. */
+  private summary: [string, number, number] | null = null;
+  /** Notices past NOTICE_KEPT not kept, counted on the summary line. */
   private dropped = 0;
 
   constructor(
@@ -38,12 +40,13 @@ export class Notices {
     this.changed();
     const now = this.clock();
     this.list = this.list.filter(([, , until]) => until > now);
-    if (this.list.length < NOTICE_KEPT) this.dropped = 0;
+    if (this.summary && !this.list.includes(this.summary)) [this.summary, this.dropped] = [null, 0];
     this.say(text);
     if (this.list.length >= NOTICE_KEPT) {
       // Full: the last kept line says how many more came (they were spoken).
+      this.summary ??= this.list[this.list.length - 1];
       this.dropped += 1;
-      this.list[NOTICE_KEPT - 1][0] = moreNotices(this.dropped + 1);
+      this.summary[0] = moreNotices(this.dropped + 1);
       return;
     }
     const page = Math.floor(this.list.length / NOTICE_PAGE);
@@ -55,7 +58,8 @@ export class Notices {
   get visible(): string[] {
     const now = this.clock();
     const shown = this.list.filter(([, from, until]) => from <= now && until > now);
-    const waiting = this.list.filter(([, from]) => from > now).length;
+    const summary = this.summary && this.summary[1] > now ? this.dropped : 0;
+    const waiting = this.list.filter(([, from]) => from > now).length + summary;
     const lines = shown.map(([text]) => text);
     return waiting > 0 ? [...lines, moreNotices(waiting)] : lines;
   }
