@@ -48,10 +48,10 @@ export function graphemes(text: string): string[] {
   return Array.from(GRAPHEMES.segment(text), (s) => s.segment);
 }
 
-/** A character kept whole if it is printable, else a space. */
+/** A character kept whole if it is printable, else a space (a space with a joiner too). */
 function cleanCluster(cluster: string): string {
   const [first, ...rest] = Array.from(cluster);
-  return printable(first) && rest.every(inCluster) ? cluster : " ";
+  return first !== " " && printable(first) && rest.every(inCluster) ? cluster : " ";
 }
 
 /** The first whole characters of text: at most maxLength, and NAME_CODE_POINTS code points. */
