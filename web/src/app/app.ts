@@ -28,6 +28,7 @@ import {
   type TableCell,
   type Target,
 } from "../view/overlays";
+import { drawReadout } from "../view/readout";
 import { Scene, speedText } from "../view/scene";
 import { drawText } from "../view/text";
 import { Autopilot } from "../game/autopilot";
@@ -127,6 +128,8 @@ export class App implements Animated {
   tableCells: TableCell[] = [];
   /** The help's row size as last drawn (logical px; tests check it is legible). */
   helpSize = 0;
+  /** The tall readout's atom count size as last drawn (logical px; 0: none drawn). */
+  readoutSize = 0;
   /** Whether those targets were drawn zoomed with the panels (overlayZoom) or on the scene. */
   targetsZoomed = false;
   readonly drawn: DrawnControls = {
@@ -663,6 +666,7 @@ export class App implements Animated {
     this.drawScene(ctx);
     this.scene.drawFrame(ctx, sceneGame(g), l.sceneHeight, 16 / l.scale);
     this.controls.draw(ctx);
+    this.readoutSize = l.readout ? drawReadout(ctx, l.readout, sim) : 0;
     this.drawMessages(ctx);
     this.verifier.show(this.overlay === "verify");
     this.drawOverlay(ctx);
