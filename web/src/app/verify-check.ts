@@ -4,7 +4,7 @@
  * verify panel's worker (physics.worker.ts) or the page's own loop where no worker runs.
  */
 import { makeSimulation } from "../game/engine";
-import { ReplayError, verify, type Recording, type Verdict } from "../game/replay";
+import { checkClaim, replay, ReplayError, type Recording, type Verdict } from "../game/replay";
 import { decode } from "../game/replaycode";
 
 /** One pasted code's outcome. */
@@ -36,12 +36,9 @@ export function replayed(item: Decoded): Checked {
   if (!("recording" in item)) return item;
   const { code, recording } = item;
   try {
-    return {
-      code,
-      verdict: verify(recording, makeSimulation),
-      edition: recording.edition,
-      reason: "",
-    };
+    // decode checked the recording's fields (the worker need not carry those checks).
+    const verdict = checkClaim(recording, replay(recording, makeSimulation));
+    return { code, verdict, edition: recording.edition, reason: "" };
   } catch (err) {
     return refused(code, err);
   }

@@ -124,7 +124,11 @@ export function replay(rec: Recording, factory: SimFactory): Verdict {
 /** The replayed result if it is the one claimed, else ReplayError(WRONG_SCORE). */
 export function verify(rec: Recording, factory: SimFactory): Verdict {
   checkRecording(rec);
-  const got = replay(rec, factory);
+  return checkClaim(rec, replay(rec, factory));
+}
+
+/** The replayed result if it is the one the recording claims, else ReplayError(WRONG_SCORE). */
+export function checkClaim(rec: Recording, got: Verdict): Verdict {
   if (got.won !== rec.won || got.score !== rec.score || got.frames !== rec.frames)
     throw new ReplayError(
       WRONG_SCORE,
