@@ -1,63 +1,47 @@
 /**
- * The applet in the page, composed of its rooms: the screen's layout (layout.ts), the
- * controls over the canvas (controls.ts), input (input.ts), the frame loop and its clock
- * (loop.ts), notices and the live region (notices.ts), the settings screen (options.ts),
- * the win and the scores (scoring.ts) and the charts (charts.ts). This file holds the
- * applet's state, its actions and the frame's picture.
+ * The applet in the page: the composition root of its rooms, each a file a reader can open
+ * alone. The game's clock (play.ts), the panels over the play area (panels.ts), the win and
+ * the name box (winscreen.ts, scoring.ts, replays.ts), class mode (classmode.ts), the
+ * settings (options.ts), the controls (controls.ts), input (input.ts), the screen's layout
+ * (layout.ts), the frame loop (loop.ts), notices (notices.ts), the charts (charts.ts) and
+ * the verify panel (verifier.ts). The rooms know one another only through the narrow hosts
+ * they declare; none imports this file. Here: the wiring, the actions and the frame.
  */
-import { MIN_TARGET_CSS } from "../view/geometry";
-import { ParameterError } from "../limits";
-import { ADDRESS_NAMES } from "./params";
-import { FPS } from "../game/constants";
-import { forceWin, randomSeed, replayGolden } from "../game/engine";
-import { NAME_MAX } from "../game/highscores";
-import { DEFAULT_CONFIG, Game, type GameConfig, type SimFactory } from "../game/rules";
+import { t } from "../i18n";
+import { decode } from "../game/replaycode";
+import type { Game, GameConfig, SimFactory } from "../game/rules";
 import type { Settings } from "../game/settings";
 import { emptyAtoms, type AtomArrays } from "../game/sim";
 import type { KeyValue } from "../game/store";
 import { Condensate } from "../view/condensate";
 import { PLAY_RECT, type Layout } from "../view/geometry";
-import {
-  drawHelp,
-  drawMessageButtons,
-  drawNameFrame,
-  drawNotices,
-  drawSettings,
-  drawVerify,
-  drawTable,
-  type TableCell,
-  type Target,
-} from "../view/overlays";
+import { drawNotices, type TableCell, type Target } from "../view/overlays";
 import { drawReadout } from "../view/readout";
 import { Scene, speedText } from "../view/scene";
 import { drawText } from "../view/text";
-import { Autopilot } from "../game/autopilot";
-import { helpRows, HEIGHT_STEP, type Action } from "./bindings";
-import { KEY_HINTS, TOUCH_HINTS, type Hints } from "./hints";
+import { HEIGHT_STEP, type Action } from "./bindings";
 import { Charts } from "./charts";
+import type { Challenge, ClassMode } from "./classmode";
 import { Controls } from "./controls";
+import { KEY_HINTS, TOUCH_HINTS, type Hints } from "./hints";
 import { Input } from "./input";
 import { Screen, type Zoom } from "./layout";
 import { FrameLoop, type Animated } from "./loop";
 import { Notices, StatusLine } from "./notices";
-import { configFor, SettingsEditor } from "./options";
-import { PaceMeter } from "./pace";
-import { RemoteGame, type GameLike } from "./remote";
+import { SettingsEditor } from "./options";
+import { Panels, type Overlay } from "./panels";
+import { Play } from "./play";
+import type { GameLike } from "./remote";
 import { Replays } from "./replays";
-import { heightsOf } from "../game/moves";
-import { configOf, type Recording, type ReplaySettings } from "../game/replay";
-import type { Challenge, ClassMode } from "./classmode";
-import { decode } from "../game/replaycode";
-import { PASTE_BOX, Verifier } from "./verifier";
-import { describeRun, Scoreboard } from "./scoring";
-import { formatFixed, t } from "../i18n";
+import { Scoreboard } from "./scoring";
+import { Verifier } from "./verifier";
+import { WinScreen } from "./winscreen";
 
 export { pickTarget } from "./input";
+export type { Overlay } from "./panels";
 
 /** The slow-motion line's colour: dark on the play area's grey. */
 const SLOW_TEXT = "rgb(30,30,30)";
-/** Wait this long after the last trap move before speaking the height, ms. */
-const HEIGHT_SPEECH_MS = 400;
 
 export interface Elements {
   root: HTMLElement;
@@ -82,8 +66,6 @@ export interface AppOptions {
   browserLocale?: string;
 }
 
-export type Overlay = null | "help" | "table" | "settings" | "verify";
-
 /** What the last drawn frame showed of the controls (tests count frames from a key to it). */
 export interface DrawnControls {
   /** The display frame (FrameLoop.frames) it was drawn in. */
@@ -96,42 +78,31 @@ export interface DrawnControls {
 }
 
 export class App implements Animated {
-  /** The game: in the physics worker, or the page's own (no worker, or it failed). */
-  game: GameLike;
-  readonly pace = new PaceMeter();
   readonly scene = new Scene();
   readonly condensate = new Condensate();
   readonly charts = new Charts();
   readonly screen: Screen;
   readonly notices: Notices;
   readonly options: SettingsEditor;
+  readonly play: Play;
+  readonly panels: Panels;
   readonly scores: Scoreboard;
   readonly replays: Replays;
+  readonly win: WinScreen;
   readonly verifier: Verifier;
+  readonly controls: Controls;
+  readonly input: Input;
+  readonly loop = new FrameLoop(this);
   /** Class mode (the page served by `evapcool class`), or null. */
   classMode: ClassMode | null = null;
-  /** The seed every game plays (the address's ?seed=, a class challenge's), or null: a
-   * fresh one each game. Games always get an explicit seed, so each can be recorded. */
-  fixedSeed: number | null;
-  readonly controls = new Controls(this);
-  readonly input = new Input(this);
-  readonly loop = new FrameLoop(this);
-  private readonly statusLine: StatusLine;
-  overlay: Overlay = null;
-  /** The applet's clock (s): notices and the condensate's animation. */
-  animTime = 0;
   /** Set by any input: the next frame draws. */
   dirty = true;
-  /** The drawn panels' tap targets, in the panel's own coordinates (last frame drawn). */
+  /** The drawn tap targets (last frame), in the panel's own coordinates when zoomed. */
   targets: Target[] = [];
-  /** The score table's words and where they were drawn (the last table drawn). */
-  tableCells: TableCell[] = [];
-  /** The help's row size as last drawn (logical px; tests check it is legible). */
-  helpSize = 0;
-  /** The tall readout's atom count size as last drawn (logical px; 0: none drawn). */
-  readoutSize = 0;
   /** Whether those targets were drawn zoomed with the panels (overlayZoom) or on the scene. */
   targetsZoomed = false;
+  /** The tall readout's atom count size as last drawn (logical px; 0: none drawn). */
+  readoutSize = 0;
   readonly drawn: DrawnControls = {
     frame: -1,
     trapHeight: 0,
@@ -140,22 +111,18 @@ export class App implements Animated {
     energy: false,
     overlay: null,
   };
-  private ctx: CanvasRenderingContext2D;
-  private atoms: AtomArrays = emptyAtoms();
-  private lastHeightSpoken = 400;
-  private heightTimer: ReturnType<typeof setTimeout> | null = null;
-  private saidTooFew: string | null = null;
-  private saidSlow: string | null = null;
+  /** A touch screen (its hints name taps; its buttons are 44 CSS px at least). */
+  readonly coarse: boolean;
   private readonly reducedMotion: boolean;
-  private readonly coarse: boolean;
   /** A key was pressed: this touch screen has a keyboard too, so hints name keys. */
   private keyboardSeen = false;
-  /** The autopilot (key A or its wheel button): the demo strategy, made on first use. */
-  autopilot: Autopilot | null = null;
+  private readonly ctx: CanvasRenderingContext2D;
+  private atoms: AtomArrays = emptyAtoms();
+  private readonly statusLine: StatusLine;
 
   constructor(
     readonly el: Elements,
-    private readonly opts: AppOptions,
+    opts: AppOptions,
   ) {
     const app = this;
     const ctx = el.canvas.getContext("2d", { alpha: false });
@@ -166,33 +133,49 @@ export class App implements Animated {
     this.coarse = mq("(pointer: coarse)");
     this.screen = new Screen(el.canvas);
     this.statusLine = new StatusLine(el.status);
+    const notify = (text: string) => this.notify(text);
+    const say = (text: string) => this.say(text);
     this.notices = new Notices(
       el.live,
-      () => this.animTime,
+      () => this.play?.animTime ?? 0, // notices come before the game does
       () => (this.dirty = true),
     );
-    for (const text of opts.notices ?? []) this.notify(text);
-    this.fixedSeed = opts.config?.seed ?? null;
-    this.replays = new Replays({
-      get game() {
-        return app.game;
-      },
-      notify: (t) => this.notify(t),
-    });
+    for (const text of opts.notices ?? []) notify(text);
     this.options = new SettingsEditor(
       {
         storage: opts.storage,
         get hints() {
           return app.hints;
         },
-        notify: (t) => this.notify(t),
-        say: (t) => this.say(t),
-        closeOverlay: () => (this.overlay = null),
+        notify,
+        say,
+        closeOverlay: () => (this.panels.open = null),
         browserLocale: opts.browserLocale ?? "en",
       },
       opts.overrides ?? {},
     );
-    this.game = this.firstGame();
+    this.play = new Play(
+      {
+        get hints() {
+          return app.hints;
+        },
+        notify,
+        say,
+        won: () => this.win.won(),
+        moved: () => {
+          this.loop.resetClock();
+          this.dirty = true;
+        },
+      },
+      opts,
+      this.options,
+    );
+    this.replays = new Replays({
+      get game() {
+        return app.game;
+      },
+      notify,
+    });
     this.scores = new Scoreboard({
       get game() {
         return app.game;
@@ -200,208 +183,140 @@ export class App implements Animated {
       get hints() {
         return app.hints;
       },
-      notAPlayer: (score: number) => this.notAPlayer(score),
+      notAPlayer: (score: number) => this.play.notAPlayer(score),
       storage: opts.storage,
       screen: this.screen,
       nameInput: el.nameInput,
       canvas: el.canvas,
-      notify: (t) => this.notify(t),
-      say: (t) => this.say(t),
-      quiet: () => this.quietHeight(),
+      notify,
+      say,
+      quiet: () => this.play.quietHeight(),
       focusNext: () => this.controls.focus("restart"),
-      showTable: (shown) => (this.overlay = shown ? "table" : null),
+      showTable: (shown) => (this.panels.open = shown ? "table" : null),
     });
     this.scores.openTable(this.options.runSettings());
+    this.win = new WinScreen({
+      play: this.play,
+      scores: this.scores,
+      replays: this.replays,
+      scene: this.scene,
+      screen: this.screen,
+      coarse: this.coarse,
+      get hints() {
+        return app.hints;
+      },
+      say,
+    });
     this.verifier = new Verifier(
       {
         screen: this.screen,
         overlayZoom: () => this.overlayZoom(),
-        say: (t) => this.say(t),
-        notify: (t) => this.notify(t),
+        say,
+        notify,
         redraw: () => (this.dirty = true),
         makeWorker: () => opts.verifyWorker?.() ?? null,
       },
       el.root,
     );
+    this.panels = new Panels({
+      screen: this.screen,
+      options: this.options,
+      scores: this.scores,
+      verifier: this.verifier,
+      play: this.play,
+      loop: this.loop,
+      coarse: this.coarse,
+      say,
+    });
+    this.controls = new Controls({
+      screen: this.screen,
+      get game() {
+        return app.game;
+      },
+      get autopilotEngaged() {
+        return app.play.autopilotEngaged;
+      },
+      get overlay() {
+        return app.panels.open;
+      },
+      act: (action) => this.act(action),
+      saveSettings: () => this.options.close(true),
+      takeOver: () => this.play.takeOver(),
+      heightChanged: () => this.play.heightChanged(),
+    });
+    this.input = new Input({
+      screen: this.screen,
+      canvas: el.canvas,
+      nameInput: el.nameInput,
+      get game() {
+        return app.game;
+      },
+      get hints() {
+        return app.hints;
+      },
+      scores: this.scores,
+      options: this.options,
+      panels: this.panels,
+      verifier: this.verifier,
+      get targets() {
+        return app.targets;
+      },
+      get targetsZoomed() {
+        return app.targetsZoomed;
+      },
+      act: (action) => this.act(action),
+      restart: () => this.restart(),
+      resize: () => this.resize(),
+      redraw: () => (this.dirty = true),
+      keyPressed: () => (this.keyboardSeen = true),
+      say,
+      resetClock: () => this.loop.resetClock(),
+    });
     this.controls.build(el.root);
     this.resize();
     this.input.wire();
   }
 
-  /** The first game: the address's settings, or the saved ones if the physics refuses those. */
-  private firstGame(): GameLike {
-    const options = this.options;
-    try {
-      return this.makeGame(configFor(options.runSettings()));
-    } catch (err) {
-      if (!(err instanceof RangeError) || !Object.keys(options.overrides).length) throw err;
-      const line = err instanceof ParameterError ? err.render(ADDRESS_NAMES) : err.message;
-      this.notify(t("page.address_saved_settings", { problem: line }));
-      options.overrides = {};
-      return this.makeGame(configFor(options.runSettings()));
-    }
+  // -- what the rooms share, and scripts and tests read (window.evapcool.app) -------------
+  get game(): GameLike {
+    return this.play.game;
   }
 
-  /** A game in the worker if there is one, else on the page (RangeError if refused). */
-  private makeGame(settings: Partial<GameConfig>): GameLike {
-    const config = { ...DEFAULT_CONFIG, ...this.opts.config, ...settings, seed: this.freshSeed() };
-    const worker = this.opts.worker;
-    if (worker)
-      return new RemoteGame(worker, this.opts.factory, config, {
-        won: () => this.won(),
-        failed: (message) => this.workerFailed(message),
-      });
-    return this.pageGame(config);
+  get fixedSeed(): number | null {
+    return this.play.fixedSeed;
   }
 
-  private pageGame(config: GameConfig): Game {
-    const game = new Game(this.opts.factory, config);
-    game.onWin.push(() => this.won());
-    return game;
+  get animTime(): number {
+    return this.play.animTime;
   }
 
-  /** A recording being watched (?replay=CODE), played again by each restart. */
-  replaying: Recording | null = null;
-  /** The class challenge played (class mode): its settings at every restart. */
-  challengeSettings: ReplaySettings | null = null;
-
-  /** Class mode: play this challenge (its settings and seed) from now on. */
-  playChallenge(challenge: Challenge): void {
-    this.challengeSettings = challenge.settings;
-    this.fixedSeed = challenge.seed;
-    this.restart();
-    const s = challenge.settings;
-    this.notify(t("page.class_challenge", { n: s.n_atoms, radius: s.radius, escape: s.escape }));
+  set animTime(s: number) {
+    this.play.animTime = s;
   }
 
-  /** The win's notice when the autopilot or a replay won (never a player's score). */
-  private notAPlayer(score: number): string | null {
-    if (this.replaying) return t("page.replay_won", { n: score, claimed: this.replaying.score });
-    if (this.challengeSettings) return t("page.class_won", { n: score });
-    const pilot = this.autopilot;
-    if (pilot?.flew)
-      return t("page.autopilot_won", {
-        name: t("autopilot.label", { name: pilot.name }),
-        n: score,
-      });
-    return null;
+  get overlay(): Overlay {
+    return this.panels.open;
   }
 
-  /** Watch a replay code: its settings and seed, its heights frame by frame (page game). */
-  async watch(code: string): Promise<void> {
-    let rec: Recording;
-    try {
-      rec = await decode(code);
-    } catch (err) {
-      this.notify(t("page.address_bad_replay", { problem: (err as Error).message }));
-      return;
-    }
-    this.replaying = rec;
-    this.fixedSeed = rec.seed;
-    this.restart();
-    const won = rec.won ? "yes" : "no";
-    this.notify(t("page.watching", { edition: rec.edition, won, n: rec.score }));
+  get helpSize(): number {
+    return this.panels.helpSize;
   }
 
-  /** The replay's heights from the start of this game (a watched replay only). */
-  private playBack(): void {
-    const rec = this.replaying;
-    if (!rec || !(this.game instanceof Game)) return;
-    this.game.playback(heightsOf(rec.moves));
+  get tableCells(): TableCell[] {
+    return this.panels.tableCells;
   }
 
-  /** The seed of the next game. */
-  freshSeed(): number {
-    return this.fixedSeed ?? randomSeed();
+  get layout(): Layout {
+    return this.screen.layout;
   }
 
-  /** A win: the scores (name or not), and the game's replay code. */
-  private won(): void {
-    this.scores.onWin();
-    void this.replays.onWin().catch((err: unknown) => {
-      console.warn(`evapcool: no replay code for this game (${(err as Error).message})`);
-    });
-  }
-
-  /** The worker stopped: the same game's settings go on in the page's own loop. */
-  private workerFailed(message: string): void {
-    if (!(this.game instanceof RemoteGame)) return;
-    console.warn(`evapcool: the physics worker failed (${message}); playing without it.`);
-    const remote = this.game;
-    remote.stop();
-    this.opts.worker = null;
-    this.game = this.pageGame(remote.config);
-    this.loop.resetClock();
-    this.dirty = true;
-  }
-
-  /** Resolves once the game has a first state to draw (the worker's first frame). */
-  ready(): Promise<void> {
-    return this.game instanceof RemoteGame ? this.game.ready() : Promise.resolve();
-  }
-
-  /** The physics' own switch to the won state (tests of the condensate). */
-  forceWin(): Promise<void> {
-    const g = this.game;
-    if (g instanceof RemoteGame) return g.forceWin();
-    forceWin(g.sim);
-    return Promise.resolve();
-  }
-
-  /** A golden trace's text replayed by the engine the game plays with (tests). */
-  replay(text: string): Promise<string> {
-    const g = this.game;
-    return g instanceof RemoteGame ? g.replay(text) : Promise.resolve(replayGolden(text));
-  }
-
-  /** The worker's ms spent on the physics for its newest frame (NaN without a worker). */
-  get physicsMs(): number {
-    const g = this.game;
-    return g instanceof RemoteGame ? g.physicsMs : NaN;
-  }
-
-  /** "worker" or "page": where the physics runs. */
-  get engine(): string {
-    return this.game instanceof RemoteGame ? "worker" : "page";
-  }
-
-  // -- what the rooms share ---------------------------------------------------------------
   /** Hints in the words of the device: taps on a touch screen, keys once a key is pressed. */
   get hints(): Hints {
     return this.coarse && !this.keyboardSeen ? TOUCH_HINTS : KEY_HINTS;
   }
 
-  /** A key was pressed (touch screens with a keyboard get key hints from now on). */
-  keyPressed(): void {
-    this.keyboardSeen = true;
-  }
-
-  get autopilotEngaged(): boolean {
-    return this.autopilot?.engaged ?? false;
-  }
-
-  /** The player touched the trap: the autopilot lets go (and says so). */
-  takeOver(): void {
-    if (!this.autopilot?.engaged) return;
-    this.autopilot.takeOver();
-    this.notify(this.hints.youHaveTheTrap);
-  }
-
-  /** Key A or the wheel: the demo autopilot takes the trap, or hands it back. */
-  private toggleAutopilot(): void {
-    if (this.game.won) return;
-    if (this.autopilot?.engaged) {
-      this.takeOver();
-      return;
-    }
-    this.autopilot ??= Autopilot.demo();
-    this.autopilot.engage();
-    this.autopilot.steer(this.game);
-    this.notify(this.hints.autopilotPlays(this.autopilot.name));
-  }
-
-  get layout(): Layout {
-    return this.screen.layout;
+  fpsLines(): string[] {
+    return this.panels.rateLines();
   }
 
   notify(text: string): void {
@@ -416,11 +331,43 @@ export class App implements Animated {
     return this.screen.overlayZoom();
   }
 
+  ready(): Promise<void> {
+    return this.play.ready();
+  }
+
+  settled(): Promise<void> {
+    return this.play.settled();
+  }
+
+  // -- what comes from outside: a replay to watch, a class challenge ------------------------
+  /** Watch a replay code: its settings and seed, its heights frame by frame (page game). */
+  async watch(code: string): Promise<void> {
+    try {
+      this.play.watch(await decode(code));
+    } catch (err) {
+      this.notify(t("page.address_bad_replay", { problem: (err as Error).message }));
+      return;
+    }
+    this.restart();
+    const rec = this.play.replaying!;
+    const won = rec.won ? "yes" : "no";
+    this.notify(t("page.watching", { edition: rec.edition, won, n: rec.score }));
+  }
+
+  /** Class mode: play this challenge (its settings and seed) from now on. */
+  playChallenge(challenge: Challenge): void {
+    this.play.playChallenge(challenge);
+    this.restart();
+    const s = challenge.settings;
+    this.notify(t("page.class_challenge", { n: s.n_atoms, radius: s.radius, escape: s.escape }));
+  }
+
   // -- actions -------------------------------------------------------------------------------
   act(action: Action): void {
     const g = this.game;
+    const panels = this.panels;
     // Another panel over the settings: they close first, and say if changes were dropped.
-    if (this.overlay === "settings" && ["help", "table", "clear", "escape"].includes(action))
+    if (panels.open === "settings" && ["help", "table", "clear", "escape"].includes(action))
       this.options.close(false);
     switch (action) {
       case "pause":
@@ -431,34 +378,25 @@ export class App implements Animated {
         this.restart();
         break;
       case "lower":
-        this.takeOver();
-        g.nudgeHeight(-HEIGHT_STEP);
-        this.heightChanged();
-        break;
       case "raise":
-        this.takeOver();
-        g.nudgeHeight(HEIGHT_STEP);
-        this.heightChanged();
+        this.play.takeOver();
+        g.nudgeHeight(action === "lower" ? -HEIGHT_STEP : HEIGHT_STEP);
+        this.play.heightChanged();
         break;
       case "step":
-        this.autopilot?.steer(g);
+        this.play.autopilot?.steer(g);
         g.step();
         break;
       case "autopilot":
-        this.toggleAutopilot();
+        this.play.toggleAutopilot();
         break;
       case "copycode":
         void this.replays.copy();
         break;
-      case "verify":
-        this.toggleOverlay("verify");
-        break;
       case "faster":
-        g.faster();
-        this.say(t("page.speed_spoken", { speed: speedText(g.speed) }));
-        break;
       case "slower":
-        g.slower();
+        if (action === "faster") g.faster();
+        else g.slower();
         this.say(t("page.speed_spoken", { speed: speedText(g.speed) }));
         break;
       case "energy":
@@ -472,11 +410,11 @@ export class App implements Animated {
         this.say(t(this.charts.showPath ? "page.path_shown" : "page.path_hidden"));
         break;
       case "table":
-        this.toggleOverlay("table");
+        panels.toggle("table");
         this.scores.confirmReset = false;
         break;
       case "clear":
-        this.overlay = "table";
+        panels.open = "table";
         this.scores.confirmReset = true;
         this.say(this.hints.confirmClearSpoken);
         break;
@@ -484,68 +422,32 @@ export class App implements Animated {
         if (this.scores.readyForNext) this.restart();
         break;
       case "settings":
-        this.overlay = "settings";
+        panels.open = "settings";
         this.options.open();
         break;
       case "fullscreen":
         this.toggleFullscreen();
         break;
       case "help":
-        this.toggleOverlay("help");
+      case "verify":
+        panels.toggle(action);
         break;
       case "escape":
-        if (this.overlay !== null) this.overlay = null;
+        if (panels.open !== null) panels.open = null;
         else if (document.fullscreenElement) void document.exitFullscreen().catch(() => {});
         break;
     }
   }
 
-  private toggleOverlay(name: Exclude<Overlay, null>): void {
-    this.overlay = this.overlay === name ? null : name;
-    const titles = {
-      help: "help.title",
-      table: "scores.title",
-      settings: "settings.title",
-      verify: "verify.title",
-    };
-    if (this.overlay === name) this.say(t("page.panel_shown", { panel: t(titles[name]) }));
-  }
-
   /** New atoms with the current settings, trap at 400, paused; ends any name entry. */
   restart(): void {
     const s = this.options.runSettings();
-    try {
-      const forced = this.replaying?.settings ?? this.challengeSettings;
-      const settings = forced ? configOf(forced, this.fixedSeed ?? 0) : configFor(s);
-      this.game.restart({ ...this.game.config, ...settings, seed: this.freshSeed() });
-    } catch (err) {
-      this.notify(t("notice.settings_failed", { problem: (err as Error).message }));
-      this.game.restart();
-    }
+    this.play.restart(s);
     this.scores.newGame();
-    this.autopilot?.newGame();
-    this.autopilot?.steer(this.game);
-    this.playBack();
-    if (this.overlay === "table") this.overlay = null;
+    if (this.panels.open === "table") this.panels.open = null;
     this.charts.reset();
     this.scores.openTable(s);
     this.say(t("page.restarted", { n: this.game.config.nAtoms, height: 400 }));
-  }
-
-  heightChanged(): void {
-    // Speak the height once the player stops moving it, not at every step.
-    this.quietHeight();
-    this.heightTimer = setTimeout(() => {
-      const h = Math.round(this.game.trapHeight);
-      if (h !== this.lastHeightSpoken) this.say(t("page.height_spoken", { h }));
-      this.lastHeightSpoken = h;
-    }, HEIGHT_SPEECH_MS);
-  }
-
-  /** Drop a trap height still waiting to be spoken. */
-  private quietHeight(): void {
-    if (this.heightTimer !== null) clearTimeout(this.heightTimer);
-    this.heightTimer = null;
   }
 
   toggleFullscreen(): void {
@@ -560,7 +462,6 @@ export class App implements Animated {
     }
   }
 
-  // -- layout ---------------------------------------------------------------------------------
   resize(): void {
     this.dirty = true;
     this.screen.fit(this.charts.shown);
@@ -569,7 +470,7 @@ export class App implements Animated {
     this.verifier.place();
   }
 
-  // -- the frame ------------------------------------------------------------------------------
+  // -- the frame (the loop's Animated) ---------------------------------------------------------
   start(): void {
     this.loop.start();
   }
@@ -579,21 +480,21 @@ export class App implements Animated {
   }
 
   advance(dt: number): void {
-    const g = this.game;
-    this.autopilot?.steer(g); // the trap for this frame, from the gas as it is now
-    g.update(dt);
-    this.animTime += Math.min(dt, 0.25);
-    this.pace.add(performance.now(), g.sim.time, g.speed, !g.paused, `${g.speed}|${g.generation}`);
-    const note = this.slowNote();
-    if (note !== this.saidSlow) {
-      this.saidSlow = note;
-      if (note) this.say(note);
-    }
+    this.play.advance(dt);
+  }
+
+  running(): boolean {
+    return this.play.running();
   }
 
   /** The slow-motion line while playing below real time, else null. */
   slowNote(): string | null {
-    return this.game.paused ? null : this.pace.note();
+    return this.play.slowNote();
+  }
+
+  /** Advance n display frames of one physics frame x speed each, drawing each (tests). */
+  runFrames(n: number): Promise<void> {
+    return this.play.runFrames(n, () => this.draw());
   }
 
   /**
@@ -624,31 +525,6 @@ export class App implements Animated {
     ].join("|");
   }
 
-  /** Advance n display frames of one physics frame x speed each, drawing each (tests). */
-  async runFrames(n: number): Promise<void> {
-    const g = this.game;
-    for (let k = 0; k < n; k++) {
-      this.autopilot?.steer(g);
-      if (g instanceof RemoteGame) await g.runFrames(1);
-      else (g as Game).runFrames(1);
-      this.animTime += 1 / FPS;
-      this.draw();
-    }
-  }
-
-  /** n physics frames at once, not drawn between (benchmarks); the page's own game draws none. */
-  physicsFrames(n: number): Promise<void> {
-    const g = this.game;
-    if (g instanceof RemoteGame) return g.runFrames(n);
-    (g as Game).runFrames(n);
-    return Promise.resolve();
-  }
-
-  /** Resolves once the worker (if any) has applied all input so far and posted the result. */
-  settled(): Promise<void> {
-    return this.game instanceof RemoteGame ? this.game.settled() : Promise.resolve();
-  }
-
   draw(): void {
     const ctx = this.ctx;
     const l = this.layout;
@@ -667,22 +543,18 @@ export class App implements Animated {
     this.scene.drawFrame(ctx, sceneGame(g), l.sceneHeight, 16 / l.scale);
     this.controls.draw(ctx);
     this.readoutSize = l.readout ? drawReadout(ctx, l.readout, sim) : 0;
-    this.drawMessages(ctx);
-    this.verifier.show(this.overlay === "verify");
-    this.drawOverlay(ctx);
+    this.targets = this.win.draw(ctx, this.atoms, this.panels.open !== null);
+    this.targetsZoomed = false;
+    this.verifier.show(this.panels.open === "verify");
+    const panel = this.panels.draw(ctx);
+    if (panel) [this.targets, this.targetsZoomed] = [panel.targets, panel.zoomed];
     drawNotices(ctx, this.notices.visible);
     this.charts.draw(ctx, l);
     const slow = this.slowNote();
-    if (slow)
-      drawText(
-        ctx,
-        slow,
-        20,
-        SLOW_TEXT,
-        PLAY_RECT.x + PLAY_RECT.w - 8,
-        PLAY_RECT.y + 14,
-        "midright",
-      );
+    if (slow) {
+      const [x, y] = [PLAY_RECT.x + PLAY_RECT.w - 8, PLAY_RECT.y + 14];
+      drawText(ctx, slow, 20, SLOW_TEXT, x, y, "midright");
+    }
     if (this.statusLine.update(g)) this.dirty = true;
     const d = this.drawn;
     d.frame = this.loop.frames;
@@ -690,14 +562,14 @@ export class App implements Animated {
     d.paused = g.paused;
     d.speed = g.speed;
     d.energy = this.charts.showEnergy;
-    d.overlay = this.overlay;
+    d.overlay = this.panels.open;
   }
 
   /** The atoms, and the condensate fading in over them. */
   private drawScene(ctx: CanvasRenderingContext2D): void {
     const g = this.game;
     const sim = g.sim;
-    const fade = this.condensate.update(sim, this.atoms, g.generation, this.animTime);
+    const fade = this.condensate.update(sim, this.atoms, g.generation, this.play.animTime);
     this.scene.draw(ctx, sceneGame(g), this.atoms, 1 - fade);
     if (fade <= 0) return;
     ctx.save();
@@ -707,103 +579,9 @@ export class App implements Animated {
     let r = 0;
     for (let i = 0; i < this.atoms.count; i++) r += this.atoms.radius[i];
     r = this.atoms.count ? r / this.atoms.count : 1;
-    const t = this.reducedMotion ? 0 : this.animTime;
+    const t = this.reducedMotion ? 0 : this.play.animTime;
     this.condensate.draw(ctx, sim, r, t, fade, this.reducedMotion);
     ctx.restore();
-  }
-
-  /** The score, the too-few message or the start hint, and the name box's frame. */
-  private drawMessages(ctx: CanvasRenderingContext2D): void {
-    const g = this.game;
-    const tooFew = g.score === null ? g.tooFewAtoms(this.lightestMass()) : null;
-    if (g.score !== null) this.scene.drawScore(ctx, g.score);
-    else if (tooFew !== null) {
-      this.scene.drawTooFew(ctx, t(tooFew), this.hints.tooFewLine);
-      if (tooFew !== this.saidTooFew) this.say(this.hints.tooFewSpoken(tooFew));
-    } else if (g.paused && g.sim.time === 0 && this.overlay === null) {
-      this.scene.drawStartHint(ctx, this.coarse);
-    }
-    this.targets = [];
-    this.targetsZoomed = false;
-    this.saidTooFew = tooFew;
-    if (g.won && this.replays.current && !this.scores.nameBoxOpen && this.overlay === null) {
-      const h = this.coarse ? Math.max(34, MIN_TARGET_CSS / this.layout.scale) : 34;
-      this.targets = drawMessageButtons(ctx, [[t("page.copy_code"), "copycode"]], h);
-    }
-    if (this.scores.nameBoxOpen)
-      this.targets = drawNameFrame(
-        ctx,
-        t("win.top10"),
-        this.scores.nameLength(),
-        NAME_MAX,
-        this.coarse,
-        this.coarse ? Math.max(34, MIN_TARGET_CSS / this.layout.scale) : 34,
-      );
-  }
-
-  /** Help, scores or settings over the play area (zoomed in the tall layout). */
-  private drawOverlay(ctx: CanvasRenderingContext2D): void {
-    if (this.overlay === "help") {
-      // Over the whole screen: a projector's black bands hold larger text, a phone's rows
-      // wrap at 16 CSS px or more.
-      const box = this.screen.visibleBox(12);
-      const help = drawHelp(ctx, helpRows(), this.fpsLines(), box, 16 / this.layout.scale);
-      this.targets = help.targets;
-      this.helpSize = help.size;
-      return;
-    }
-    const zoom = this.overlayZoom();
-    ctx.save();
-    ctx.translate(zoom.x, zoom.y);
-    ctx.scale(zoom.k, zoom.k);
-    ctx.translate(-zoom.cx, -zoom.cy);
-    if (this.overlay !== null) this.targetsZoomed = true;
-    if (this.overlay === "table") {
-      const table = drawTable(
-        ctx,
-        t("page.table_for", { run: describeRun(this.options.runSettings()) }),
-        this.scores.table.entries,
-        this.scores.storedRank,
-        this.scores.footer(),
-        this.scores.buttons(),
-      );
-      this.targets = table.targets;
-      this.tableCells = table.cells;
-    } else if (this.overlay === "verify") {
-      const h = this.coarse ? Math.max(34, MIN_TARGET_CSS / this.layout.scale) : 34;
-      const v = this.verifier;
-      this.targets = drawVerify(ctx, PASTE_BOX, v.lines(), v.busy, h);
-    } else if (this.overlay === "settings") {
-      const o = this.options;
-      this.targets = drawSettings(ctx, o.rows(), o.row, o.footer());
-    }
-    ctx.restore();
-  }
-
-  /** The display rate while playing (paused frames are not counted) and the game's pace. */
-  private fpsLines(): string[] {
-    const st = this.loop.playStats.summary();
-    const atoms = t("status.atoms", { n: this.game.sim.nTrapped });
-    if (st.frames < 2) return [t("page.rate_later", { atoms })];
-    const fps = Math.round(st.fps);
-    const ms = formatFixed(st.medianMs, 1);
-    const pace = this.pace.pace;
-    const paceLine =
-      pace >= 0.98 ? t("page.real_time") : t("page.too_slow", { pace: formatFixed(pace, 2) });
-    return [t("page.rate", { fps, ms, atoms }), paceLine];
-  }
-
-  /** Whether the game is playing (the loop counts only these frames for the display rate). */
-  running(): boolean {
-    return !this.game.paused && !this.game.won;
-  }
-
-  /** The lightest trapped atom's mass (the escape energy of the too-few rule). */
-  private lightestMass(): number {
-    const a = this.atoms;
-    let m = Infinity;
-    for (let i = 0; i < a.count; i++) m = Math.min(m, a.mass[i]);
-    return Number.isFinite(m) ? m : 1;
   }
 }
 
