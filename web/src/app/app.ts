@@ -22,20 +22,20 @@ import { drawText } from "../view/text";
 import { HEIGHT_STEP, type Action } from "./bindings";
 import { Charts } from "./charts";
 import type { Challenge, ClassMode } from "./classmode";
-import { Controls } from "./controls";
+import { Controls, type ControlsHost } from "./controls";
 import { KEY_HINTS, TOUCH_HINTS, type Hints } from "./hints";
-import { Input } from "./input";
+import { Input, type InputHost } from "./input";
 import { Screen, type Zoom } from "./layout";
 import { FrameLoop, type Animated } from "./loop";
 import { Notices, StatusLine } from "./notices";
 import { SettingsEditor } from "./options";
-import { Panels, type Overlay } from "./panels";
-import { Play } from "./play";
+import { Panels, type Overlay, type PanelRooms } from "./panels";
+import { Play, type PlayEvents } from "./play";
 import type { GameLike } from "./remote";
 import { Replays } from "./replays";
 import { Scoreboard } from "./scoring";
 import { Verifier } from "./verifier";
-import { WinScreen } from "./winscreen";
+import { WinScreen, type WinRooms } from "./winscreen";
 
 export { pickTarget } from "./input";
 export type { Overlay } from "./panels";
@@ -60,8 +60,8 @@ export interface AppOptions {
   notices?: string[];
   /** The physics worker to play in (absent: the page's own loop plays). */
   worker?: Worker | null;
-  /** Makes the verify panel's worker (absent: the panel replays codes in the page). */
-  verifyWorker?: () => Worker;
+  /** Makes the verify panel's worker (absent or null: the panel replays codes in the page). */
+  verifyWorker?: () => Worker | null;
   /** The language of the browser and the address (the language menu's "as the browser"). */
   browserLocale?: string;
 }
@@ -77,7 +77,7 @@ export interface DrawnControls {
   overlay: Overlay;
 }
 
-export class App implements Animated {
+export class App implements Animated, ControlsHost, InputHost, PlayEvents, PanelRooms, WinRooms {
   readonly scene = new Scene();
   readonly condensate = new Condensate();
   readonly charts = new Charts();
@@ -154,22 +154,7 @@ export class App implements Animated {
       },
       opts.overrides ?? {},
     );
-    this.play = new Play(
-      {
-        get hints() {
-          return app.hints;
-        },
-        notify,
-        say,
-        won: () => this.win.won(),
-        moved: () => {
-          this.loop.resetClock();
-          this.dirty = true;
-        },
-      },
-      opts,
-      this.options,
-    );
+    this.play = new Play(this, opts, this.options);
     this.replays = new Replays({
       get game() {
         return app.game;
@@ -195,18 +180,7 @@ export class App implements Animated {
       showTable: (shown) => (this.panels.open = shown ? "table" : null),
     });
     this.scores.openTable(this.options.runSettings());
-    this.win = new WinScreen({
-      play: this.play,
-      scores: this.scores,
-      replays: this.replays,
-      scene: this.scene,
-      screen: this.screen,
-      coarse: this.coarse,
-      get hints() {
-        return app.hints;
-      },
-      say,
-    });
+    this.win = new WinScreen(this);
     this.verifier = new Verifier(
       {
         screen: this.screen,
@@ -218,60 +192,10 @@ export class App implements Animated {
       },
       el.root,
     );
-    this.panels = new Panels({
-      screen: this.screen,
-      options: this.options,
-      scores: this.scores,
-      verifier: this.verifier,
-      play: this.play,
-      loop: this.loop,
-      coarse: this.coarse,
-      say,
-    });
-    this.controls = new Controls({
-      screen: this.screen,
-      get game() {
-        return app.game;
-      },
-      get autopilotEngaged() {
-        return app.play.autopilotEngaged;
-      },
-      get overlay() {
-        return app.panels.open;
-      },
-      act: (action) => this.act(action),
-      saveSettings: () => this.options.close(true),
-      takeOver: () => this.play.takeOver(),
-      heightChanged: () => this.play.heightChanged(),
-    });
-    this.input = new Input({
-      screen: this.screen,
-      canvas: el.canvas,
-      nameInput: el.nameInput,
-      get game() {
-        return app.game;
-      },
-      get hints() {
-        return app.hints;
-      },
-      scores: this.scores,
-      options: this.options,
-      panels: this.panels,
-      verifier: this.verifier,
-      get targets() {
-        return app.targets;
-      },
-      get targetsZoomed() {
-        return app.targetsZoomed;
-      },
-      act: (action) => this.act(action),
-      restart: () => this.restart(),
-      resize: () => this.resize(),
-      redraw: () => (this.dirty = true),
-      keyPressed: () => (this.keyboardSeen = true),
-      say,
-      resetClock: () => this.loop.resetClock(),
-    });
+    this.panels = new Panels(this);
+    // The rooms see this applet only as their hosts (the interfaces they declare).
+    this.controls = new Controls(this);
+    this.input = new Input(this);
     this.controls.build(el.root);
     this.resize();
     this.input.wire();
@@ -313,6 +237,54 @@ export class App implements Animated {
   /** Hints in the words of the device: taps on a touch screen, keys once a key is pressed. */
   get hints(): Hints {
     return this.coarse && !this.keyboardSeen ? TOUCH_HINTS : KEY_HINTS;
+  }
+
+  get canvas(): HTMLCanvasElement {
+    return this.el.canvas;
+  }
+
+  get nameInput(): HTMLInputElement {
+    return this.el.nameInput;
+  }
+
+  get autopilotEngaged(): boolean {
+    return this.play.autopilotEngaged;
+  }
+
+  /** The game was won: the win screen takes it from here. */
+  won(): void {
+    this.win.won();
+  }
+
+  /** The game left the worker for the page's own loop: the frame clock starts again. */
+  moved(): void {
+    this.loop.resetClock();
+    this.dirty = true;
+  }
+
+  redraw(): void {
+    this.dirty = true;
+  }
+
+  /** A key was pressed (touch screens with a keyboard get key hints from now on). */
+  keyPressed(): void {
+    this.keyboardSeen = true;
+  }
+
+  resetClock(): void {
+    this.loop.resetClock();
+  }
+
+  saveSettings(): void {
+    this.options.close(true);
+  }
+
+  takeOver(): void {
+    this.play.takeOver();
+  }
+
+  heightChanged(): void {
+    this.play.heightChanged();
   }
 
   fpsLines(): string[] {

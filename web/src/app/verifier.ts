@@ -12,7 +12,8 @@ import { DAMAGED, EDITED, OTHER_VERSION, WRONG_SCORE } from "../game/replay";
 import type { Zoom } from "./layout";
 import type { Screen } from "./layout";
 import { PLAY_RECT, type Rect } from "../view/geometry";
-import { decodeCode, replayed, type Checked, type Decoded } from "./verify-check";
+import { decode } from "../game/replaycode";
+import { refused, replayed, type Checked, type Decoded } from "./verify-check";
 import type { FromWorker, ToWorker } from "./worker-protocol";
 
 export type { Checked } from "./verify-check";
@@ -130,7 +131,12 @@ export class Verifier {
     const run = ++this.runs;
     const codes: Decoded[] = [];
     for (const text of texts) {
-      codes.push(await decodeCode(text));
+      codes.push(
+        await decode(text).then(
+          (recording) => ({ code: text, recording }),
+          (err: unknown) => refused(text, err),
+        ),
+      );
       if (run !== this.runs) return false; // closed while decoding
     }
     if (codes.length === 0) return true;

@@ -1,11 +1,10 @@
 /**
- * One pasted replay code checked: decoded in the page (bounded: replaycode.ts refuses a
- * code as it unpacks past the longest game), then replayed with the game's rules, in the
- * verify panel's worker (physics.worker.ts) or the page's own loop where no worker runs.
+ * One pasted replay code checked: decoded in the page (verifier.ts; bounded: replaycode.ts
+ * refuses a code as it unpacks past the longest game), then replayed with the game's rules,
+ * in the verify panel's worker (physics.worker.ts) or the page's own loop where none runs.
  */
 import { makeSimulation } from "../game/engine";
 import { checkClaim, replay, ReplayError, type Recording, type Verdict } from "../game/replay";
-import { decode } from "../game/replaycode";
 
 /** One pasted code's outcome. */
 export interface Checked {
@@ -18,17 +17,10 @@ export interface Checked {
 /** A code to replay (its recording), or its outcome already (it could not be decoded). */
 export type Decoded = { code: string; recording: Recording } | Checked;
 
-const refused = (code: string, err: unknown): Checked => {
+/** A code's refusal: the reason's protocol name (a ReplayError's), else the error's words. */
+export function refused(code: string, err: unknown): Checked {
   const reason = err instanceof ReplayError ? err.reason : (err as Error).message;
   return { code, verdict: null, edition: "", reason };
-};
-
-export async function decodeCode(code: string): Promise<Decoded> {
-  try {
-    return { code, recording: await decode(code) };
-  } catch (err) {
-    return refused(code, err);
-  }
 }
 
 /** The outcome of replaying a decoded code (the long part: up to 36 000 frames). */
