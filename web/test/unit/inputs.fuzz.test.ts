@@ -120,6 +120,19 @@ describe("what storage holds", () => {
   });
 });
 
+test("stored settings of megabytes and a thousand unknown names: each notice one line", () => {
+  const kv = new MemoryStore();
+  const unknown = Object.fromEntries(
+    Array.from({ length: 1000 }, (_, k) => [`k${"x".repeat(k)}`, k]),
+  );
+  const data = { ...unknown, tc_law: "x".repeat(1_000_000), radius: Array(100_000).fill(3) };
+  kv.setItem(SETTINGS_KEY, JSON.stringify(data));
+  const [settings, notices] = loadSettings(kv);
+  expect(settings.tcLaw).toBe(DEFAULTS.tcLaw);
+  expect(notices.length).toBeGreaterThanOrEqual(3);
+  for (const n of notices) expect(n.length).toBeLessThan(LINE);
+});
+
 /** A code of any JSON text, checksummed as the editions make them (so it reaches inflate). */
 const codeOf = (text: string) => {
   const payload = deflateSync(Buffer.from(text)).toString("base64url");
