@@ -278,3 +278,31 @@ describe("stored scores", () => {
     await page.close();
   });
 });
+
+describe("names", () => {
+  test("typed in the name box: cut at 16 whole characters, the family's joiners kept", async () => {
+    const { page, log } = await openPage(browser, { query: "?seed=1" });
+    await page.evaluate(() => localStorage.clear());
+    await page.keyboard.press("Space");
+    let s = await state(page);
+    for (let k = 0; k < 200 && s.wonAt === null; k++) {
+      if (s.trapHeight > 100) await page.keyboard.press("ArrowDown");
+      await page.evaluate(() => window.evapcool.runFrames(25));
+      s = await state(page);
+    }
+    assert.equal(s.nameBox, true, "the win opens the name box");
+    const family = "👨‍👩‍👧";
+    const kept = `${family}${"a".repeat(14)}e\u0301`; // 16 characters, 23 code points
+    await page.focus("#name");
+    await page.keyboard.insertText(`${kept}xyz`);
+    assert.equal(await page.inputValue("#name"), kept);
+    await page.keyboard.press("Enter");
+    const table = (await state(page)).table;
+    assert.deepEqual(
+      table.map((e) => e.name),
+      [kept],
+    );
+    assert.deepEqual(log.errors, []);
+    await page.close();
+  });
+});
