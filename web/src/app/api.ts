@@ -56,7 +56,7 @@ export function exposeApi(app: App): void {
     app,
     /** The state once the worker (if any) has applied every input so far. */
     async state(): Promise<PageState> {
-      await app.settled();
+      await app.play.settled();
       return this.stateNow();
     },
     /** The state as the page has it now (the worker's newest frame). */
@@ -90,10 +90,10 @@ export function exposeApi(app: App): void {
         fullscreen: document.fullscreenElement !== null,
         engine: app.play.engine,
         pace: app.play.pace.pace,
-        slowNote: app.slowNote(),
+        slowNote: app.play.slowNote(),
         physicsMs: app.play.physicsMs,
         autopilot: app.play.autopilotEngaged,
-        helpSize: app.helpSize,
+        helpSize: app.panels.helpSize,
         locale: activeTranslator().locale,
         direction: activeTranslator().direction,
         missingKeys: [...(missingKeys.get(activeTranslator().locale) ?? [])],

@@ -1,25 +1,25 @@
 /**
  * The applet in the page: the composition root of its rooms, each a file a reader can open
  * alone. The game's clock (play.ts), the panels over the play area (panels.ts), the win and
- * the name box (winscreen.ts, scoring.ts, replays.ts), class mode (classmode.ts), the
- * settings (options.ts), the controls (controls.ts), input (input.ts), the screen's layout
- * (layout.ts), the frame loop (loop.ts), notices (notices.ts), the charts (charts.ts) and
- * the verify panel (verifier.ts). The rooms know one another only through the narrow hosts
- * they declare; none imports this file. Here: the wiring, the actions and the frame.
+ * the name box (winscreen.ts, scoring.ts, replays.ts), class mode (classmode.ts), what each
+ * action does (actions.ts), the frame's picture (picture.ts), the settings (options.ts),
+ * the controls (controls.ts), input (input.ts), the screen's layout (layout.ts), the frame
+ * loop (loop.ts), notices (notices.ts), the charts (charts.ts) and the verify panel
+ * (verifier.ts). Each room declares the host it needs; this applet is that host, and no
+ * room imports this file. Here: the wiring, and what a restart, a resize, a watched replay
+ * and a class challenge change across rooms.
  */
 import { t } from "../i18n";
 import { decode } from "../game/replaycode";
-import type { Game, GameConfig, SimFactory } from "../game/rules";
+import type { GameConfig, SimFactory } from "../game/rules";
 import type { Settings } from "../game/settings";
-import { emptyAtoms, type AtomArrays } from "../game/sim";
 import type { KeyValue } from "../game/store";
 import { Condensate } from "../view/condensate";
-import { PLAY_RECT, type Layout } from "../view/geometry";
-import { drawNotices, type TableCell, type Target } from "../view/overlays";
-import { drawReadout } from "../view/readout";
-import { Scene, speedText } from "../view/scene";
-import { drawText } from "../view/text";
-import { HEIGHT_STEP, type Action } from "./bindings";
+import type { Layout } from "../view/geometry";
+import type { Target } from "../view/overlays";
+import { Scene } from "../view/scene";
+import { act, type ActionHost } from "./actions";
+import type { Action } from "./bindings";
 import { Charts } from "./charts";
 import type { Challenge, ClassMode } from "./classmode";
 import { Controls, type ControlsHost } from "./controls";
@@ -27,9 +27,10 @@ import { KEY_HINTS, TOUCH_HINTS, type Hints } from "./hints";
 import { Input, type InputHost } from "./input";
 import { Screen, type Zoom } from "./layout";
 import { FrameLoop, type Animated } from "./loop";
-import { Notices, StatusLine } from "./notices";
+import { Notices } from "./notices";
 import { SettingsEditor } from "./options";
 import { Panels, type Overlay, type PanelRooms } from "./panels";
+import { Picture, type DrawnControls, type PictureRooms } from "./picture";
 import { Play, type PlayEvents } from "./play";
 import type { GameLike } from "./remote";
 import { Replays } from "./replays";
@@ -39,9 +40,7 @@ import { WinScreen, type WinRooms } from "./winscreen";
 
 export { pickTarget } from "./input";
 export type { Overlay } from "./panels";
-
-/** The slow-motion line's colour: dark on the play area's grey. */
-const SLOW_TEXT = "rgb(30,30,30)";
+export type { DrawnControls } from "./picture";
 
 export interface Elements {
   root: HTMLElement;
@@ -66,18 +65,17 @@ export interface AppOptions {
   browserLocale?: string;
 }
 
-/** What the last drawn frame showed of the controls (tests count frames from a key to it). */
-export interface DrawnControls {
-  /** The display frame (FrameLoop.frames) it was drawn in. */
-  frame: number;
-  trapHeight: number;
-  paused: boolean;
-  speed: number;
-  energy: boolean;
-  overlay: Overlay;
-}
-
-export class App implements Animated, ControlsHost, InputHost, PlayEvents, PanelRooms, WinRooms {
+export class App
+  implements
+    Animated,
+    ActionHost,
+    ControlsHost,
+    InputHost,
+    PlayEvents,
+    PanelRooms,
+    PictureRooms,
+    WinRooms
+{
   readonly scene = new Scene();
   readonly condensate = new Condensate();
   readonly charts = new Charts();
@@ -97,42 +95,23 @@ export class App implements Animated, ControlsHost, InputHost, PlayEvents, Panel
   classMode: ClassMode | null = null;
   /** Set by any input: the next frame draws. */
   dirty = true;
-  /** The drawn tap targets (last frame), in the panel's own coordinates when zoomed. */
-  targets: Target[] = [];
-  /** Whether those targets were drawn zoomed with the panels (overlayZoom) or on the scene. */
-  targetsZoomed = false;
-  /** The tall readout's atom count size as last drawn (logical px; 0: none drawn). */
-  readoutSize = 0;
-  readonly drawn: DrawnControls = {
-    frame: -1,
-    trapHeight: 0,
-    paused: true,
-    speed: 1,
-    energy: false,
-    overlay: null,
-  };
+  readonly picture: Picture;
   /** A touch screen (its hints name taps; its buttons are 44 CSS px at least). */
   readonly coarse: boolean;
-  private readonly reducedMotion: boolean;
+  readonly reducedMotion: boolean;
   /** A key was pressed: this touch screen has a keyboard too, so hints name keys. */
   private keyboardSeen = false;
-  private readonly ctx: CanvasRenderingContext2D;
-  private atoms: AtomArrays = emptyAtoms();
-  private readonly statusLine: StatusLine;
 
   constructor(
     readonly el: Elements,
     opts: AppOptions,
   ) {
     const app = this;
-    const ctx = el.canvas.getContext("2d", { alpha: false });
-    if (!ctx) throw new Error("this browser cannot draw on a canvas");
-    this.ctx = ctx;
+    this.picture = new Picture(this, el.status);
     const mq = (q: string) => typeof matchMedia === "function" && matchMedia(q).matches;
     this.reducedMotion = mq("(prefers-reduced-motion: reduce)");
     this.coarse = mq("(pointer: coarse)");
     this.screen = new Screen(el.canvas);
-    this.statusLine = new StatusLine(el.status);
     const notify = (text: string) => this.notify(text);
     const say = (text: string) => this.say(text);
     this.notices = new Notices(
@@ -206,28 +185,24 @@ export class App implements Animated, ControlsHost, InputHost, PlayEvents, Panel
     return this.play.game;
   }
 
-  get fixedSeed(): number | null {
-    return this.play.fixedSeed;
-  }
-
-  get animTime(): number {
-    return this.play.animTime;
-  }
-
-  set animTime(s: number) {
-    this.play.animTime = s;
-  }
-
   get overlay(): Overlay {
     return this.panels.open;
   }
 
-  get helpSize(): number {
-    return this.panels.helpSize;
+  get targets(): Target[] {
+    return this.picture.targets;
   }
 
-  get tableCells(): TableCell[] {
-    return this.panels.tableCells;
+  get targetsZoomed(): boolean {
+    return this.picture.targetsZoomed;
+  }
+
+  get readoutSize(): number {
+    return this.picture.readoutSize;
+  }
+
+  get drawn(): DrawnControls {
+    return this.picture.drawn;
   }
 
   get layout(): Layout {
@@ -287,10 +262,6 @@ export class App implements Animated, ControlsHost, InputHost, PlayEvents, Panel
     this.play.heightChanged();
   }
 
-  fpsLines(): string[] {
-    return this.panels.rateLines();
-  }
-
   notify(text: string): void {
     this.notices.notify(text);
   }
@@ -301,14 +272,6 @@ export class App implements Animated, ControlsHost, InputHost, PlayEvents, Panel
 
   overlayZoom(): Zoom {
     return this.screen.overlayZoom();
-  }
-
-  ready(): Promise<void> {
-    return this.play.ready();
-  }
-
-  settled(): Promise<void> {
-    return this.play.settled();
   }
 
   // -- what comes from outside: a replay to watch, a class challenge ------------------------
@@ -336,79 +299,7 @@ export class App implements Animated, ControlsHost, InputHost, PlayEvents, Panel
 
   // -- actions -------------------------------------------------------------------------------
   act(action: Action): void {
-    const g = this.game;
-    const panels = this.panels;
-    // Another panel over the settings: they close first, and say if changes were dropped.
-    if (panels.open === "settings" && ["help", "table", "clear", "escape"].includes(action))
-      this.options.close(false);
-    switch (action) {
-      case "pause":
-        g.togglePause();
-        this.say(t(g.paused ? "page.paused" : "page.playing"));
-        break;
-      case "restart":
-        this.restart();
-        break;
-      case "lower":
-      case "raise":
-        this.play.takeOver();
-        g.nudgeHeight(action === "lower" ? -HEIGHT_STEP : HEIGHT_STEP);
-        this.play.heightChanged();
-        break;
-      case "step":
-        this.play.autopilot?.steer(g);
-        g.step();
-        break;
-      case "autopilot":
-        this.play.toggleAutopilot();
-        break;
-      case "copycode":
-        void this.replays.copy();
-        break;
-      case "faster":
-      case "slower":
-        if (action === "faster") g.faster();
-        else g.slower();
-        this.say(t("page.speed_spoken", { speed: speedText(g.speed) }));
-        break;
-      case "energy":
-        this.charts.showEnergy = !this.charts.showEnergy;
-        this.resize();
-        this.say(t(this.charts.showEnergy ? "page.energy_shown" : "page.energy_hidden"));
-        break;
-      case "path":
-        this.charts.showPath = !this.charts.showPath;
-        this.resize();
-        this.say(t(this.charts.showPath ? "page.path_shown" : "page.path_hidden"));
-        break;
-      case "table":
-        panels.toggle("table");
-        this.scores.confirmReset = false;
-        break;
-      case "clear":
-        panels.open = "table";
-        this.scores.confirmReset = true;
-        this.say(this.hints.confirmClearSpoken);
-        break;
-      case "next":
-        if (this.scores.readyForNext) this.restart();
-        break;
-      case "settings":
-        panels.open = "settings";
-        this.options.open();
-        break;
-      case "fullscreen":
-        this.toggleFullscreen();
-        break;
-      case "help":
-      case "verify":
-        panels.toggle(action);
-        break;
-      case "escape":
-        if (panels.open !== null) panels.open = null;
-        else if (document.fullscreenElement) void document.exitFullscreen().catch(() => {});
-        break;
-    }
+    act(this, action);
   }
 
   /** New atoms with the current settings, trap at 400, paused; ends any name entry. */
@@ -420,18 +311,6 @@ export class App implements Animated, ControlsHost, InputHost, PlayEvents, Panel
     this.charts.reset();
     this.scores.openTable(s);
     this.say(t("page.restarted", { n: this.game.config.nAtoms, height: 400 }));
-  }
-
-  toggleFullscreen(): void {
-    if (document.fullscreenElement) {
-      void document.exitFullscreen().catch(() => {});
-    } else if (document.documentElement.requestFullscreen) {
-      document.documentElement.requestFullscreen().catch((err: unknown) => {
-        this.notify(t("page.fullscreen_refused", { problem: (err as Error).message }));
-      });
-    } else {
-      this.notify(t("notice.fullscreen_unavailable"));
-    }
   }
 
   resize(): void {
@@ -459,105 +338,16 @@ export class App implements Animated, ControlsHost, InputHost, PlayEvents, Panel
     return this.play.running();
   }
 
-  /** The slow-motion line while playing below real time, else null. */
-  slowNote(): string | null {
-    return this.play.slowNote();
-  }
-
   /** Advance n display frames of one physics frame x speed each, drawing each (tests). */
   runFrames(n: number): Promise<void> {
     return this.play.runFrames(n, () => this.draw());
   }
 
-  /**
-   * What the picture depends on besides input (every input event marks it dirty): while
-   * this stays the same, a frame draws nothing (a paused applet costs no battery). ""
-   * means animated: draw every frame.
-   */
   pictureKey(): string {
-    const g = this.game;
-    const c = this.condensate.level;
-    if ((g.won && !this.reducedMotion) || (c > 0 && c < 1)) return "";
-    const l = this.layout;
-    const cv = this.el.canvas;
-    return [
-      g.generation,
-      g.sim.time,
-      g.trapHeight,
-      g.paused,
-      g.speed,
-      this.notices.visible.length,
-      l.scale,
-      l.offsetX,
-      l.offsetY,
-      l.width,
-      l.height,
-      cv.width,
-      cv.height,
-    ].join("|");
+    return this.picture.key();
   }
 
   draw(): void {
-    const ctx = this.ctx;
-    const l = this.layout;
-    const g = this.game;
-    const sim = g.sim;
-    this.atoms = sim.trapped();
-    this.charts.record(sim, this.atoms, g.generation);
-    ctx.setTransform(1, 0, 0, 1, 0, 0);
-    ctx.fillStyle = "rgb(0,0,0)";
-    ctx.fillRect(0, 0, this.el.canvas.width, this.el.canvas.height);
-    const dpr = this.screen.dpr;
-    const s = l.scale * dpr;
-    ctx.setTransform(s, 0, 0, s, Math.round(l.offsetX * dpr), Math.round(l.offsetY * dpr));
-    this.scene.deviceScale = s;
-    this.drawScene(ctx);
-    this.scene.drawFrame(ctx, sceneGame(g), l.sceneHeight, 16 / l.scale);
-    this.controls.draw(ctx);
-    this.readoutSize = l.readout ? drawReadout(ctx, l.readout, sim) : 0;
-    this.targets = this.win.draw(ctx, this.atoms, this.panels.open !== null);
-    this.targetsZoomed = false;
-    this.verifier.show(this.panels.open === "verify");
-    const panel = this.panels.draw(ctx);
-    if (panel) [this.targets, this.targetsZoomed] = [panel.targets, panel.zoomed];
-    drawNotices(ctx, this.notices.visible);
-    this.charts.draw(ctx, l);
-    const slow = this.slowNote();
-    if (slow) {
-      const [x, y] = [PLAY_RECT.x + PLAY_RECT.w - 8, PLAY_RECT.y + 14];
-      drawText(ctx, slow, 20, SLOW_TEXT, x, y, "midright");
-    }
-    if (this.statusLine.update(g)) this.dirty = true;
-    const d = this.drawn;
-    d.frame = this.loop.frames;
-    d.trapHeight = g.trapHeight;
-    d.paused = g.paused;
-    d.speed = g.speed;
-    d.energy = this.charts.showEnergy;
-    d.overlay = this.panels.open;
+    if (this.picture.draw()) this.dirty = true;
   }
-
-  /** The atoms, and the condensate fading in over them. */
-  private drawScene(ctx: CanvasRenderingContext2D): void {
-    const g = this.game;
-    const sim = g.sim;
-    const fade = this.condensate.update(sim, this.atoms, g.generation, this.play.animTime);
-    this.scene.draw(ctx, sceneGame(g), this.atoms, 1 - fade);
-    if (fade <= 0) return;
-    ctx.save();
-    ctx.beginPath();
-    ctx.rect(PLAY_RECT.x, PLAY_RECT.y, PLAY_RECT.w, PLAY_RECT.h);
-    ctx.clip();
-    let r = 0;
-    for (let i = 0; i < this.atoms.count; i++) r += this.atoms.radius[i];
-    r = this.atoms.count ? r / this.atoms.count : 1;
-    const t = this.reducedMotion ? 0 : this.play.animTime;
-    this.condensate.draw(ctx, sim, r, t, fade, this.reducedMotion);
-    ctx.restore();
-  }
-}
-
-/** The scene reads only a game's sim and speed, which the worker's game has as the page's. */
-function sceneGame(g: GameLike): Game {
-  return g as Game;
 }

@@ -117,7 +117,7 @@ async function main(): Promise<void> {
       browserLocale: browser,
     },
   );
-  await app.ready();
+  await app.play.ready();
   if (params.replay !== null) await app.watch(params.replay);
   const api = classApi(document);
   // A replay watched from the projector's link is not a student's game.

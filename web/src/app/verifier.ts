@@ -1,10 +1,10 @@
 /**
  * The verify panel (key V, or "Verify codes..." under the score table): a lecturer pastes
- * replay codes (the first MAX_CODES are checked); each is replayed with the game's own rules
- * in a worker of its own (physics.worker.ts; the page's own loop where none runs), and the verified ones
- * are ranked by score (ties: fewer frames first), each bad one listed with the reason
- * (damaged, edited, other version, does not replay to the claimed score). Closing the panel
- * stops the run.
+ * replay codes (the first MAX_CODES are checked); each is replayed with the game's own
+ * rules in a worker of its own (physics.worker.ts; the page's own loop where none runs), and
+ * the verified ones are ranked by score (ties: fewer frames first), each bad one listed with
+ * the reason (damaged, edited, other version, does not replay to the claimed score).
+ * Closing the panel stops the run.
  */
 import { activeTranslator, onLocaleChange, t, type Translator } from "../i18n";
 import { coreBytes } from "../game/engine";
@@ -131,50 +131,53 @@ export class Verifier {
     const run = ++this.runs;
     const codes: Decoded[] = [];
     for (const text of texts) {
-      codes.push(
-        await decode(text).then(
-          (recording) => ({ code: text, recording }),
-          (err: unknown) => refused(text, err),
-        ),
+      const decoded = await decode(text).then(
+        (recording) => ({ code: text, recording }),
+        (err: unknown) => refused(text, err),
       );
       if (run !== this.runs) return false; // closed while decoding
+      codes.push(decoded);
     }
     if (codes.length === 0) return true;
     return new Promise((resolve) => {
       const worker = this.startWorker();
-      if (worker === null) {
-        void this.checkHere(codes, resolve);
-        return;
-      }
-      const finish = () => {
-        worker.terminate();
-        this.stop = null;
-        resolve(true);
-      };
-      this.stop = () => {
-        worker.terminate();
-        resolve(false);
-      };
-      // The worker broke: the codes it had not answered are checked here.
-      const failed = (message: string) => {
-        worker.terminate();
-        console.warn(`evapcool: the verify worker failed (${message}); checking here.`);
-        void this.checkHere(codes.slice(this.results.length), resolve);
-      };
-      worker.onmessage = (ev: MessageEvent<FromWorker>) => {
-        const msg = ev.data;
-        if (msg.type === "failed") failed(msg.message);
-        if (msg.type !== "verified") return; // its hello
-        this.results.push(msg.checked);
-        this.host.redraw();
-        if (this.results.length === codes.length) finish();
-      };
-      worker.onerror = (ev) => {
-        ev.preventDefault();
-        failed(ev.message);
-      };
-      worker.postMessage({ type: "verify", core: coreBytes(), codes } satisfies ToWorker);
+      if (worker === null) void this.checkHere(codes, resolve);
+      else this.checkIn(worker, codes, resolve);
     });
+  }
+
+  /** The codes replayed in the worker, each outcome posted back as it comes. */
+  private checkIn(worker: Worker, codes: Decoded[], resolve: (done: boolean) => void): void {
+    const end = () => {
+      worker.onmessage = worker.onerror = null;
+      worker.terminate();
+    };
+    this.stop = () => {
+      end();
+      resolve(false);
+    };
+    // The worker broke: the codes it had not answered are checked here.
+    const failed = (message: string) => {
+      end();
+      console.warn(`evapcool: the verify worker failed (${message}); checking here.`);
+      void this.checkHere(codes.slice(this.results.length), resolve);
+    };
+    worker.onmessage = (ev: MessageEvent<FromWorker>) => {
+      const msg = ev.data;
+      if (msg.type === "failed") failed(msg.message);
+      if (msg.type !== "verified") return; // its hello
+      this.results.push(msg.checked);
+      this.host.redraw();
+      if (this.results.length < codes.length) return;
+      end();
+      this.stop = null;
+      resolve(true);
+    };
+    worker.onerror = (ev) => {
+      ev.preventDefault();
+      failed(ev.message);
+    };
+    worker.postMessage({ type: "verify", core: coreBytes(), codes } satisfies ToWorker);
   }
 
   private startWorker(): Worker | null {

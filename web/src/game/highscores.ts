@@ -1,8 +1,9 @@
 /**
  * The local top-10 table with the desktop's rules (Python's `game/highscores.py`): best
  * score first, ties to the faster time, then the earlier date; names cleaned and cut to
- * 16 characters, each a whole grapheme cluster (a letter with its marks, an emoji family). One table per settings combination, each under its own storage key in
- * the desktop's JSON format. A damaged or foreign stored table is set aside and reported.
+ * 16 characters, each a whole grapheme cluster (a letter with its marks, an emoji family).
+ * One table per settings combination, each under its own storage key in the desktop's JSON
+ * format. A damaged or foreign stored table is set aside and reported.
  */
 import { t } from "../i18n";
 import { formatDate, PREFIX, readKey, setAside, writeKey, type KeyValue } from "./store";
@@ -87,7 +88,7 @@ function validDate(date: string): boolean {
   if (!m) return false;
   const [y, mo, d, h, mi, s] = m.slice(1).map(Number);
   // Years 1 to 9999 as the desktop's datetime reads them (Date takes 0-99 as 1900-1999).
-  const t = new Date(Date.UTC(2000, mo - 1, d));
+  const t = new Date(0);
   t.setUTCFullYear(y, mo - 1, d);
   const real = t.getUTCMonth() === mo - 1 && t.getUTCDate() === d;
   return y >= 1 && real && h < 24 && mi < 60 && s < 60;
