@@ -7,6 +7,7 @@ import { resolve } from "node:path";
 import { defineConfig, type Plugin } from "vite";
 import { wasmCore } from "./scripts/wasm-plugin.mjs";
 import { catalogs } from "./scripts/catalogs-plugin.mjs";
+import { packedWorkers } from "./scripts/worker-plugin.mjs";
 
 /** The copy shipped in the Python package (`evapcool web`); CI checks it equals a fresh build. */
 const PACKAGE_COPY = resolve(import.meta.dirname, "../src/evapcool/web/evapcool.html");
@@ -63,10 +64,10 @@ export default defineConfig({
       input: "index.html",
     },
   },
-  // The physics worker's own bundle (src/app/main.ts imports it inline) gets the core from
-  // the page in its start message: the page holds one copy.
-  worker: { plugins: () => [wasmCore({ fromPage: true })] },
   plugins: [
+    // The physics worker's own bundle (src/app/main.ts imports it packed) gets the core from
+    // the page in its start message: the page holds one copy.
+    packedWorkers({ plugins: () => [wasmCore({ fromPage: true })] }),
     wasmCore(),
     catalogs(),
     singleFile(),

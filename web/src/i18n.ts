@@ -188,7 +188,9 @@ export function chooseLocale(
   saved: string | null,
 ): string {
   const available = availableLocales();
-  const fromQuery = new URLSearchParams(search).get("lang");
+  // An option given twice is refused, as the address's notice says (params.ts): not the first.
+  const given = new URLSearchParams(search).getAll("lang");
+  const fromQuery = given.length === 1 ? given[0] : null;
   for (const source of [saved ? [saved] : [], fromQuery ? [fromQuery] : [], languages]) {
     const match = bestMatch(source, available);
     if (match) return match;

@@ -56,7 +56,7 @@ export function exposeApi(app: App): void {
     app,
     /** The state once the worker (if any) has applied every input so far. */
     async state(): Promise<PageState> {
-      await app.settled();
+      await app.play.settled();
       return this.stateNow();
     },
     /** The state as the page has it now (the worker's newest frame). */
@@ -88,12 +88,12 @@ export function exposeApi(app: App): void {
         notices: app.notices.visible,
         errors: app.loop.errors.slice(),
         fullscreen: document.fullscreenElement !== null,
-        engine: app.engine,
-        pace: app.pace.pace,
-        slowNote: app.slowNote(),
-        physicsMs: app.physicsMs,
-        autopilot: app.autopilotEngaged,
-        helpSize: app.helpSize,
+        engine: app.play.engine,
+        pace: app.play.pace.pace,
+        slowNote: app.play.slowNote(),
+        physicsMs: app.play.physicsMs,
+        autopilot: app.play.autopilotEngaged,
+        helpSize: app.panels.helpSize,
         locale: activeTranslator().locale,
         direction: activeTranslator().direction,
         missingKeys: [...(missingKeys.get(activeTranslator().locale) ?? [])],
@@ -110,15 +110,15 @@ export function exposeApi(app: App): void {
      */
     physicsFrames(n: number): Promise<void> {
       app.game.paused = false;
-      return app.physicsFrames(n);
+      return app.play.physicsFrames(n);
     },
     /** The physics' own switch to the won state (tests of the condensate). */
     forceWin(): Promise<void> {
-      return app.forceWin();
+      return app.play.forceWin();
     },
     /** A golden trace's text replayed by the engine the page plays with (in the worker if any). */
     replay(text: string): Promise<string> {
-      return app.replay(text);
+      return app.play.replay(text);
     },
     /** Display frames run so far, and what the last drawn frame showed of the controls. */
     frames(): { frames: number; drawn: DrawnControls } {

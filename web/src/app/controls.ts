@@ -15,7 +15,24 @@ import {
 } from "../view/geometry";
 import type { Look, SymbolName } from "../view/icons";
 import { drawControlButton, drawSlider, SliderModel } from "../view/widgets";
-import type { App } from "./app";
+import type { Action } from "./bindings";
+import type { Screen } from "./layout";
+import type { Overlay } from "./panels";
+import type { GameLike } from "./remote";
+
+/** What the controls move and show (the composition root wires them; app.ts). */
+export interface ControlsHost {
+  readonly screen: Screen;
+  readonly game: GameLike;
+  readonly autopilotEngaged: boolean;
+  readonly overlay: Overlay;
+  act(action: Action): void;
+  /** Close the settings screen, keeping its changes (the gear pressed again). */
+  saveSettings(): void;
+  /** The player moved the trap: the autopilot lets go, the height is spoken. */
+  takeOver(): void;
+  heightChanged(): void;
+}
 
 /** Each button's spoken name: a message key (issue 23). */
 const LABELS: Record<ControlName, string> = {
@@ -37,7 +54,7 @@ const CLICK_AFTER_PRESS_MS = 600;
 
 export class Controls {
   /** The knob rests at the game's trap height (read when drawn) unless a drag holds it. */
-  readonly slider = new SliderModel(HEIGHT_MIN, HEIGHT_MAX, () => this.app.game.trapHeight);
+  readonly slider = new SliderModel(HEIGHT_MIN, HEIGHT_MAX, () => this.host.game.trapHeight);
   private buttons = new Map<ControlName, HTMLButtonElement>();
   private sliderEl!: HTMLDivElement;
   private layer!: HTMLDivElement;
@@ -50,7 +67,7 @@ export class Controls {
   sliding = false;
   private hot: ControlName | "slider" | null = null;
 
-  constructor(private readonly app: App) {}
+  constructor(private readonly host: ControlsHost) {}
 
   /** Transparent buttons over the drawn controls: focus, labels, touch targets. */
   build(root: HTMLElement): void {
@@ -68,7 +85,7 @@ export class Controls {
 
   /** Tab order follows what is drawn: top to bottom, then left to right (issue 27.12). */
   private orderByPlace(): void {
-    const l = this.app.screen.layout;
+    const l = this.host.screen.layout;
     if (this.orderedFor === l.mode) return;
     this.orderedFor = l.mode;
     const items: Array<[HTMLElement, Rect]> = [...this.buttons].map(([n, b]) => [b, l.buttons[n]]);
@@ -140,11 +157,11 @@ export class Controls {
       const k = ev.key;
       if (k === "Home" || k === "End" || k === "PageUp" || k === "PageDown") {
         ev.preventDefault();
-        const g = this.app.game;
+        const g = this.host.game;
         const h = { Home: HEIGHT_MIN, End: HEIGHT_MAX, PageUp: g.trapHeight + 50 }[k as "Home"];
-        this.app.takeOver();
+        this.host.takeOver();
         g.setTrapHeight(h ?? g.trapHeight - 50);
-        this.app.heightChanged();
+        this.host.heightChanged();
       }
     });
     this.sliderEl = s;
@@ -152,30 +169,30 @@ export class Controls {
   }
 
   private press(name: ControlName): void {
-    const app = this.app;
+    const host = this.host;
     switch (name) {
       case "chart":
-        app.act("energy");
+        host.act("energy");
         break;
       case "settings":
         // The gear closes the screen as it opened it: keeping the changes, and saying so.
-        if (app.overlay === "settings") app.options.close(true);
-        else app.act("settings");
+        if (host.overlay === "settings") host.saveSettings();
+        else host.act("settings");
         break;
       default:
-        app.act(name);
+        host.act(name);
     }
   }
 
   private slideStart(ev: PointerEvent): void {
-    if (this.app.game.won) return;
+    if (this.host.game.won) return;
     ev.preventDefault();
     this.sliding = true;
     this.sliderEl.setPointerCapture?.(ev.pointerId);
     this.sliderEl.focus({ preventScroll: true });
-    this.app.takeOver();
+    this.host.takeOver();
     // A press on or near the knob takes hold of it where it is; elsewhere the knob jumps there.
-    const l = this.app.screen.layout;
+    const l = this.host.screen.layout;
     const along = this.along(ev);
     const knob = this.slider.knobAt(l.slider);
     const reach = Math.max(l.knobRadius, MIN_TARGET_CSS / 2 / l.scale);
@@ -185,16 +202,16 @@ export class Controls {
 
   /** The pointer's logical position along the slider's track. */
   private along(ev: PointerEvent): number {
-    const [x, y] = this.app.screen.toLogical(ev.clientX, ev.clientY);
-    return SliderModel.upright(this.app.screen.layout.slider) ? y : x;
+    const [x, y] = this.host.screen.toLogical(ev.clientX, ev.clientY);
+    return SliderModel.upright(this.host.screen.layout.slider) ? y : x;
   }
 
   private slideMove(ev: PointerEvent): void {
     if (!this.sliding) return;
-    const value = this.slider.valueAt(this.along(ev) + this.grab, this.app.screen.layout.slider);
-    this.app.game.setTrapHeight(value);
+    const value = this.slider.valueAt(this.along(ev) + this.grab, this.host.screen.layout.slider);
+    this.host.game.setTrapHeight(value);
     this.slider.hold(value);
-    this.app.heightChanged();
+    this.host.heightChanged();
   }
 
   private slideEnd(ev: PointerEvent): void {
@@ -207,7 +224,7 @@ export class Controls {
 
   /** Put the elements over the controls as the layout draws them. */
   place(): void {
-    const screen = this.app.screen;
+    const screen = this.host.screen;
     const l = screen.layout;
     const min = MIN_TARGET_CSS / l.scale;
     for (const [name, b] of this.buttons) screen.place(b, atLeast(l.buttons[name], min));
@@ -227,8 +244,8 @@ export class Controls {
 
   /** Draw the strip, buttons and slider, and keep the elements' states in step. */
   draw(ctx: CanvasRenderingContext2D): void {
-    const l = this.app.screen.layout;
-    const g = this.app.game;
+    const l = this.host.screen.layout;
+    const g = this.host.game;
     if (l.strip) {
       ctx.fillStyle = C.BORDER;
       ctx.fillRect(l.strip.x, l.strip.y, l.strip.w, l.strip.h);
@@ -237,7 +254,7 @@ export class Controls {
       if (l.mode === "tall") ctx.fillRect(l.strip.x, l.strip.y, l.strip.w, 2);
       else ctx.fillRect(l.strip.x, l.strip.y, 2, l.strip.h);
     }
-    const flying = this.app.autopilotEngaged;
+    const flying = this.host.autopilotEngaged;
     for (const name of CONTROL_ORDER) {
       const symbol: SymbolName = name === "pause" ? (g.paused ? "play" : "pause") : name;
       const down = this.pressed === name || (name === "autopilot" && flying);

@@ -3,11 +3,43 @@
  * name box, the settings screen, play), taps on the drawn panels, and the window's events
  * (resize, pixel ratio, another tab's scores, hiding, full screen).
  */
-import { NAME_MAX } from "../game/highscores";
+import { cutName, NAME_CODE_POINTS } from "../game/highscores";
 import { atLeast, contains, MIN_TARGET_CSS } from "../view/geometry";
 import type { Target } from "../view/overlays";
-import type { App } from "./app";
-import { actionFor } from "./bindings";
+import { actionFor, type Action } from "./bindings";
+import type { Hints } from "./hints";
+import type { Screen } from "./layout";
+import type { SettingsEditor } from "./options";
+import type { Panels } from "./panels";
+import type { GameLike } from "./remote";
+import type { Scoreboard } from "./scoring";
+import type { Verifier } from "./verifier";
+
+/** What input reaches (the composition root wires it; app.ts). */
+export interface InputHost {
+  readonly screen: Screen;
+  readonly canvas: HTMLCanvasElement;
+  readonly nameInput: HTMLInputElement;
+  readonly game: GameLike;
+  readonly hints: Hints;
+  readonly scores: Scoreboard;
+  readonly options: SettingsEditor;
+  readonly panels: Panels;
+  readonly verifier: Verifier;
+  /** The drawn tap targets of the last frame, and whether they were drawn zoomed. */
+  readonly targets: Target[];
+  readonly targetsZoomed: boolean;
+  act(action: Action): void;
+  restart(): void;
+  resize(): void;
+  /** Something changed: the next frame draws. */
+  redraw(): void;
+  /** A key was pressed (touch screens with a keyboard get key hints from then on). */
+  keyPressed(): void;
+  say(text: string): void;
+  /** The frame clock starts again (the page was hidden). */
+  resetClock(): void;
+}
 
 /** Targets drawn on the scene itself (the name box's buttons) are not zoomed. */
 const NO_ZOOM = { k: 1, cx: 0, cy: 0, x: 0, y: 0 };
@@ -15,11 +47,11 @@ const NO_ZOOM = { k: 1, cx: 0, cy: 0, x: 0, y: 0 };
 export class Input {
   private pausedByHiding = false;
 
-  constructor(private readonly app: App) {}
+  constructor(private readonly host: InputHost) {}
 
   /** A key press (KeyboardEvent.key); true if the applet used it. */
   key(rawKey: string): boolean {
-    const app = this.app;
+    const app = this.host;
     const scores = app.scores;
     const key = rawKey.toLowerCase();
     if (scores.confirmReset) {
@@ -28,7 +60,7 @@ export class Input {
       return true; // nothing else happens until the question is answered
     }
     if (scores.nameBoxOpen) return false; // the input field has the keyboard
-    if (app.overlay === "settings") {
+    if (app.panels.open === "settings") {
       app.options.key(key);
       return true;
     }
@@ -39,21 +71,21 @@ export class Input {
   }
 
   wire(): void {
-    const app = this.app;
+    const app = this.host;
     for (const type of ["keydown", "keyup", "pointerdown", "pointermove", "pointerup", "input"]) {
-      window.addEventListener(type, () => (app.dirty = true), { capture: true, passive: true });
+      window.addEventListener(type, () => app.redraw(), { capture: true, passive: true });
     }
     window.addEventListener("resize", () => app.resize());
     // Another tab stored a score: show the table as it is now.
     window.addEventListener("storage", (ev) => {
       if (ev.key !== null && ev.key !== app.scores.table.key) return;
       app.scores.reload();
-      app.dirty = true;
+      app.redraw();
     });
     window.visualViewport?.addEventListener("resize", () => app.resize());
     this.watchRatio();
     this.wireKeys();
-    app.el.canvas.addEventListener("pointerdown", (ev) => this.tap(ev));
+    app.canvas.addEventListener("pointerdown", (ev) => this.tap(ev));
     document.addEventListener("visibilitychange", () => this.visibility());
     document.addEventListener("fullscreenchange", () => app.resize());
   }
@@ -64,7 +96,7 @@ export class Input {
     matchMedia(`(resolution: ${window.devicePixelRatio}dppx)`).addEventListener(
       "change",
       () => {
-        this.app.resize();
+        this.host.resize();
         this.watchRatio();
       },
       { once: true },
@@ -72,8 +104,8 @@ export class Input {
   }
 
   private wireKeys(): void {
-    const app = this.app;
-    const nameInput = app.el.nameInput;
+    const app = this.host;
+    const nameInput = app.nameInput;
     window.addEventListener("keydown", (ev) => {
       if (ev.ctrlKey || ev.metaKey || ev.altKey) return;
       app.keyPressed();
@@ -82,11 +114,17 @@ export class Input {
       // Enter on a focused button presses that button (its own click); on the settings
       // screen Enter saves wherever the focus is, as its footer says (issue 27.1).
       const onButton = target instanceof HTMLButtonElement;
-      if (ev.key === "Enter" && onButton && !app.scores.readyForNext && app.overlay !== "settings")
+      if (
+        ev.key === "Enter" &&
+        onButton &&
+        !app.scores.readyForNext &&
+        app.panels.open !== "settings"
+      )
         return;
       if (this.key(ev.key)) ev.preventDefault();
     });
-    nameInput.maxLength = NAME_MAX * 2; // code points are cut by the table; this bounds typing
+    // The table keeps whole characters (cutName); this bounds typing in UTF-16 units.
+    nameInput.maxLength = NAME_CODE_POINTS * 2;
     nameInput.addEventListener("keydown", (ev) => {
       if (ev.isComposing) return;
       if (ev.key === "Enter") {
@@ -99,14 +137,14 @@ export class Input {
       ev.stopPropagation();
     });
     nameInput.addEventListener("input", () => {
-      const chars = Array.from(nameInput.value);
-      if (chars.length > NAME_MAX) nameInput.value = chars.slice(0, NAME_MAX).join("");
+      const cut = cutName(nameInput.value);
+      if (cut !== nameInput.value) nameInput.value = cut;
     });
   }
 
   /** Hidden: pause (and say so on return); the clock restarts either way. */
   private visibility(): void {
-    const app = this.app;
+    const app = this.host;
     if (document.hidden && !app.game.paused) {
       app.game.paused = true;
       this.pausedByHiding = true;
@@ -114,12 +152,12 @@ export class Input {
       this.pausedByHiding = false;
       app.say(app.hints.hiddenPause);
     }
-    app.loop.resetClock();
+    app.resetClock();
   }
 
   /** A tap or click on the canvas: the drawn targets first, then closing the help. */
   private tap(ev: PointerEvent): void {
-    const app = this.app;
+    const app = this.host;
     const [lx, ly] = app.screen.toLogical(ev.clientX, ev.clientY);
     const z = app.targetsZoomed ? app.screen.overlayZoom() : NO_ZOOM;
     const [x, y] = [z.cx + (lx - z.x) / z.k, z.cy + (ly - z.y) / z.k];
@@ -127,19 +165,19 @@ export class Input {
     if (hit) {
       ev.preventDefault();
       this.target(hit.action);
-    } else if (app.overlay === "help") {
-      app.overlay = null;
+    } else if (app.panels.open === "help") {
+      app.panels.open = null;
     }
   }
 
   /** A drawn panel's target ("name" or "name:row") was tapped. */
   private target(action: string): void {
-    const app = this.app;
+    const app = this.host;
     const [name, arg] = action.split(":");
     const row = Number(arg);
     switch (name) {
       case "close":
-        app.overlay = null;
+        app.panels.open = null;
         break;
       case "dec":
       case "inc":
@@ -176,13 +214,13 @@ export class Input {
         void app.verifier.run();
         break;
       case "store":
-        app.scores.storeName(app.el.nameInput.value);
+        app.scores.storeName(app.nameInput.value);
         break;
       case "skip":
         app.scores.skipName();
         break;
       case "tableclose":
-        app.overlay = null;
+        app.panels.open = null;
         app.scores.confirmReset = false;
         break;
     }

@@ -6,7 +6,7 @@ import { App } from "./app";
 import { classApi, ClassMode } from "./classmode";
 import { exposeApi } from "./api";
 import { parseParams } from "./params";
-import PhysicsWorker from "./physics.worker?worker&inline";
+import physicsWorkerCode from "./physics.worker?packed";
 import { pageStorage, ReadOnly } from "./storage";
 import { chooseLocale, onLocaleChange, STORAGE_KEY, t, useLocale, type Translator } from "../i18n";
 
@@ -16,11 +16,28 @@ function byId<T extends HTMLElement>(id: string): T {
   return el as T;
 }
 
-/** The physics worker, from the page's own code (no file, no server), or null if none runs here. */
-function startWorker(): Worker | null {
+/** The physics worker's script, unpacked from the page's own code into a URL of this page
+ * (no file, no server), or null if no worker runs here. */
+async function workerUrl(): Promise<string | null> {
   try {
     if (typeof Worker !== "function") return null;
-    return new PhysicsWorker({ name: "evapcool physics" });
+    const packed = Uint8Array.from(atob(physicsWorkerCode), (c) => c.charCodeAt(0));
+    const stream = new Blob([packed]).stream().pipeThrough(new DecompressionStream("deflate-raw"));
+    const code = await new Response(stream).blob();
+    return URL.createObjectURL(new Blob([code], { type: "text/javascript" }));
+  } catch (err) {
+    console.warn(
+      `evapcool: no physics worker here (${(err as Error).message}); playing without it.`,
+    );
+    return null;
+  }
+}
+
+/** A worker of that script (the game's, or the verify panel's), or null if none starts. */
+function startWorker(url: string | null, name: string): Worker | null {
+  if (url === null) return null;
+  try {
+    return new Worker(url, { name });
   } catch (err) {
     console.warn(
       `evapcool: no physics worker here (${(err as Error).message}); playing without it.`,
@@ -73,7 +90,8 @@ async function main(): Promise<void> {
   const [saved] = loadSettings(new ReadOnly(kv));
   const params = parseParams(location.search, saved);
   // A watched replay plays in the page's own loop (its heights are fed frame by frame).
-  const worker = params.replay === null ? startWorker() : null;
+  const url = await workerUrl();
+  const worker = params.replay === null ? startWorker(url, "evapcool physics") : null;
   // The inline font must be ready before the first frame measures text.
   try {
     await Promise.race([document.fonts.load("700 20px EvapSans"), sleep(500)]);
@@ -95,10 +113,11 @@ async function main(): Promise<void> {
       config: { seed: params.seed, speed: params.speed },
       notices: [...notices, ...params.notices],
       worker,
+      verifyWorker: () => startWorker(url, "evapcool verify"),
       browserLocale: browser,
     },
   );
-  await app.ready();
+  await app.play.ready();
   if (params.replay !== null) await app.watch(params.replay);
   const api = classApi(document);
   // A replay watched from the projector's link is not a student's game.

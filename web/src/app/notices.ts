@@ -11,8 +11,9 @@ export const NOTICE_SECONDS = 8;
 export const NOTICE_MAX = 5;
 /** Notices shown at once; the rest follow page by page, counted on the last line. */
 const NOTICE_PAGE = NOTICE_MAX - 1;
-/** Notices kept at most (older ones are dropped, each was spoken when it came). */
-const NOTICE_KEPT = 100;
+/** Notices kept at most: beyond, the newest are counted on the last kept line instead
+ * (each was spoken when it came), so the first is always shown. */
+export const NOTICE_KEPT = 100;
 /** The last line while more notices wait for their turn. */
 export const moreNotices = (n: number): string => t("page.more_notices", { n });
 /** The status line is rewritten at most this often, ms (screen readers read it on change). */
@@ -21,6 +22,10 @@ const STATUS_EVERY_MS = 500;
 export class Notices {
   /** [text, shown from, shown until] (applet clock, s). */
   private list: Array<[string, number, number]> = [];
+  /** The last kept line when full: it counts itself and `dropped` more. */
+  private summary: [string, number, number] | null = null;
+  /** Notices past NOTICE_KEPT not kept, counted on the summary line. */
+  private dropped = 0;
 
   constructor(
     private readonly live: HTMLElement,
@@ -35,18 +40,26 @@ export class Notices {
     this.changed();
     const now = this.clock();
     this.list = this.list.filter(([, , until]) => until > now);
+    if (this.summary && !this.list.includes(this.summary)) [this.summary, this.dropped] = [null, 0];
+    this.say(text);
+    if (this.list.length >= NOTICE_KEPT) {
+      // Full: the last kept line says how many more came (they were spoken).
+      this.summary ??= this.list[this.list.length - 1];
+      this.dropped += 1;
+      this.summary[0] = moreNotices(this.dropped + 1);
+      return;
+    }
     const page = Math.floor(this.list.length / NOTICE_PAGE);
     const from = page === 0 ? now : Math.max(now, this.list[page * NOTICE_PAGE - 1][2]);
     this.list.push([text, from, from + NOTICE_SECONDS]);
-    this.list.splice(0, Math.max(0, this.list.length - NOTICE_KEPT));
-    this.say(text);
   }
 
   /** The notices showing now, oldest first, and a line counting those still to come. */
   get visible(): string[] {
     const now = this.clock();
     const shown = this.list.filter(([, from, until]) => from <= now && until > now);
-    const waiting = this.list.filter(([, from]) => from > now).length;
+    const summary = this.summary && this.summary[1] > now ? this.dropped : 0;
+    const waiting = this.list.filter(([, from]) => from > now).length + summary;
     const lines = shown.map(([text]) => text);
     return waiting > 0 ? [...lines, moreNotices(waiting)] : lines;
   }

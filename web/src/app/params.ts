@@ -124,7 +124,7 @@ export function parseParams(search: string, saved: Settings): PageParams {
   }
   const law = value("tc-law");
   if (law !== null) {
-    if (law in TC_LAWS) out.overrides.tcLaw = law as keyof typeof TC_LAWS;
+    if (Object.hasOwn(TC_LAWS, law)) out.overrides.tcLaw = law as keyof typeof TC_LAWS;
     else out.notices.push(refusal("tc-law", oneOf(Object.keys(TC_LAWS)), law));
   }
   const escape = value("escape");

@@ -3,6 +3,7 @@
  * the wall time between the page's display frames, its state and atoms posted back in
  * frame buffers (worker-protocol.ts). Commands are applied in the order the page sent
  * them, between advances, exactly as the page's own loop applies input between frames.
+ * A worker of the same code replays the verify panel's codes (off the page's thread).
  */
 import { forceWin, makeSimulation, provideCore, replayGolden } from "../game/engine";
 import { Game, MAX_WALL_STEP, type GameConfig } from "../game/rules";
@@ -16,6 +17,7 @@ import {
   type FromWorker,
   type ToWorker,
 } from "./worker-protocol";
+import { replayed, type Decoded } from "./verify-check";
 
 /** Buffers going round: one drawn, one arriving, one being filled. */
 const BUFFERS = 3;
@@ -193,7 +195,16 @@ function receive(msg: ToWorker): void {
     case "moves":
       post({ type: "moves", id: msg.id, runs: game ? game.moves.runs : [] });
       break;
+    case "verify":
+      if (msg.core.length) provideCore(msg.core);
+      verifyCodes(msg.codes);
+      break;
   }
+}
+
+/** Each code's outcome as it comes (the page terminates this worker to stop). */
+function verifyCodes(codes: Decoded[]): void {
+  codes.forEach((item, index) => post({ type: "verified", index, checked: replayed(item) }));
 }
 
 scope.onmessage = (ev) => {

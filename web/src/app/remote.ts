@@ -230,7 +230,7 @@ export class RemoteGame implements GameLike {
     } else if (msg.type === "replayed") {
       this.replies.get(msg.id)?.(msg.text);
       this.replies.delete(msg.id);
-    } else {
+    } else if (msg.type === "frame") {
       // The buffer drawn so far goes back with the next display frame; one not drawn at all
       // goes back now.
       if (this.toReturn) this.send({ type: "give", buffer: this.toReturn }, [this.toReturn]);

@@ -1,5 +1,5 @@
 /** The win's name entry and the high-score table, for one visit of the page. */
-import { HighScoreTable, scoresKey } from "../game/highscores";
+import { graphemes, HighScoreTable, scoresKey } from "../game/highscores";
 import { settingsKey, type Settings } from "../game/settings";
 import type { KeyValue } from "../game/store";
 import { nameField } from "../view/overlays";
@@ -115,7 +115,7 @@ export class Scoreboard {
 
   /** Letters typed in the name box (the frame drawn round it counts them). */
   nameLength(): number {
-    return Array.from(this.host.nameInput.value).length;
+    return graphemes(this.host.nameInput.value).length;
   }
 
   storeName(name: string): void {

@@ -1,38 +1,34 @@
 /**
  * The verify panel (key V, or "Verify codes..." under the score table): a lecturer pastes
- * any number of replay codes; each is replayed in the page with the game's own rules and
- * the verified ones are ranked by score (ties: fewer frames first), each bad one listed
- * with the reason (damaged, edited, other version, does not replay to the claimed score).
+ * replay codes (the first MAX_CODES are checked); each is replayed with the game's own
+ * rules in a worker of its own (physics.worker.ts; the page's own loop where none runs), and
+ * the verified ones are ranked by score (ties: fewer frames first), each bad one listed with
+ * the reason (damaged, edited, other version, does not replay to the claimed score).
+ * Closing the panel stops the run.
  */
 import { activeTranslator, onLocaleChange, t, type Translator } from "../i18n";
-import { makeSimulation } from "../game/engine";
-import {
-  DAMAGED,
-  EDITED,
-  OTHER_VERSION,
-  ReplayError,
-  verify,
-  WRONG_SCORE,
-  type Verdict,
-} from "../game/replay";
-import { decode } from "../game/replaycode";
+import { coreBytes } from "../game/engine";
+import { DAMAGED, EDITED, OTHER_VERSION, WRONG_SCORE } from "../game/replay";
 import type { Zoom } from "./layout";
 import type { Screen } from "./layout";
 import { PLAY_RECT, type Rect } from "../view/geometry";
+import { decode } from "../game/replaycode";
+import { refused, replayed, type Checked, type Decoded } from "./verify-check";
+import type { FromWorker, ToWorker } from "./worker-protocol";
 
-/** One pasted code's outcome. */
-export interface Checked {
-  code: string;
-  verdict: Verdict | null;
-  edition: string;
-  reason: string;
-}
+export type { Checked } from "./verify-check";
+
+/** Codes checked in one run at most: a class's worth (more pasted are left, with a notice). */
+export const MAX_CODES = 100;
 
 export interface VerifierHost {
   readonly screen: Screen;
   overlayZoom(): Zoom;
   say(text: string): void;
+  notify(text: string): void;
   redraw(): void;
+  /** A new verify worker, or null where none can run (the codes are then checked here). */
+  makeWorker(): Worker | null;
 }
 
 /** Where the codes are pasted, in the play area's coordinates (logical px). */
@@ -47,6 +43,10 @@ export class Verifier {
   results: Checked[] = [];
   busy = false;
   readonly area: HTMLTextAreaElement;
+  /** Ends the run under way (its worker, or the page's loop), or null. */
+  private stop: (() => void) | null = null;
+  /** Counts runs and cancels: a run whose number has passed is dropped. */
+  private runs = 0;
 
   constructor(
     private readonly host: VerifierHost,
@@ -76,6 +76,7 @@ export class Verifier {
     const a = this.area;
     if (a.hidden === !shown) return;
     a.hidden = !shown;
+    if (!shown) this.cancel();
     if (shown) {
       this.place();
       a.focus({ preventScroll: true });
@@ -96,23 +97,113 @@ export class Verifier {
     this.area.style.fontSize = `${Math.max(16, 18 * scale)}px`;
   }
 
-  /** Verify every code pasted (one per line, blank lines and spaces ignored), then rank. */
+  /** Verify the codes pasted (spaces and lines between them), then rank them. */
   async run(): Promise<void> {
     if (this.busy) return;
-    const codes = this.area.value.split(/\s+/).filter((c) => c.length > 0);
+    const codes = firstWords(this.area.value, MAX_CODES + 1);
+    if (codes.length > MAX_CODES) {
+      codes.length = MAX_CODES;
+      this.host.notify(t("verify.capped", { n: MAX_CODES }));
+    }
     this.busy = true;
     this.results = [];
     this.host.redraw();
-    for (const code of codes) {
-      this.results.push(await check(code));
-      this.host.redraw();
-      await new Promise((resolve) => setTimeout(resolve, 0)); // let the page draw
-    }
+    if (!(await this.checkAll(codes))) return; // the panel was closed
     this.results = ranked(this.results);
     this.busy = false;
     const good = this.results.filter((r) => r.verdict).length;
     this.host.say(t("verify.summary", { good, n: codes.length }));
     this.host.redraw();
+  }
+
+  /** Stop the run under way (the panel closed): its worker ends, its results are dropped. */
+  cancel(): void {
+    this.runs += 1;
+    const stop = this.stop;
+    this.stop = null;
+    this.busy = false;
+    this.results = [];
+    stop?.();
+  }
+
+  /** Each code's outcome into results as it comes; false if cancelled first. */
+  private async checkAll(texts: string[]): Promise<boolean> {
+    const run = ++this.runs;
+    const codes: Decoded[] = [];
+    for (const text of texts) {
+      const decoded = await decode(text).then(
+        (recording) => ({ code: text, recording }),
+        (err: unknown) => refused(text, err),
+      );
+      if (run !== this.runs) return false; // closed while decoding
+      codes.push(decoded);
+    }
+    if (codes.length === 0) return true;
+    return new Promise((resolve) => {
+      const worker = this.startWorker();
+      if (worker === null) void this.checkHere(codes, resolve);
+      else this.checkIn(worker, codes, resolve);
+    });
+  }
+
+  /** The codes replayed in the worker, each outcome posted back as it comes. */
+  private checkIn(worker: Worker, codes: Decoded[], resolve: (done: boolean) => void): void {
+    const end = () => {
+      worker.onmessage = worker.onerror = null;
+      worker.terminate();
+    };
+    this.stop = () => {
+      end();
+      resolve(false);
+    };
+    // The worker broke: the codes it had not answered are checked here.
+    const failed = (message: string) => {
+      end();
+      console.warn(`evapcool: the verify worker failed (${message}); checking here.`);
+      void this.checkHere(codes.slice(this.results.length), resolve);
+    };
+    worker.onmessage = (ev: MessageEvent<FromWorker>) => {
+      const msg = ev.data;
+      if (msg.type === "failed") failed(msg.message);
+      if (msg.type !== "verified") return; // its hello
+      this.results.push(msg.checked);
+      this.host.redraw();
+      if (this.results.length < codes.length) return;
+      end();
+      this.stop = null;
+      resolve(true);
+    };
+    worker.onerror = (ev) => {
+      ev.preventDefault();
+      failed(ev.message);
+    };
+    worker.postMessage({ type: "verify", core: coreBytes(), codes } satisfies ToWorker);
+  }
+
+  private startWorker(): Worker | null {
+    try {
+      return this.host.makeWorker();
+    } catch (err) {
+      console.warn(`evapcool: no verify worker here (${(err as Error).message}).`);
+      return null;
+    }
+  }
+
+  /** The page's own loop: one code at a time, the page drawn between. */
+  private async checkHere(codes: Decoded[], resolve: (done: boolean) => void): Promise<void> {
+    let cancelled = false;
+    this.stop = () => {
+      cancelled = true;
+      resolve(false);
+    };
+    for (const code of codes) {
+      this.results.push(replayed(code));
+      this.host.redraw();
+      await new Promise((next) => setTimeout(next, 0)); // let the page draw
+      if (cancelled) return;
+    }
+    this.stop = null;
+    resolve(true);
   }
 
   /** The lines the panel shows: ranked verified codes, then the rejected ones. */
@@ -122,7 +213,7 @@ export class Verifier {
     return this.results.map((r) => {
       const short = r.code.length > 18 ? `${r.code.slice(0, 14)}...` : r.code;
       if (!r.verdict) {
-        const key = REASON_KEYS[r.reason];
+        const key = Object.hasOwn(REASON_KEYS, r.reason) ? REASON_KEYS[r.reason] : null;
         return t("verify.rejected", { reason: key ? t(key) : r.reason, code: short });
       }
       rank += 1;
@@ -141,20 +232,21 @@ const REASON_KEYS: Record<string, string> = {
   [WRONG_SCORE]: "reason.wrong_score",
 };
 
-async function check(code: string): Promise<Checked> {
-  try {
-    const rec = await decode(code);
-    return { code, verdict: verify(rec, makeSimulation), edition: rec.edition, reason: "" };
-  } catch (err) {
-    const reason = err instanceof ReplayError ? err.reason : (err as Error).message;
-    return { code, verdict: null, edition: "", reason };
-  }
-}
-
 /** Verified first, by score (higher first), then frames (fewer first); rejected last. */
 function ranked(results: Checked[]): Checked[] {
   const good = results.filter((r) => r.verdict);
   const bad = results.filter((r) => !r.verdict);
   good.sort((a, b) => b.verdict!.score - a.verdict!.score || a.verdict!.frames - b.verdict!.frames);
   return [...good, ...bad];
+}
+
+/** The first n words of text (codes are separated by spaces and lines), without splitting
+ * all of a huge paste. */
+function firstWords(text: string, n: number): string[] {
+  const out: string[] = [];
+  for (const m of text.matchAll(/\S+/g)) {
+    out.push(m[0]);
+    if (out.length >= n) break;
+  }
+  return out;
 }

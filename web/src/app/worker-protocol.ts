@@ -8,6 +8,7 @@
  * paces the worker to the display. Each buffer holds a header of named Float64 slots and
  * the trapped and escaped atoms in columns (the AtomArrays the view draws).
  */
+import type { Checked, Decoded } from "./verify-check";
 import type { GameConfig } from "../game/rules";
 import type { AtomArrays } from "../game/sim";
 
@@ -122,7 +123,10 @@ export type ToWorker =
   /** Replay a golden trace's text with the engine the page uses (tests). */
   | { type: "replay"; id: number; text: string }
   /** The moves of the game so far (a recording at the win, issue 22). */
-  | { type: "moves"; id: number };
+  | { type: "moves"; id: number }
+  /** The verify panel's codes, replayed one by one (a worker of their own: closing the
+   * panel terminates it). */
+  | { type: "verify"; core: Uint8Array<ArrayBuffer>; codes: Decoded[] };
 
 export type FromWorker =
   /** The worker's code runs (posted before anything else). */
@@ -130,5 +134,7 @@ export type FromWorker =
   | { type: "frame"; buffer: ArrayBuffer }
   | { type: "replayed"; id: number; text: string }
   | { type: "moves"; id: number; runs: Array<[number, number]> }
+  /** The outcome of the verify message's codes[index]. */
+  | { type: "verified"; index: number; checked: Checked }
   /** A message the worker could not handle (the page falls back to its own loop). */
   | { type: "failed"; message: string };

@@ -3,3 +3,9 @@ declare module "*?worker&inline" {
   const WorkerConstructor: new (options?: { name?: string }) => Worker;
   export default WorkerConstructor;
 }
+
+/** A worker's script packed by scripts/worker-plugin.mjs: deflate-raw, as base64 text. */
+declare module "*?packed" {
+  const packed: string;
+  export default packed;
+}

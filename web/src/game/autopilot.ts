@@ -112,7 +112,7 @@ export function parseStrategy(text: string): () => Controller {
     const params = { ...GUARDED_DEFAULTS };
     for (const part of policy[2].split(",").filter((x) => x.trim())) {
       const [name, value] = part.split("=").map((x) => x.trim());
-      if (!(name in GUARDED_DEFAULTS) || !Number.isFinite(Number(value)))
+      if (!Object.hasOwn(GUARDED_DEFAULTS, name) || !Number.isFinite(Number(value)))
         throw new RangeError(`strategy: ${part.trim()} is not a guarded policy's name=number`);
       params[name] = Number(value);
     }

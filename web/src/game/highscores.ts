@@ -1,8 +1,9 @@
 /**
  * The local top-10 table with the desktop's rules (Python's `game/highscores.py`): best
  * score first, ties to the faster time, then the earlier date; names cleaned and cut to
- * 16 characters. One table per settings combination, each under its own storage key in
- * the desktop's JSON format. A damaged or foreign stored table is set aside and reported.
+ * 16 characters, each a whole grapheme cluster (a letter with its marks, an emoji family).
+ * One table per settings combination, each under its own storage key in the desktop's JSON
+ * format. A damaged or foreign stored table is set aside and reported.
  */
 import { t } from "../i18n";
 import { formatDate, PREFIX, readKey, setAside, writeKey, type KeyValue } from "./store";
@@ -10,7 +11,11 @@ import { formatDate, PREFIX, readKey, setAside, writeKey, type KeyValue } from "
 export const FORMAT_VERSION = 1;
 export const MAX_ENTRIES = 10;
 export const NAME_MAX = 16;
+/** Code points a name may hold at most (marks and joiners in its 16 characters). */
+export const NAME_CODE_POINTS = 4 * NAME_MAX;
 export const DEFAULT_NAME = "Anonymous";
+/** The longest time a stored row may claim, s (the table shows m:ss.s; more is not a game). */
+export const SECONDS_MAX = 1e9;
 const DATE_RE = /^(\d{4})-(\d{2})-(\d{2}) (\d{2}):(\d{2}):(\d{2})$/;
 
 export interface Entry {
@@ -33,11 +38,41 @@ function printable(ch: string): boolean {
   return !/[\p{C}\p{Z}]/u.test(ch);
 }
 
-/** Printable characters only, whitespace runs made one space, cut to maxLength code points. */
+/** Inside a character (after its first code point) a format mark is part of it: the joiner
+ * of an emoji family, a flag's tags. */
+const inCluster = (ch: string): boolean => printable(ch) || /\p{Cf}/u.test(ch);
+
+const GRAPHEMES = new Intl.Segmenter("en", { granularity: "grapheme" });
+
+/** The text's characters as a reader counts them (grapheme clusters). */
+export function graphemes(text: string): string[] {
+  return Array.from(GRAPHEMES.segment(text), (s) => s.segment);
+}
+
+/** A character kept whole if it is printable, else a space (a space with a joiner too). */
+function cleanCluster(cluster: string): string {
+  const [first, ...rest] = Array.from(cluster);
+  return first !== " " && printable(first) && rest.every(inCluster) ? cluster : " ";
+}
+
+/** The first whole characters of text: at most maxLength, and NAME_CODE_POINTS code points. */
+export function cutName(text: string, maxLength = NAME_MAX): string {
+  let out = "";
+  let points = 0;
+  for (const cluster of graphemes(text).slice(0, maxLength)) {
+    points += Array.from(cluster).length;
+    if (points > NAME_CODE_POINTS) break;
+    out += cluster;
+  }
+  return out;
+}
+
+/** Printable characters only, whitespace runs made one space, cut to maxLength characters
+ * (whole grapheme clusters: no mark left without its letter, a joiner kept). */
 export function cleanName(raw: string, maxLength = NAME_MAX): string {
-  const kept = Array.from(String(raw), (ch) => (printable(ch) ? ch : " ")).join("");
+  const kept = graphemes(String(raw)).map(cleanCluster).join("");
   const words = kept.split(/\s+/u).filter((w) => w.length > 0);
-  return Array.from(words.join(" ")).slice(0, maxLength).join("").trimEnd();
+  return cutName(words.join(" "), maxLength).trimEnd();
 }
 
 /** Seconds as m:ss.s for the table (83.25 -> "1:23.3"), half up. */
@@ -52,8 +87,17 @@ function validDate(date: string): boolean {
   const m = DATE_RE.exec(date);
   if (!m) return false;
   const [y, mo, d, h, mi, s] = m.slice(1).map(Number);
-  const t = new Date(y, mo - 1, d, h, mi, s);
-  return t.getMonth() === mo - 1 && t.getDate() === d && h < 24 && mi < 60 && s < 60;
+  // Years 1 to 9999 as the desktop's datetime reads them (Date takes 0-99 as 1900-1999).
+  const t = new Date(0);
+  t.setUTCFullYear(y, mo - 1, d);
+  const real = t.getUTCMonth() === mo - 1 && t.getUTCDate() === d;
+  return y >= 1 && real && h < 24 && mi < 60 && s < 60;
+}
+
+/** A stored value as a refusal quotes it: its JSON, cut to 40 characters. */
+function shown(value: unknown): string {
+  const chars = Array.from(JSON.stringify(value) ?? String(value));
+  return chars.length <= 40 ? chars.join("") : `${chars.slice(0, 39).join("")}…`;
 }
 
 /** Parse one stored row; throws Error saying what is off. */
@@ -63,16 +107,17 @@ export function entryFromJson(obj: unknown): Entry {
   }
   const { name, score, seconds, date } = obj as Record<string, unknown>;
   if (typeof name !== "string" || !name || cleanName(name) !== name) {
-    throw new Error(`bad name ${JSON.stringify(name)}`);
+    throw new Error(`bad name ${shown(name)}`);
   }
-  if (typeof score !== "number" || !Number.isInteger(score) || score < 0) {
-    throw new Error(`bad score ${JSON.stringify(score)}`);
+  // 1e308 is a whole number to JavaScript but a float to the desktop, which refuses it.
+  if (typeof score !== "number" || !Number.isSafeInteger(score) || score < 0) {
+    throw new Error(`bad score ${shown(score)}`);
   }
-  if (typeof seconds !== "number" || !Number.isFinite(seconds) || seconds < 0) {
-    throw new Error(`bad seconds ${JSON.stringify(seconds)}`);
+  if (typeof seconds !== "number" || !(seconds >= 0 && seconds <= SECONDS_MAX)) {
+    throw new Error(`bad seconds ${shown(seconds)}`);
   }
   if (typeof date !== "string" || !validDate(date)) {
-    throw new Error(`bad date ${JSON.stringify(date)}`);
+    throw new Error(`bad date ${shown(date)}`);
   }
   return { name, score, seconds, date };
 }
@@ -164,8 +209,8 @@ export class HighScoreTable {
     if (!Number.isInteger(score) || score < 0) {
       throw new RangeError(`score must be a whole number >= 0 (got ${score})`);
     }
-    if (!Number.isFinite(seconds) || seconds < 0) {
-      throw new RangeError(`seconds must be a finite number >= 0 (got ${seconds})`);
+    if (!(seconds >= 0 && seconds <= SECONDS_MAX)) {
+      throw new RangeError(`seconds must be a number from 0 to ${SECONDS_MAX} (got ${seconds})`);
     }
     // Stored to 0.01 s so the order in memory equals the order after a reload.
     const entry: Entry = {

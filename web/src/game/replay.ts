@@ -17,6 +17,12 @@ export const EDITION_VERSION: string = version;
 export const MAX_FRAMES = 36_000;
 export const MAX_ATOMS = 400;
 export const MAX_CODE_CHARS = 200_000;
+/** The longest a run [height,frames], comma, can be written: a height as JSON writes a float
+ * (at most 24 characters, "1.2345678901234567e-100"), frames of at most 5 digits. */
+const RUN_CHARS = 32;
+/** The longest recording's JSON: one run per frame of the longest game, and its other fields.
+ * A code unpacking to more is refused as it unpacks, before it is all in memory. */
+export const MAX_JSON_BYTES = MAX_FRAMES * RUN_CHARS + 4096;
 
 /** Why a code or recording is rejected (the reasons both editions give). */
 export const DAMAGED = "damaged";
@@ -116,7 +122,11 @@ export function replay(rec: Recording, factory: SimFactory): Verdict {
 /** The replayed result if it is the one claimed, else ReplayError(WRONG_SCORE). */
 export function verify(rec: Recording, factory: SimFactory): Verdict {
   checkRecording(rec);
-  const got = replay(rec, factory);
+  return checkClaim(rec, replay(rec, factory));
+}
+
+/** The replayed result if it is the one the recording claims, else ReplayError(WRONG_SCORE). */
+export function checkClaim(rec: Recording, got: Verdict): Verdict {
   if (got.won !== rec.won || got.score !== rec.score || got.frames !== rec.frames)
     throw new ReplayError(
       WRONG_SCORE,

@@ -4,6 +4,7 @@
  * text in 8 hex digits, so a damaged code is told apart from an edited one or another
  * version's. zlib through the browser's CompressionStream("deflate").
  */
+import { shown } from "../limits";
 import { START_GENERATOR } from "./engine";
 import {
   checkRecording,
@@ -13,6 +14,7 @@ import {
   EDITION_VERSION,
   FORMAT_VERSION,
   MAX_CODE_CHARS,
+  MAX_JSON_BYTES,
   OTHER_VERSION,
   ReplayError,
   type Recording,
@@ -40,13 +42,56 @@ async function through(bytes: Uint8Array, stream: GenericTransformStream): Promi
   return new Uint8Array(await new Response(out).arrayBuffer());
 }
 
+/** Compressed bytes fed at a time: deflate unpacks at most ~1 000 x, so each piece unpacks
+ * to a megabyte at most before the count below can stop it. */
+const INFLATE_PIECE = 1024;
+
+/** zlib's inflate of bytes, refused (DAMAGED) as soon as it passes limit bytes. */
+export async function inflateAtMost(
+  bytes: Uint8Array<ArrayBuffer>,
+  limit: number,
+): Promise<Uint8Array> {
+  const stream = new DecompressionStream("deflate");
+  const writer = stream.writable.getWriter();
+  const reader = stream.readable.getReader();
+  const feed = (async () => {
+    for (let at = 0; at < bytes.length; at += INFLATE_PIECE) {
+      await writer.ready;
+      void writer.write(bytes.subarray(at, at + INFLATE_PIECE)).catch(() => {});
+    }
+    await writer.close();
+  })();
+  feed.catch(() => {}); // a broken stream is reported by the reader
+  const chunks: Uint8Array[] = [];
+  let size = 0;
+  for (;;) {
+    const { done, value } = await reader.read();
+    if (done) break;
+    size += value.length;
+    if (size > limit) {
+      await reader.cancel().catch(() => {});
+      await writer.abort().catch(() => {});
+      throw new ReplayError(DAMAGED, `unpacks to more than ${limit} bytes`);
+    }
+    chunks.push(value);
+  }
+  await feed;
+  const out = new Uint8Array(size);
+  let at = 0;
+  for (const c of chunks) {
+    out.set(c, at);
+    at += c.length;
+  }
+  return out;
+}
+
 function toBase64Url(bytes: Uint8Array): string {
   let bin = "";
   for (const b of bytes) bin += String.fromCharCode(b);
   return btoa(bin).replace(/\+/g, "-").replace(/\//g, "_").replace(/=+$/, "");
 }
 
-function fromBase64Url(text: string): Uint8Array {
+function fromBase64Url(text: string): Uint8Array<ArrayBuffer> {
   if (!/^[A-Za-z0-9_-]*$/.test(text)) throw new Error("not URL-safe base64");
   const b64 = text.replace(/-/g, "+").replace(/_/g, "/");
   const bin = atob(b64 + "=".repeat((4 - (b64.length % 4)) % 4));
@@ -77,12 +122,19 @@ export async function decode(raw: string): Promise<Recording> {
   if (crc !== crc32Hex(payload)) throw new ReplayError(DAMAGED, "checksum does not match");
   let doc: unknown;
   try {
-    const bytes = await through(fromBase64Url(payload), new DecompressionStream("deflate"));
+    const bytes = await inflateAtMost(fromBase64Url(payload), MAX_JSON_BYTES);
     doc = JSON.parse(new TextDecoder("utf-8", { fatal: true }).decode(bytes));
   } catch (err) {
-    throw new ReplayError(DAMAGED, `cannot unpack (${(err as Error).message})`);
+    if (err instanceof ReplayError) throw err;
+    throw new ReplayError(DAMAGED, `cannot unpack (${shortMessage(err)})`);
   }
   return fromJson(doc);
+}
+
+/** An error's message as a refusal quotes it: its first 80 characters. */
+function shortMessage(err: unknown): string {
+  const text = err instanceof Error ? err.message : String(err);
+  return text.length > 80 ? `${text.slice(0, 79)}…` : text;
 }
 
 const isNum = (x: unknown): x is number => typeof x === "number" && Number.isFinite(x);
@@ -93,11 +145,13 @@ export function fromJson(doc: unknown): Recording {
   if (typeof doc !== "object" || doc === null || Array.isArray(doc))
     throw new ReplayError(EDITED, "not a recording object");
   const d = doc as Record<string, unknown>;
-  if (d.format !== FORMAT_VERSION) throw new ReplayError(OTHER_VERSION, `format ${d.format}`);
+  // Each value quoted shortened: a refusal is a line, whatever the code holds.
+  if (d.format !== FORMAT_VERSION)
+    throw new ReplayError(OTHER_VERSION, `format ${shown(d.format)}`);
   if (d.start_generator !== START_GENERATOR)
-    throw new ReplayError(OTHER_VERSION, `start generator ${d.start_generator}`);
+    throw new ReplayError(OTHER_VERSION, `start generator ${shown(d.start_generator)}`);
   if (d.version !== EDITION_VERSION)
-    throw new ReplayError(OTHER_VERSION, `edition version ${JSON.stringify(d.version)}`);
+    throw new ReplayError(OTHER_VERSION, `edition version ${shown(d.version)}`);
   const s = (d.settings ?? {}) as Record<string, unknown>;
   const moves = Array.isArray(d.moves) ? d.moves : null;
   const fields =

@@ -40,20 +40,31 @@ export function tcExponent(s: Settings): number {
   return TC_LAWS[s.tcLaw];
 }
 
-/** A value as Python's repr writes it, so messages read the same in both editions. */
+/** Characters of a string, and items of a list or object, a message quotes at most (the
+ * desktop's limits.shown shortens the same way: a stored megabyte stays one line). */
+const REPR_CHARS = 40;
+const REPR_ITEMS = 4;
+
+/** A value as Python's repr writes it, shortened, so messages read the same in both editions. */
 export function pyRepr(value: unknown): string {
   if (value === null || value === undefined) return "None";
   if (typeof value === "boolean") return value ? "True" : "False";
-  if (typeof value === "string") return `'${value.replace(/\\/g, "\\\\").replace(/'/g, "\\'")}'`;
+  if (typeof value === "string") {
+    const cut = value.length > REPR_CHARS ? `${value.slice(0, 18)}...${value.slice(-19)}` : value;
+    return `'${cut.replace(/\\/g, "\\\\").replace(/'/g, "\\'")}'`;
+  }
   if (typeof value === "number") {
     if (Number.isNaN(value)) return "nan";
     if (!Number.isFinite(value)) return value > 0 ? "inf" : "-inf";
     return String(value);
   }
-  if (Array.isArray(value)) return `[${value.map(pyRepr).join(", ")}]`;
+  const more = (n: number) => (n > REPR_ITEMS ? ", ..." : "");
+  if (Array.isArray(value))
+    return `[${value.slice(0, REPR_ITEMS).map(pyRepr).join(", ")}${more(value.length)}]`;
   if (typeof value === "object") {
     const items = Object.entries(value as Record<string, unknown>);
-    return `{${items.map(([k, v]) => `${pyRepr(k)}: ${pyRepr(v)}`).join(", ")}}`;
+    const shown = items.slice(0, REPR_ITEMS).map(([k, v]) => `${pyRepr(k)}: ${pyRepr(v)}`);
+    return `{${shown.join(", ")}${more(items.length)}}`;
   }
   return String(value);
 }
@@ -122,9 +133,14 @@ export function fromMapping(data: Record<string, unknown>): [Settings, string[]]
   const unknown = Object.keys(data)
     .filter((k) => !known.has(k))
     .sort();
-  if (unknown.length) notices.push(t("notice.settings_unknown", { names: unknown.join(", ") }));
+  if (unknown.length) {
+    // Named as the stored file has them, shortened: the notice stays a line.
+    const names = unknown.slice(0, REPR_ITEMS).map((k) => pyRepr(k).slice(1, -1));
+    if (unknown.length > REPR_ITEMS) names.push("...");
+    notices.push(t("notice.settings_unknown", { names: names.join(", ") }));
+  }
   function take<T>(name: FieldName, check: (v: unknown) => T, fallback: T): T {
-    if (!(name in data)) return fallback;
+    if (!Object.hasOwn(data, name)) return fallback;
     try {
       return check(data[name]);
     } catch (err) {

@@ -77,6 +77,8 @@ export interface Layout {
   knobRadius: number;
   /** The controls' own ground: under the scene (tall), beside it (wide, side). */
   strip: Rect | null;
+  /** Where a tall screen's spare height shows the atom count and temperature large, or null. */
+  readout: Rect | null;
   /** Chart rectangles, logical px. */
   charts: { energy?: Rect; path?: Rect };
 }
@@ -133,6 +135,7 @@ function wideLayout(charts: ChartsShown): Omit<Layout, "scale" | "offsetX" | "of
     slider: SLIDER_RECT,
     knobRadius: KNOB_RADIUS,
     strip: null,
+    readout: null,
     charts: chartColumn(charts, SCENE_W, SCENE_H),
   };
 }
@@ -151,6 +154,11 @@ function chartColumn(charts: ChartsShown, x: number, height: number): Layout["ch
   });
   return out;
 }
+
+/** The tall layout's readout: shown from this much spare height (logical px) on, and its
+ * margin inside the strip. */
+const READOUT_MIN = 140;
+const READOUT_MARGIN = 16;
 
 /** Charts below the scene in the tall layout: logical height each, least and most. */
 const TALL_CHART_MIN = 280;
@@ -179,6 +187,10 @@ function tallLayout(
   const strip = rect(0, stripTop, SCENE_W, height - stripTop);
   // The slider and the buttons keep their places from the strip's bottom edge.
   const top = height - STRIP_H;
+  // A tall phone's spare height above the slider: the atom count and temperature, large.
+  const spare = top - stripTop - 2 * READOUT_MARGIN;
+  const m = READOUT_MARGIN;
+  const readout = spare >= READOUT_MIN ? rect(m, stripTop + m, SCENE_W - 2 * m, spare) : null;
   const perRow = CONTROL_ORDER.length / 2;
   const size = TALL_BUTTON;
   const gap = (SCENE_W - perRow * size) / (perRow + 1);
@@ -196,6 +208,7 @@ function tallLayout(
     slider: rect(56, top + 46, SCENE_W - 112, 12),
     knobRadius: 24,
     strip,
+    readout,
     charts: chartRects,
   };
 }
@@ -233,6 +246,7 @@ function sideLayout(charts: ChartsShown): Omit<Layout, "scale" | "offsetX" | "of
     slider: rect(x0 + 64, 84, 12, height - 84 - 34),
     knobRadius: 26,
     strip: rect(x0, 0, SIDE_PANEL_W, height),
+    readout: null,
     charts: chartColumn(charts, x0 + SIDE_PANEL_W, height),
   };
 }

@@ -112,7 +112,7 @@ async function play(browser, query, initScript, secs) {
     query,
     initScript,
   });
-  await page.evaluate(() => window.evapcool.app.ready());
+  await page.evaluate(() => window.evapcool.app.play.ready());
   await page.keyboard.press("Space");
   await page.waitForTimeout(500);
   await page.evaluate(() => {

@@ -56,7 +56,7 @@ try {
     await page.waitForFunction(() => window.evapcool !== undefined);
     await page.fill("#join input", name);
     await page.tap("#join button");
-    await page.waitForFunction(() => window.evapcool.app.fixedSeed === 7);
+    await page.waitForFunction(() => window.evapcool.app.play.fixedSeed === 7);
     await page.keyboard.press("Space");
     let s = await page.evaluate(() => window.evapcool.state());
     for (let i = 0; i < 300 && s.wonAt === null; i++) {

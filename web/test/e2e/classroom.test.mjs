@@ -102,9 +102,9 @@ async function student(name, floor) {
   await page.tap("#join button");
   await page.waitForFunction(() => document.getElementById("join") === null);
   const state = () => page.evaluate(() => window.evapcool.state());
-  await page.waitForFunction(() => window.evapcool.app.fixedSeed !== null);
+  await page.waitForFunction(() => window.evapcool.app.play.fixedSeed !== null);
   let s = await state();
-  assert.equal(await page.evaluate(() => window.evapcool.app.fixedSeed), SEED);
+  assert.equal(await page.evaluate(() => window.evapcool.app.play.fixedSeed), SEED);
   for (let k = 0; k < 300 && s.wonAt === null; k++) {
     if (s.trapHeight > floor) await page.keyboard.press("ArrowDown");
     await page.evaluate(() => window.evapcool.runFrames(25));

@@ -488,7 +488,7 @@ describe("the page", () => {
           return Array.from(c.getContext("2d").getImageData(x, y, 200, 110).data);
         };
         const a = grab();
-        api.app.animTime += 0.37;
+        api.app.play.animTime += 0.37;
         const b = grab();
         let diff = 0;
         for (let k = 0; k < a.length; k++) diff += Math.abs(a[k] - b[k]);

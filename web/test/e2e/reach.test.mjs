@@ -268,7 +268,7 @@ describe("27.4-27.6 legible words", () => {
     await page.waitForTimeout(800);
     await page.keyboard.press("h");
     await page.waitForTimeout(200);
-    const lines = await page.evaluate(() => window.evapcool.app.fpsLines());
+    const lines = await page.evaluate(() => window.evapcool.app.panels.rateLines());
     const fps = Number(/^(\d+) fps while playing/.exec(lines[0])?.[1]);
     assert.ok(fps >= 20, `display rate ${lines[0]}`);
     assert.match(lines[1], /real time/);

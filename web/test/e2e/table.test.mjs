@@ -40,8 +40,8 @@ describe("the score table shows every accepted name whole", () => {
       await page.reload();
       await page.waitForFunction(() => window.evapcool !== undefined);
       await page.keyboard.press("t");
-      await page.waitForFunction(() => window.evapcool.app.tableCells.length > 0);
-      const cells = await page.evaluate(() => window.evapcool.app.tableCells);
+      await page.waitForFunction(() => window.evapcool.app.panels.tableCells.length > 0);
+      const cells = await page.evaluate(() => window.evapcool.app.panels.tableCells);
       assert.equal(cells.length, 5 * ROWS.length);
       // The stored order is best first: the 12-digit score, then 31, then 30.
       const names = [1, 6, 11].map((k) => cells[k].text);

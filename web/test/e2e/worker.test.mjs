@@ -119,7 +119,7 @@ describe("the physics worker", () => {
   ]) {
     test(`${name}: the page's own loop plays`, async () => {
       const { page, log } = await openPage(browser, { query: "?seed=2", initScript });
-      await page.evaluate(() => window.evapcool.app.ready());
+      await page.evaluate(() => window.evapcool.app.play.ready());
       assert.equal((await state(page)).engine, "page");
       await page.keyboard.press("Space");
       await frames(page, 30);
@@ -202,7 +202,7 @@ describe("the physics worker", () => {
   ]) {
     test(`a throttled device shows the slow-motion line (${name})`, async () => {
       const { page, log, cdp } = await openPage(browser, { query: "?seed=3", initScript });
-      await page.evaluate(() => window.evapcool.app.ready());
+      await page.evaluate(() => window.evapcool.app.play.ready());
       await page.keyboard.press("Space");
       await frames(page, 20);
       assert.equal((await state(page)).slowNote, null, "real time before the throttle");

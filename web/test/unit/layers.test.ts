@@ -98,3 +98,56 @@ test("web/src layers import one way: physics <- game <- view <- app", () => {
 test("only game/engine.ts opens the physics to the game, view and app", () => {
   expect(physicsOpeners(SRC)).toEqual([join("game", "engine.ts")]);
 });
+
+/** The app layer's module graph: each file to the app files it imports (any form). */
+function appGraph(root: string): Map<string, string[]> {
+  const dir = join(root, "app");
+  const graph = new Map<string, string[]>();
+  for (const file of readdirSync(dir).filter((f) => f.endsWith(".ts"))) {
+    const text = readFileSync(join(dir, file), "utf8");
+    const targets = specifiers(text)
+      .filter((spec) => spec.startsWith("./"))
+      .map((spec) => `${spec.slice(2).split("?")[0]}.ts`);
+    graph.set(file, targets);
+  }
+  return graph;
+}
+
+/** A cycle in the graph as "a -> b -> a", or null. */
+function cycle(graph: Map<string, string[]>): string | null {
+  const state = new Map<string, "open" | "done">();
+  const path: string[] = [];
+  const visit = (node: string): string | null => {
+    if (state.get(node) === "done") return null;
+    if (state.get(node) === "open") return [...path.slice(path.indexOf(node)), node].join(" -> ");
+    state.set(node, "open");
+    path.push(node);
+    for (const next of graph.get(node) ?? []) {
+      const found = visit(next);
+      if (found) return found;
+    }
+    path.pop();
+    state.set(node, "done");
+    return null;
+  };
+  for (const node of graph.keys()) {
+    const found = visit(node);
+    if (found) return found;
+  }
+  return null;
+}
+
+test("the checker finds a room calling back into its owner (a cycle, type imports too)", () => {
+  const root = tree({
+    "app/app.ts": 'import { Controls } from "./controls";\n',
+    "app/controls.ts": 'import type { App } from "./app";\n',
+  });
+  expect(cycle(appGraph(root))).toBe("app.ts -> controls.ts -> app.ts");
+});
+
+test("the page's rooms never import their owner: app.ts is imported by main and api only", () => {
+  const graph = appGraph(SRC);
+  expect(cycle(graph)).toBeNull();
+  const owners = [...graph].filter(([, targets]) => targets.includes("app.ts")).map(([f]) => f);
+  expect(owners.sort()).toEqual(["api.ts", "main.ts"]);
+});

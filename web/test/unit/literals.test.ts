@@ -33,6 +33,7 @@ const ALLOWED = new Set([
   "view/text.ts|'Microsoft YaHei', 'Hiragino Sans', 'Yu Gothic', 'Malgun Gothic', 'Noto Sans Arabic',",
   "view/text.ts|'Noto Naskh Arabic', Tahoma, sans-serif",
   "app/main.ts|evapcool physics",
+  "app/main.ts|evapcool verify",
   // A replay code's and a setting's refusal details, the class server's and the desktop's
   // words for them (shown only as a translated notice's {problem}, like the desktop's).
   ...[
