@@ -191,6 +191,9 @@ VELOCITY_MAX = 100.0
 #: |x| and y of a given centre, px: twenty times the 5e6 px the fastest atom rises at the
 #: weakest g; a position's round-off there is 1.5e-8 px.
 POSITION_MAX = 1e8
+#: The longest time a stored high-score row may claim, s: a billion seconds (31 years) is no
+#: game, and the table's m:ss.s of more would not fit (both editions refuse such a row).
+SCORE_SECONDS_MAX = 1e9
 #: Window sides, px: at 8192 the loader's top rows start at 72 px/frame, under VELOCITY_MAX.
 WINDOW_SIDE = Range(160, 8192, "px", integer=True)
 #: Random seed of the shared start generator (physics/start.py): every edition holds it

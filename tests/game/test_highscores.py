@@ -105,7 +105,8 @@ def test_empty_name_is_stored_as_default(tmp_path: Path) -> None:
 
 def test_bad_results_are_refused(tmp_path: Path) -> None:
     table = _table(tmp_path)
-    for score, seconds in ((-1, 1.0), (2.5, 1.0), (True, 1.0), (3, float("nan")), (3, -1.0)):
+    bad = ((-1, 1.0), (2.5, 1.0), (True, 1.0), (3, float("nan")), (3, -1.0), (3, 1e308))
+    for score, seconds in bad:
         with pytest.raises(ValueError):
             table.add("x", score, seconds)  # type: ignore[arg-type]
     assert table.entries == []
@@ -125,6 +126,9 @@ def test_format_seconds() -> None:
         '{"entries": "nope"}',
         '{"entries": [{"name": "x", "score": -4, "seconds": 1, "date": "2024-01-01 00:00:00"}]}',
         '{"entries": [{"name": "x", "score": 4, "seconds": 1, "date": "yesterday"}]}',
+        # A time of 1e308 s (the table's m:ss.s of it overflowed) and one past the limit.
+        '{"entries": [{"name": "x", "score": 4, "seconds": 1e308, "date": "2024-01-01 00:00:00"}]}',
+        '{"entries": [{"name": "x", "score": 4, "seconds": 1e10, "date": "2024-01-01 00:00:00"}]}',
     ],
 )
 def test_corrupt_file_is_set_aside_and_a_new_table_started(tmp_path: Path, content: str) -> None:

@@ -184,5 +184,7 @@ export const APPLET_SPEED = row("APPLET_SPEED");
 export const VELOCITY_MAX = bound("VELOCITY_MAX");
 /** |x| and y of any centre, px. */
 export const POSITION_MAX = bound("POSITION_MAX");
+/** The longest time a stored high-score row may claim, s. */
+export const SCORE_SECONDS_MAX = bound("SCORE_SECONDS_MAX");
 /** A state saved mid-run may touch or sit on the wall up to this relative round-off. */
 export const CONTACT_TOLERANCE = bound("CONTACT_TOLERANCE");

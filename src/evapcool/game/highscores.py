@@ -28,7 +28,7 @@ from evapcool.fileio import (
     warn,
 )
 from evapcool.i18n import t
-from evapcool.limits import USER_FILE_MAX_BYTES, shown
+from evapcool.limits import SCORE_SECONDS_MAX, USER_FILE_MAX_BYTES, shown
 
 FILE_NAME = "highscores.json"
 FORMAT_VERSION = 1
@@ -93,7 +93,7 @@ def _entry_from_json(obj: object) -> Entry:
         isinstance(seconds, bool)
         or not isinstance(seconds, numbers.Real)
         or not math.isfinite(seconds)
-        or seconds < 0
+        or not 0 <= seconds <= SCORE_SECONDS_MAX
     ):
         raise ValueError(f"bad seconds {seconds!r}")
     if not isinstance(date, str):
@@ -196,9 +196,11 @@ class HighScoreTable:
             isinstance(seconds, bool)
             or not isinstance(seconds, numbers.Real)
             or not math.isfinite(seconds)
-            or seconds < 0
+            or not 0 <= seconds <= SCORE_SECONDS_MAX
         ):
-            raise ValueError(f"seconds must be a finite number >= 0 (got {shown(seconds)})")
+            raise ValueError(
+                f"seconds must be a number from 0 to {SCORE_SECONDS_MAX:g} (got {shown(seconds)})"
+            )
         when = when or datetime.now()
         # Stored to 0.01 s so the order in memory equals the order after a reload.
         entry = Entry(

@@ -6,6 +6,7 @@
  * format. A damaged or foreign stored table is set aside and reported.
  */
 import { t } from "../i18n";
+import { SCORE_SECONDS_MAX } from "../limits";
 import { formatDate, PREFIX, readKey, setAside, writeKey, type KeyValue } from "./store";
 
 export const FORMAT_VERSION = 1;
@@ -14,8 +15,8 @@ export const NAME_MAX = 16;
 /** Code points a name may hold at most (marks and joiners in its 16 characters). */
 export const NAME_CODE_POINTS = 4 * NAME_MAX;
 export const DEFAULT_NAME = "Anonymous";
-/** The longest time a stored row may claim, s (the table shows m:ss.s; more is not a game). */
-export const SECONDS_MAX = 1e9;
+/** The longest time a stored row may claim, s (limits.py's, as the desktop's table). */
+export const SECONDS_MAX = SCORE_SECONDS_MAX;
 const DATE_RE = /^(\d{4})-(\d{2})-(\d{2}) (\d{2}):(\d{2}):(\d{2})$/;
 
 export interface Entry {
