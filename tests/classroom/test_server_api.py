@@ -125,7 +125,7 @@ def test_closed_challenge_and_attempts_refused(server: Server) -> None:
     other = join(server, "Gil")
     wrong = submit(server, other, challenge + 1, 1)
     assert wrong.status_code == 409 and wrong.json()["error"]["field"] == "challenge"
-    closed = httpx.post(server.base + "/api/challenge/close", headers=server.lecturer)
+    closed = httpx.post(server.base + "/api/challenge/close", json={}, headers=server.lecturer)
     assert closed.status_code == 200
     late = submit(server, other, challenge, 1)
     assert late.status_code == 409 and late.json()["error"]["field"] == "challenge"
