@@ -202,6 +202,16 @@ def join(server: Server, name: str) -> dict[str, str]:
     return {"Authorization": f"Bearer {answer.json()['token']}"}
 
 
+def projector_key(server: Server) -> str:
+    """The projector's key, from the link on the lecturer's page."""
+    import httpx
+
+    page = httpx.get(server.base + "/lecturer", params={"token": server.token}).text
+    found = re.search(r'href="/projector\?key=([0-9a-f]+)"', page)
+    assert found, "no projector link on the lecturer's page"
+    return found.group(1)
+
+
 async def watch_board(client: httpx.AsyncClient, server: Server, seen: dict[str, float]) -> None:
     """Follow the leaderboard's stream; note when each name first shows (perf_counter)."""
     async with client.stream("GET", server.base + "/api/stream") as events:

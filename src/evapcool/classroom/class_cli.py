@@ -16,6 +16,8 @@ from evapcool.i18n import Catalog, choose_locale
 
 EXIT_USAGE = 2
 DEFAULT_PORT = 8765
+DEFAULT_STUDENTS = 2000
+MAX_STUDENTS = 100_000
 FILE_NAME = "class.sqlite"
 #: The line printed when the class extra is not installed.
 NEEDS_EXTRA = "evapcool class needs the class extra: pip install 'evapcool[class]'"
@@ -28,6 +30,13 @@ def port(text: str) -> int:
     """A TCP port 1..65535."""
     if not text.isdigit() or not 1 <= int(text) <= 65535:
         raise argparse.ArgumentTypeError(f"must be a whole number 1..65535 (got {text!r})")
+    return int(text)
+
+
+def students(text: str) -> int:
+    """A bound on the players of a class file, 1..100000."""
+    if not text.isdigit() or not 1 <= int(text) <= MAX_STUDENTS:
+        raise argparse.ArgumentTypeError(f"must be a whole number 1..{MAX_STUDENTS} (got {text!r})")
     return int(text)
 
 
@@ -79,6 +88,12 @@ def build_parser() -> OneLineParser:
         "folder)",
     )
     parser.add_argument(
+        "--max-students",
+        type=students,
+        default=DEFAULT_STUDENTS,
+        help=f"players the class file takes at most ({DEFAULT_STUDENTS})",
+    )
+    parser.add_argument(
         "--new-link",
         action="store_true",
         help="make a new lecturer's link (the last one stops working)",
@@ -118,7 +133,8 @@ def main(argv: list[str] | None = None) -> int:
         print(error_line("class", f"argument --port: {args.port}: {exc.strerror}"), file=sys.stderr)
         return EXIT_USAGE
     token = lecturer_token(data, args.new_link)
-    return serve(sock, data, args.workers, lan_address() if args.lan else host, token)
+    shown = lan_address() if args.lan else host
+    return serve(sock, data, args.workers, shown, token, args.max_students)
 
 
 def lecturer_token(data: Path, new: bool) -> str | None:
@@ -153,12 +169,17 @@ def links(words: Catalog, base: str, token: str | None, data: Path) -> list[str]
 
 
 def serve(
-    sock: socket.socket, data: Path, pool_workers: int, shown_host: str, token: str | None
+    sock: socket.socket,
+    data: Path,
+    pool_workers: int,
+    shown_host: str,
+    token: str | None,
+    max_students: int = DEFAULT_STUDENTS,
 ) -> int:
     """Run the server on a bound socket; print the links once it answers."""
     import uvicorn
 
-    from evapcool.classroom.server import create_app
+    from evapcool.classroom.server import Limits, create_app
 
     base = f"http://{shown_host}:{sock.getsockname()[1]}"
     lines = links(Catalog(choose_locale()), base, token, data)
@@ -171,7 +192,7 @@ def serve(
             if self.started:
                 print("\n".join(lines), flush=True)
 
-    app = create_app(data, pool_workers, join_url=f"{base}/")
+    app = create_app(data, pool_workers, Limits(students=max_students), join_url=f"{base}/")
     config = uvicorn.Config(app, log_level="warning", timeout_graceful_shutdown=2)
     Announcing(config).run(sockets=[sock])
     return 0

@@ -2,14 +2,15 @@
 
 One student cannot hold the workers: each student token and each client address may have
 only so many verifications in flight or waiting (429 past that), and when a worker frees,
-the next game comes from the address after the one served last (round robin), so an
+the next game comes from the waiting address served longest ago (round robin), so an
 address flooding the queue waits behind itself, not in front of everyone else.
 """
 
 from __future__ import annotations
 
 import asyncio
-from collections import Counter, OrderedDict, deque
+import itertools
+from collections import Counter, deque
 from collections.abc import Awaitable, Callable
 from typing import TypeVar
 
@@ -21,14 +22,18 @@ RETRY_AFTER = 2
 
 
 class FairQueue:
-    """Runs at most `slots` jobs at once; the waiting ones round robin by address."""
+    """Runs at most `slots` jobs at once; the waiting ones by address, least recently
+    served first, each address's own in the order they came."""
 
     def __init__(self, slots: int, per_student: int, per_address: int) -> None:
         self.slots = slots
         self.per_student = per_student
         self.per_address = per_address
         self.running = 0
-        self.waiting: OrderedDict[str, deque[asyncio.Future[None]]] = OrderedDict()
+        self.waiting: dict[str, deque[asyncio.Future[None]]] = {}
+        #: When each address last had a job started (a tick of `clock`).
+        self.served: dict[str, int] = {}
+        self.clock = itertools.count()
         self.of_student: Counter[str] = Counter()
         self.of_address: Counter[str] = Counter()
 
@@ -58,6 +63,7 @@ class FairQueue:
         """Wait until a slot is this job's (at once if one is free and nobody waits)."""
         if self.running < self.slots and not self.waiting:
             self.running += 1
+            self.served[address] = next(self.clock)
             return
         turn: asyncio.Future[None] = asyncio.get_running_loop().create_future()
         self.waiting.setdefault(address, deque()).append(turn)
@@ -72,15 +78,17 @@ class FairQueue:
         """Free a slot and give it to the next address's first waiting job."""
         self.running -= 1
         while self.waiting and self.running < self.slots:
-            address, turns = next(iter(self.waiting.items()))
+            address = min(self.waiting, key=lambda a: self.served.get(a, -1))
+            turns = self.waiting[address]
             turn = turns.popleft()
-            if turns:
-                self.waiting.move_to_end(address)  # the others first next time
-            else:
+            if not turns:
                 del self.waiting[address]
             if not turn.cancelled():
                 self.running += 1
+                self.served[address] = next(self.clock)
                 turn.set_result(None)
+        if not self.running and not self.waiting:
+            self.served.clear()  # idle: nothing to remember (and no growth)
 
     @staticmethod
     def _drop(counts: Counter[str], key: str) -> None:

@@ -72,7 +72,7 @@ class Limits:
     #: Verifications in flight or waiting, per student token and per client address.
     student_jobs: int = 2
     address_jobs: int = 64
-    #: Players a class file holds.
+    #: Players a class file holds (`evapcool class --max-students`).
     students: int = 2000
     #: Open event streams: in all, and per client address; the projector's and the
     #: lecturer's (with the projector key) have their own bound and never wait for these.
