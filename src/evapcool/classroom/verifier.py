@@ -78,24 +78,24 @@ def code_chars_ok(code: str) -> bool:
     return len(text) <= MAX_CODE_CHARS and CODE_CHARS.fullmatch(text) is not None
 
 
-def inflate_limit(max_frames: int) -> int:
-    """Bytes the longest game a challenge allows can inflate to."""
-    return HEADER_BYTES + RUN_BYTES * max_frames
+#: Bytes the longest game a recording may hold (MAX_FRAMES) can inflate to, about 1.2 MB:
+#: a longer code is no game. (Longer than a challenge allows is told apart, as "moves".)
+INFLATE_LIMIT = HEADER_BYTES + RUN_BYTES * MAX_FRAMES
 
 
-def checked_decode(code: str, max_frames: int) -> Recording:
-    """`decode`, once the code is known to inflate within the challenge's longest game and
-    to nest no deeper than a recording: ReplayError(DAMAGED) otherwise, before decode."""
+def checked_decode(code: str) -> Recording:
+    """`decode`, once the code is known to inflate within INFLATE_LIMIT and to nest no
+    deeper than a recording: ReplayError(DAMAGED) otherwise, before decode unpacks it."""
     parts = code.strip().split(".")
     if len(parts) == 3 and parts[0] == CODE_PREFIX:
         try:
             raw = base64.urlsafe_b64decode(parts[1] + "=" * (-len(parts[1]) % 4))
             inflater = zlib.decompressobj()
-            text = inflater.decompress(raw, inflate_limit(max_frames) + 1)
+            text = inflater.decompress(raw, INFLATE_LIMIT + 1)
         except (binascii.Error, zlib.error, ValueError):
             return decode(code)  # its own reason (damaged)
-        if len(text) > inflate_limit(max_frames) or inflater.unconsumed_tail:
-            raise ReplayError(DAMAGED, f"inflates past {inflate_limit(max_frames)} bytes")
+        if len(text) > INFLATE_LIMIT or inflater.unconsumed_tail:
+            raise ReplayError(DAMAGED, f"inflates past {INFLATE_LIMIT} bytes")
         if too_deep(text):
             raise ReplayError(DAMAGED, f"nested deeper than {MAX_DEPTH}")
     return decode(code)
@@ -129,10 +129,10 @@ def reference_frames(settings: dict[str, Any], seed: int) -> int:
     return min(MAX_FRAMES, max(FLOOR_FRAMES, math.ceil(MARGIN * rec.frames)))
 
 
-def _recording(item: object, how: str, max_frames: int) -> Recording:
+def _recording(item: object, how: str) -> Recording:
     """The recording of a code or a JSON recording; ReplayError if it is not one."""
     if how == "code" and isinstance(item, str):
-        return checked_decode(item, max_frames)
+        return checked_decode(item)
     if how == "recording" and isinstance(item, dict):
         return Recording.from_json(item)
     raise ReplayError(DAMAGED, f"{how} of the wrong type")
@@ -168,7 +168,7 @@ def check_submission(item: object, how: str, challenge: dict[str, Any]) -> dict[
     challenge takes lost games (`lost`).
     """
     try:
-        rec = _recording(item, how, challenge["max_frames"])
+        rec = _recording(item, how)
         wrong = _mismatch(rec, challenge)
         if wrong is not None:
             return wrong
