@@ -14,6 +14,7 @@ import sys
 import time
 from dataclasses import dataclass
 from pathlib import Path
+from typing import IO
 
 import httpx
 
@@ -160,7 +161,7 @@ def start_server(
         start_new_session=True,  # its own process group: a kill reaches its workers too
     )
     assert proc.stdout is not None
-    first = proc.stdout.readline()
+    first = lecturer_line(proc.stdout)
     found = re.search(r"token=(\S+)", first)
     assert found or token, f"no lecturer link in {first!r}"
     server = Server(proc, f"http://127.0.0.1:{port}", found.group(1) if found else str(token), data)
@@ -174,6 +175,15 @@ def start_server(
             time.sleep(0.2)
     server.stop(kill=True)
     raise AssertionError("the server did not answer in time")
+
+
+def lecturer_line(out: IO[str]) -> str:
+    """The first line about the lecturer's page (the engine may say it compiles first)."""
+    for _ in range(20):
+        line = out.readline()
+        if not line or line.startswith("Lecturer"):
+            return line
+    return ""
 
 
 def open_challenge(server: Server, **params: object) -> dict[str, object]:

@@ -10,7 +10,7 @@ from pathlib import Path
 
 import httpx
 import pytest
-from classhelp import SRC, free_port, start_server
+from classhelp import SRC, free_port, lecturer_line, start_server
 
 ROOT = Path(__file__).resolve().parents[2]
 
@@ -53,7 +53,7 @@ def test_links_printed_once_it_answers_in_the_data_dir(tmp_path: Path) -> None:
     proc = subprocess.Popen(cmd, stdout=subprocess.PIPE, text=True, env=env)
     try:
         assert proc.stdout is not None
-        first = proc.stdout.readline()
+        first = lecturer_line(proc.stdout)
         # Printed only after start-up: its verifying worker is already running.
         workers = subprocess.run(
             ["ps", "--ppid", str(proc.pid), "-o", "pid="], capture_output=True, text=True
