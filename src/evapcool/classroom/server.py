@@ -442,9 +442,9 @@ async def _refuse(hub: Hub, challenge: int, error: dict[str, Any]) -> None:
 
 
 def _entry_id(doc: dict[str, Any]) -> int:
-    """The entry a lecturer's action names (400 if not a whole number)."""
+    """The entry a lecturer's action names (400 if not a whole number SQLite can hold)."""
     entry = doc.get("entry")
-    if not isinstance(entry, int) or isinstance(entry, bool):
+    if not isinstance(entry, int) or isinstance(entry, bool) or not 0 < entry < 2**63:
         raise RefusedError(400, "entry", "class.error.no_entry")
     return entry
 
