@@ -223,10 +223,14 @@ def guard(request: Request) -> Hub:
 def lecturer(request: Request, query: bool = False) -> Hub:
     """The Hub if the request carries the lecturer's token, else 403."""
     hub = guard(request)
-    given = _bearer(request) or (request.query_params.get("token", "") if query else "")
-    if not _same(given, hub.lecturer_digest):
+    if not _same(_lecturer_token(request, query), hub.lecturer_digest):
         raise RefusedError(403, "token", "class.error.lecturer")
     return hub
+
+
+def _lecturer_token(request: Request, query: bool) -> str:
+    """The token a request gives: as Bearer, or (query=True, the pages) in ?token=."""
+    return _bearer(request) or (request.query_params.get("token", "") if query else "")
 
 
 def keyed(request: Request, hub: Hub) -> bool:
@@ -268,7 +272,7 @@ async def lecturer_page(request: Request) -> Response:
     """The lecturer's page (403 without the token in ?token=)."""
     hub = lecturer(request, query=True)
     words = hub.words.of(request)
-    key = projector_key(request.query_params.get("token", ""))
+    key = projector_key(_lecturer_token(request, query=True))
     text = pages.lecturer_page(lambda k: raw(words, k), words.locale, words.meta["direction"], key)
     headers = {"Content-Security-Policy": pages.LECTURER_POLICY, "Cache-Control": "no-store"}
     return HTMLResponse(text, headers=headers)
