@@ -80,3 +80,34 @@ def test_a_cancelled_waiter_passes_its_turn_on() -> None:
         return ran
 
     assert asyncio.run(run()) == ["first", "last"]
+
+
+def test_an_address_keeps_a_worker_free_while_others_are_active() -> None:
+    async def run() -> tuple[int, int, int]:
+        now = [0.0]
+        queue = FairQueue(slots=2, per_student=9, per_address=9, clock=lambda: now[0])
+        hold = asyncio.Event()
+
+        async def slow() -> None:
+            await hold.wait()
+
+        alone = [asyncio.create_task(queue.run("flood", f"a{i}", slow)) for i in range(3)]
+        await asyncio.sleep(0)
+        running_alone = queue.busy["flood"]  # nobody else: every worker
+        hold.set()
+        await asyncio.gather(*alone)
+        hold.clear()
+        honest = asyncio.create_task(queue.run("honest", "h", lambda: asyncio.sleep(0)))
+        await honest
+        flood = [asyncio.create_task(queue.run("flood", f"b{i}", slow)) for i in range(3)]
+        await asyncio.sleep(0)
+        running_shared = queue.busy["flood"]  # honest sent a game just now: one kept free
+        now[0] += 61.0  # honest quiet for a minute: the flood may have both again
+        flood.append(asyncio.create_task(queue.run("flood", "b9", slow)))
+        await asyncio.sleep(0)
+        running_later = queue.busy["flood"]
+        hold.set()
+        await asyncio.gather(*flood)
+        return running_alone, running_shared, running_later
+
+    assert asyncio.run(run()) == (2, 1, 2)
