@@ -6,6 +6,7 @@ from __future__ import annotations
 import argparse
 import os
 import socket
+import sqlite3
 import sys
 from pathlib import Path
 
@@ -132,7 +133,12 @@ def main(argv: list[str] | None = None) -> int:
     except OSError as exc:
         print(error_line("class", f"argument --port: {args.port}: {exc.strerror}"), file=sys.stderr)
         return EXIT_USAGE
-    token = lecturer_token(data, args.new_link)
+    try:
+        token = lecturer_token(data, args.new_link)
+    except (OSError, sqlite3.Error) as exc:
+        sock.close()
+        print(error_line("class", f"argument --data: {data}: {exc}"), file=sys.stderr)
+        return EXIT_USAGE
     shown = lan_address() if args.lan else host
     return serve(sock, data, args.workers, shown, token, args.max_students)
 
