@@ -74,6 +74,10 @@ def test_bodies_that_crashed_the_server_are_refused_as_json(server: Server) -> N
     deep = b'{"name": ' + b"[" * 10_000 + b"]" * 10_000 + b"}"
     as_json = {"Content-Type": "application/json"}
     refused(httpx.post(server.base + "/api/join", content=deep, headers=as_json), 400, "body")
+    # Escaped quotes in a string never closed: read in linear time, not quadratic.
+    unclosed = b'{"name": "' + b'\\"' * 120_000
+    answer = httpx.post(server.base + "/api/join", content=unclosed, headers=as_json, timeout=30)
+    refused(answer, 400, "body")
     challenge = open_challenge(server)["id"]
     who = join(server, "Mallory")
     body = {"challenge": challenge, "code": "EC1.\u00e9t\u00e9.00000000"}

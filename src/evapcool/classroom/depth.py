@@ -1,22 +1,23 @@
-"""How deep JSON nests, found without parsing it (standard library only: the verifying
-workers use it too)."""
+"""How deep parsed JSON nests (standard library only: the verifying workers use it too).
+
+The parser itself refuses nesting past about a thousand levels (RecursionError, which the
+callers catch); this bounds it to what a request needs, without recursion of its own.
+"""
 
 from __future__ import annotations
 
-import re
-
 #: JSON nesting a request may have (a recording inside a submission needs 4).
 MAX_DEPTH = 16
-_STRINGS = re.compile(rb'"(?:[^"\\]|\\.)*"', re.S)
-_BRACKETS = re.compile(rb"[\[\]{}]")
 
 
-def too_deep(text: bytes, limit: int = MAX_DEPTH) -> bool:
-    """Whether JSON text nests arrays and objects deeper than `limit` (strings skipped),
-    found without parsing it (the parser recurses, and gives up only past a thousand)."""
-    depth = 0
-    for bracket in _BRACKETS.finditer(_STRINGS.sub(b'""', text)):
-        depth += 1 if bracket.group() in (b"[", b"{") else -1
-        if depth > limit:
-            return True
+def too_deep(doc: object, limit: int = MAX_DEPTH) -> bool:
+    """Whether a parsed JSON value nests arrays and objects deeper than `limit`."""
+    stack: list[tuple[object, int]] = [(doc, 1)]
+    while stack:
+        item, depth = stack.pop()
+        if isinstance(item, (list, dict)):
+            if depth > limit:
+                return True
+            children = item.values() if isinstance(item, dict) else item
+            stack.extend((child, depth + 1) for child in children)
     return False

@@ -56,13 +56,14 @@ async def read_json(request: Request, limit: int) -> dict[str, Any]:
         if size > limit:
             raise RefusedError(413, "body", "class.error.too_large", n=limit)
         chunks.append(chunk)
-    body = b"".join(chunks)
-    if too_deep(body):
-        raise RefusedError(400, "body", "class.error.too_deep", n=MAX_DEPTH)
     try:
-        doc = json.loads(body)
-    except (ValueError, RecursionError):
+        doc = json.loads(b"".join(chunks))
+    except RecursionError:  # the parser's own bound, about a thousand levels
+        raise RefusedError(400, "body", "class.error.too_deep", n=MAX_DEPTH) from None
+    except ValueError:
         doc = None
+    if too_deep(doc):
+        raise RefusedError(400, "body", "class.error.too_deep", n=MAX_DEPTH)
     if not isinstance(doc, dict):
         raise RefusedError(400, "body", "class.error.body")
     return doc

@@ -96,9 +96,19 @@ def checked_decode(code: str) -> Recording:
             return decode(code)  # its own reason (damaged)
         if len(text) > INFLATE_LIMIT or inflater.unconsumed_tail:
             raise ReplayError(DAMAGED, f"inflates past {INFLATE_LIMIT} bytes")
-        if too_deep(text):
+        if _nested_too_deep(text):
             raise ReplayError(DAMAGED, f"nested deeper than {MAX_DEPTH}")
     return decode(code)
+
+
+def _nested_too_deep(text: bytes) -> bool:
+    """Whether JSON text nests deeper than a recording may (or than the parser can)."""
+    try:
+        return too_deep(json.loads(text))
+    except RecursionError:
+        return True
+    except ValueError:
+        return False  # not JSON: decode says so
 
 
 def moves_key(rec: Recording, frames: int) -> str:
