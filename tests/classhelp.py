@@ -163,7 +163,10 @@ def start_server(
     assert proc.stdout is not None
     first = lecturer_line(proc.stdout)
     found = re.search(r"token=(\S+)", first)
-    assert found or token, f"no lecturer link in {first!r}"
+    if not (found or token):
+        _signal_group(proc.pid, signal.SIGKILL)  # nothing left running behind a failure
+        proc.wait(15)
+        raise AssertionError(f"no lecturer link in {first!r}")
     server = Server(proc, f"http://127.0.0.1:{port}", found.group(1) if found else str(token), data)
     deadline = time.monotonic() + START_TIMEOUT
     while time.monotonic() < deadline:
