@@ -352,3 +352,55 @@ async def _join_many(server: Server, count: int) -> list[int]:
             answer = await client.post(server.base + "/api/join", json={"name": f"Join {i}"})
             statuses.append(answer.status_code)
         return statuses
+
+
+WEIRD_BODIES = [
+    b"",
+    b"null",
+    b"[]",
+    b'"text"',
+    b"{}",
+    b"\xff\xfe{",
+    b'{"name": {"a": 1}, "entry": "1", "challenge": [1]}',
+    b'{"entry": 1e400, "name": 5}',
+    b'{"entry": -1, "name": ""}',
+    b'{"entry": 99999999999999999999999999, "name": "x"}',
+    b'{"entry": 1, "name": "\\ud800"}',
+    b'{"challenge": 1, "code": "EC1.a.b"}',
+    b'{"challenge": 1, "code": "EC1..00000000"}',
+    b'{"challenge": 1, "recording": {"settings": 5, "moves": [[1e999, 1]]}}',
+    b'{"challenge": 1, "recording": {"moves": "x", "seed": 1' + b"0" * 5000 + b"}}",
+    b'{"n_atoms": "NaN", "radius": 1e308, "minutes": -0.0, "lost": "yes"}',
+    b'{"n_atoms": 49, "radius": 12, "max_frames": 0.5, "seed": 1e20}',
+]
+
+
+def test_weird_bodies_never_crash_the_server(server: Server) -> None:
+    challenge = open_challenge(server)["id"]
+    student = {**join(server, "Weird"), "Content-Type": "application/json"}
+    lecturer = {**server.lecturer, "Content-Type": "application/json"}
+    calls = [
+        ("/api/join", {"Content-Type": "application/json"}),
+        ("/api/submit", student),
+        ("/api/challenge", lecturer),
+        ("/api/hide", lecturer),
+        ("/api/rename", lecturer),
+        ("/api/show", lecturer),
+    ]
+    seen = set()
+    for path, headers in calls:
+        for body in WEIRD_BODIES:
+            answer = httpx.post(server.base + path, content=body, headers=headers, timeout=60)
+            seen.add(answer.status_code)
+            assert answer.status_code < 500, (path, body[:80], answer.text)
+            assert answer.headers["x-content-type-options"] == "nosniff"
+            if answer.status_code != 200:
+                assert answer.json()["error"]["field"], (path, body[:80])
+    assert 400 in seen and httpx.get(server.base + "/api/challenge").json()["id"] >= challenge
+
+
+def test_unknown_paths_and_methods_are_json_refusals(server: Server) -> None:
+    refused(httpx.get(server.base + "/api/nothing"), 404, "path")
+    wrong = httpx.put(server.base + "/api/join", json={"name": "Put"})
+    refused(wrong, 405, "method")
+    assert "POST" in wrong.headers["allow"]

@@ -22,6 +22,7 @@ from pathlib import Path
 from typing import Any, TypeVar
 
 from starlette.applications import Starlette
+from starlette.exceptions import HTTPException
 from starlette.requests import Request
 from starlette.responses import HTMLResponse, JSONResponse, Response, StreamingResponse
 from starlette.routing import Route
@@ -639,6 +640,18 @@ async def _refused(request: Request, exc: Exception) -> Response:
     return refused_response(exc, hub_of(request).words.of(request))
 
 
+async def _no_route(request: Request, exc: Exception) -> Response:
+    """The JSON answer of an unknown path (404) or method (405), as any refusal."""
+    assert isinstance(exc, HTTPException)
+    if exc.status_code == 405:
+        refusal = RefusedError(405, "method", "class.error.method", method=request.method)
+    else:
+        refusal = RefusedError(404, "path", "class.error.not_found")
+    answer = refused_response(refusal, hub_of(request).words.of(request))
+    answer.headers.update(exc.headers or {})  # Allow, for a 405
+    return answer
+
+
 def _pool(workers: int) -> ProcessPoolExecutor:
     """Worker processes (spawned, not forked from the running server), each warmed once."""
     context = multiprocessing.get_context("spawn")
@@ -672,7 +685,8 @@ def create_app(
             hub.db_thread.submit(hub.store.close).result()
             hub.db_thread.shutdown()
 
-    app = Starlette(routes=ROUTES, lifespan=lifespan, exception_handlers={RefusedError: _refused})
+    handlers = {RefusedError: _refused, 404: _no_route, 405: _no_route}
+    app = Starlette(routes=ROUTES, lifespan=lifespan, exception_handlers=handlers)
     app.state.join_url = join_url
     app.add_middleware(_SafeHeaders)
     return app
