@@ -343,9 +343,18 @@ async def close_challenge(request: Request) -> Response:
 
 async def join(request: Request) -> Response:
     """A student's token for a name (cleaned: visible characters, at most NAME_MAX, not
-    looking like another student's), within the address's join rate and the class's bound."""
+    looking like another student's), within the address's join rate and the class's bound.
+
+    With the token of an earlier join ("token"), that student again, by the name the
+    server has (an applet started anew keeps its place and name).
+    """
     hub = guard(request)
     doc = await read_json(request, hub.limits.body_bytes)
+    earlier = doc.get("token")
+    if isinstance(earlier, str) and 0 < len(earlier) <= 64:
+        known = await hub.db(hub.store.player_name, earlier)
+        if known is not None:
+            return JSONResponse({"token": earlier, "name": known})
     wait = hub.joins.take(address(request))
     if wait:
         raise RefusedError(429, "client", "class.error.slow_down", retry_after=wait, n=wait)
