@@ -1,6 +1,7 @@
 """The class server under a lecture hall's load (issue 22's benchmark; docs/benchmarks.md).
 
     python scripts/bench_class.py [--students 300] [--workers 2] [--spread 60] [--burst 50]
+    python scripts/bench_class.py --flood [--tokens 40] [--games 12] [--workers 2]
 
 Starts a real `evapcool class` on 127.0.0.1, opens a challenge, lets every student join,
 then sends one game per student (real recordings of the autopilot, perturbed so that each
@@ -9,6 +10,13 @@ the load test does), once spread over `--spread` seconds (students finishing at 
 moments of a minute, as in a lecture). Prints verified games per second and the p50/p95
 latency from submit to the acknowledgement and to the leaderboard's stream. Traffic goes to
 127.0.0.1 only.
+
+--flood (issue 33): one address (127.0.0.1) floods the verifier with the longest games the
+challenge allows (claiming a win they never reach, so each is replayed to its last frame)
+from `--tokens` student tokens, each keeping as many in flight as it may; meanwhile an
+honest student on another address (127.0.0.2, loopback too) sends `--games` games one
+after another. Prints the median and spread of the honest acknowledgement time, idle and
+under the flood, and their ratio (target: within 3x).
 """
 
 from __future__ import annotations
@@ -16,6 +24,7 @@ from __future__ import annotations
 import argparse
 import asyncio
 import random
+import statistics
 import sys
 import tempfile
 import time
@@ -24,7 +33,21 @@ from pathlib import Path
 import httpx
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tests"))
-from classhelp import Server, open_challenge, start_server, student_games, watch_board
+from classhelp import (
+    SEED,
+    SETTINGS,
+    Server,
+    open_challenge,
+    start_server,
+    student_games,
+    variant,
+    watch_board,
+)
+
+from evapcool.game.replay import Recording, encode
+
+#: The honest student's address: another computer, as the server sees it (loopback).
+HONEST_ADDRESS = "127.0.0.2"
 
 
 def quantile(values: list[float], q: float) -> float:
@@ -90,13 +113,102 @@ def report(label: str, entries, result) -> None:
     )
 
 
+async def honest_games(
+    server: Server, challenge: object, codes: list[str], first: int = 0
+) -> list[float]:
+    """Seconds from submit to 200 of each code, one after another, each by a new student
+    on HONEST_ADDRESS."""
+    took = []
+    transport = httpx.AsyncHTTPTransport(local_address=HONEST_ADDRESS)
+    async with httpx.AsyncClient(timeout=600, transport=transport) as client:
+        for i, code in enumerate(codes):
+            name = f"Honest {first + i}"
+            joined = await client.post(server.base + "/api/join", json={"name": name})
+            who = {"Authorization": f"Bearer {joined.json()['token']}"}
+            body = {"challenge": challenge, "code": code}
+            start = time.perf_counter()
+            answer = await client.post(server.base + "/api/submit", headers=who, json=body)
+            took.append(time.perf_counter() - start)
+            if answer.status_code != 200:
+                raise SystemExit(f"honest game refused: {answer.text}")
+            await asyncio.sleep(0.2)
+    return took
+
+
+async def flood(server: Server, challenge: object, code: str, tokens: int, stop) -> dict:
+    """Keep the verifier busy from 127.0.0.1 until `stop` is set; counts of the answers."""
+    counts: dict[int, int] = {}
+    limits = httpx.Limits(max_connections=4 * tokens)
+    async with httpx.AsyncClient(timeout=600, limits=limits) as client:
+        heads = []
+        for i in range(tokens):
+            joined = await client.post(server.base + "/api/join", json={"name": f"Flood {i}"})
+            heads.append({"Authorization": f"Bearer {joined.json()['token']}"})
+
+        async def one(head: dict[str, str]) -> None:
+            body = {"challenge": challenge, "code": code}
+            while not stop.is_set():
+                answer = await client.post(server.base + "/api/submit", headers=head, json=body)
+                counts[answer.status_code] = counts.get(answer.status_code, 0) + 1
+                if answer.status_code == 429:
+                    await asyncio.sleep(min(float(answer.headers.get("retry-after", 1)), 1.0))
+
+        await asyncio.gather(*(one(head) for head in heads for _ in range(2)))
+    return counts
+
+
+async def flood_run(server: Server, challenge: dict, codes: list[str], tokens: int):
+    """The honest times idle, then under the flood."""
+    idle = await honest_games(server, challenge["id"], codes[: len(codes) // 2])
+    longest = int(challenge["max_frames"])
+    height = variant(SEED, 0).moves[0][0]
+    slow = encode(Recording(SETTINGS, SEED, ((height, longest),), True, 20, longest))
+    stop = asyncio.Event()
+    flooding = asyncio.create_task(flood(server, challenge["id"], slow, tokens, stop))
+    await asyncio.sleep(3.0)  # the queue fills
+    half = len(codes) // 2
+    loaded = await honest_games(server, challenge["id"], codes[half:], first=half)
+    stop.set()
+    counts = await flooding
+    return idle, loaded, counts, longest
+
+
+def flood_bench(args: argparse.Namespace) -> None:
+    codes = [c for _, c, honest in student_games(2 * args.games + 4) if honest][: 2 * args.games]
+    with tempfile.TemporaryDirectory() as tmp:
+        server = start_server(Path(tmp) / "class.sqlite", workers=args.workers)
+        try:
+            challenge = open_challenge(server)
+            time.sleep(2.0)
+            idle, loaded, counts, longest = asyncio.run(
+                flood_run(server, challenge, codes, args.tokens)
+            )
+        finally:
+            server.stop()
+
+    def spread(xs: list[float]) -> str:
+        ms = [x * 1000 for x in xs]
+        return f"median {statistics.median(ms):.0f} ms (min {min(ms):.0f}, max {max(ms):.0f})"
+
+    print(f"longest allowed game: {longest} frames; flood answers by status: {counts}")
+    print(f"honest acknowledgement, idle ({len(idle)} games): {spread(idle)}")
+    print(f"honest acknowledgement, under the flood ({len(loaded)} games): {spread(loaded)}")
+    print(f"ratio of medians: {statistics.median(loaded) / statistics.median(idle):.2f}x")
+
+
 def main() -> int:
     p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     p.add_argument("--students", type=int, default=300)
     p.add_argument("--workers", type=int, default=2)
     p.add_argument("--spread", type=float, default=60.0)
     p.add_argument("--burst", type=int, default=50)
+    p.add_argument("--flood", action="store_true", help="the flood benchmark (issue 33)")
+    p.add_argument("--tokens", type=int, default=40, help="flooding tokens (--flood)")
+    p.add_argument("--games", type=int, default=12, help="honest games idle and flooded")
     args = p.parse_args()
+    if args.flood:
+        flood_bench(args)
+        return 0
     entries = student_games(args.students)
     rng = random.Random(1)
     for label, starts, gate in (

@@ -14,6 +14,7 @@ import sys
 import time
 from dataclasses import dataclass
 from pathlib import Path
+from typing import IO
 
 import httpx
 
@@ -32,8 +33,8 @@ def student_games(students: int, forged_every: int = 10) -> list[tuple[str, str,
     """(name, code, honest) per student: all different honest games, and one in
     `forged_every` claiming one atom more than it won (the load test and the benchmark)."""
     out = []
-    for i in range(students):
-        rec = variant(SEED, i + 1)
+    wins = (rec for k in range(1, 10 * students + 1) if (rec := variant(SEED, k)).won)
+    for i, rec in zip(range(students), wins, strict=False):
         honest = i % forged_every != 0
         if not honest:
             rec = dataclasses.replace(rec, won=True, score=rec.score + 1)
@@ -44,14 +45,15 @@ def student_games(students: int, forged_every: int = 10) -> list[tuple[str, str,
 def variant(seed: int, k: int) -> Recording:
     """Game k on `seed`: the autopilot with its trap nudged by a few px in one stretch.
 
-    Each k is a different game with its true result (played here, so it verifies).
+    Each k is a different game with its true result (played here, so it verifies); a
+    few do not win (the server takes only won games unless the challenge says otherwise).
     """
     if (seed, k) not in _CACHE:
         _CACHE[seed, k] = _play(seed, k)
     return _CACHE[seed, k]
 
 
-def _play(seed: int, k: int, budget: int = 1800) -> Recording:
+def _play(seed: int, k: int, budget: int = 5000) -> Recording:
     from evapcool.game.autopilot import clamp_height, load_strategy, read
     from evapcool.game.rules import Game
 
@@ -121,8 +123,18 @@ def _signal_group(pid: int, sig: int) -> None:
         os.killpg(pid, sig)
 
 
-def start_server(data: Path, workers: int = 1, port: int | None = None) -> Server:
-    """`evapcool class` on a free port with `data`; returns once it answers."""
+def start_server(
+    data: Path,
+    workers: int = 1,
+    port: int | None = None,
+    token: str | None = None,
+    extra: tuple[str, ...] = (),
+) -> Server:
+    """`evapcool class` on a free port with `data`; returns once it answers.
+
+    token: the lecturer's token of a file served before (it prints none then; a new one
+    with extra=("--new-link",)).
+    """
     import httpx
 
     port = port or free_port()
@@ -138,6 +150,7 @@ def start_server(data: Path, workers: int = 1, port: int | None = None) -> Serve
         str(data),
         "--workers",
         str(workers),
+        *extra,
     ]
     proc = subprocess.Popen(
         cmd,
@@ -148,10 +161,13 @@ def start_server(data: Path, workers: int = 1, port: int | None = None) -> Serve
         start_new_session=True,  # its own process group: a kill reaches its workers too
     )
     assert proc.stdout is not None
-    first = proc.stdout.readline()
+    first = lecturer_line(proc.stdout)
     found = re.search(r"token=(\S+)", first)
-    assert found, f"no lecturer link in {first!r}"
-    server = Server(proc, f"http://127.0.0.1:{port}", found.group(1), data)
+    if not (found or token):
+        _signal_group(proc.pid, signal.SIGKILL)  # nothing left running behind a failure
+        proc.wait(15)
+        raise AssertionError(f"no lecturer link in {first!r}")
+    server = Server(proc, f"http://127.0.0.1:{port}", found.group(1) if found else str(token), data)
     deadline = time.monotonic() + START_TIMEOUT
     while time.monotonic() < deadline:
         assert proc.poll() is None, "the server ended while starting"
@@ -162,6 +178,15 @@ def start_server(data: Path, workers: int = 1, port: int | None = None) -> Serve
             time.sleep(0.2)
     server.stop(kill=True)
     raise AssertionError("the server did not answer in time")
+
+
+def lecturer_line(out: IO[str]) -> str:
+    """The first line about the lecturer's page (the engine may say it compiles first)."""
+    for _ in range(20):
+        line = out.readline()
+        if not line or line.startswith("Lecturer"):
+            return line
+    return ""
 
 
 def open_challenge(server: Server, **params: object) -> dict[str, object]:
@@ -188,6 +213,16 @@ def join(server: Server, name: str) -> dict[str, str]:
     answer = httpx.post(server.base + "/api/join", json={"name": name})
     assert answer.status_code == 200, answer.text
     return {"Authorization": f"Bearer {answer.json()['token']}"}
+
+
+def projector_key(server: Server) -> str:
+    """The projector's key, from the link on the lecturer's page."""
+    import httpx
+
+    page = httpx.get(server.base + "/lecturer", params={"token": server.token}).text
+    found = re.search(r'href="/projector\?key=([0-9a-f]+)"', page)
+    assert found, "no projector link on the lecturer's page"
+    return found.group(1)
 
 
 async def watch_board(client: httpx.AsyncClient, server: Server, seen: dict[str, float]) -> None:

@@ -76,6 +76,21 @@ def test_the_applet_joins_plays_the_challenge_and_its_win_is_ranked(server, clas
     assert f"rank 1, {app.game.score} atoms" in app.visible_notices[-1]
 
 
+def test_started_again_the_applet_is_the_same_student(server, class_app, tmp_path):
+    open_challenge(server)
+    first = join_app(class_app, tmp_path, server.base + "/")
+    frames_until(first, lambda: first.classroom.token is not None)
+    first.close()
+    class_app.remove(first)
+    again = join_app(class_app, tmp_path, server.base + "/")  # the same data folder
+    frames_until(again, lambda: again.classroom.token is not None)
+    assert again.classroom.token == first.classroom.token
+    assert not any("not accepted" in n for n in again.visible_notices)
+    elsewhere = join_app(class_app, tmp_path / "other", server.base + "/")  # another Ada
+    frames_until(elsewhere, lambda: any("not accepted" in n for n in elsewhere.visible_notices))
+    assert "looks like Ada" in elsewhere.visible_notices[-1]
+
+
 def test_a_refusal_is_shown_in_the_servers_words(server, class_app, tmp_path):
     app = join_app(class_app, tmp_path, server.base)  # no challenge open yet
     frames_until(app, lambda: any("not accepted" in n for n in app.visible_notices))

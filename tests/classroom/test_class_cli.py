@@ -6,6 +6,7 @@ import socket
 from pathlib import Path
 
 import pytest
+from classhelp import free_port
 
 from evapcool.classroom import class_cli
 from evapcool.cli import main
@@ -37,6 +38,11 @@ def test_port_in_use_and_folder_as_data(tmp_path: Path, capsys: pytest.CaptureFi
         assert main(["class", "--port", str(port), "--data", str(tmp_path / "c.db")]) == 2
     assert "--port" in capsys.readouterr().err
     assert main(["class", "--data", str(tmp_path)]) == 2
+    err = capsys.readouterr().err.strip()
+    assert "\n" not in err and "--data" in err
+    not_a_database = tmp_path / "notes.txt"
+    not_a_database.write_text("not SQLite at all, " * 100)
+    assert main(["class", "--port", str(free_port()), "--data", str(not_a_database)]) == 2
     err = capsys.readouterr().err.strip()
     assert "\n" not in err and "--data" in err
 

@@ -8,7 +8,7 @@ import io
 import json
 
 import httpx
-from classhelp import SEED, Server, code, join, open_challenge, variant
+from classhelp import SEED, Server, code, join, open_challenge, projector_key, variant
 
 
 def submit(server: Server, who: dict[str, str], challenge: object, k: int) -> httpx.Response:
@@ -125,7 +125,7 @@ def test_closed_challenge_and_attempts_refused(server: Server) -> None:
     other = join(server, "Gil")
     wrong = submit(server, other, challenge + 1, 1)
     assert wrong.status_code == 409 and wrong.json()["error"]["field"] == "challenge"
-    closed = httpx.post(server.base + "/api/challenge/close", headers=server.lecturer)
+    closed = httpx.post(server.base + "/api/challenge/close", json={}, headers=server.lecturer)
     assert closed.status_code == 200
     late = submit(server, other, challenge, 1)
     assert late.status_code == 409 and late.json()["error"]["field"] == "challenge"
@@ -139,7 +139,12 @@ def test_replay_on_projector(server: Server) -> None:
     who = join(server, "Hal")
     entry = submit(server, who, challenge, 0).json()["entry"]
     shown = httpx.post(server.base + "/api/show", json={"entry": entry}, headers=server.lecturer)
-    assert shown.status_code == 200
-    replay = httpx.get(server.base + "/api/leaderboard").json()["replay"]
-    assert replay["name"] == "Hal" and replay["code"] == code(SEED, 0)
-    assert replay["summary"]["frames"] == variant(SEED, 0).frames
+    assert shown.status_code == 200 and shown.json()["replay"]["code"] == code(SEED, 0)
+    key = projector_key(server)
+    keyed = httpx.get(server.base + "/api/leaderboard", params={"key": key}).json()["replay"]
+    assert keyed["name"] == "Hal" and keyed["code"] == code(SEED, 0)
+    assert keyed["summary"]["frames"] == variant(SEED, 0).frames
+    assert "code" not in httpx.get(server.base + "/api/leaderboard").json()["replay"]
+    page = httpx.get(server.base + "/projector", params={"key": key})
+    assert page.status_code == 200
+    assert httpx.get(server.base + "/projector", params={"key": "0" * 32}).status_code == 403

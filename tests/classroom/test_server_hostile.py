@@ -35,9 +35,9 @@ def refusal(answer: httpx.Response, status: int, field: str) -> None:
 
 def test_hostile_names_are_cleaned_and_never_markup(server: Server) -> None:
     challenge = open_challenge(server)["id"]
-    for name in HOSTILE_NAMES:
+    for k, name in enumerate(HOSTILE_NAMES):
         who = join(server, name)
-        assert submit(server, who, {"challenge": challenge, "code": code(SEED, 0)}).is_success
+        assert submit(server, who, {"challenge": challenge, "code": code(SEED, k)}).is_success
     board = httpx.get(server.base + "/api/leaderboard")
     assert board.headers["content-type"].startswith("application/json")
     names = [e["name"] for e in board.json()["entries"]]
@@ -58,12 +58,14 @@ def test_hostile_names_are_cleaned_and_never_markup(server: Server) -> None:
 def test_bad_names_and_bodies(server: Server) -> None:
     for bad in ("", "   ", "\u202e\u200f", 42, None):
         refusal(httpx.post(server.base + "/api/join", json={"name": bad}), 400, "name")
-    refusal(httpx.post(server.base + "/api/join", content=b"not json"), 400, "body")
-    refusal(httpx.post(server.base + "/api/join", content=b"[1, 2]"), 400, "body")
+    as_json = {"Content-Type": "application/json"}
+    join_url = server.base + "/api/join"
+    refusal(httpx.post(join_url, content=b"not json", headers=as_json), 400, "body")
+    refusal(httpx.post(join_url, content=b"[1, 2]", headers=as_json), 400, "body")
     huge = json.dumps({"name": "x" * 300_000}).encode()
-    refusal(httpx.post(server.base + "/api/join", content=huge), 413, "body")
+    refusal(httpx.post(join_url, content=huge, headers=as_json), 413, "body")
     open_challenge(server)
-    who = join(server, "Big")
+    who = {**join(server, "Big"), **as_json}
     huge = json.dumps({"challenge": 1, "code": "EC1." + "A" * 300_000}).encode()
     refusal(httpx.post(server.base + "/api/submit", content=huge, headers=who), 413, "body")
 

@@ -56,7 +56,7 @@ def test_acknowledged_games_survive_kill_9(tmp_path: Path) -> None:
         server.stop(kill=True)
     assert server.proc.returncode == -9
     assert len(acked) >= KILL_AFTER
-    again = start_server(data)
+    again = start_server(data, token=server.token)
     try:
         assert httpx.get(again.base + "/api/challenge").json()["id"] == challenge
         listed = httpx.get(again.base + "/api/entries", headers=again.lecturer).json()

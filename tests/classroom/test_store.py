@@ -10,7 +10,14 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from evapcool.classroom.store import BIDI_CONTROLS, NAME_MAX, Store, clean_name
+from evapcool.classroom.store import (
+    BIDI_CONTROLS,
+    NAME_MAX,
+    ClassFullError,
+    NameTakenError,
+    Store,
+    clean_name,
+)
 
 HOSTILE = [
     "<script>alert(1)</script>",
@@ -34,7 +41,9 @@ def test_clean_names_are_short_visible_and_without_bidi(raw: str) -> None:
     assert all(ch.isprintable() for ch in name)
 
 
-@pytest.mark.parametrize("raw", ["", "   ", "\u202e\u202d", "\x00\x01", 42])
+@pytest.mark.parametrize(
+    "raw", ["", "   ", "\u202e\u202d", "\x00\x01", 42, "\u3164\u3164", "\u2800 \u2800", "\ufe0f"]
+)
 def test_empty_or_non_text_names_are_refused(raw: object) -> None:
     with pytest.raises(ValueError, match="name"):
         clean_name(raw)
@@ -70,26 +79,33 @@ def test_entries_refused_after_the_window_closes_or_attempts_run_out(tmp_path: P
     store = Store(tmp_path / "class.sqlite")
     challenge = store.open_challenge({}, seed=1, max_frames=100, attempts=2, closes_at=1000.0)
     token = store.join("Ann")
-    game = (5, 50, "web", "EC1.x.y")
+    game = (5, 50, "web", "EC1.x.y", "moves")
     assert isinstance(store.add_if_allowed(challenge, token, game, now=999.0), int)
     assert store.add_if_allowed(challenge, token, game, now=1000.0) == "challenge"
     assert isinstance(store.add_if_allowed(challenge, token, game, now=1.0), int)
     assert store.add_if_allowed(challenge, token, game, now=1.0) == "attempts"
-    assert store.entry_code(store.entries(challenge)[0]["entry"]) == ("Ann", "EC1.x.y")  # type: ignore[arg-type]
+    first = store.entries(challenge)[0]["entry"]
+    assert store.entry_code(first) == ("Ann", "EC1.x.y", challenge)  # type: ignore[arg-type]
     store.close_challenge(challenge)
     assert store.add_if_allowed(challenge, store.join("Bob"), game, now=1.0) == "challenge"
     assert store.open_one() is None and store.latest() is not None
 
 
-def test_two_players_of_one_name_both_ranked(tmp_path: Path) -> None:
+def test_look_alike_names_refused_and_each_player_ranked_once(tmp_path: Path) -> None:
     store = Store(tmp_path / "class.sqlite")
     challenge = store.open_challenge({}, seed=1, max_frames=100, attempts=None)
-    first, second = store.join("Sam"), store.join("Sam")
+    first, second = store.join("Sam"), store.join("Samuel")
+    for twin in ("Sam", " SAM ", "S\u0430m", "\uff33am", "Sarn"):  # Cyrillic a, fullwidth S, rn
+        with pytest.raises(NameTakenError) as taken:
+            store.join(twin)
+        assert taken.value.name == "Sam"
     store.add_entry(challenge, first, 3, 10, "web")
     store.add_entry(challenge, second, 4, 10, "web")
     store.add_entry(challenge, second, 2, 10, "web")
     assert [row[2] for row in store.leaderboard(challenge)] == [4, 3]
     assert (store.rank(challenge, second), store.rank(challenge, first)) == (1, 2)
+    with pytest.raises(ClassFullError):
+        store.join("Third", max_players=2)
 
 
 def test_a_file_of_the_first_schema_gains_the_new_columns(tmp_path: Path) -> None:

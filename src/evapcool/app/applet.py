@@ -230,6 +230,7 @@ class App:
         self.replays.attach(game)  # every game is recorded, the autopilot's too
         if classroom is not None:
             self.notify(t("desk.class.joining", url=classroom.base))
+            classroom.remember_in(scores_path(data_dir).parent)
             classroom.start()
         #: A recording watched (`evapcool --replay`): its heights frame by frame, each restart.
         self.watching = replay

@@ -3,7 +3,9 @@
 Talks to the class server's API with urllib on a thread of its own, so the frame loop
 never waits for the network: it fetches the open challenge and joins with the player's
 name, then sends the replay code of each win. The app reads what came back with `poll()`
-each frame and shows it as notices.
+each frame and shows it as notices. Its student token is kept per server in the data
+folder (`remember_in`), so an applet started again joins as the same student (a class
+takes each name once).
 """
 
 from __future__ import annotations
@@ -15,13 +17,18 @@ import urllib.error
 import urllib.request
 from collections.abc import Callable
 from dataclasses import dataclass
+from pathlib import Path
 from typing import Any
 from urllib.parse import urlsplit
 
+from evapcool.fileio import atomic_write_text, read_user_text
 from evapcool.game.replay import Settings
 
 #: Seconds a request may take before the player is told the server did not answer.
 TIMEOUT = 20.0
+#: The file in the data folder keeping the student token per server: {base url: token}.
+TOKENS_FILE = "class-tokens.json"
+TOKENS_MAX_BYTES = 1_000_000
 BAD_URL = (
     "--class must be the class server's address: http:// or https:// and a host, "
     "like http://192.168.1.10:8765/ (got {value!r})"
@@ -83,9 +90,14 @@ class ClassLink:
         self.timeout = timeout
         self.token: str | None = None
         self.challenge: Challenge | None = None
+        self.tokens_file: Path | None = None
         self._tasks: queue.Queue[Callable[[], None]] = queue.Queue()
         self._events: queue.Queue[Event] = queue.Queue()
         self._thread = threading.Thread(target=self._work, name="evapcool-class", daemon=True)
+
+    def remember_in(self, folder: Path) -> None:
+        """Keep the student token for this server in `folder` (the app's data folder)."""
+        self.tokens_file = folder / TOKENS_FILE
 
     def start(self) -> None:
         """Fetch the challenge and join, in the background."""
@@ -119,9 +131,31 @@ class ClassLink:
 
     def _join(self) -> None:
         self.challenge = Challenge.from_json(self._call("GET", "api/challenge"))
-        joined = self._call("POST", "api/join", {"name": self.name})
-        self.token = str(joined["token"])
+        kept = self._kept_tokens()
+        body = {"name": self.name}
+        if isinstance(kept.get(self.base), str):
+            body["token"] = kept[self.base]  # the same student as last time, if still known
+        joined = self._call("POST", "api/join", body)
+        token = str(joined["token"])
+        if self.tokens_file is not None and kept.get(self.base) != token:
+            kept[self.base] = token
+            try:
+                self.tokens_file.parent.mkdir(parents=True, exist_ok=True)
+                atomic_write_text(self.tokens_file, json.dumps(kept, indent=1))
+            except OSError:
+                pass  # not kept: the next start joins anew, which the server may refuse
+        self.token = token
         self._events.put(Event("joined", self.challenge, str(joined["name"])))
+
+    def _kept_tokens(self) -> dict[str, Any]:
+        """The kept tokens ({} without a file, or if it is not one of ours)."""
+        if self.tokens_file is None:
+            return {}
+        try:
+            doc = json.loads(read_user_text(self.tokens_file, TOKENS_MAX_BYTES))
+        except (OSError, ValueError):
+            return {}
+        return doc if isinstance(doc, dict) else {}
 
     def _submit(self, code: str) -> None:
         if self.token is None or self.challenge is None:

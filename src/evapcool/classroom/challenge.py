@@ -66,9 +66,12 @@ class NewChallenge:
 
     settings: dict[str, Any]
     seed: int
-    max_frames: int
+    #: None: the server sets it from a real game on the challenge (verifier.reference_frames).
+    max_frames: int | None
     attempts: int | None
     closes_at: float | None
+    #: Whether games that do not win are taken (ranked with 0 atoms).
+    lost: bool = False
 
 
 def parse_challenge(doc: dict[str, Any], now: float | None = None) -> NewChallenge:
@@ -77,6 +80,9 @@ def parse_challenge(doc: dict[str, Any], now: float | None = None) -> NewChallen
     escape = doc.get("escape", "rim")
     if escape not in ("rim", "knife"):
         raise RefusedError(400, "escape", "class.error.value", allowed="rim, knife")
+    lost = doc.get("lost", False)
+    if not isinstance(lost, bool):
+        raise RefusedError(400, "lost", "class.error.value", allowed="true, false")
     tc = got["tc_exponent"] if got["tc_exponent"] is not None else Settings().tc_exponent
     settings = {
         "n_atoms": got["n_atoms"],
@@ -90,9 +96,10 @@ def parse_challenge(doc: dict[str, Any], now: float | None = None) -> NewChallen
     return NewChallenge(
         settings=settings,
         seed=int(seed),
-        max_frames=int(got["max_frames"] or MAX_FRAMES),
+        max_frames=None if got["max_frames"] is None else int(got["max_frames"]),
         attempts=None if got["attempts"] is None else int(got["attempts"]),
         closes_at=None if minutes is None else start + 60.0 * minutes,
+        lost=lost,
     )
 
 
@@ -112,4 +119,5 @@ def challenge_doc(row: dict[str, Any]) -> dict[str, Any]:
         "max_frames": row["max_frames"],
         "attempts": row["attempts"],
         "closes_at": iso(row["closes_at"]),
+        "lost": bool(row.get("lost")),
     }

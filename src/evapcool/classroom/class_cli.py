@@ -1,11 +1,12 @@
-"""`evapcool class`: the class-competition server; prints the lecturer's and students' links."""
+"""`evapcool class`: the class-competition server; prints the lecturer's and students' links
+once it answers."""
 
 from __future__ import annotations
 
 import argparse
 import os
-import secrets
 import socket
+import sqlite3
 import sys
 from pathlib import Path
 
@@ -16,16 +17,27 @@ from evapcool.i18n import Catalog, choose_locale
 
 EXIT_USAGE = 2
 DEFAULT_PORT = 8765
+DEFAULT_STUDENTS = 2000
+MAX_STUDENTS = 100_000
 FILE_NAME = "class.sqlite"
 #: The line printed when the class extra is not installed.
 NEEDS_EXTRA = "evapcool class needs the class extra: pip install 'evapcool[class]'"
-EXTRA_MODULES = ("starlette", "uvicorn", "segno")
+EXTRA_MODULES = ("starlette", "uvicorn", "segno", "confusables")
+#: The folder the applet keeps its files in when set (evapcool.app.storage.DATA_ENV).
+DATA_ENV = "EVAPCOOL_DATA_DIR"
 
 
 def port(text: str) -> int:
     """A TCP port 1..65535."""
     if not text.isdigit() or not 1 <= int(text) <= 65535:
         raise argparse.ArgumentTypeError(f"must be a whole number 1..65535 (got {text!r})")
+    return int(text)
+
+
+def students(text: str) -> int:
+    """A bound on the players of a class file, 1..100000."""
+    if not text.isdigit() or not 1 <= int(text) <= MAX_STUDENTS:
+        raise argparse.ArgumentTypeError(f"must be a whole number 1..{MAX_STUDENTS} (got {text!r})")
     return int(text)
 
 
@@ -37,7 +49,11 @@ def workers(text: str) -> int:
 
 
 def default_data() -> Path:
-    """The class file in the per-user data folder (platformdirs), as evapcool's other files."""
+    """The class file in $EVAPCOOL_DATA_DIR, else the per-user data folder (platformdirs),
+    as evapcool's other files."""
+    folder = os.environ.get(DATA_ENV)
+    if folder:
+        return Path(folder) / FILE_NAME
     from platformdirs import user_data_dir
 
     return Path(user_data_dir(APP_NAME, appauthor=False)) / FILE_NAME
@@ -69,7 +85,19 @@ def build_parser() -> OneLineParser:
         type=Path,
         default=None,
         metavar="FILE",
-        help="the SQLite file (default: the user data folder)",
+        help="the SQLite file (default: class.sqlite in $EVAPCOOL_DATA_DIR, else the user data "
+        "folder)",
+    )
+    parser.add_argument(
+        "--max-students",
+        type=students,
+        default=DEFAULT_STUDENTS,
+        help=f"players the class file takes at most ({DEFAULT_STUDENTS})",
+    )
+    parser.add_argument(
+        "--new-link",
+        action="store_true",
+        help="make a new lecturer's link (the last one stops working)",
     )
     parser.add_argument(
         "--workers",
@@ -105,23 +133,72 @@ def main(argv: list[str] | None = None) -> int:
     except OSError as exc:
         print(error_line("class", f"argument --port: {args.port}: {exc.strerror}"), file=sys.stderr)
         return EXIT_USAGE
-    return serve(sock, data, args.workers, lan_address() if args.lan else host)
+    try:
+        token = lecturer_token(data, args.new_link)
+    except (OSError, sqlite3.Error) as exc:
+        sock.close()
+        print(error_line("class", f"argument --data: {data}: {exc}"), file=sys.stderr)
+        return EXIT_USAGE
+    shown = lan_address() if args.lan else host
+    return serve(sock, data, args.workers, shown, token, args.max_students)
 
 
-def serve(sock: socket.socket, data: Path, pool_workers: int, shown_host: str) -> int:
-    """Print the links and run the server on a bound socket."""
+def lecturer_token(data: Path, new: bool) -> str | None:
+    """A new lecturer's token if asked for or the file has none yet, else None (the one
+    made before still works: the file keeps its digest, never the token)."""
+    from evapcool.classroom.server import LECTURER_SECRET, new_lecturer_token
+    from evapcool.classroom.store import Store
+
+    store = Store(data)
+    try:
+        if new or store.secret(LECTURER_SECRET) is None:
+            return new_lecturer_token(store)
+        return None
+    finally:
+        store.close()
+
+
+def links(words: Catalog, base: str, token: str | None, data: Path) -> list[str]:
+    """What is printed once the server answers: the lecturer's link (or that the last
+    one still works), the students' link, the file, how to stop."""
+    lecturer = (
+        words.t("class.cli.lecturer", url=f"{base}/lecturer?token={token}")
+        if token
+        else words.t("class.cli.lecturer_kept")
+    )
+    return [
+        lecturer,
+        words.t("class.cli.students", url=f"{base}/"),
+        words.t("class.cli.data", path=str(data)),
+        words.t("class.cli.stop"),
+    ]
+
+
+def serve(
+    sock: socket.socket,
+    data: Path,
+    pool_workers: int,
+    shown_host: str,
+    token: str | None,
+    max_students: int = DEFAULT_STUDENTS,
+) -> int:
+    """Run the server on a bound socket; print the links once it answers."""
     import uvicorn
 
-    from evapcool.classroom.server import create_app
+    from evapcool.classroom.server import Limits, create_app
 
-    token = secrets.token_urlsafe(24)
     base = f"http://{shown_host}:{sock.getsockname()[1]}"
-    words = Catalog(choose_locale())
-    print(words.t("class.cli.lecturer", url=f"{base}/lecturer?token={token}"))
-    print(words.t("class.cli.students", url=f"{base}/"))
-    print(words.t("class.cli.data", path=str(data)))
-    print(words.t("class.cli.stop"), flush=True)
-    app = create_app(data, token, pool_workers, join_url=f"{base}/")
+    lines = links(Catalog(choose_locale()), base, token, data)
+
+    class Announcing(uvicorn.Server):
+        """uvicorn's server, printing the links once it has started (workers warm)."""
+
+        async def startup(self, sockets: list[socket.socket] | None = None) -> None:
+            await super().startup(sockets=sockets)
+            if self.started:
+                print("\n".join(lines), flush=True)
+
+    app = create_app(data, pool_workers, Limits(students=max_students), join_url=f"{base}/")
     config = uvicorn.Config(app, log_level="warning", timeout_graceful_shutdown=2)
-    uvicorn.Server(config).run(sockets=[sock])
+    Announcing(config).run(sockets=[sock])
     return 0

@@ -8,6 +8,7 @@ from typing import Any
 from starlette.requests import Request
 from starlette.responses import JSONResponse
 
+from evapcool.classroom.depth import MAX_DEPTH, too_deep
 from evapcool.i18n import Catalog
 
 
@@ -33,8 +34,18 @@ def refused_response(exc: RefusedError, words: Catalog) -> JSONResponse:
     return JSONResponse(body, status_code=exc.status, headers=headers)
 
 
+def is_json(request: Request) -> bool:
+    """Whether the request says its body is JSON: a web page elsewhere cannot send that
+    without the browser asking this server first (a CORS preflight, never granted)."""
+    kind = request.headers.get("content-type", "").split(";")[0].strip().lower()
+    return kind == "application/json"
+
+
 async def read_json(request: Request, limit: int) -> dict[str, Any]:
-    """The request's JSON object; RefusedError 413 past `limit` bytes, 400 if not an object."""
+    """The request's JSON object; RefusedError 415 if not said to be JSON, 413 past `limit`
+    bytes, 400 if not an object or nested deeper than MAX_DEPTH."""
+    if not is_json(request):
+        raise RefusedError(415, "content-type", "class.error.content_type")
     length = request.headers.get("content-length", "")
     if length.isdigit() and int(length) > limit:
         raise RefusedError(413, "body", "class.error.too_large", n=limit)
@@ -47,8 +58,12 @@ async def read_json(request: Request, limit: int) -> dict[str, Any]:
         chunks.append(chunk)
     try:
         doc = json.loads(b"".join(chunks))
+    except RecursionError:  # the parser's own bound, about a thousand levels
+        raise RefusedError(400, "body", "class.error.too_deep", n=MAX_DEPTH) from None
     except ValueError:
         doc = None
+    if too_deep(doc):
+        raise RefusedError(400, "body", "class.error.too_deep", n=MAX_DEPTH)
     if not isinstance(doc, dict):
         raise RefusedError(400, "body", "class.error.body")
     return doc

@@ -2,12 +2,17 @@
 
 Names never enter these templates: the pages' scripts put them in with textContent. The
 words come from the message catalog, escaped here (html.escape, or JSON with < escaped).
+Each page's Content-Security-Policy lets only its own script and style run (by their
+SHA-256), and lets it talk to this server only.
 """
 
 from __future__ import annotations
 
+import base64
+import hashlib
 import html
 import json
+import re
 from collections.abc import Callable
 from importlib import resources
 from string import Template
@@ -34,6 +39,8 @@ PAGE_WORDS = {
     "show": "class.lecturer.show",
     "none": "class.lecturer.none",
     "open_now": "class.lecturer.open_now",
+    "rename": "class.lecturer.rename",
+    "rename_prompt": "class.lecturer.rename_prompt",
 }
 
 STYLE_PROJECTOR = """
@@ -75,6 +82,7 @@ function row(table, cells, tag = "td") {
 """
 
 SCRIPT_PROJECTOR = """
+const key = new URLSearchParams(location.search).get("key");
 let challenge = undefined;
 async function loadChallenge() {
   const box = document.getElementById("settings");
@@ -91,12 +99,17 @@ function showReplay(p) {
   if (!p) return;
   document.getElementById("replay-name").textContent = W.replay + ": " + p.name;
   document.getElementById("replay-summary").textContent = fill(W.summary, p.summary);
-  document.getElementById("replay-code").textContent = p.code;
+  // The code comes only with the projector's key while the challenge is open; it is
+  // printed on the screen only once the challenge is closed.
+  document.getElementById("replay-code").textContent = p.code && !open ? p.code : "";
   const a = document.getElementById("replay-link");
-  a.href = "/?replay=" + encodeURIComponent(p.code);
+  a.hidden = !p.code;
+  if (p.code) a.href = "/?replay=" + encodeURIComponent(p.code);
   a.textContent = W.watch;
 }
+let open = false;
 function render(b) {
+  open = b.open;
   if (b.challenge !== challenge || !b.open) { challenge = b.challenge; loadChallenge(); }
   const t = document.getElementById("board");
   t.replaceChildren();
@@ -105,7 +118,8 @@ function render(b) {
   document.getElementById("rejected").textContent = W.refused + ": " + b.rejected;
   showReplay(b.replay);
 }
-new EventSource("/api/stream").onmessage = (e) => render(JSON.parse(e.data));
+const query = key ? "?key=" + encodeURIComponent(key) : "";
+new EventSource("/api/stream" + query).onmessage = (e) => render(JSON.parse(e.data));
 """
 
 SCRIPT_LECTURER = """
@@ -126,7 +140,8 @@ document.getElementById("open").onsubmit = (ev) => {
   ev.preventDefault();
   post("/api/challenge", {n_atoms: num("n_atoms"), radius: num("radius"),
     escape: document.getElementById("escape").value, seed: num("seed"),
-    minutes: num("minutes"), attempts: num("attempts")});
+    minutes: num("minutes"), attempts: num("attempts"),
+    lost: document.getElementById("lost").checked});
 };
 document.getElementById("close").onclick = () => post("/api/challenge/close", {});
 document.getElementById("export").href = "/api/export.csv?token=" + encodeURIComponent(token);
@@ -149,11 +164,17 @@ async function refresh() {
     const acts = document.createElement("span");
     if (!e.hidden) acts.appendChild(button(W.hide, () => post("/api/hide", {entry: e.entry})));
     acts.appendChild(button(W.show, () => post("/api/show", {entry: e.entry})));
+    acts.appendChild(button(W.rename, () => {
+      const name = prompt(W.rename_prompt, e.name);
+      if (name !== null) post("/api/rename", {entry: e.entry, name: name});
+    }));
     const tr = row(t, [e.entry, e.name, e.score, e.frames, e.edition, acts]);
     if (e.hidden) { tr.className = "hidden"; tr.title = W.hidden; }
   }
 }
-new EventSource("/api/stream").onmessage = () => refresh();
+// The projector's key (in its link) lets this page's stream past the students' streams.
+const projectorLink = document.getElementById("projector");
+new EventSource("/api/stream" + new URL(projectorLink.href).search).onmessage = () => refresh();
 """
 
 PAGE = Template("""<!doctype html>
@@ -173,7 +194,8 @@ PROJECTOR_BODY = Template("""<div id="page"><div id="side"><h1>$title</h1>
 <div id="board-box"><table id="board"></table></div></div>""")
 
 LECTURER_BODY = Template("""<h1>$title</h1>
-<p><a href="/projector" target="_blank">$projector</a> · <a id="export" download>$export</a></p>
+<p><a id="projector" href="/projector?key=$key" target="_blank">$projector</a> ·
+<a id="export" download>$export</a></p>
 <h2>$open</h2>
 <form id="open">
 <label for="n_atoms">$atoms</label><input id="n_atoms" type="number" min="2" max="400" value="49">
@@ -184,10 +206,32 @@ LECTURER_BODY = Template("""<h1>$title</h1>
 <label for="seed">$seed</label><input id="seed" type="number" min="0">
 <label for="minutes">$minutes</label><input id="minutes" type="number" min="1" step="any">
 <label for="attempts">$attempts</label><input id="attempts" type="number" min="1">
+<label for="lost">$lost</label><input id="lost" type="checkbox">
 <span></span><button>$open</button></form>
 <p><button id="close">$close</button></p>
 <p id="status" role="status"></p><p id="current"></p><p id="rejected"></p>
 <h2>$entries</h2><table id="entries"></table>""")
+
+
+def source_hash(text: str) -> str:
+    """A script's or style's CSP source: 'sha256-<base64 of its SHA-256>'."""
+    return "'sha256-" + base64.b64encode(hashlib.sha256(text.encode()).digest()).decode() + "'"
+
+
+def page_policy(script: str, style: str) -> str:
+    """The policy of a page: its one script and one style, talking to this server only."""
+    return (
+        f"default-src 'none'; script-src {source_hash(SCRIPT_COMMON + script)}; "
+        f"style-src {source_hash(style)}; connect-src 'self'; base-uri 'none'; "
+        "form-action 'none'; frame-ancestors 'none'"
+    )
+
+
+PROJECTOR_POLICY = page_policy(SCRIPT_PROJECTOR, STYLE_PROJECTOR)
+LECTURER_POLICY = page_policy(SCRIPT_LECTURER, STYLE_LECTURER)
+#: The built page's policy (a meta element) and its inline scripts.
+META_POLICY = re.compile(r'(http-equiv="Content-Security-Policy"\s+content=")([^"]*)(")')
+INLINE_SCRIPT = re.compile(r"<script(?![^>]*application/json)[^>]*>(.*?)</script>", re.S)
 
 
 def words_json(t: dict[str, str]) -> str:
@@ -211,15 +255,20 @@ def page(
     )
 
 
-def game_page() -> str:
-    """The browser edition with the class marker before </head>; its policy lets it talk to
-    this server only (the page from a file talks to nothing)."""
+def game_page() -> tuple[str, str]:
+    """The browser edition with the class marker before </head>, and its policy: the
+    built page's, talking to this server only (from a file it talks to nothing), its
+    inline scripts allowed by their hashes instead of 'unsafe-inline'."""
     text = (resources.files("evapcool") / "web" / "evapcool.html").read_text("utf-8")
     at = text.find("</head>")
-    if at < 0 or "connect-src 'none'" not in text:
+    meta = META_POLICY.search(text)
+    if at < 0 or meta is None or "connect-src 'none'" not in meta.group(2):
         raise ValueError("evapcool.html has no </head> or no connect-src 'none' policy")
-    text = text.replace("connect-src 'none'", "connect-src 'self'", 1)
-    return text[:at] + CLASS_MARKER + text[at:]
+    hashes = " ".join(source_hash(body) for body in INLINE_SCRIPT.findall(text))
+    policy = meta.group(2).replace("connect-src 'none'", "connect-src 'self'")
+    policy = policy.replace("script-src 'unsafe-inline'", f"script-src {hashes}")
+    text = text[: meta.start(2)] + policy + text[meta.end(2) : at] + CLASS_MARKER + text[at:]
+    return text, f"{policy}; base-uri 'none'; frame-ancestors 'none'"
 
 
 def projector_page(
@@ -255,14 +304,16 @@ LECTURER_LABELS = (
     "attempts",
     "close",
     "entries",
+    "lost",
 )
 
 
-def lecturer_page(raw: Callable[[str], str], lang: str, direction: str) -> str:
-    """The lecturer's page: open and close a challenge, the entries, hide, replay, export."""
+def lecturer_page(raw: Callable[[str], str], lang: str, direction: str, key: str) -> str:
+    """The lecturer's page: open and close a challenge, the entries, hide, rename, replay,
+    export, and the projector's link with its key."""
     words = {k: raw(v) for k, v in PAGE_WORDS.items()}
     labels = {k: html.escape(raw(f"class.lecturer.{k}")) for k in LECTURER_LABELS}
-    body = LECTURER_BODY.substitute(labels)
+    body = LECTURER_BODY.substitute(labels, key=html.escape(key))
     return page(
         lang,
         direction,

@@ -1,12 +1,15 @@
 """`evapcool class`'s web server (Starlette): challenges, students, verified games, pages.
 
-Games are replayed in worker processes; a submission is answered 200 only after its entry
-is committed to SQLite. Store calls run one at a time on a thread of their own.
+Games are replayed in worker processes, shared fairly between addresses (fairqueue); a
+submission is answered 200 only after its entry is committed to SQLite. Store calls run one
+at a time on a thread of their own. The lecturer's token is kept only as a digest.
 """
 
 from __future__ import annotations
 
 import asyncio
+import hashlib
+import hmac
 import json
 import multiprocessing
 import secrets
@@ -19,6 +22,7 @@ from pathlib import Path
 from typing import Any, TypeVar
 
 from starlette.applications import Starlette
+from starlette.exceptions import HTTPException
 from starlette.requests import Request
 from starlette.responses import HTMLResponse, JSONResponse, Response, StreamingResponse
 from starlette.routing import Route
@@ -26,9 +30,10 @@ from starlette.routing import Route
 from evapcool.classroom import pages
 from evapcool.classroom.challenge import challenge_doc, parse_challenge
 from evapcool.classroom.errors import RefusedError, read_json, refused_response
+from evapcool.classroom.fairqueue import FairQueue
 from evapcool.classroom.ratelimit import Rate, RateLimiter
-from evapcool.classroom.store import NAME_MAX, Store
-from evapcool.classroom.verifier import check_submission, warm
+from evapcool.classroom.store import NAME_MAX, ClassFullError, NameTakenError, Store
+from evapcool.classroom.verifier import check_submission, code_chars_ok, reference_frames, warm
 from evapcool.classroom.words import Words, raw
 from evapcool.game.replay import decode
 
@@ -41,63 +46,133 @@ SAFE_HEADERS = {
     "X-Content-Type-Options": "nosniff",
     "X-Frame-Options": "DENY",
 }
+#: The policy of answers that are not pages (JSON, CSV, events): nothing may run or load.
+DATA_POLICY = "default-src 'none'; frame-ancestors 'none'"
+#: The store's names of the digests of the lecturer's token and the projector's key.
+LECTURER_SECRET = "lecturer"
+PROJECTOR_SECRET = "projector"
 
 
 #: API requests per client address (a class behind one NAT address shares it).
 CLIENT_RATE = Rate(burst=600, per_second=100)
 #: Submissions per student token.
 SUBMIT_RATE = Rate(burst=5, per_second=0.5)
+#: Joins per client address: a lecture hall behind one address joins at once, then
+#: one more every 10 s (a flood of joins adds at most 360 players an hour).
+JOIN_RATE = Rate(burst=320, per_second=0.1)
 
 
 @dataclass(frozen=True)
 class Limits:
-    """Request limits: body size, request rates, event-stream listeners."""
+    """Request limits: body size, request rates, verifications, players, event streams."""
 
     body_bytes: int = 256 * 1024
     client: Rate = CLIENT_RATE
     submit: Rate = SUBMIT_RATE
+    join: Rate = JOIN_RATE
+    #: Verifications in flight or waiting, per student token and per client address.
+    student_jobs: int = 2
+    address_jobs: int = 64
+    #: Players a class file holds (`evapcool class --max-students`).
+    students: int = 2000
+    #: Open event streams: in all, and per client address; the projector's and the
+    #: lecturer's (with the projector key) have their own bound and never wait for these.
     listeners: int = 1000
+    address_listeners: int = 20
+    keyed_listeners: int = 16
+
+
+def digest(secret: str) -> str:
+    """What the store keeps of a secret (SHA-256, hex)."""
+    return hashlib.sha256(secret.encode()).hexdigest()
+
+
+def projector_key(lecturer_token: str) -> str:
+    """The projector's key, made from the lecturer's token (so the lecturer's page can give
+    it, though the server keeps only digests); it shows replay codes, nothing more."""
+    mac = hmac.new(lecturer_token.encode(), b"evapcool projector", hashlib.sha256)
+    return mac.hexdigest()[:32]
+
+
+def new_lecturer_token(store: Store) -> str:
+    """A new lecturer's token (the last one stops working); the store keeps its digests."""
+    token = secrets.token_urlsafe(24)
+    store.set_secret(LECTURER_SECRET, digest(token))
+    store.set_secret(PROJECTOR_SECRET, digest(projector_key(token)))
+    return token
+
+
+def _same(given: str, wanted: str | None) -> bool:
+    """Whether a secret given matches a stored digest (in constant time)."""
+    return wanted is not None and secrets.compare_digest(digest(given), wanted)
+
+
+@dataclass
+class Listener:
+    """One open event stream: its queue, its address, and whether it holds the key."""
+
+    queue: asyncio.Queue[str]
+    address: str
+    keyed: bool
 
 
 @dataclass
 class Hub:
-    """The server's state: store, pools, tokens, limiters, the streams' queues."""
+    """The server's state: store, pools, secrets' digests, limiters, the streams."""
 
     store: Store
-    lecturer_token: str
     limits: Limits
     pool: ProcessPoolExecutor
+    workers: int
     db_thread: ThreadPoolExecutor = field(default_factory=lambda: ThreadPoolExecutor(1))
     words: Words = field(default_factory=Words)
-    listeners: set[asyncio.Queue[str]] = field(default_factory=set)
+    listeners: list[Listener] = field(default_factory=list)
     showing: dict[str, Any] | None = None
 
     def __post_init__(self) -> None:
         self.per_client = RateLimiter(self.limits.client)
         self.per_token = RateLimiter(self.limits.submit)
+        self.joins = RateLimiter(self.limits.join)
+        self.queue = FairQueue(self.workers, self.limits.student_jobs, self.limits.address_jobs)
+        self.lecturer_digest = self.store.secret(LECTURER_SECRET)
+        self.projector_digest = self.store.secret(PROJECTOR_SECRET)
 
     async def db(self, fn: Callable[..., T], *args: Any) -> T:
         """Run a Store call on the store's thread (one at a time, off the event loop)."""
         return await asyncio.get_running_loop().run_in_executor(self.db_thread, fn, *args)
 
-    async def board(self) -> dict[str, Any]:
-        """The leaderboard of the current (open, else last) challenge."""
-        return await self.db(_board, self.store, self.showing)
+    async def board(self, keyed: bool = False) -> dict[str, Any]:
+        """The leaderboard of the current (open, else last) challenge; the replay's code
+        only for the key's holders while that game's challenge is open."""
+        return await self.db(_board, self.store, self.showing, keyed)
 
     async def publish(self) -> None:
         """Send the leaderboard to every event stream; a slow one keeps only the newest."""
-        text = json.dumps(await self.board())
-        for queue in list(self.listeners):
-            if queue.full():
-                queue.get_nowait()
-            queue.put_nowait(text)
+        texts = {keyed: json.dumps(await self.board(keyed)) for keyed in (False, True)}
+        for listener in list(self.listeners):
+            if listener.queue.full():
+                listener.queue.get_nowait()
+            listener.queue.put_nowait(texts[listener.keyed])
 
 
-def _board(store: Store, showing: dict[str, Any] | None) -> dict[str, Any]:
+def _replay_seen(store: Store, showing: dict[str, Any] | None, keyed: bool) -> Any:
+    """The replay on the projector as a reader may see it: without its code while its
+    challenge is open, unless the reader holds the projector's key (or is the lecturer)."""
+    if showing is None:
+        return None
+    hidden = {"player"}  # the student's token, never shown
+    now_open = store.open_one()
+    if not keyed and _is_open(now_open) and now_open and now_open["id"] == showing["challenge"]:
+        hidden.add("code")
+    return {k: v for k, v in showing.items() if k not in hidden}
+
+
+def _board(store: Store, showing: dict[str, Any] | None, keyed: bool) -> dict[str, Any]:
     """The leaderboard document (see docs/class.md)."""
     current = store.latest()
+    replay = _replay_seen(store, showing, keyed)
     if current is None:
-        return {"challenge": None, "open": False, "entries": [], "rejected": 0, "replay": showing}
+        return {"challenge": None, "open": False, "entries": [], "rejected": 0, "replay": replay}
     rows = store.leaderboard(int(current["id"]))  # type: ignore[call-overload]
     entries = [
         {"rank": i, "name": r[1], "score": r[2], "frames": r[3], "edition": r[4]}
@@ -108,7 +183,7 @@ def _board(store: Store, showing: dict[str, Any] | None) -> dict[str, Any]:
         "open": _is_open(current),
         "entries": entries,
         "rejected": current["rejected"],
-        "replay": showing,
+        "replay": replay,
     }
 
 
@@ -132,10 +207,15 @@ def _bearer(request: Request) -> str:
     return auth[7:].strip() if auth.lower().startswith("bearer ") else ""
 
 
+def address(request: Request) -> str:
+    """The client's address (a class behind one NAT address shares it)."""
+    return request.client.host if request.client else "?"
+
+
 def guard(request: Request) -> Hub:
     """The Hub, after the client's request rate is checked (429 over it)."""
     hub = hub_of(request)
-    wait = hub.per_client.take(request.client.host if request.client else "?")
+    wait = hub.per_client.take(address(request))
     if wait:
         raise RefusedError(429, "client", "class.error.slow_down", retry_after=wait, n=wait)
     return hub
@@ -144,10 +224,24 @@ def guard(request: Request) -> Hub:
 def lecturer(request: Request, query: bool = False) -> Hub:
     """The Hub if the request carries the lecturer's token, else 403."""
     hub = guard(request)
-    given = _bearer(request) or (request.query_params.get("token", "") if query else "")
-    if not secrets.compare_digest(given.encode(), hub.lecturer_token.encode()):
+    if not _same(_lecturer_token(request, query), hub.lecturer_digest):
         raise RefusedError(403, "token", "class.error.lecturer")
     return hub
+
+
+def _lecturer_token(request: Request, query: bool) -> str:
+    """The token a request gives: as Bearer, or (query=True, the pages) in ?token=."""
+    return _bearer(request) or (request.query_params.get("token", "") if query else "")
+
+
+def keyed(request: Request, hub: Hub) -> bool:
+    """Whether the request holds the projector's key (?key=); 403 if it gives a wrong one."""
+    given = request.query_params.get("key")
+    if given is None:
+        return False
+    if not _same(given, hub.projector_digest):
+        raise RefusedError(403, "key", "class.error.key")
+    return True
 
 
 # -- pages -------------------------------------------------------------------------------------
@@ -156,27 +250,33 @@ def lecturer(request: Request, query: bool = False) -> Hub:
 async def game(request: Request) -> Response:
     """The browser edition in class mode."""
     guard(request)
-    return HTMLResponse(request.app.state.game_html)
+    text, policy = request.app.state.game_page
+    return HTMLResponse(text, headers={"Content-Security-Policy": policy})
 
 
 async def projector(request: Request) -> Response:
-    """The projector page: QR code of the join address, the live leaderboard."""
+    """The projector page: QR code of the join address, the live leaderboard (with the
+    projector's key in ?key=, the replays' codes too)."""
     hub = guard(request)
+    keyed(request, hub)
     words = hub.words.of(request)
     join_url = request.app.state.join_url or str(request.base_url)
     svg = _qr_svg(join_url)
     text = pages.projector_page(
         lambda k: raw(words, k), words.locale, words.meta["direction"], join_url, svg
     )
-    return HTMLResponse(text)
+    headers = {"Content-Security-Policy": pages.PROJECTOR_POLICY, "Cache-Control": "no-store"}
+    return HTMLResponse(text, headers=headers)
 
 
 async def lecturer_page(request: Request) -> Response:
     """The lecturer's page (403 without the token in ?token=)."""
     hub = lecturer(request, query=True)
     words = hub.words.of(request)
-    text = pages.lecturer_page(lambda k: raw(words, k), words.locale, words.meta["direction"])
-    return HTMLResponse(text, headers={"Cache-Control": "no-store"})
+    key = projector_key(_lecturer_token(request, query=True))
+    text = pages.lecturer_page(lambda k: raw(words, k), words.locale, words.meta["direction"], key)
+    headers = {"Content-Security-Policy": pages.LECTURER_POLICY, "Cache-Control": "no-store"}
+    return HTMLResponse(text, headers=headers)
 
 
 def _qr_svg(url: str) -> str:
@@ -207,13 +307,18 @@ async def open_challenge(request: Request) -> Response:
     """Open a challenge (closing the one open); the lecturer's."""
     hub = lecturer(request)
     new = parse_challenge(await read_json(request, hub.limits.body_bytes))
+    max_frames = new.max_frames
+    if max_frames is None:  # a real game's length on these settings, with a margin
+        loop = asyncio.get_running_loop()
+        max_frames = await loop.run_in_executor(hub.pool, reference_frames, new.settings, new.seed)
     cid = await hub.db(
         hub.store.open_challenge,
         new.settings,
         new.seed,
-        new.max_frames,
+        max_frames,
         new.attempts,
         new.closes_at,
+        new.lost,
     )
     hub.showing = None
     await hub.publish()
@@ -237,11 +342,28 @@ async def close_challenge(request: Request) -> Response:
 
 
 async def join(request: Request) -> Response:
-    """A student's token for a name (cleaned: visible characters, at most NAME_MAX)."""
+    """A student's token for a name (cleaned: visible characters, at most NAME_MAX, not
+    looking like another student's), within the address's join rate and the class's bound.
+
+    With the token of an earlier join ("token"), that student again, by the name the
+    server has (an applet started anew keeps its place and name).
+    """
     hub = guard(request)
     doc = await read_json(request, hub.limits.body_bytes)
+    earlier = doc.get("token")
+    if isinstance(earlier, str) and 0 < len(earlier) <= 64:
+        known = await hub.db(hub.store.player_name, earlier)
+        if known is not None:
+            return JSONResponse({"token": earlier, "name": known})
+    wait = hub.joins.take(address(request))
+    if wait:
+        raise RefusedError(429, "client", "class.error.slow_down", retry_after=wait, n=wait)
     try:
-        token = await hub.db(hub.store.join, doc.get("name"))
+        token = await hub.db(hub.store.join, doc.get("name"), hub.limits.students)
+    except ClassFullError:
+        raise RefusedError(409, "class", "class.error.full", n=hub.limits.students) from None
+    except NameTakenError as taken:
+        raise RefusedError(409, "name", "class.error.name_taken", name=taken.name) from None
     except ValueError:
         raise RefusedError(400, "name", "class.error.name", n=NAME_MAX) from None
     name = await hub.db(hub.store.player_name, token)
@@ -274,10 +396,16 @@ async def _open_for(hub: Hub, doc: dict[str, Any], token: str) -> dict[str, Any]
 
 
 def _game_of(doc: dict[str, Any]) -> tuple[object, str]:
-    """The submitted game: (a code, "code") or (a recording, "recording"); else 400."""
+    """The submitted game: (a code, "code") or (a recording, "recording"); else 400.
+
+    A code's characters are checked first (ASCII letters, digits, . - _), before anything
+    reads it.
+    """
     if doc.get("code") is not None:
         if not isinstance(doc["code"], str):
             raise RefusedError(400, "code", "class.error.no_code")
+        if not code_chars_ok(doc["code"]):
+            raise RefusedError(400, "code", "class.error.code_chars")
         return doc["code"], "code"
     if isinstance(doc.get("recording"), dict):
         return doc["recording"], "recording"
@@ -289,17 +417,20 @@ async def submit(request: Request) -> Response:
     hub = guard(request)
     token = await _student(request, hub)
     doc = await read_json(request, hub.limits.body_bytes)
-    row = await _open_for(hub, doc, token)
     item, how = _game_of(doc)
+    row = await _open_for(hub, doc, token)
     loop = asyncio.get_running_loop()
-    got = await loop.run_in_executor(hub.pool, check_submission, item, how, row)
+
+    def verify() -> asyncio.Future[dict[str, Any]]:
+        return loop.run_in_executor(hub.pool, check_submission, item, how, row)
+
+    got = await hub.queue.run(address(request), token, verify)
     if "error" in got:
-        await hub.db(hub.store.count_rejected, row["id"])
-        await hub.publish()
-        err = got["error"]
-        raise RefusedError(422, err["field"], err["key"], **err["args"])
-    result = (got["score"], got["frames"], got["edition"], got["code"])
+        await _refuse(hub, row["id"], got["error"])
+    result = (got["score"], got["frames"], got["edition"], got["code"], got["moves"])
     entry = await hub.db(hub.store.add_if_allowed, row["id"], token, result, time.time())
+    if entry == "code":
+        await _refuse(hub, row["id"], {"field": "code", "key": "class.error.copied", "args": {}})
     if isinstance(entry, str):
         key = "class.error.attempts" if entry == "attempts" else "class.error.closed"
         raise RefusedError(409, entry, key, n=row["attempts"] or 0)
@@ -314,27 +445,53 @@ async def submit(request: Request) -> Response:
     )
 
 
+async def _refuse(hub: Hub, challenge: int, error: dict[str, Any]) -> None:
+    """Count a refused game, tell the boards, and answer 422 naming the field."""
+    await hub.db(hub.store.count_rejected, challenge)
+    await hub.publish()
+    raise RefusedError(422, error["field"], error["key"], **error["args"])
+
+
 # -- the lecturer's actions --------------------------------------------------------------------
 
 
 def _entry_id(doc: dict[str, Any]) -> int:
-    """The entry a lecturer's action names (400 if not a whole number)."""
+    """The entry a lecturer's action names (400 if not a whole number SQLite can hold)."""
     entry = doc.get("entry")
-    if not isinstance(entry, int) or isinstance(entry, bool):
+    if not isinstance(entry, int) or isinstance(entry, bool) or not 0 < entry < 2**63:
         raise RefusedError(400, "entry", "class.error.no_entry")
     return entry
 
 
 async def hide(request: Request) -> Response:
-    """Hide an entry from the leaderboard."""
+    """Hide the student of an entry: all their entries, later ones too, leave the board."""
     hub = lecturer(request)
     entry = _entry_id(await read_json(request, hub.limits.body_bytes))
     if not await hub.db(hub.store.hide, entry):
         raise RefusedError(404, "entry", "class.error.no_entry")
-    if hub.showing and hub.showing["entry"] == entry:
+    if hub.showing and hub.showing["player"] == await hub.db(hub.store.entry_player, entry):
         hub.showing = None
     await hub.publish()
     return JSONResponse({"entry": entry, "hidden": True})
+
+
+async def rename(request: Request) -> Response:
+    """Rename the student of an entry ({entry, name}); the name as at joining."""
+    hub = lecturer(request)
+    doc = await read_json(request, hub.limits.body_bytes)
+    entry = _entry_id(doc)
+    try:
+        name = await hub.db(hub.store.rename, entry, doc.get("name"))
+    except NameTakenError as taken:
+        raise RefusedError(409, "name", "class.error.name_taken", name=taken.name) from None
+    except ValueError:
+        raise RefusedError(400, "name", "class.error.name", n=NAME_MAX) from None
+    if name is None:
+        raise RefusedError(404, "entry", "class.error.no_entry")
+    if hub.showing and hub.showing["player"] == await hub.db(hub.store.entry_player, entry):
+        hub.showing = {**hub.showing, "name": name}
+    await hub.publish()
+    return JSONResponse({"entry": entry, "name": name})
 
 
 def moves_summary(code: str) -> dict[str, Any]:
@@ -361,10 +518,17 @@ async def show(request: Request) -> Response:
         found = await hub.db(hub.store.entry_code, entry)
         if found is None:
             raise RefusedError(404, "entry", "class.error.no_entry")
-        name, code = found
-        hub.showing = {"entry": entry, "name": name, "code": code, "summary": moves_summary(code)}
+        name, code, challenge = found
+        hub.showing = {
+            "entry": entry,
+            "name": name,
+            "code": code,
+            "summary": moves_summary(code),
+            "challenge": challenge,
+            "player": await hub.db(hub.store.entry_player, entry),
+        }
     await hub.publish()
-    return JSONResponse({"replay": hub.showing})
+    return JSONResponse({"replay": await hub.db(_replay_seen, hub.store, hub.showing, True)})
 
 
 async def entries(request: Request) -> Response:
@@ -400,39 +564,61 @@ async def export_csv(request: Request) -> Response:
 
 
 async def leaderboard(request: Request) -> Response:
-    """The current challenge's leaderboard."""
+    """The current challenge's leaderboard (the replay's code as for the stream)."""
     hub = guard(request)
-    return JSONResponse(await hub.board())
+    return JSONResponse(await hub.board(keyed(request, hub)))
+
+
+def _stream_refusal(hub: Hub, request: Request, with_key: bool) -> RefusedError | None:
+    """Why one more stream is refused: too many in all or from this address (429); the
+    key's holders are counted apart, so students' streams never crowd the projector out."""
+    limits = hub.limits
+    if with_key:
+        if sum(1 for s in hub.listeners if s.keyed) >= limits.keyed_listeners:
+            return RefusedError(
+                429, "key", "class.error.streams", retry_after=30, n=limits.keyed_listeners
+            )
+        return None
+    public = [s for s in hub.listeners if not s.keyed]
+    if sum(1 for s in public if s.address == address(request)) >= limits.address_listeners:
+        return RefusedError(
+            429, "client", "class.error.streams", retry_after=30, n=limits.address_listeners
+        )
+    if len(public) >= limits.listeners:
+        return RefusedError(429, "client", "class.error.slow_down", retry_after=30, n=30)
+    return None
 
 
 async def stream(request: Request) -> Response:
     """Server-Sent Events: the leaderboard at connect and after every change."""
     hub = guard(request)
-    if len(hub.listeners) >= hub.limits.listeners:
-        raise RefusedError(429, "client", "class.error.slow_down", retry_after=30, n=30)
-    queue: asyncio.Queue[str] = asyncio.Queue(maxsize=4)
-    hub.listeners.add(queue)
-    first = json.dumps(await hub.board())
+    with_key = keyed(request, hub)
+    refused = _stream_refusal(hub, request, with_key)
+    if refused:
+        raise refused
+    listener = Listener(asyncio.Queue(maxsize=4), address(request), with_key)
+    hub.listeners.append(listener)
+    first = json.dumps(await hub.board(with_key))
     return StreamingResponse(
-        _events(hub, queue, first),
+        _events(hub, listener, first),
         media_type="text/event-stream",
         headers={"Cache-Control": "no-cache", "X-Accel-Buffering": "no"},
     )
 
 
-async def _events(hub: Hub, queue: asyncio.Queue[str], first: str) -> AsyncIterator[str]:
+async def _events(hub: Hub, listener: Listener, first: str) -> AsyncIterator[str]:
     """The event stream of one listener; a comment every KEEP_ALIVE seconds when idle."""
     try:
         yield f"data: {first}\n\n"
         while True:
             try:
-                text = await asyncio.wait_for(queue.get(), KEEP_ALIVE)
+                text = await asyncio.wait_for(listener.queue.get(), KEEP_ALIVE)
             except asyncio.TimeoutError:
                 yield ": keep-alive\n\n"
                 continue
             yield f"data: {text}\n\n"
     finally:
-        hub.listeners.discard(queue)
+        hub.listeners.remove(listener)
 
 
 # -- the app -----------------------------------------------------------------------------------
@@ -448,6 +634,7 @@ ROUTES = [
     Route("/api/join", join, methods=["POST"]),
     Route("/api/submit", submit, methods=["POST"]),
     Route("/api/hide", hide, methods=["POST"]),
+    Route("/api/rename", rename, methods=["POST"]),
     Route("/api/show", show, methods=["POST"]),
     Route("/api/entries", entries),
     Route("/api/leaderboard", leaderboard),
@@ -462,6 +649,18 @@ async def _refused(request: Request, exc: Exception) -> Response:
     return refused_response(exc, hub_of(request).words.of(request))
 
 
+async def _no_route(request: Request, exc: Exception) -> Response:
+    """The JSON answer of an unknown path (404) or method (405), as any refusal."""
+    assert isinstance(exc, HTTPException)
+    if exc.status_code == 405:
+        refusal = RefusedError(405, "method", "class.error.method", method=request.method)
+    else:
+        refusal = RefusedError(404, "path", "class.error.not_found")
+    answer = refused_response(refusal, hub_of(request).words.of(request))
+    answer.headers.update(exc.headers or {})  # Allow, for a 405
+    return answer
+
+
 def _pool(workers: int) -> ProcessPoolExecutor:
     """Worker processes (spawned, not forked from the running server), each warmed once."""
     context = multiprocessing.get_context("spawn")
@@ -470,21 +669,22 @@ def _pool(workers: int) -> ProcessPoolExecutor:
 
 def create_app(
     store_path: Path | str,
-    lecturer_token: str,
     pool_workers: int,
     limits: Limits | None = None,
     join_url: str | None = None,
 ) -> Starlette:
     """The class server's app: SQLite at store_path, `pool_workers` verifying processes.
 
+    The lecturer's token is the one whose digest the store holds (`new_lecturer_token`).
     join_url: the students' address shown on the projector (default: the one it was read at).
     """
 
     @asynccontextmanager
     async def lifespan(app: Starlette) -> AsyncIterator[None]:
-        hub = Hub(Store(Path(store_path)), lecturer_token, limits or Limits(), _pool(pool_workers))
+        store = Store(Path(store_path))
+        hub = Hub(store, limits or Limits(), _pool(pool_workers), pool_workers)
         app.state.hub = hub
-        app.state.game_html = pages.game_page()
+        app.state.game_page = pages.game_page()
         loop = asyncio.get_running_loop()
         await asyncio.gather(*(loop.run_in_executor(hub.pool, _ready) for _ in range(pool_workers)))
         try:
@@ -494,7 +694,8 @@ def create_app(
             hub.db_thread.submit(hub.store.close).result()
             hub.db_thread.shutdown()
 
-    app = Starlette(routes=ROUTES, lifespan=lifespan, exception_handlers={RefusedError: _refused})
+    handlers = {RefusedError: _refused, 404: _no_route, 405: _no_route}
+    app = Starlette(routes=ROUTES, lifespan=lifespan, exception_handlers=handlers)
     app.state.join_url = join_url
     app.add_middleware(_SafeHeaders)
     return app
@@ -514,8 +715,11 @@ class _SafeHeaders:
     async def __call__(self, scope: Any, receive: Any, send: Any) -> None:
         async def send_with(message: Any) -> None:
             if message["type"] == "http.response.start":
+                headers = list(message.get("headers", []))
                 extra = [(k.lower().encode(), v.encode()) for k, v in SAFE_HEADERS.items()]
-                message["headers"] = list(message.get("headers", [])) + extra
+                if not any(k.lower() == b"content-security-policy" for k, _ in headers):
+                    extra.append((b"content-security-policy", DATA_POLICY.encode()))
+                message["headers"] = headers + extra
             await send(message)
 
         if scope["type"] != "http":

