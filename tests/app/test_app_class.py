@@ -88,7 +88,7 @@ def test_started_again_the_applet_is_the_same_student(server, class_app, tmp_pat
     assert not any("not accepted" in n for n in again.visible_notices)
     elsewhere = join_app(class_app, tmp_path / "other", server.base + "/")  # another Ada
     frames_until(elsewhere, lambda: any("not accepted" in n for n in elsewhere.visible_notices))
-    assert "looks like Ada" in elsewhere.visible_notices[-1]
+    assert "Too like Ada" in elsewhere.visible_notices[-1]
 
 
 def test_a_refusal_is_shown_in_the_servers_words(server, class_app, tmp_path):

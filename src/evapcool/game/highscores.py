@@ -92,8 +92,7 @@ def _entry_from_json(obj: object) -> Entry:
     if (
         isinstance(seconds, bool)
         or not isinstance(seconds, numbers.Real)
-        or not math.isfinite(seconds)
-        or not 0 <= seconds <= SCORE_SECONDS_MAX
+        or not 0.0 <= float(seconds) <= SCORE_SECONDS_MAX
     ):
         raise ValueError(f"bad seconds {seconds!r}")
     if not isinstance(date, str):
@@ -195,8 +194,7 @@ class HighScoreTable:
         if (
             isinstance(seconds, bool)
             or not isinstance(seconds, numbers.Real)
-            or not math.isfinite(seconds)
-            or not 0 <= seconds <= SCORE_SECONDS_MAX
+            or not 0.0 <= float(seconds) <= SCORE_SECONDS_MAX
         ):
             raise ValueError(
                 f"seconds must be a number from 0 to {SCORE_SECONDS_MAX:g} (got {shown(seconds)})"
