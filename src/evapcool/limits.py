@@ -194,6 +194,13 @@ POSITION_MAX = 1e8
 #: The longest time a stored high-score row may claim, s: a billion seconds (31 years) is no
 #: game, and the table's m:ss.s of more would not fit (both editions refuse such a row).
 SCORE_SECONDS_MAX = 1e9
+#: A recorded game (a replay code, a class challenge): the atoms and their radius a verifier
+#: replays in milliseconds (400 atoms of radius 40 do not all fit: loading refuses those),
+#: and the longest game, 20 minutes of play at 30 frames/s. Written once: both editions'
+#: replay checks, the class server's challenge and the lecturer's form read these.
+REPLAY_ATOMS = Range(2, 400, integer=True)
+REPLAY_RADIUS = Range(1.0, 40.0, "px")
+REPLAY_FRAMES_MAX = 36_000
 #: Window sides, px: at 8192 the loader's top rows start at 72 px/frame, under VELOCITY_MAX.
 WINDOW_SIDE = Range(160, 8192, "px", integer=True)
 #: Random seed of the shared start generator (physics/start.py): every edition holds it

@@ -180,6 +180,11 @@ export const DT = row("DT");
 export const APPLET_RADIUS = row("APPLET_RADIUS");
 export const APPLET_ATOMS = row("APPLET_ATOMS");
 export const APPLET_SPEED = row("APPLET_SPEED");
+/** A recorded game's atoms and radius (replay codes, class challenges). */
+export const REPLAY_ATOMS = row("REPLAY_ATOMS");
+export const REPLAY_RADIUS = row("REPLAY_RADIUS");
+/** The longest recorded game, frames. */
+export const REPLAY_FRAMES_MAX = bound("REPLAY_FRAMES_MAX");
 /** Speed of any atom of a state or start, px/frame. */
 export const VELOCITY_MAX = bound("VELOCITY_MAX");
 /** |x| and y of any centre, px. */

@@ -10,8 +10,8 @@ from datetime import datetime, timezone
 from typing import Any
 
 from evapcool.classroom.errors import RefusedError
-from evapcool.game.replay import MAX_ATOMS, MAX_FRAMES, Settings
-from evapcool.limits import SEED
+from evapcool.game.replay import MAX_FRAMES, Settings
+from evapcool.limits import REPLAY_ATOMS, REPLAY_RADIUS, SEED
 
 #: Seeds drawn for "random": small enough to read out in class.
 RANDOM_SEED_MAX = 1_000_000
@@ -50,8 +50,8 @@ class Field:
 
 
 FIELDS = {
-    "n_atoms": Field(2, MAX_ATOMS, True, False),
-    "radius": Field(1.0, 40.0, False, False),
+    "n_atoms": Field(REPLAY_ATOMS.low, REPLAY_ATOMS.high, True, False),
+    "radius": Field(REPLAY_RADIUS.low, REPLAY_RADIUS.high, False, False),
     "tc_exponent": Field(1e-9, 2.0, False, True),
     "seed": Field(SEED.low, SEED.high, True, True),
     "minutes": Field(0.1, MAX_MINUTES, False, True),

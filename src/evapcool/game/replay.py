@@ -21,14 +21,17 @@ from typing import Any
 
 from evapcool.about import __version__
 from evapcool.game.rules import HEIGHT_MAX, HEIGHT_MIN, Game, GameConfig
+from evapcool.limits import REPLAY_ATOMS, REPLAY_FRAMES_MAX, REPLAY_RADIUS
 from evapcool.physics.start import SEED_PORTABLE_MAX, START_GENERATOR
 
 CODE_PREFIX = "EC1"
 FORMAT_VERSION = 1
 EDITIONS = ("desktop", "web")
-#: Longest game a recording may hold (frames): 20 minutes of play at 30 frames/s.
-MAX_FRAMES = 36_000
-MAX_ATOMS = 400
+#: Longest game a recording may hold (frames), and its most atoms (limits.py's).
+MAX_FRAMES = REPLAY_FRAMES_MAX
+MAX_ATOMS = int(REPLAY_ATOMS.high)
+ATOMS_SPAN = f"{int(REPLAY_ATOMS.low)}..{MAX_ATOMS}"
+RADIUS_SPAN = f"{REPLAY_RADIUS.low:g}..{REPLAY_RADIUS.high:g}"
 MAX_CODE_CHARS = 200_000
 
 #: Why a code or recording is rejected (the reasons `evapcool verify` prints).
@@ -134,8 +137,8 @@ class Recording:
         """ReplayError(EDITED) naming the first field out of its limits or inconsistent."""
         s = self.settings
         problems = [
-            (not 2 <= s.n_atoms <= MAX_ATOMS, f"settings.n_atoms must be 2..{MAX_ATOMS}"),
-            (not 1.0 <= s.radius <= 40.0, "settings.radius must be 1..40"),
+            (not REPLAY_ATOMS.contains(s.n_atoms), f"settings.n_atoms must be {ATOMS_SPAN}"),
+            (not REPLAY_RADIUS.contains(s.radius), f"settings.radius must be {RADIUS_SPAN}"),
             (s.escape not in ("rim", "knife"), "settings.escape must be rim or knife"),
             (not 0.0 < s.tc_exponent <= 2.0, "settings.tc_exponent must be in (0, 2]"),
             (not 0 <= self.seed <= SEED_PORTABLE_MAX, "seed must be 0..2^53-1"),

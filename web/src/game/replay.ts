@@ -8,14 +8,15 @@ import { version } from "../../package.json";
 import { SEED_PORTABLE_MAX, START_GENERATOR } from "./engine";
 import { Game, HEIGHT_MAX, HEIGHT_MIN, type GameConfig, type SimFactory } from "./rules";
 import type { EscapeRule } from "./constants";
+import { REPLAY_ATOMS, REPLAY_FRAMES_MAX, REPLAY_RADIUS } from "../limits";
 export { MoveRecorder } from "./moves";
 
 export const CODE_PREFIX = "EC1";
 export const FORMAT_VERSION = 1;
 export const EDITION_VERSION: string = version;
 /** Longest game a recording may hold (frames): 20 minutes of play at 30 frames/s. */
-export const MAX_FRAMES = 36_000;
-export const MAX_ATOMS = 400;
+export const MAX_FRAMES = REPLAY_FRAMES_MAX;
+export const MAX_ATOMS = REPLAY_ATOMS.high;
 export const MAX_CODE_CHARS = 200_000;
 /** The longest a run [height,frames], comma, can be written: a height as JSON writes a float
  * (at most 24 characters, "1.2345678901234567e-100"), frames of at most 5 digits. */
@@ -141,8 +142,14 @@ export function checkRecording(rec: Recording, maxFrames = MAX_FRAMES): void {
   const s = rec.settings;
   const total = rec.moves.reduce((sum, [, n]) => sum + n, 0);
   const problems: Array<[boolean, string]> = [
-    [!(s.n_atoms >= 2 && s.n_atoms <= MAX_ATOMS), `settings.n_atoms must be 2..${MAX_ATOMS}`],
-    [!(s.radius >= 1 && s.radius <= 40), "settings.radius must be 1..40"],
+    [
+      !(s.n_atoms >= REPLAY_ATOMS.low && s.n_atoms <= REPLAY_ATOMS.high),
+      `settings.n_atoms must be ${REPLAY_ATOMS.low}..${REPLAY_ATOMS.high}`,
+    ],
+    [
+      !(s.radius >= REPLAY_RADIUS.low && s.radius <= REPLAY_RADIUS.high),
+      `settings.radius must be ${REPLAY_RADIUS.low}..${REPLAY_RADIUS.high}`,
+    ],
     [s.escape !== "rim" && s.escape !== "knife", "settings.escape must be rim or knife"],
     [!(s.tc_exponent > 0 && s.tc_exponent <= 2), "settings.tc_exponent must be in (0, 2]"],
     [!(rec.seed >= 0 && rec.seed <= SEED_PORTABLE_MAX), "seed must be 0..2^53-1"],
