@@ -41,8 +41,9 @@ class Window:
         self.fullscreen = False
         #: The last size we asked for: resize events of that size are ours, not the user's.
         self.requested = tuple(size)
-        #: (where the user had the window, where we moved it to make room), or None.
-        self._moved: tuple[tuple[int, int], tuple[int, int]] | None = None
+        #: (where the user had the window, its size there, where we moved it to make
+        #: room), or None.
+        self._moved: tuple[tuple[int, int], tuple[int, int], tuple[int, int]] | None = None
 
     @property
     def surface(self) -> pygame.Surface:
@@ -78,16 +79,17 @@ class Window:
         size = (max(1, int(size[0])), max(1, int(size[1])))
         if self.fullscreen or size == self.size:
             return
+        here, before = self.position, self.size
         self.requested = size
         self.win.size = size
-        here = self.position
-        if self._moved is not None and not _near(here, self._moved[1]):
+        if self._moved is not None and not _near(here, self._moved[2]):
             self._moved = None  # moved by the user since: where it is now is theirs
-        home = self._moved[0] if self._moved is not None else here
-        there = self._on_screen(home, size)
+        home, home_size = self._moved[:2] if self._moved is not None else (here, before)
+        # Back at the size it had there: back there, exactly where the user had it.
+        there = home if size == home_size else self._on_screen(home, size)
         if there != here:
             self.win.position = there
-        self._moved = (home, there) if there != home else None
+        self._moved = (home, home_size, there) if there != home else None
 
     def _on_screen(self, at: tuple[int, int], size: tuple[int, int]) -> tuple[int, int]:
         """The nearest place to `at` where a window of this size is on the screen, frame
