@@ -8,6 +8,7 @@ written from the key table, so the help lists exactly the keys there are.
 from __future__ import annotations
 
 from collections.abc import Sequence
+from dataclasses import dataclass
 
 from evapcool.app.input import Binding, InputMachine, Mode
 from evapcool.app.options import SettingsEditor
@@ -37,24 +38,17 @@ def help_rows(bindings: Sequence[Binding], numbers: dict[str, object]) -> list[t
     return rows
 
 
+@dataclass
 class Overlays:
-    """Draws what the input machine has open over the play area."""
+    """Draws what the input machine has open over the play area; numbers: the values the
+    help's messages name."""
 
-    def __init__(
-        self,
-        scene: Scene,
-        machine: InputMachine,
-        scores: Scoreboard,
-        options: SettingsEditor,
-        stats: FrameStats,
-        numbers: dict[str, object],
-    ) -> None:
-        self.scene = scene
-        self.machine = machine
-        self.scores = scores
-        self.options = options
-        self.stats = stats
-        self.numbers = numbers
+    scene: Scene
+    machine: InputMachine
+    scores: Scoreboard
+    options: SettingsEditor
+    stats: FrameStats
+    numbers: dict[str, object]
 
     def help_rows(self) -> list[tuple[str, str]]:
         return help_rows(self.machine.bindings, self.numbers)
