@@ -6,7 +6,7 @@ none calls back into the App:
 - `Framing` (app.framing): the window, the charts beside the scene, the layout;
 - `GameClock` (app.clock): how far each frame moves the physics, the frame timings;
 - `InputMachine` (app.input): modes and what each event does; it acts through the
-  `Controls` the App offers (the key table, `default_bindings()`, also writes the help);
+  `Controls` the App offers; the key table (app.keys) also writes the help;
 - `Overlays` (app.overlays): the help, high scores, settings and name box drawn over
   the play area;
 - `WinScreen` (app.winscreen): what a win means, the name box, the replay code;
@@ -36,6 +36,7 @@ from evapcool.app.clock import GameClock
 from evapcool.app.controls import SceneControls
 from evapcool.app.framing import Framing
 from evapcool.app.input import Binding, InputMachine, Mode
+from evapcool.app.keys import HEIGHT_STEP, HELP_ARGS, default_bindings
 from evapcool.app.layout import Layout
 from evapcool.app.notices import NOTICE_SECONDS, Notices
 from evapcool.app.options import SettingsEditor
@@ -50,13 +51,7 @@ from evapcool.app.winscreen import WinScreen
 from evapcool.app.words import t
 from evapcool.game.autopilot import Autopilot
 from evapcool.game.replay import Recording
-from evapcool.game.rules import (
-    HEIGHT_MAX,
-    HEIGHT_MIN,
-    Game,
-    GameConfig,
-    make_simulation,
-)
+from evapcool.game.rules import Game, GameConfig, make_simulation
 from evapcool.game.settings import Settings
 from evapcool.physics.simulation import Simulation
 from evapcool.view.icons import window_icon
@@ -67,95 +62,10 @@ from evapcool.view.widgets import Pointer
 TITLE = "app.title"  # the window's title, in the chosen language
 #: Display frame rate we aim for; physics time follows the wall clock regardless.
 TARGET_FPS = 60
-#: Trap height change per arrow-key press (key repeat is on), px.
-HEIGHT_STEP = 5.0
-_SUBMIT = (pygame.K_RETURN, pygame.K_KP_ENTER)
 #: A folder argument that names no folder (the command line's --data-dir says the same).
 BAD_FOLDER = "{name} must name a folder (got {value!r})"
-#: The numbers the help's messages name.
-HELP_ARGS: dict[str, object] = {
-    "step": HEIGHT_STEP,
-    "height": 400,
-    "low": HEIGHT_MIN,
-    "high": HEIGHT_MAX,
-    "fast": 4,
-    "slow": "1/4",
-}
 #: Modes that take every key and click: the scene's buttons do not light up under them.
 _MODAL = (Mode.NAME, Mode.SETTINGS, Mode.CONFIRM_CLEAR)
-
-
-def default_bindings() -> list[Binding]:
-    """The applet's keyboard controls (the help overlay lists exactly these)."""
-    return [
-        Binding((pygame.K_SPACE,), "help.key.space", "help.space", lambda app: app.toggle_pause()),
-        Binding(
-            (pygame.K_r,),
-            "R",
-            "help.restart",
-            App.restart,
-            ends_drag=True,
-        ),
-        Binding(
-            (pygame.K_LEFT, pygame.K_DOWN),
-            "help.key.left_down",
-            "help.lower",
-            lambda app: app.nudge(-HEIGHT_STEP),
-        ),
-        Binding(
-            (pygame.K_RIGHT, pygame.K_UP),
-            "help.key.right_up",
-            "help.raise",
-            lambda app: app.nudge(HEIGHT_STEP),
-        ),
-        Binding((pygame.K_s,), "S", "help.step", lambda app: app.game.step()),
-        Binding(
-            (pygame.K_a,),
-            "A",
-            "help.autopilot",
-            App.toggle_autopilot,
-            more=("help.autopilot_more",),
-        ),
-        Binding(
-            (pygame.K_PLUS, pygame.K_EQUALS, pygame.K_KP_PLUS),
-            "+",
-            "help.faster",
-            lambda app: app.game.faster(),
-        ),
-        Binding(
-            (pygame.K_MINUS, pygame.K_KP_MINUS),
-            "-",
-            "help.slower",
-            lambda app: app.game.slower(),
-        ),
-        Binding((pygame.K_e,), "E", "help.energy", lambda app: app.toggle_chart("energy")),
-        Binding(
-            (pygame.K_g,),
-            "G",
-            "help.path",
-            lambda app: app.toggle_chart("path"),
-        ),
-        Binding((pygame.K_t,), "T", "help.table", mode=Mode.TABLE),
-        Binding((pygame.K_c,), "C", "help.copy", App.copy_replay),
-        Binding(
-            (pygame.K_DELETE, pygame.K_x),
-            "help.key.delete_x",
-            "help.clear",
-            mode=Mode.CONFIRM_CLEAR,
-            more=("help.clear_more",),
-        ),
-        Binding(_SUBMIT, "help.key.enter", "help.next", App.next_player, ends_drag=True),
-        Binding(
-            (pygame.K_o,),
-            "O",
-            "help.settings",
-            mode=Mode.SETTINGS,
-            more=("help.choose_change_save",),
-        ),
-        Binding((pygame.K_F11,), "F11", "help.fullscreen", App.toggle_fullscreen),
-        Binding((pygame.K_h, pygame.K_F1), "H, F1", "help.help", mode=Mode.HELP),
-        Binding((pygame.K_ESCAPE,), "help.key.esc", "help.escape", mode=Mode.PLAY),
-    ]
 
 
 class App:
@@ -537,6 +447,8 @@ def stderr_log(text: str) -> None:
 
 
 __all__ = [
+    "HEIGHT_STEP",
+    "HELP_ARGS",
     "NOTICE_SECONDS",
     "TARGET_FPS",
     "App",
