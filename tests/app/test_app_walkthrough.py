@@ -246,3 +246,40 @@ def test_settings_saved_is_gone_after_r_and_a_problem_stays(make_app, tmp_path):
     assert app.visible_notices == ["The high-score file was damaged."]
     frames(app)
     assert _notice_pixels(app, NOTICE_SHADE) > 2000 and _notice_pixels(app, NEWS_SHADE) == 0
+
+
+# -- the house: the App's parts never hold it ------------------------------------------------------
+
+
+def _reaches(value: object, target: object) -> bool:
+    """Whether value is target, or a function whose closure or bound self is it."""
+    if value is target:
+        return True
+    cells = getattr(value, "__closure__", None) or ()
+    owner = getattr(value, "__self__", None)
+    return owner is target or any(c.cell_contents is target for c in cells)
+
+
+def test_no_part_of_the_app_holds_the_app(make_app):
+    app = make_app()
+    parts = (
+        app.input,
+        app.commands,
+        app.rounds,
+        app.framing,
+        app.overlays,
+        app.win_screen,
+        app.pilot,
+        app.classroom,
+        app.time,
+        app.notices,
+        app.scores,
+        app.options,
+        app.replays,
+        app.controls,
+        app.slider,
+    )
+    for part in parts:
+        for name, value in vars(part).items():
+            assert not _reaches(value, app), (type(part).__name__, name)
+    assert app.input.controls is app.commands

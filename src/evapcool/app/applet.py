@@ -5,8 +5,10 @@ none calls back into the App:
 
 - `Framing` (app.framing): the window, the charts beside the scene, the layout;
 - `GameClock` (app.clock): how far each frame moves the physics, the frame timings;
-- `InputMachine` (app.input): modes and what each event does; it acts through the
-  `Controls` the App offers; the key table (app.keys) also writes the help;
+- `InputMachine` (app.input): modes and what each event does; it acts through
+  `Commands` (app.commands), the actions of the key table (app.keys, which also writes
+  the help) and of the scene's buttons;
+- `Rounds` (app.rounds): the game in play, and making each new one;
 - `Overlays` (app.overlays): the help, high scores, settings and name box drawn over
   the play area;
 - `WinScreen` (app.winscreen): what a win means, the name box, the replay code;
@@ -24,7 +26,6 @@ import os
 import sys
 import time
 from collections.abc import Callable, Mapping, Sequence
-from dataclasses import replace
 
 import pygame
 
@@ -33,6 +34,7 @@ from evapcool.app.charts import ChartColumn
 from evapcool.app.classlink import Challenge, ClassLink
 from evapcool.app.classmode import ClassMode
 from evapcool.app.clock import GameClock
+from evapcool.app.commands import Commands
 from evapcool.app.controls import SceneControls
 from evapcool.app.framing import Framing
 from evapcool.app.input import Binding, InputMachine, Mode
@@ -43,6 +45,7 @@ from evapcool.app.options import SettingsEditor
 from evapcool.app.overlays import Overlays
 from evapcool.app.pilot import PilotSeat
 from evapcool.app.replays import REPLAY_FOLDER, ReplayKeeper
+from evapcool.app.rounds import Rounds
 from evapcool.app.scoring import Scoreboard
 from evapcool.app.stats import FrameStats
 from evapcool.app.storage import scores_path, settings_path
@@ -53,7 +56,6 @@ from evapcool.game.autopilot import Autopilot
 from evapcool.game.replay import Recording
 from evapcool.game.rules import Game, GameConfig, make_simulation
 from evapcool.game.settings import Settings
-from evapcool.physics.simulation import Simulation
 from evapcool.view.icons import window_icon
 from evapcool.view.pen import Pen
 from evapcool.view.scene import PLAY_RECT, REPLAY_RECT, SCENE_SIZE, Scene
@@ -69,7 +71,7 @@ _MODAL = (Mode.NAME, Mode.SETTINGS, Mode.CONFIRM_CLEAR)
 
 
 class App:
-    """The applet: composes the parts, offers the input machine its Controls, runs frames."""
+    """The applet: composes the parts and runs the frames."""
 
     def __init__(
         self,
@@ -101,7 +103,6 @@ class App:
             _check_folder(name, value)
         pygame.display.init()
         pygame.font.init()
-        self.running = True
         self.log = log
         self.notices = Notices()
         self.notices.add_all(tuple(notices))
@@ -111,40 +112,63 @@ class App:
         self.win_screen = WinScreen(self.scores, self.replays, self.notices)
         self.pilot = PilotSeat(self.notices, autopilot)
         self.classroom = ClassMode(classroom, self.notices)
-        self.input = InputMachine(self, self.scores, self.options, default_bindings())
         self.scene = Scene()
         self.time = GameClock()
-        self.overlays = Overlays(
-            self.scene, self.input, self.scores, self.options, self.time.stats, HELP_ARGS
-        )
-        self.controls = SceneControls(lambda: self.game.trap_height)
-        self.slider = self.controls.slider
         window = Window(t(TITLE), SCENE_SIZE, window_icon(64), screen)
         self.framing = Framing(window)
         pygame.key.set_repeat(300, 40)  # hold an arrow key to sweep the trap
         pygame.key.stop_text_input()  # no IME / on-screen keyboard until a name is asked
         self.clock = pygame.time.Clock()
-        if fullscreen:
-            self.toggle_fullscreen()
         if isinstance(game, GameConfig):
             try:
-                sim = self.build_simulation(game)
+                sim = make_simulation(game)  # the compiled core starts at once
             except BaseException:
                 self.close()
                 raise
             game = Game(game, sim=sim)
-        self.game = game
         game.on_win.append(self._on_win)
-        self.replays.attach(game)  # every game is recorded, the autopilot's too
+        self.rounds = Rounds(
+            game,
+            make_simulation,
+            options=self.options,
+            scores=self.scores,
+            replays=self.replays,
+            pilot=self.pilot,
+            classroom=self.classroom,
+            charts=self.framing.charts,
+            notices=self.notices,
+            watching=replay,
+        )
+        rounds = self.rounds
+        self.controls = SceneControls(lambda: rounds.game.trap_height)
+        self.slider = self.controls.slider
+        self.commands = Commands(rounds, self.framing, self.pilot, self.win_screen, self.controls)
+        self.input = InputMachine(self.commands, self.scores, self.options, default_bindings())
+        self.overlays = Overlays(
+            self.scene, self.input, self.scores, self.options, self.time.stats, HELP_ARGS
+        )
+        if fullscreen:
+            self.framing.toggle_fullscreen()
         self.classroom.start()
-        #: A recording watched (`evapcool --replay`): its heights frame by frame, each restart.
-        self.watching = replay
-        if replay is not None:
-            game.playback(replay.heights())
-            self.notices.news(t("desk.replay.watching", edition=replay.edition))
         self.pilot.seat(game)
 
     # -- the parts, as the tests and extensions name them --------------------------------------
+    @property
+    def game(self) -> Game:
+        return self.rounds.game
+
+    @property
+    def running(self) -> bool:
+        return self.commands.running
+
+    @running.setter
+    def running(self, value: bool) -> None:
+        self.commands.running = value
+
+    @property
+    def watching(self) -> Recording | None:
+        return self.rounds.watching
+
     @property
     def window(self) -> Window:
         return self.framing.window
@@ -193,8 +217,14 @@ class App:
     def visible_notices(self) -> list[str]:
         return self.notices.visible
 
+    @property
+    def replay_offered(self) -> bool:
+        """The win screen shows the replay strip (a won game that was recorded)."""
+        return self.win_screen.offered(self.game)
+
     def bind(self, binding: Binding) -> None:
-        """Add (or override) a key binding; it shows up in the help overlay."""
+        """Add (or override) a key binding (its action gets the app's `Commands`); it shows
+        up in the help overlay."""
         self.input.bind(binding)
 
     def notify(self, text: str) -> None:
@@ -205,113 +235,18 @@ class App:
         """The help overlay's (keys, what they do) rows in the chosen language."""
         return self.overlays.help_rows()
 
-    # -- the Controls the input machine and the key table drive ----------------------------------
-    def toggle_autopilot(self) -> None:
-        self.pilot.toggle(self.game)
-
-    def nudge(self, delta: float) -> None:
-        self.pilot.take_over()
-        self.game.nudge_height(delta)
+    def toggle_chart(self, name: str) -> None:
+        self.framing.toggle_chart(name)
 
     def toggle_fullscreen(self) -> None:
         self.framing.toggle_fullscreen()
 
-    def toggle_chart(self, name: str) -> None:
-        self.framing.toggle_chart(name)
-
-    def leave(self) -> None:
-        """Esc with nothing open: leave full screen, else quit."""
-        if self.window.fullscreen:
-            self.toggle_fullscreen()
-        else:
-            self.running = False
-
-    def quit(self) -> None:
-        self.running = False
-
-    def toggle_pause(self) -> None:
-        self.game.toggle_pause()
-
-    @property
-    def replay_offered(self) -> bool:
-        """The win screen shows the replay strip (a won game that was recorded)."""
-        return self.win_screen.offered(self.game)
-
-    def copy_replay(self) -> None:
-        """Key C or the win screen's strip: the won game's code to the clipboard."""
-        self.win_screen.copy(self.game)
-
-    def target_at(self, pos: tuple[float, float]) -> str | None:
-        hit = self.charts.target_at(pos)
-        if hit is not None:
-            return hit
-        lay = self.layout
-        if not lay.scene.collidepoint(pos):
-            return None
-        at = lay.to_scene(pos)
-        if self.replay_offered and REPLAY_RECT.collidepoint(at):
-            return "replay"
-        return self.controls.target_at(at)
-
-    def slider_press(self, pos: tuple[float, float]) -> bool:
-        self.slider.enabled = not self.game.won
-        if not self.slider.press(self.layout.to_scene(pos)):
-            return False
-        self.pilot.take_over()
-        self.game.set_trap_height(self.slider.value)
-        return True
-
-    def slider_drag(self, pos: tuple[float, float]) -> None:
-        self.slider.drag(self.layout.to_scene(pos))
-        self.game.set_trap_height(self.slider.value)
-
-    def slider_release(self) -> None:
-        self.slider.release()
-
-    # -- making and restarting games ------------------------------------------------------------
-    def build_simulation(self, config: GameConfig) -> Simulation:
-        """A new simulation for config (the compiled core starts at once: no progress screen)."""
-        return make_simulation(config)
-
+    # -- games ---------------------------------------------------------------------------------
     def restart(self) -> None:
         """New atoms with the current settings, trap at 400, paused; ends any name entry."""
-        challenge = self.classroom.challenge
-        if self.watching is not None:
-            s = self.watching.settings
-        else:
-            s = challenge.settings if challenge else self.options.for_run()
-        config = replace(
-            self.game.config,
-            n_atoms=s.n_atoms,
-            radius=s.radius,
-            tc_exponent=s.tc_exponent,
-            escape=s.escape,
-        )
-        if challenge is not None:  # everyone in the class plays the same atoms
-            config = replace(config, seed=challenge.seed)
-        if self.watching is not None:
-            config = replace(config, seed=self.watching.seed)
         self.input.end_drag()  # a drag never carries into the new game
-        self.notices.new_game()  # the last game's news is over
-        try:
-            self.game.restart(config, sim=self.build_simulation(config))
-        except ValueError as exc:  # settings are validated; this is a guard, not a path
-            self.notices.problem(t("notice.settings_failed", problem=exc))
-            self.game.restart()
-        self.replays.start(self.game)
-        if self.watching is not None:
-            self.game.playback(self.watching.heights())
-        self.scores.new_round()
-        self.pilot.new_game(self.game)
+        self.rounds.restart()
         self.input.reset()
-        self.charts.reset()
-
-    def next_player(self) -> bool:
-        """Enter after a stored (or skipped) score: a fresh game for the next student."""
-        if not self.win_screen.ready_for_next:
-            return False
-        self.restart()
-        return True
 
     def _on_win(self, game: Game) -> None:
         autopilot = self.pilot.autopilot
@@ -407,7 +342,7 @@ class App:
     def _hovering(self, target: str) -> bool:
         pointer = self.input.pointer
         modal = self.input.mode in _MODAL
-        return not modal and pointer is not None and self.target_at(pointer) == target
+        return not modal and pointer is not None and self.commands.target_at(pointer) == target
 
     def present(self) -> None:
         self.window.flip()
