@@ -1,4 +1,4 @@
-"""Files the program writes and reads back (issue 18).
+"""Files the program writes and reads back.
 
 - Atomic replacement: readers see the old file or the new one, never a torn one; a
   temporary left by a killed write is removed by the next write to the same place.

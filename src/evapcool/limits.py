@@ -1,4 +1,4 @@
-"""The allowed range of every parameter, in one place (issues 14 and 18).
+"""The allowed range of every parameter, in one place.
 
 `Simulation`, `run_experiment`, the settings, the command-line types (argtypes.py)
 and the help texts all read their ranges here, so that what the help promises,

@@ -86,7 +86,7 @@ def where(server: XServer, app: App) -> tuple[int, int, int, int]:
 def test_panels_and_full_screen_never_move_or_remake_the_window(small_screen, on):
     app = on(small_screen)
     wid = app.window.win.handle
-    _, y0, w0, h0 = where(small_screen, app)
+    x0, y0, w0, h0 = where(small_screen, app)
     assert (w0, h0) == (640, 672)
     windowed = []
     for k in (pygame.K_e, pygame.K_g, pygame.K_e, pygame.K_g, pygame.K_e):
@@ -100,14 +100,34 @@ def test_panels_and_full_screen_never_move_or_remake_the_window(small_screen, on
         key(app, pygame.K_F11)
         windowed.append(where(small_screen, app))
     assert app.window.win.handle == wid  # the same window all along
-    # The first widening may move the window onto the screen; then it never moves again,
-    # and it never creeps down.
-    positions = {(x, y) for x, y, _, _ in windowed[1:]}
-    assert len(positions) == 1, windowed
+    # A chart that needs the room moves the window onto the screen, always to the same
+    # place; closed, the window is back where it was; it never creeps down.
+    with_chart = {(x, y) for x, y, _, _ in windowed[0:10:2]}
+    alone = {(x, y) for x, y, _, _ in windowed[1:10:2] + windowed[10:]}
+    assert len(with_chart) == 1 and alone == {(x0, y0)}, windowed
     assert all(y <= y0 for _, y, _, _ in windowed)
     assert windowed[-1][2:] == (640, 672)
-    for x, y, w, h in windowed:
+    for x, y, w, h in windowed[0:10:2]:  # a widened window is wholly on the screen
         assert x >= 0 and y >= 0 and x + w <= 1024 and y + h <= 768
+
+
+def test_a_chart_opened_near_the_right_edge_puts_the_window_back_when_closed(small_screen, on):
+    app = on(small_screen)
+    wid = str(app.window.win.handle)
+    small_screen.xdotool("windowmove", "--sync", wid, "300", "40")
+    x0, y0, w0, _ = where(small_screen, app)
+    assert x0 >= 300 and x0 + w0 <= 1024  # the scene alone fits there
+    key(app, pygame.K_e)
+    x1, _, w1, _ = where(small_screen, app)
+    assert x1 < x0 and x1 + w1 <= 1024  # the chart needed the room: on the screen, whole
+    key(app, pygame.K_e)
+    assert where(small_screen, app)[:2] == (x0, y0)  # closed: back where the user had it
+    # Moved by the user while the chart is open: that is where it stays.
+    key(app, pygame.K_e)
+    small_screen.xdotool("windowmove", "--sync", wid, "100", "30")
+    moved = where(small_screen, app)[:2]
+    key(app, pygame.K_e)
+    assert where(small_screen, app)[:2] == moved
 
 
 # -- item 2: a chart on a small screen fits it ------------------------------------------------

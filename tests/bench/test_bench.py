@@ -34,3 +34,13 @@ def test_a_quick_physics_section_prints_its_figures(capsys) -> None:
 def test_frame_times_counts_the_collisions_of_the_frames_it_times() -> None:
     times, collisions, total = frame_times("reference", 20)
     assert len(times) == 20 and collisions > 0 and total == pytest.approx(sum(times))
+
+
+def test_the_help_is_timed_open_in_a_language_and_english_comes_back(own_folders) -> None:
+    from evapcool import i18n
+    from evapcool.bench.applet import measure_help
+
+    t = measure_help("ja", 3)
+    assert len(t["drawing"]) == len(t["cpu"]) == 3
+    assert (t["drawing"] > 0).all() and (t["cpu"] >= 0).all()
+    assert i18n.active().locale == "en"

@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import json
 import queue
+import socket
 import threading
 import urllib.error
 import urllib.request
@@ -74,7 +75,7 @@ class RefusedError(Exception):
 @dataclass(frozen=True)
 class Event:
     """What came back: 'joined' (challenge, name), 'result' (the answer's JSON),
-    'refused' (message) or 'unreachable' (problem)."""
+    'refused' (message) or 'unreachable' (why, a word of `_problem`)."""
 
     kind: str
     value: Any = None
@@ -193,7 +194,16 @@ def _refusal(exc: urllib.error.HTTPError) -> str:
 
 
 def _problem(exc: BaseException) -> str:
-    """A short reason for a failed request (the URL error's own, without the wrapping)."""
-    if isinstance(exc, urllib.error.URLError):
-        return str(exc.reason)
-    return str(exc) or type(exc).__name__
+    """Why a request failed, as one of the words the notice has (desk.class.why.*):
+    'refused' (nothing listens there), 'timeout', 'no_host' (the name is unknown),
+    'not_class' (something answered, not a class server) or 'network'."""
+    reason = exc.reason if isinstance(exc, urllib.error.URLError) else exc
+    if isinstance(reason, ConnectionRefusedError):
+        return "refused"
+    if isinstance(reason, TimeoutError):
+        return "timeout"
+    if isinstance(reason, socket.gaierror):
+        return "no_host"
+    if isinstance(exc, (ValueError, KeyError, TypeError)):
+        return "not_class"
+    return "network"

@@ -6,9 +6,9 @@ CONFIRM_CLEAR and NAME (modal: they take every key until they are answered). Eve
 are handled one at a time, in order, so nothing is lost or mixed between frames: a
 press, a drag and a release in one frame are three steps.
 
-The machine knows nothing of windows or drawing: it calls a `Controls` object (the app)
-for hit tests and actions, the `Scores` (name box, table) and the `SettingsScreen`, so it
-is tested with stand-ins.
+The machine knows nothing of windows or drawing: it calls a `Controls` object (the app's
+`Commands`) for hit tests and actions, the `Scores` (name box, table) and the
+`SettingsScreen`, so it is tested with stand-ins.
 """
 
 from __future__ import annotations
@@ -93,6 +93,8 @@ class Binding:
     more: tuple[str, ...] = ()
     #: A drag in progress ends first (keys that start a new game: R, Enter).
     ends_drag: bool = False
+    #: The action starts a new game (unless it answers False): the machine resets after it.
+    starts_game: bool = False
 
 
 class InputMachine:
@@ -154,7 +156,8 @@ class InputMachine:
         self.set_mode(Mode.NAME)
 
     def reset(self) -> None:
-        """After a restart: play, no drag, no table; help stays if it was open."""
+        """After a restart (its own keys and button, or the app's): play, no drag, no table;
+        help stays if it was open."""
         self.set_mode(Mode.HELP if self.mode is Mode.HELP else Mode.PLAY)
 
     # -- events --------------------------------------------------------------------------------
@@ -200,6 +203,7 @@ class InputMachine:
             self.controls.toggle_pause()
         elif target == "restart":
             self.controls.restart()
+            self.reset()
         elif target == "chart":
             self.controls.toggle_chart("energy")
         elif target == "replay":
@@ -245,7 +249,9 @@ class InputMachine:
             else:  # help or table: a second press closes it
                 self.set_mode(Mode.PLAY if OVERLAY[target] == shown else target)
         if binding.action is not None:
-            binding.action(self.controls)
+            started = binding.action(self.controls)
+            if binding.starts_game and started is not False:
+                self.reset()
 
     def _settings(self, key: int) -> None:
         if key in (*SUBMIT_KEYS, pygame.K_o):

@@ -2,11 +2,12 @@
 
 from __future__ import annotations
 
-from collections.abc import Callable, Mapping
+from collections.abc import Mapping
 from pathlib import Path
 
 import pygame
 
+from evapcool.app.notices import Notices
 from evapcool.app.words import choose, t
 from evapcool.game import settings as settings_mod
 from evapcool.game.settings import Settings, describe, load_settings, max_atoms, save_settings
@@ -18,16 +19,15 @@ class SettingsEditor:
     def __init__(
         self,
         path: Path,
-        notify: Callable[[str], None],
+        notices: Notices,
         settings: Settings | None = None,
         overrides: Mapping[str, object] | None = None,
     ) -> None:
         self.path = path
-        self.notify = notify
+        self.notices = notices
         if settings is None:
             settings, problems = load_settings(path)
-            for text in problems:
-                notify(text)
+            notices.add_all(problems)
         self.settings = settings
         self.overrides = {k: v for k, v in (overrides or {}).items() if v is not None}
         self.draft = settings
@@ -38,7 +38,7 @@ class SettingsEditor:
         try:
             return settings_mod.with_overrides(self.settings, **self.overrides)
         except ValueError as exc:
-            self.notify(t("notice.options_dropped", problem=exc))
+            self.notices.problem(t("notice.options_dropped", problem=exc))
             self.overrides = {}
             return self.settings
 
@@ -67,10 +67,9 @@ class SettingsEditor:
         if draft.language != previous.language:  # shown at once, no restart needed
             choose(None, draft.language)
         problems = save_settings(draft, self.path, base=previous)
-        for text in problems:
-            self.notify(text)
+        self.notices.add_all(problems)
         if not problems:
-            self.notify(t("settings.saved"))
+            self.notices.news(t("settings.saved"))
 
     def rows(self) -> list[tuple[str, str]]:
         return describe(self.draft)

@@ -1,4 +1,4 @@
-"""Every game the applet plays is recorded; at the win its replay code is kept (issue 22).
+"""Every game the applet plays is recorded; at the win its replay code is kept.
 
 The code is written to the data folder's `replays/` and, on request (key C or the win
 screen's button), put on the clipboard; without a clipboard the notice says where the
@@ -8,9 +8,9 @@ file is instead.
 from __future__ import annotations
 
 import time
-from collections.abc import Callable
 from pathlib import Path
 
+from evapcool.app.notices import Notices
 from evapcool.app.words import t
 from evapcool.fileio import atomic_write_text
 from evapcool.game.replay import Recorder, Settings, encode
@@ -32,9 +32,9 @@ def settings_of(config: GameConfig) -> Settings:
 class ReplayKeeper:
     """Records the heights of the game in play; after its win, keeps and copies its code."""
 
-    def __init__(self, folder: Path, notify: Callable[[str], None], edition: str = "desktop"):
+    def __init__(self, folder: Path, notices: Notices, edition: str = "desktop"):
         self.folder = folder
-        self.notify = notify
+        self.notices = notices
         self.edition = edition
         self.recorder: Recorder | None = None
         #: The replay code of the game just won (None while playing).
@@ -78,7 +78,7 @@ class ReplayKeeper:
             path.parent.mkdir(parents=True, exist_ok=True)
             atomic_write_text(path, code + "\n")
         except OSError as exc:
-            self.notify(t("replay.not_saved", problem=exc.strerror or str(exc)))
+            self.notices.problem(t("replay.not_saved", problem=exc.strerror or str(exc)))
             return None
         return path
 
@@ -88,11 +88,11 @@ class ReplayKeeper:
             return False
         copied = put_on_clipboard(self.code)
         if self.path is None:  # not saved (the notice at the win said why)
-            self.notify(t("replay.copied_only") if copied else self.code)
+            self.notices.news(t("replay.copied_only") if copied else self.code)
         elif copied:
-            self.notify(t("replay.copied", path=str(self.path)))
+            self.notices.news(t("replay.copied", path=str(self.path)))
         else:
-            self.notify(t("replay.no_clipboard", path=str(self.path)))
+            self.notices.news(t("replay.no_clipboard", path=str(self.path)))
         return True
 
 

@@ -2,11 +2,11 @@
 
 from __future__ import annotations
 
-from collections.abc import Callable
 from pathlib import Path
 
 import pygame
 
+from evapcool.app.notices import Notices
 from evapcool.app.storage import folder_problem
 from evapcool.app.words import t
 from evapcool.game.highscores import NAME_MAX, HighScoreTable, format_seconds
@@ -18,15 +18,15 @@ AUTOPILOT_FILE = "autopilot-scores.json"
 class Scoreboard:
     """Asks a winner's name, stores it, and says what the table overlay shows.
 
-    notify: where messages for the player go (the app's notices).
+    notices: where messages for the player go.
     """
 
-    def __init__(self, path: Path, notify: Callable[[str], None]) -> None:
-        self.notify = notify
+    def __init__(self, path: Path, notices: Notices) -> None:
+        self.notices = notices
         self.table = HighScoreTable(path)
         problem = folder_problem(self.table.path)
         if problem:
-            notify(t("scores.unsaved", problem=problem))
+            notices.problem(t("scores.unsaved", problem=problem))
         self._pass_on_notices()
         self.name_box: TextInput | None = None
         #: Rank (1-based) of the score stored this round, highlighted in the table.
@@ -41,7 +41,7 @@ class Scoreboard:
 
     def _pass_on_notices(self) -> None:
         for text in self.table.take_notices():
-            self.notify(text)
+            self.notices.problem(text)
 
     def new_round(self) -> None:
         self.close_name_box()
@@ -55,7 +55,7 @@ class Scoreboard:
             self.name_box = TextInput(max_length=NAME_MAX)
             pygame.key.start_text_input()  # the IME / on-screen keyboard, if any
             return True
-        self.notify(t("notice.not_top10", n=score))
+        self.notices.news(t("notice.not_top10", n=score))
         self.ready_for_next = True
         return False
 
@@ -70,8 +70,8 @@ class Scoreboard:
         """An autopilot game's win: kept in the autopilot's table, no name asked."""
         self.pilots.add(label, score, seconds)
         for text in self.pilots.take_notices():
-            self.notify(text)
-        self.notify(t("notice.autopilot_score", name=label, n=score))
+            self.notices.problem(text)
+        self.notices.news(t("notice.autopilot_score", name=label, n=score))
         self.ready_for_next = True
 
     def autopilot_lines(self) -> list[str]:
@@ -102,14 +102,14 @@ class Scoreboard:
             self.ready_for_next = True
         elif result == CANCEL:
             self.close_name_box()
-            self.notify(t("win.not_stored"))
+            self.notices.news(t("win.not_stored"))
             self.ready_for_next = True
         return result
 
     def clear(self) -> None:
         self.stored_rank = None
         if self.table.reset():
-            self.notify(t("scores.cleared"))
+            self.notices.news(t("scores.cleared"))
         if self._pilots is not None or self.autopilot_path.exists():
             self.pilots.reset()
         self._pass_on_notices()

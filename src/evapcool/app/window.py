@@ -3,7 +3,9 @@
 `pygame.display.set_mode` re-creates the window on every size change, and under a
 window manager each re-creation lands a title bar's height lower: a window that
 creeps down the screen. A `pygame.Window` is resized and made full screen in place,
-so it stays where the user (or the window manager) put it.
+so it stays where the user (or the window manager) put it. A chart opened where the
+screen has no room to the window's right moves the window left just enough to show it,
+and closing it puts the window back where it was (unless the user moved it meanwhile).
 """
 
 from __future__ import annotations
@@ -39,6 +41,9 @@ class Window:
         self.fullscreen = False
         #: The last size we asked for: resize events of that size are ours, not the user's.
         self.requested = tuple(size)
+        #: (where the user had the window, its size there, where we moved it to make
+        #: room), or None.
+        self._moved: tuple[tuple[int, int], tuple[int, int], tuple[int, int]] | None = None
 
     @property
     def surface(self) -> pygame.Surface:
@@ -74,18 +79,28 @@ class Window:
         size = (max(1, int(size[0])), max(1, int(size[1])))
         if self.fullscreen or size == self.size:
             return
+        here, before = self.position, self.size
         self.requested = size
         self.win.size = size
-        # Keep it on the screen, frame and all (a window manager may do the same; asking
-        # for room to spare, so it has nothing left to correct, and nothing creeps).
-        x, y = self.win.position
+        if self._moved is not None and not _near(here, self._moved[2]):
+            self._moved = None  # moved by the user since: where it is now is theirs
+        home, home_size = self._moved[:2] if self._moved is not None else (here, before)
+        # Back at the size it had there: back there, exactly where the user had it.
+        there = home if size == home_size else self._on_screen(home, size)
+        if there != here:
+            self.win.position = there
+        self._moved = (home, home_size, there) if there != home else None
+
+    def _on_screen(self, at: tuple[int, int], size: tuple[int, int]) -> tuple[int, int]:
+        """The nearest place to `at` where a window of this size is on the screen, frame
+        and all (a window manager may do the same; asking for room to spare, so it has
+        nothing left to correct, and nothing creeps)."""
+        x, y = at
         sw, sh = self.screen_size()
         mx, my = FRAME
         if x + size[0] + mx > sw or y + size[1] + my > sh:
-            nx = max(0, min(x, sw - size[0] - mx))
-            ny = max(0, min(y, sh - size[1] - my))
-            if (nx, ny) != (x, y):
-                self.win.position = (nx, ny)
+            return (max(0, min(x, sw - size[0] - mx)), max(0, min(y, sh - size[1] - my)))
+        return at
 
     def toggle_fullscreen(self) -> None:
         if self.fullscreen:
@@ -105,3 +120,8 @@ class Window:
 
     def close(self) -> None:
         self.win.destroy()
+
+
+def _near(a: tuple[int, int], b: tuple[int, int]) -> bool:
+    """The same place, give or take the pixels a window manager's frame may shift it."""
+    return abs(a[0] - b[0]) <= 2 and abs(a[1] - b[1]) <= 2

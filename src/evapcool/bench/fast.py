@@ -1,8 +1,8 @@
 """Bench section 'fast': the compiled core's throughput, scaling, frame time and start-up.
 
-Figures (issues 4, 13, 17 and 32): collisions and events per second at 10 000 atoms; a
+Figures: collisions and events per second at 10 000 atoms; a
 scaling table at constant packing (radius = sqrt(10 000 / N)); the same gas with 1 %
-of its atoms 100 times hotter (issue 13: cells must not widen for them); the classic
+of its atoms 100 times hotter (cells must not widen for them); the classic
 49-atom start's physics time per frame and the cost of one call into the core; the first
 frame of a fresh process; and the core against the reference engine per frame. Rates use
 process CPU time: the machine is shared, wall time is noisier.

@@ -24,7 +24,8 @@ import time
 from collections.abc import Callable, Iterator, Sequence
 from dataclasses import dataclass
 
-from evapcool.argtypes import whole
+from evapcool.about import error_line
+from evapcool.argtypes import UsageError, whole
 
 INSTALL_HINT = "pip install 'evapcool[cluster]'"
 #: What each command needs from the extra (import names).
@@ -45,6 +46,28 @@ def require_extra(command: str) -> None:
     missing = [m for m in NEEDS[command] if importlib.util.find_spec(m) is None]
     if missing:
         raise MissingExtraError(f"evapcool {command} needs {', '.join(missing)}: {INSTALL_HINT}")
+
+
+#: Exit status of a command given bad arguments (or without the extra it needs).
+EXIT_USAGE = 2
+
+
+def open_command(
+    command: str, parser: argparse.ArgumentParser, argv: list[str] | None
+) -> argparse.Namespace | int:
+    """The opening of `evapcool sweep` and `evapcool optimize`: the parsed arguments, or
+    EXIT_USAGE after one line on stderr (bad arguments, the cluster extra missing)."""
+    try:
+        args = parser.parse_args(sys.argv[1:] if argv is None else argv)
+    except UsageError as exc:
+        print(error_line(command, str(exc)), file=sys.stderr)
+        return EXIT_USAGE
+    try:
+        require_extra(command)
+    except MissingExtraError as exc:
+        print(exc, file=sys.stderr)
+        return EXIT_USAGE
+    return args
 
 
 def check_scheduler(address: str | None) -> str | None:

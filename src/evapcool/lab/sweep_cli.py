@@ -8,13 +8,8 @@ import time
 from pathlib import Path
 
 from evapcool.about import error_line
-from evapcool.argtypes import Parser, UsageError
-from evapcool.lab.cluster import (
-    MissingExtraError,
-    VersionMismatchError,
-    add_cluster_options,
-    require_extra,
-)
+from evapcool.argtypes import Parser
+from evapcool.lab.cluster import VersionMismatchError, add_cluster_options, open_command
 
 PROG = "evapcool sweep"
 EXIT_USAGE = 2
@@ -70,15 +65,9 @@ def _write_example(path: Path, text: str) -> int:
 
 def main(argv: list[str] | None = None) -> int:
     """Entry point of `evapcool sweep`; 0 all ran, 1 some runs failed, 2 bad input, 130 Ctrl-C."""
-    try:
-        args = build_parser().parse_args(sys.argv[1:] if argv is None else argv)
-    except UsageError as exc:
-        return _fail(str(exc))
-    try:
-        require_extra("sweep")
-    except MissingExtraError as exc:
-        print(exc, file=sys.stderr)
-        return EXIT_USAGE
+    args = open_command("sweep", build_parser(), argv)
+    if isinstance(args, int):
+        return args
     from evapcool.lab.sweeps import EXAMPLE_SPEC, check_out, plan, sweep
 
     if args.example is not None:

@@ -9,8 +9,8 @@ import time
 from pathlib import Path
 
 from evapcool.about import error_line
-from evapcool.argtypes import Parser, UsageError, choice, positive, whole
-from evapcool.lab.cluster import MissingExtraError, add_cluster_options, require_extra
+from evapcool.argtypes import Parser, choice, positive, whole
+from evapcool.lab.cluster import add_cluster_options, open_command
 from evapcool.optimize.families import FAMILY_HELP, parse_families
 from evapcool.optimize.report import DEFAULT_FINALISTS, DEFAULT_VALIDATE
 from evapcool.optimize.study import (
@@ -226,15 +226,9 @@ def _open(args: argparse.Namespace):
 
 def main(argv: list[str] | None = None) -> int:
     """Entry point of `evapcool optimize`; 0 done, 2 bad input, 130 interrupted."""
-    try:
-        args = build_parser().parse_args(sys.argv[1:] if argv is None else argv)
-    except UsageError as exc:
-        return _fail(str(exc))
-    try:
-        require_extra("optimize")
-    except MissingExtraError as exc:
-        print(exc, file=sys.stderr)
-        return EXIT_USAGE
+    args = open_command("optimize", build_parser(), argv)
+    if isinstance(args, int):
+        return args
     try:
         if args.baseline is not None:
             from evapcool.game.autopilot import load_strategy

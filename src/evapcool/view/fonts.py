@@ -208,52 +208,130 @@ def runs(text: str) -> list[tuple[int, str | None, str]]:
     return out
 
 
-def _strong(ch: str) -> str | None:
-    """A character's own direction: "R", "L" (digits too: a number reads left to right
-    inside any line), or None for the neutrals that take their neighbours' direction."""
+def _kind(ch: str) -> str:
+    """A character's bidirectional class, folded: "R" (Hebrew, Arabic letters), "L", "EN"
+    (a digit, European or Arabic-Indic), "ES" / "ET" / "CS" (the signs and separators
+    numbers carry: + - % . ,), or "N" for the other neutrals (spaces, brackets...)."""
     kind = unicodedata.bidirectional(ch)
     if kind in ("R", "AL"):
         return "R"
-    if kind in ("L", "EN", "AN"):
-        return "L"
-    return None
+    if kind in ("EN", "AN"):
+        return "EN"
+    if kind in ("L", "ES", "ET", "CS"):
+        return kind
+    return "N"
+
+
+def _strong(ch: str) -> str | None:
+    """A letter's direction, "R" or "L"; None for digits and neutrals."""
+    kind = _kind(ch)
+    return kind if kind in ("R", "L") else None
 
 
 def _rtl_paragraph(text: str) -> bool:
     """The line's base direction: right to left for a line with right-to-left letters in a
-    right-to-left language; otherwise Unicode's rule, the first strong character decides."""
+    right-to-left language; otherwise Unicode's rule, the first letter decides (a digit does
+    not: "سارة 7" is a right-to-left line in every language)."""
     if i18n.is_rtl() and any(_strong(ch) == "R" for ch in text):
         return True
     return next((d == "R" for d in map(_strong, text) if d is not None), False)
 
 
+def _resolve(text: str, rtl: bool) -> list[str]:
+    """Each character's resolved direction, "R", "L" or "EN" (a number, laid out left to
+    right inside a line of either direction), by UAX #9's weak and neutral rules."""
+    kinds = [_kind(ch) for ch in text]
+    n = len(kinds)
+    for i in range(1, n - 1):  # W4: one separator between two digits is part of the number
+        if kinds[i] in ("ES", "CS") and kinds[i - 1] == "EN" == kinds[i + 1]:
+            kinds[i] = "EN"
+    for i in range(n):  # W5: signs touching a number (4%, +5) are part of it
+        if kinds[i] == "ET":
+            j = i
+            while j < n and kinds[j] == "ET":
+                j += 1
+            if (i > 0 and kinds[i - 1] == "EN") or (j < n and kinds[j] == "EN"):
+                kinds[i:j] = ["EN"] * (j - i)
+    for i in range(n):  # a dash or plus glued to a word ("--autopilot") leads that word
+        if kinds[i] == "ES":
+            j = i
+            while j < n and kinds[j] == "ES":
+                j += 1
+            if j < n and kinds[j] == "L":
+                kinds[i:j] = ["L"] * (j - i)
+    last = "R" if rtl else "L"
+    for i, k in enumerate(kinds):  # W7: a number after Latin letters reads as they do
+        if k == "EN" and last == "L":
+            kinds[i] = "L"
+        elif k in ("R", "L"):
+            last = k
+    base = "R" if rtl else "L"
+    # N1: neutrals take the direction of the strong text on both sides when it agrees
+    # (numbers count as right to left here), else the line's (N2).
+    side = ["R" if k == "EN" else k for k in kinds]
+    before, after = [base] * n, [base] * n
+    last = base
+    for i in range(n):
+        before[i] = last
+        if side[i] in ("R", "L"):
+            last = side[i]
+    last = base
+    for i in range(n - 1, -1, -1):
+        after[i] = last
+        if side[i] in ("R", "L"):
+            last = side[i]
+    return [
+        k if k in ("R", "L", "EN") else (before[i] if before[i] == after[i] else base)
+        for i, k in enumerate(kinds)
+    ]
+
+
 def bidi_runs(text: str, rtl: bool) -> list[tuple[bool, str]]:
     """(right to left?, text) runs in visual order, left to right on the screen.
 
-    The bidirectional algorithm's core (UAX #9, without explicit embeddings): a neutral
-    (space, bracket, punctuation) between two characters of one direction takes it, else the
-    line's; the runs of a right-to-left line are laid out from the right. A right-to-left
-    run keeps its logical order here: HarfBuzz draws it right to left and mirrors brackets.
+    The bidirectional algorithm without explicit embeddings (UAX #9): each character's
+    level from its resolved direction (a number one above the text around it, so its digits
+    stay in order), then every run at or above each odd level turned round, highest first.
+    A right-to-left run keeps its logical order here: HarfBuzz draws it right to left and
+    mirrors brackets.
     """
-    base = "R" if rtl else "L"
-    strong = [_strong(ch) for ch in text]
-    before, after = [base] * len(text), [base] * len(text)
-    last = base
-    for i, d in enumerate(strong):
-        before[i] = last
-        last = d or last
-    last = base
-    for i in range(len(text) - 1, -1, -1):
-        after[i] = last
-        last = strong[i] or last
-    runs_: list[tuple[bool, str]] = []
-    for i, ch in enumerate(text):
-        d = strong[i] or (before[i] if before[i] == after[i] else base)
-        if runs_ and runs_[-1][0] == (d == "R"):
-            runs_[-1] = (runs_[-1][0], runs_[-1][1] + ch)
+    if not text:
+        return []
+    base = 1 if rtl else 0
+    levels = []
+    for d in _resolve(text, rtl):
+        if d == "R":
+            levels.append(base | 1)
+        elif d == "L":
+            levels.append(base + (base & 1))
+        else:  # a number (after right-to-left text, or in such a line): even, above it
+            levels.append(2)
+    runs_: list[tuple[int, str]] = []
+    for ch, level in zip(text, levels, strict=True):
+        if runs_ and runs_[-1][0] == level:
+            runs_[-1] = (level, runs_[-1][1] + ch)
         else:
-            runs_.append((d == "R", ch))
-    return runs_[::-1] if rtl else runs_
+            runs_.append((level, ch))
+    lowest_odd = min((lv for lv, _ in runs_), default=0) | 1
+    for level in range(max(lv for lv, _ in runs_), lowest_odd - 1, -1):
+        k = 0
+        while k < len(runs_):
+            if runs_[k][0] < level:
+                k += 1
+                continue
+            j = k
+            while j < len(runs_) and runs_[j][0] >= level:
+                j += 1
+            runs_[k:j] = runs_[k:j][::-1]
+            k = j
+    merged: list[tuple[bool, str]] = []
+    for level, s in runs_:
+        odd = bool(level & 1)
+        if merged and merged[-1][0] == odd and not odd:
+            merged[-1] = (odd, merged[-1][1] + s)
+        else:
+            merged.append((odd, s))
+    return merged
 
 
 def text_image(text: str, size: int, color: Color, bold: bool = False) -> pygame.Surface:
@@ -261,7 +339,15 @@ def text_image(text: str, size: int, color: Color, bold: bool = False) -> pygame
     if text.isascii():  # the common case: the bundled font alone, as the original
         return _plain(text, size, color, bold)
     # The line's direction depends on the language in use: part of the cache's key.
-    return _shaped(text, size, color, bold, _rtl_paragraph(text))
+    return _shaped(text, size, color, bold, _rtl_paragraph(text))[0]
+
+
+def baseline(text: str, size: int, bold: bool = False) -> int:
+    """How far below the top of `text_image(text, size, ...)` its baseline is: lines of
+    different fonts (a Latin key name beside a Japanese description) line up on it."""
+    if text.isascii():
+        return int(font(size, bold).get_ascent())
+    return _shaped(text, size, (255, 255, 255), bold, _rtl_paragraph(text))[1]
 
 
 @lru_cache(maxsize=4096)
@@ -270,8 +356,10 @@ def _plain(text: str, size: int, color: Color, bold: bool) -> pygame.Surface:
 
 
 @lru_cache(maxsize=4096)
-def _shaped(text: str, size: int, color: Color, bold: bool, rtl: bool) -> pygame.Surface:
-    """Runs in visual order, each drawn by the font that has its letters."""
+def _shaped(
+    text: str, size: int, color: Color, bold: bool, rtl: bool
+) -> tuple[pygame.Surface, int]:
+    """Runs in visual order, each drawn by the font that has its letters; and the baseline."""
     chain = faces()
     parts = []
     for right_to_left, run in bidi_runs(text, rtl):
@@ -284,7 +372,7 @@ def _shaped(text: str, size: int, color: Color, bold: bool, rtl: bool) -> pygame
             f = _sdl_font(chain[k].path, size, bold, script if right_to_left else own)
             parts.append((f.render(s, True, color), f.get_ascent()))
     if not parts:
-        return font(size, bold).render("", True, color)
+        return font(size, bold).render("", True, color), int(font(size, bold).get_ascent())
     ascent = max(a for _, a in parts)
     height = max(ascent - a + img.get_height() for img, a in parts)
     out = pygame.Surface((sum(img.get_width() for img, _ in parts), height), pygame.SRCALPHA)
@@ -292,7 +380,7 @@ def _shaped(text: str, size: int, color: Color, bold: bool, rtl: bool) -> pygame
     for img, a in parts:
         out.blit(img, (x, ascent - a))
         x += img.get_width()
-    return out
+    return out, ascent
 
 
 def text_size(text: str, size: int, bold: bool = False) -> tuple[int, int]:

@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Sequence
+from dataclasses import dataclass
 
 import numpy as np
 import pygame
@@ -18,7 +19,7 @@ from evapcool import i18n
 from evapcool.game.highscores import Entry, format_seconds
 from evapcool.game.rules import Game
 from evapcool.view.condensate import Condensate, draw_condensate
-from evapcool.view.fonts import text_size
+from evapcool.view.fonts import baseline, text_size
 from evapcool.view.pen import Pen
 from evapcool.view.screen import (
     BORDER_BOTTOM,
@@ -56,6 +57,9 @@ OVERLAY_SHADE = (10, 10, 30, 225)
 #: The high-score table hides the cup under it: the rows must not compete with the gas (issue 25).
 TABLE_SHADE = (10, 10, 30, 255)
 NOTICE_SHADE = (120, 20, 20, 235)
+#: A notice's colour: news (a code copied, settings saved) calm, a problem the warning red.
+NEWS_SHADE = (25, 55, 95, 235)
+NOTICE_SHADES = {False: NEWS_SHADE, True: NOTICE_SHADE}
 
 # Thermometer in the right border. The mercury top sits at row
 # SCALE_ZERO - f (SCALE_ZERO - SCALE_FULL), f = T / (1.2 T0) clipped to [0, 1].
@@ -144,6 +148,7 @@ class Scene:
         #: The condensate's fade-in at the last draw (0 before the win, up to 1).
         self.fade = 0.0
         self._atom_layer: pygame.Surface | None = None
+        self._help_cache: dict[tuple[object, ...], _HelpFit] = {}
 
     # -- the parts --------------------------------------------------------------------
     def draw(self, pen: Pen, game: Game, t: float = 0.0) -> None:
@@ -308,19 +313,32 @@ class Scene:
         """A panel listing (keys, what they do), then footer lines (the frame rate)."""
         # Rows shrink a little when there are many, so the list always fits; a long
         # description wraps onto rows of its own (a longer language, a narrow window).
-        size, rows, footer = _help_rows(rows, footer)
-        n = len(rows) + len(footer)
-        step = max(size + 2, min(27, (PLAY_RECT.height - 76) // max(1, n)))
+        # Finding that size measures every row at every size: done once per list of rows,
+        # the rows' images drawn once too (text_image's cache), so an open help costs
+        # a frame little more than the blits.
+        key = (tuple(rows), len(footer), i18n.active().locale, i18n.is_rtl())
+        fitted = self._help_cache.get(key)
+        if fitted is None:
+            if len(self._help_cache) > 8:
+                self._help_cache.clear()
+            fitted = self._help_cache[key] = _HelpFit.of(rows, footer)
+        size, step = fitted.size, fitted.step
+        lines = [row for line in footer for row in wrap(line, size, HELP_WIDTH)]
+        n = len(fitted.rows) + len(lines)
         panel = self._overlay(pen, i18n.t("controls.title"), 64 + step * n)
-        col = panel.left + 18 + max(text_size(k, size, True)[0] for k, _ in rows) + 16
-        for k, (keys, what) in enumerate(rows):
+        col = panel.left + 18 + fitted.keys_width
+        for k, (keys, what) in enumerate(fitted.rows):
             y = panel.top + 52 + step * k
+            # Both on one baseline: a Latin key name beside a Japanese or Arabic description
+            # comes from another font, whose letters sit lower in their image.
+            line = max(baseline(keys, size, True), baseline(what, size))
             # Right to left: the keys at the right, their descriptions right-aligned beside.
-            pen.text(keys, size, ACCENT, True, **_start(panel, panel.left + 18, y))
-            pen.text(what, size, TEXT, **_start(panel, col, y))
-        for k, line in enumerate(footer):
-            y = panel.top + 56 + step * (len(rows) + k)
-            pen.text(line, size, (190, 220, 255), **_start(panel, panel.left + 18, y))
+            at = y + line - baseline(keys, size, True)
+            pen.text(keys, size, ACCENT, True, **_start(panel, panel.left + 18, at))
+            pen.text(what, size, TEXT, **_start(panel, col, y + line - baseline(what, size)))
+        for k, row in enumerate(lines):
+            y = panel.top + 56 + step * (len(fitted.rows) + k)
+            pen.text(row, size, (190, 220, 255), **_start(panel, panel.left + 18, y))
         return panel
 
     def draw_table(
@@ -436,18 +454,26 @@ class Scene:
         return pen.rect(REPLAY_RECT)
 
     def draw_notices(
-        self, pen: Pen, lines: list[str], bottom: int = PLAY_RECT.bottom
+        self, pen: Pen, notices: Sequence[tuple[str, bool]], bottom: int = PLAY_RECT.bottom
     ) -> pygame.Rect | None:
-        """Toasts at the bottom of the play area (or above `bottom`), wrapped to its width;
+        """Toasts at the bottom of the play area (or above `bottom`), wrapped to its width,
+        each (text, problem?): a problem on the warning red, news on the calm blue;
         returns their box."""
-        if not lines:
+        if not notices:
             return None
         width = PLAY_RECT.width - 32
-        wrapped = [row for line in lines for row in wrap(line, 22, width)]
+        wrapped = [(row, bad) for text, bad in notices for row in wrap(text, 22, width)]
         box = pygame.Rect(0, 0, PLAY_RECT.width - 12, 12 + 20 * len(wrapped))
         box.midbottom = (PLAY_RECT.centerx, bottom - 6)
-        _shade(pen, box, NOTICE_SHADE)
-        for k, row in enumerate(wrapped):
+        # Each toast's band: its rows, the box's 6 px margins with the first and last.
+        edges, rows = [box.top], 0
+        for text, _ in notices:
+            rows += len(wrap(text, 22, width))
+            edges.append(box.top + 6 + 20 * rows)
+        edges[-1] = box.bottom
+        for (_, bad), top, end in zip(notices, edges, edges[1:], strict=False):
+            _shade(pen, pygame.Rect(box.left, top, box.width, end - top), NOTICE_SHADES[bad])
+        for k, (row, _) in enumerate(wrapped):
             pen.text(row, 22, TEXT, **_start(box, box.left + 10, box.top + 6 + 20 * k))
         return box
 
@@ -469,6 +495,24 @@ TABLE_HEADS = (32, 164, 62, 80, 100)
 SETTING_ROW = PLAY_RECT.width - 24 - 34 - 16 - 12
 #: The help panel's width for keys and descriptions (inside its margins), logical px.
 HELP_WIDTH = PLAY_RECT.width - 24 - 36
+
+
+@dataclass(frozen=True)
+class _HelpFit:
+    """The help's rows wrapped at the text size that fits them all, and their spacing."""
+
+    size: int
+    step: int
+    rows: list[tuple[str, str]]
+    keys_width: int
+
+    @classmethod
+    def of(cls, rows: list[tuple[str, str]], footer: Sequence[str]) -> _HelpFit:
+        size, out, lines = _help_rows(rows, footer)
+        n = len(out) + len(lines)
+        step = max(size + 2, min(27, (PLAY_RECT.height - 76) // max(1, n)))
+        keys = max(text_size(k, size, True)[0] for k, _ in out) + 16
+        return cls(size, step, out, keys)
 
 
 def _help_rows(
@@ -506,6 +550,9 @@ def _pieces(text: str, size: int, width: float, bold: bool) -> list[str]:
 
 def wrap(text: str, size: int, width: float, bold: bool = False) -> list[str]:
     """Greedy word wrap to a logical width (a word wider than it is cut where it must be)."""
+    whole = " ".join(text.split())
+    if text_size(whole, size, bold)[0] <= width:  # one measure for a line that fits
+        return [whole]
     rows: list[str] = []
     row = ""
     for word in _pieces(text, size, width, bold):

@@ -1,4 +1,4 @@
-"""Where the view puts the cup in the window (issue 26.3): trap coordinates <-> pixels.
+"""Where the view puts the cup in the window: trap coordinates <-> pixels.
 
 The original's layout (SPEC 1): a 640 x 672 window, a play area inside borders of 48 px
 (left, top) and 96 px (right, bottom), the cup's lowest point drawn 32 px above the play
