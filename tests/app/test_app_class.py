@@ -79,12 +79,12 @@ def test_the_applet_joins_plays_the_challenge_and_its_win_is_ranked(server, clas
 def test_started_again_the_applet_is_the_same_student(server, class_app, tmp_path):
     open_challenge(server)
     first = join_app(class_app, tmp_path, server.base + "/")
-    frames_until(first, lambda: first.classroom.token is not None)
+    frames_until(first, lambda: first.classroom.link.token is not None)
     first.close()
     class_app.remove(first)
     again = join_app(class_app, tmp_path, server.base + "/")  # the same data folder
-    frames_until(again, lambda: again.classroom.token is not None)
-    assert again.classroom.token == first.classroom.token
+    frames_until(again, lambda: again.classroom.link.token is not None)
+    assert again.classroom.link.token == first.classroom.link.token
     assert not any("not accepted" in n for n in again.visible_notices)
     elsewhere = join_app(class_app, tmp_path / "other", server.base + "/")  # another Ada
     frames_until(elsewhere, lambda: any("not accepted" in n for n in elsewhere.visible_notices))
