@@ -1,4 +1,4 @@
-"""The class competition (issue 22): `evapcool verify` now; the `evapcool class` server later.
+"""The class competition: the `evapcool class` server, its store and verifier, `evapcool verify`.
 
 Nothing here imports the server's extra (starlette, uvicorn, segno) at package import.
 """
