@@ -156,7 +156,9 @@ def test_games_that_do_not_win_are_refused_unless_the_challenge_takes_them(
 
 
 def test_a_flooding_address_waits_behind_itself(server: Server) -> None:
-    opened = open_challenge(server)
+    # The longest games a lecturer can allow: each takes the verifier a few hundred ms even
+    # in the compiled core's one-call replay, so the flood outlasts the honest student's wait.
+    opened = open_challenge(server, max_frames=MAX_FRAMES)
     longest = int(opened["max_frames"])  # type: ignore[call-overload]
     height = variant(SEED, 0).moves[0][0]
     # Claims a win it never reaches: replayed to its last frame, the longest allowed.
@@ -205,7 +207,7 @@ async def _flood(
             for head in flooders
             for _ in range(3)
         ]
-        await asyncio.sleep(1.0)  # all waiting now
+        await asyncio.sleep(0.3)  # all sent and queued now, the first one replaying
         honest_body = {"challenge": challenge, "code": code(SEED, 0)}
         order.append(("sent", 0, ""))
         await send(elsewhere, "honest", honest, honest_body)
