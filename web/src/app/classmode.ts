@@ -100,8 +100,8 @@ export function clock(seconds: number): string {
  * The student's side of a class competition: the challenge's state from the server's
  * stream (open with its countdown, closed with the final place), attempts left before and
  * after each game, the last game's verified score and the best and place, kept current
- * from the board; one line at a time in the class bar over the page's title, never over
- * the cup.
+ * from the board; in the class bar, never over the cup (a tall screen's band under the
+ * scene, else over the title row).
  */
 export class ClassMode {
   challenge: ChallengeState | null = null;
@@ -126,6 +126,9 @@ export class ClassMode {
     private readonly root: HTMLElement,
     private readonly storage: Storage | null,
     private readonly nameMax = 24,
+    /** Where the bar goes, CSS px from the top, for its height (a tall screen's band
+     * above the slider; else 0). */
+    private readonly barTop: (height: number) => number = () => 0,
   ) {
     host.onCode.push((code) => void this.submit(code));
     this.bar = document.createElement("div");
@@ -143,6 +146,7 @@ export class ClassMode {
     this.render();
     this.follow();
     setInterval(() => this.render(), 1000);
+    window.addEventListener("resize", () => this.render());
     if (!this.player) this.askName();
     else {
       this.host.notify(t("page.class_playing_as", { name: this.player.name }));
@@ -231,6 +235,7 @@ export class ClassMode {
     const [text, kind] = this.result;
     this.resultLine.textContent = [text, standing].filter((x) => x).join(" ");
     this.resultLine.className = kind;
+    this.bar.style.top = `${this.barTop(this.bar.offsetHeight)}px`;
   }
 
   /** The student's games sent, best and place from the server (after a reload, a new

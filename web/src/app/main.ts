@@ -2,6 +2,7 @@
 import { haveCore, makeSimulation } from "../game/engine";
 import { loadSettings } from "../game/settingsStore";
 import { drawPageIcon } from "../view/icons";
+import type { Layout } from "../view/geometry";
 import { App } from "./app";
 import { classApi, ClassMode, classNameMax } from "./classmode";
 import { exposeApi } from "./api";
@@ -152,9 +153,18 @@ function startClass(app: App, api: string): void {
     byId("app"),
     storage,
     classNameMax(document),
+    (height) => barTop(app.layout, height),
   );
   app.classMode = mode;
   void mode.start();
+}
+
+/** The class bar's top for its height, CSS px: on a tall screen just above the trap
+ * slider (the band under the large readout; the cup stays clear), else the title row. */
+function barTop(layout: Layout, height: number): number {
+  if (layout.mode !== "tall") return 0;
+  const sliderTop = (layout.slider.y - layout.knobRadius) * layout.scale + layout.offsetY;
+  return Math.max(0, sliderTop - height - 4);
 }
 
 /** Seconds a finished replay stays on the projector before it plays again. */
