@@ -44,7 +44,6 @@ PAGE_WORDS = {
     "closed": "class.projector.closed",
     "replay": "class.projector.replay",
     "summary": "class.projector.summary",
-    "watch": "class.projector.watch",
     "hide": "class.lecturer.hide",
     "unhide": "class.lecturer.unhide",
     "hidden": "class.lecturer.hidden",

@@ -106,8 +106,6 @@ export function clock(seconds: number): string {
 export class ClassMode {
   challenge: ChallengeState | null = null;
   player: { token: string; name: string } | null = null;
-  /** Verified results of this visit: [score, rank]. */
-  readonly verified: Array<{ score: number; rank: number | null }> = [];
   /** Games of this challenge sent and accepted; the best score and place. */
   used = 0;
   best: number | null = null;
@@ -362,7 +360,6 @@ export class ClassMode {
         return void this.refreshStanding();
       }
       const got = (await res.json()) as Standing & { score: number };
-      this.verified.push({ score: got.score, rank: got.rank ?? null });
       this.takeStanding(got);
       this.tell(t("page.class_game_verified", { n: got.score }), "ok");
     } catch {
