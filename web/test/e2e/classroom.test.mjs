@@ -295,6 +295,16 @@ test(
       assert.ok(f.join >= f.board, `join address ${f.join} px, board ${f.board} px`);
     }
     await shot(big, "class-projector-replay.png");
+    await shot(lecturer, "class-lecturer.png");
+    // The largest screen the projector is made for: it fits too.
+    const huge = await browser.newPage({ viewport: { width: 3840, height: 2160 } });
+    watch(huge);
+    await huge.goto(`${server.base}${link}`);
+    await huge.waitForSelector("#replay-frame:not([hidden])");
+    const h = await fits(huge);
+    assert.equal(h.scrolls, false, "no scrolling at 3840 x 2160");
+    assert.ok(h.frame[1] <= h.frame[3] && h.cut === 0 && h.join >= h.board, JSON.stringify(h));
+    await huge.close();
     await shot(small, "class-projector-replay-720.png");
     // The lecturer takes the replay off; hides a student and undoes it.
     await lecturer.getByRole("button", { name: "Take the replay off the projector" }).click();
