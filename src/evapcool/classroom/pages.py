@@ -205,9 +205,9 @@ function button(text, action) {
 }
 function tick() {
   const c = info;
-  const [, text] = stateText();
+  const [kind, text] = stateText();
   document.getElementById("current").textContent = c ? fill(W.open_now, {id: c.id, seed: c.seed})
-    + " · " + text + (c.open ? "" : " (" + W.closed + ")") : W.none;
+    + (kind === "open" ? " · " + text : " (" + W.closed + ")") : W.none;
   document.getElementById("current-settings").textContent = c ? settingsText(c) : "";
 }
 setInterval(tick, 1000);
