@@ -69,6 +69,7 @@ h1{font-size:2.6vw;margin:0 0 .8vw}
 #join{font-size:2.4vw;font-weight:700;word-break:break-all;margin:.8vw 0}
 #loopback{font-size:1.8vw;font-weight:700;background:#7a1010;color:#fff;padding:.8vw;
 margin:0 0 .8vw}#loopback+#qr svg{width:min(20vw,28vh)}
+.command{white-space:nowrap;font-family:ui-monospace,monospace}
 #settings{font-size:1.5vw;color:#9fd3ff;margin:0 0 .6vw}#rejected{color:#ffb4a8;margin:.4vw 0}
 #state{font-size:2.4vw;font-weight:700;margin:0 0 .6vw}#state.open{color:#8fe39a}
 #state.closed{color:#ffd27a}
@@ -364,9 +365,11 @@ def projector_page(
     join = raw("class.projector.join").replace("{url}", join_url)
     warning = ""
     if loopback(join_url):
-        fix = raw("class.projector.loopback_fix").replace("{command}", "evapcool class --lan")
+        # The command on one line (a break inside "--lan" would mislead).
+        command = '<span class="command">evapcool class --lan</span>'
+        fix = html.escape(raw("class.projector.loopback_fix")).replace("{command}", command)
         said = html.escape(raw("class.projector.loopback"))
-        warning = f'<p id="loopback" role="alert">{said}<br>{html.escape(fix)}</p>'
+        warning = f'<p id="loopback" role="alert">{said}<br>{fix}</p>'
     body = PROJECTOR_BODY.substitute(
         title=html.escape(raw("class.projector.title")),
         qr=qr_svg,
