@@ -139,6 +139,33 @@ def test_atoms_that_cannot_leave_keep_their_temperature():
     assert rules.out_of_reach(3, 1.1 * ESCAPE, 0.1, ESCAPE) is None
 
 
+def test_atoms_too_cold_to_leave_as_the_trap_stands_are_told_to_lower_it():
+    # Issue 34: 2 atoms at T = 7.5 > Tc = 7.2 under a high trap stayed frozen with no word.
+    here = 1.0 * (10.0 / 30.0) * 60.0  # m g H at a trap height of 60
+    said = rules.out_of_reach(2, 15.0, 7.2, ESCAPE, trap_energy=here)
+    assert said is not None and "lower the trap, or restart" in said
+    assert rules.out_of_reach(2, 15.0, 7.2, ESCAPE, trap_energy=0.5 * here) is None  # can leave
+    assert rules.out_of_reach(2, 13.0, 7.2, ESCAPE, trap_energy=here) is None  # condensing
+
+
+def test_a_real_gas_under_a_high_trap_is_told_within_a_frame():
+    g = Game(GameConfig(seed=4))
+    g.sim = Simulation(
+        n_atoms=2,
+        radius=12.0,
+        positions=[[-40.0, 60.0], [40.0, 60.0]],
+        velocities=[[1.0, 0], [0, 1.0]],
+    )
+    sim = g.sim
+    assert sim.temperature > sim.critical_temperature
+    assert sim.total_energy() < float(sim.masses.min()) * sim.gravity * g.trap_height
+    assert g.too_few_atoms is not None and "lower the trap" in g.too_few_atoms
+    g.set_trap_height(rules.HEIGHT_MIN)
+    g.paused = False
+    g.run_frames(1)
+    assert g.too_few_atoms is None or "lower the trap" not in g.too_few_atoms
+
+
 def test_a_lone_atom_in_a_real_game_is_out_of_reach_until_restart():
     g = Game(GameConfig(seed=4))
     assert g.too_few_atoms is None

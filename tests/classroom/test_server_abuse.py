@@ -271,10 +271,27 @@ def test_hiding_acts_on_the_student_and_the_lecturer_renames(server: Server) -> 
     assert [e["hidden"] for e in listed if e["name"] == "Rude Ada"] == [True, True, True]
     csv_text = httpx.get(server.base + "/api/export.csv", headers=server.lecturer).text
     header, *rows = [line.split(",") for line in csv_text.strip().splitlines()]
-    by_name = {row[1]: row for row in rows}
-    assert header[-1] == "hidden" and len(rows) == 2
-    assert by_name["Bob"][0] == "1" and by_name["Bob"][-1] == ""
-    assert by_name["Rude Ada"][0] == "" and by_name["Rude Ada"][-1] == "hidden"
+    # Every game accepted, the hidden student's three too (marked), for grading.
+    assert header[-3:] == ["entry", "best", "hidden"] and len(rows) == 4
+    bobs_row = [row for row in rows if row[1] == "Bob"]
+    adas = [row for row in rows if row[1] == "Rude Ada"]
+    assert [(r[0], r[-2], r[-1]) for r in bobs_row] == [("1", "best", "")]
+    assert len(adas) == 3 and {r[-1] for r in adas} == {"hidden"} and {r[0] for r in adas} == {""}
+    assert sorted(int(r[6]) for r in adas) == sorted(e["entry"] for e in listed if e["hidden"])
+    assert [r[-2] for r in adas].count("best") == 1
+
+    # Undo: the student is back on the board, with their best game.
+    shown = httpx.post(
+        server.base + "/api/hide", json={"entry": first, "hidden": False}, headers=server.lecturer
+    )
+    assert shown.status_code == 200 and shown.json()["hidden"] is False
+    names = [e["name"] for e in httpx.get(server.base + "/api/leaderboard").json()["entries"]]
+    assert sorted(names) == ["Bob", "Rude Ada"]
+    listed = httpx.get(server.base + "/api/entries", headers=server.lecturer).json()["entries"]
+    ranks = sorted(e["rank"] for e in listed if e["rank"] is not None)
+    assert ranks == [1, 2] and sum(e["rank"] is None for e in listed) == 2
+    again = httpx.post(server.base + "/api/hide", json={"entry": first}, headers=server.lecturer)
+    assert again.status_code == 200
 
     rename = server.base + "/api/rename"
     renamed = httpx.post(rename, json={"entry": bobs, "name": "Robert"}, headers=server.lecturer)
@@ -305,11 +322,14 @@ def test_every_page_has_a_tight_content_security_policy(server: Server) -> None:
         httpx.get(server.base + "/projector"),
         httpx.get(server.base + "/lecturer", params={"token": server.token}),
     ]
-    for page in pages:
+    for k, page in enumerate(pages):
         policy = page.headers["content-security-policy"]
         script_src = re.search(r"script-src ([^;]*)", policy)
         assert script_src and "'unsafe-inline'" not in script_src.group(1), policy
-        assert "frame-ancestors 'none'" in policy and "connect-src 'self'" in policy
+        # The game page may be framed by this server's projector only (its replays).
+        framing = "frame-ancestors 'self'" if k == 0 else "frame-ancestors 'none'"
+        assert framing in policy and "connect-src 'self'" in policy
+        assert page.headers.get_list("x-frame-options") == ["SAMEORIGIN" if k == 0 else "DENY"]
         scripts = re.findall(
             r"<script(?![^>]*application/json)[^>]*>(.*?)</script>", page.text, re.S
         )

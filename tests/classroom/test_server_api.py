@@ -10,6 +10,8 @@ import json
 import httpx
 from classhelp import SEED, Server, code, join, open_challenge, projector_key, variant
 
+from evapcool.classroom.names import NAME_MAX
+
 
 def submit(server: Server, who: dict[str, str], challenge: object, k: int) -> httpx.Response:
     body = {"challenge": challenge, "code": code(SEED, k)}
@@ -19,7 +21,11 @@ def submit(server: Server, who: dict[str, str], challenge: object, k: int) -> ht
 def test_pages_and_challenge(server: Server) -> None:
     assert httpx.get(server.base + "/api/challenge").status_code == 404
     page = httpx.get(server.base + "/").text
-    marker = '<script type="application/json" id="evapcool-class">{"api":"/api"}</script>'
+    # The name box takes what the server keeps (one limit everywhere).
+    marker = (
+        '<script type="application/json" id="evapcool-class">'
+        f'{{"api":"/api","name_max":{NAME_MAX}}}</script>'
+    )
     assert marker + "</head>" in page
     opened = open_challenge(server, attempts=3, minutes=30)
     got = httpx.get(server.base + "/api/challenge").json()

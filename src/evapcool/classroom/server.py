@@ -40,6 +40,9 @@ from evapcool.game.replay import decode
 T = TypeVar("T")
 #: Seconds between keep-alive comments on an idle event stream.
 KEEP_ALIVE = 15.0
+#: Seconds between looks at the open challenge's time window: when it ends, the server
+#: closes the challenge and tells every page (within this, well inside the pages' 2 s).
+WINDOW_CHECK = 0.25
 #: Headers on every answer: no referrer (the lecturer's link holds the token), no sniffing.
 SAFE_HEADERS = {
     "Referrer-Policy": "no-referrer",
@@ -172,7 +175,14 @@ def _board(store: Store, showing: dict[str, Any] | None, keyed: bool) -> dict[st
     current = store.latest()
     replay = _replay_seen(store, showing, keyed)
     if current is None:
-        return {"challenge": None, "open": False, "entries": [], "rejected": 0, "replay": replay}
+        return {
+            "challenge": None,
+            "open": False,
+            "info": None,
+            "entries": [],
+            "rejected": 0,
+            "replay": replay,
+        }
     rows = store.leaderboard(int(current["id"]))  # type: ignore[call-overload]
     entries = [
         {"rank": i, "name": r[1], "score": r[2], "frames": r[3], "edition": r[4]}
@@ -181,10 +191,20 @@ def _board(store: Store, showing: dict[str, Any] | None, keyed: bool) -> dict[st
     return {
         "challenge": current["id"],
         "open": _is_open(current),
+        "info": challenge_info(current),
         "entries": entries,
         "rejected": current["rejected"],
         "replay": replay,
     }
+
+
+def challenge_info(row: dict[str, Any], now: float | None = None) -> dict[str, Any]:
+    """What every page shows of a challenge: its API form, whether it is open, and the
+    seconds left in its window (`closes_in`, counted from this answer: no clocks compared)."""
+    now = time.time() if now is None else now
+    closes = row.get("closes_at")
+    left = None if closes is None else max(0.0, round(float(closes) - now, 3))
+    return {**challenge_doc(row), "open": _is_open(row, now), "closes_in": left}
 
 
 def _is_open(challenge: dict[str, Any] | None, now: float | None = None) -> bool:
@@ -251,7 +271,9 @@ async def game(request: Request) -> Response:
     """The browser edition in class mode."""
     guard(request)
     text, policy = request.app.state.game_page
-    return HTMLResponse(text, headers={"Content-Security-Policy": policy})
+    # The projector plays replays in the game page in a frame of its own (same origin).
+    headers = {"Content-Security-Policy": policy, "X-Frame-Options": "SAMEORIGIN"}
+    return HTMLResponse(text, headers=headers)
 
 
 async def projector(request: Request) -> Response:
@@ -395,6 +417,26 @@ async def _open_for(hub: Hub, doc: dict[str, Any], token: str) -> dict[str, Any]
     return row
 
 
+async def me(request: Request) -> Response:
+    """A student's standing in the current challenge: games sent and accepted of the
+    limit, best score and place (the student's page shows them before each game)."""
+    hub = guard(request)
+    token = _bearer(request)
+    name = await hub.db(hub.store.player_name, token) if 0 < len(token) <= 64 else None
+    if name is None:
+        raise RefusedError(401, "token", "class.error.token")
+    row = await hub.db(hub.store.latest)
+    if row is None:
+        return JSONResponse({"name": name, "challenge": None})
+    return JSONResponse({"name": name, **await _standing(hub, row, token)})
+
+
+async def _standing(hub: Hub, row: dict[str, Any], token: str) -> dict[str, Any]:
+    """{challenge, attempts (the limit), used, best, rank} of a student in a challenge."""
+    got = await hub.db(hub.store.standing, row["id"], token)
+    return {"challenge": row["id"], "attempts": row["attempts"], **got}
+
+
 def _game_of(doc: dict[str, Any]) -> tuple[object, str]:
     """The submitted game: (a code, "code") or (a recording, "recording"); else 400.
 
@@ -435,13 +477,9 @@ async def submit(request: Request) -> Response:
         key = "class.error.attempts" if entry == "attempts" else "class.error.closed"
         raise RefusedError(409, entry, key, n=row["attempts"] or 0)
     await hub.publish()
+    standing = await _standing(hub, row, token)
     return JSONResponse(
-        {
-            "entry": entry,
-            "score": got["score"],
-            "frames": got["frames"],
-            "rank": await hub.db(hub.store.rank, row["id"], token),
-        }
+        {"entry": entry, "score": got["score"], "frames": got["frames"], **standing}
     )
 
 
@@ -464,15 +502,21 @@ def _entry_id(doc: dict[str, Any]) -> int:
 
 
 async def hide(request: Request) -> Response:
-    """Hide the student of an entry: all their entries, later ones too, leave the board."""
+    """Hide the student of an entry: all their entries, later ones too, leave the board
+    ({"entry", "hidden": false} puts them back: the lecturer's undo)."""
     hub = lecturer(request)
-    entry = _entry_id(await read_json(request, hub.limits.body_bytes))
-    if not await hub.db(hub.store.hide, entry):
+    doc = await read_json(request, hub.limits.body_bytes)
+    entry = _entry_id(doc)
+    hidden = doc.get("hidden", True)
+    if not isinstance(hidden, bool):
+        raise RefusedError(400, "hidden", "class.error.value", allowed="true, false")
+    if not await hub.db(hub.store.hide, entry, hidden):
         raise RefusedError(404, "entry", "class.error.no_entry")
-    if hub.showing and hub.showing["player"] == await hub.db(hub.store.entry_player, entry):
+    player = await hub.db(hub.store.entry_player, entry)
+    if hidden and hub.showing and hub.showing["player"] == player:
         hub.showing = None
     await hub.publish()
-    return JSONResponse({"entry": entry, "hidden": True})
+    return JSONResponse({"entry": entry, "hidden": hidden})
 
 
 async def rename(request: Request) -> Response:
@@ -538,8 +582,11 @@ async def entries(request: Request) -> Response:
     if row is None:
         return JSONResponse({"challenge": None, "entries": [], "rejected": 0})
     listed = await hub.db(hub.store.entries, row["id"])
-    doc = {**challenge_doc(row), "open": _is_open(row)}
-    return JSONResponse({"challenge": doc, "entries": listed, "rejected": row["rejected"]})
+    doc = challenge_info(row)
+    showing = hub.showing["entry"] if hub.showing else None
+    return JSONResponse(
+        {"challenge": doc, "entries": listed, "rejected": row["rejected"], "showing": showing}
+    )
 
 
 async def export_csv(request: Request) -> Response:
@@ -633,6 +680,7 @@ ROUTES = [
     Route("/api/challenge/close", close_challenge, methods=["POST"]),
     Route("/api/join", join, methods=["POST"]),
     Route("/api/submit", submit, methods=["POST"]),
+    Route("/api/me", me),
     Route("/api/hide", hide, methods=["POST"]),
     Route("/api/rename", rename, methods=["POST"]),
     Route("/api/show", show, methods=["POST"]),
@@ -687,9 +735,11 @@ def create_app(
         app.state.game_page = pages.game_page()
         loop = asyncio.get_running_loop()
         await asyncio.gather(*(loop.run_in_executor(hub.pool, _ready) for _ in range(pool_workers)))
+        watcher = asyncio.create_task(_close_on_time(hub))
         try:
             yield
         finally:
+            watcher.cancel()
             hub.pool.shutdown(cancel_futures=True)
             hub.db_thread.submit(hub.store.close).result()
             hub.db_thread.shutdown()
@@ -699,6 +749,17 @@ def create_app(
     app.state.join_url = join_url
     app.add_middleware(_SafeHeaders)
     return app
+
+
+async def _close_on_time(hub: Hub) -> None:
+    """Close the open challenge as its time window ends and tell every page at once
+    (not only refuse games later): projector, lecturer and students see it together."""
+    while True:
+        row = await hub.db(hub.store.open_one)
+        if row is not None and row["closes_at"] is not None and not _is_open(row):
+            await hub.db(hub.store.close_challenge, row["id"])
+            await hub.publish()
+        await asyncio.sleep(WINDOW_CHECK)
 
 
 def _ready() -> bool:
@@ -716,9 +777,14 @@ class _SafeHeaders:
         async def send_with(message: Any) -> None:
             if message["type"] == "http.response.start":
                 headers = list(message.get("headers", []))
-                extra = [(k.lower().encode(), v.encode()) for k, v in SAFE_HEADERS.items()]
-                if not any(k.lower() == b"content-security-policy" for k, _ in headers):
-                    extra.append((b"content-security-policy", DATA_POLICY.encode()))
+                have = {k.lower() for k, _ in headers}
+                wanted = {**SAFE_HEADERS, "Content-Security-Policy": DATA_POLICY}
+                # An answer's own header (the game page's framing, a page's policy) stays.
+                extra = [
+                    (k.lower().encode(), v.encode())
+                    for k, v in wanted.items()
+                    if k.lower().encode() not in have
+                ]
                 message["headers"] = headers + extra
             await send(message)
 

@@ -19,7 +19,9 @@ __all__ = ["BIDI_CONTROLS", "NAME_MAX", "Store", "clean_name", "csv_cell"]
 
 #: A CSV cell starting with one of these is a formula in spreadsheets.
 FORMULA_START = ("=", "+", "-", "@", "\t", "\r")
-CSV_HEADER = ("rank", "name", "score", "frames", "seed", "edition", "hidden")
+#: One row per game sent and accepted: `rank` on each student's best shown game, `best`
+#: marks each student's best game, `entry` is the game's number (the lecturer's page's).
+CSV_HEADER = ("rank", "name", "score", "frames", "seed", "edition", "entry", "best", "hidden")
 
 SCHEMA = """
 CREATE TABLE IF NOT EXISTS challenge (
@@ -63,6 +65,8 @@ CHALLENGE_KEYS = (
     "lost",
 )
 ENTRY_KEYS = ("entry", "name", "score", "frames", "edition", "hidden")
+#: An entry row of `_all`: id, name, score, frames, edition, player token, hidden.
+EntryRow = tuple[int, str, int, int, str, str, int]
 
 
 class NameTakenError(Exception):
@@ -233,13 +237,14 @@ class Store:
             )
         return name
 
-    def hide(self, entry: int) -> bool:
-        """Hide the player of an entry: all their entries, later ones too, leave the board."""
+    def hide(self, entry: int, hidden: bool = True) -> bool:
+        """Hide the player of an entry: all their entries, later ones too, leave the board
+        (hidden=False: back on it, the lecturer's undo)."""
         with self.db:
             cur = self.db.execute(
-                "UPDATE player SET hidden = 1 "
+                "UPDATE player SET hidden = ? "
                 "WHERE token = (SELECT player FROM entry WHERE id = ?)",
-                (entry,),
+                (int(hidden), entry),
             )
         return cur.rowcount > 0
 
@@ -304,14 +309,41 @@ class Store:
         return int(cur.lastrowid or 0)
 
     def entries(self, challenge: int) -> list[dict[str, object]]:
-        """Every entry of a challenge, hidden ones too, best first (the lecturer's list)."""
-        rows = self.db.execute(
-            "SELECT e.id, p.name, e.score, e.frames, e.edition, MAX(e.hidden, p.hidden) "
-            "FROM entry e JOIN player p ON p.token = e.player WHERE e.challenge = ? "
-            "ORDER BY e.score DESC, e.frames ASC, e.id ASC",
+        """Every entry of a challenge, hidden ones too, best first (the lecturer's list);
+        `rank`: the place on the leaderboard of a student's best shown game, else None."""
+        places = self._places(challenge)
+        return [
+            {
+                **dict(zip(ENTRY_KEYS, (*row[:5], bool(row[6])), strict=True)),
+                "rank": places.get(row[0]),
+            }
+            for row in self._all(challenge)
+        ]
+
+    def _all(self, challenge: int) -> list[EntryRow]:
+        """Every entry of a challenge, best first (most atoms, fewest frames, earliest)."""
+        rows: list[EntryRow] = self.db.execute(
+            "SELECT e.id, p.name, e.score, e.frames, e.edition, e.player, "
+            "MAX(e.hidden, p.hidden) FROM entry e JOIN player p ON p.token = e.player "
+            "WHERE e.challenge = ? ORDER BY e.score DESC, e.frames ASC, e.id ASC",
             (challenge,),
         ).fetchall()
-        return [{**dict(zip(ENTRY_KEYS, row, strict=True)), "hidden": bool(row[5])} for row in rows]
+        return rows
+
+    def _places(self, challenge: int) -> dict[int, int]:
+        """Entry id -> place on the leaderboard, for each student's best shown game."""
+        shown = [row for row in self._best(challenge) if not row[6]]
+        return {row[0]: place for place, row in enumerate(shown, 1)}
+
+    def standing(self, challenge: int, token: str) -> dict[str, int | None]:
+        """A student's games sent and accepted, their best score and place (None if none)."""
+        best = [row for row in self._best(challenge) if row[5] == token]
+        places = self._places(challenge)
+        return {
+            "used": self.attempts(challenge, token),
+            "best": best[0][2] if best else None,
+            "rank": places.get(best[0][0]) if best else None,
+        }
 
     def entry_code(self, entry: int) -> tuple[str, str, int] | None:
         """(name, replay code, challenge) of an entry, or None if there is none or no code."""
@@ -348,32 +380,36 @@ class Store:
                 return place
         return None
 
-    def _best(self, challenge: int) -> list[tuple[int, str, int, int, str, str, int]]:
+    def _best(self, challenge: int) -> list[EntryRow]:
         """Each player's best entry, best first: (..., the player's token, hidden)."""
-        rows = self.db.execute(
-            "SELECT e.id, p.name, e.score, e.frames, e.edition, e.player, "
-            "MAX(e.hidden, p.hidden) FROM entry e JOIN player p ON p.token = e.player "
-            "WHERE e.challenge = ? ORDER BY e.score DESC, e.frames ASC, e.id ASC",
-            (challenge,),
-        ).fetchall()
-        best: dict[str, tuple[int, str, int, int, str, str, int]] = {}
-        for row in rows:  # a player's best shown entry, else their best hidden one
+        best: dict[str, EntryRow] = {}
+        for row in self._all(challenge):  # a player's best shown entry, else their best hidden one
             have = best.get(row[5])
             if have is None or (have[6] and not row[6]):
                 best[row[5]] = row
         return sorted(best.values(), key=lambda r: (-r[2], r[3], r[0]))
 
     def results_csv(self, challenge: int) -> str:
-        """Every player's best game; hidden players kept, marked, without a rank."""
+        """Every game accepted, best first, hidden ones marked: the rank on each student's
+        best shown game, `best` on each student's best game (the lecturer grades from it)."""
         seed = self.db.execute("SELECT seed FROM challenge WHERE id = ?", (challenge,)).fetchone()
+        places = self._places(challenge)
+        bests = {row[0] for row in self._best(challenge)}
         out = io.StringIO()
         writer = csv.writer(out)
         writer.writerow(CSV_HEADER)
-        rank = 0
-        for _, name, score, frames, edition, _, hidden in self._best(challenge):
-            rank += 0 if hidden else 1
-            place = "" if hidden else rank
-            mark = "hidden" if hidden else ""
-            row = [place, csv_cell(name), score, frames, seed[0] if seed else "", edition, mark]
-            writer.writerow(row)
+        for entry, name, score, frames, edition, _, hidden in self._all(challenge):
+            writer.writerow(
+                [
+                    places.get(entry, ""),
+                    csv_cell(name),
+                    score,
+                    frames,
+                    seed[0] if seed else "",
+                    edition,
+                    entry,
+                    "best" if entry in bests else "",
+                    "hidden" if hidden else "",
+                ]
+            )
         return out.getvalue()

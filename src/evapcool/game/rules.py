@@ -315,11 +315,16 @@ class Game:
             sim.total_energy(),
             sim.critical_temperature,
             escape_energy=lightest * sim.gravity * HEIGHT_MIN,
+            trap_energy=lightest * sim.gravity * self.trap_height,
         )
 
 
 def out_of_reach(
-    n: int, energy: float, critical_temperature: float, escape_energy: float
+    n: int,
+    energy: float,
+    critical_temperature: float,
+    escape_energy: float,
+    trap_energy: float | None = None,
 ) -> str | None:
     """Why T < Tc can no longer be reached by n trapped atoms of total energy E, or None.
 
@@ -333,6 +338,11 @@ def out_of_reach(
     - one atom is left above Tc(1): alone it never collides, so its energy (its T)
       stays until it leaves, and then none is left;
     - T >= Tc(N) and no atom can ever leave (E <= escape_energy), so T stays.
+
+    trap_energy (m g H at the trap as it stands): with E <= trap_energy and T >= Tc, no
+    atom can leave as the trap stands (even one holding all the energy stays below the
+    rim), so T stays until the player lowers the trap: said with what to do (lower the
+    trap, or restart), not a loss yet.
     """
     if n <= 0:
         return t("lose.all_escaped")
@@ -342,4 +352,6 @@ def out_of_reach(
         return t("lose.one_atom")
     if energy <= escape_energy:
         return t("lose.stuck")
+    if trap_energy is not None and energy <= trap_energy:
+        return t("lose.stuck_here")
     return None

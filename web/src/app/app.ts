@@ -294,7 +294,8 @@ export class App
     this.play.playChallenge(challenge);
     this.restart();
     const s = challenge.settings;
-    this.notify(t("page.class_challenge", { n: s.n_atoms, radius: s.radius, escape: s.escape }));
+    const escape = t(s.escape === "knife" ? "settings.escape_knife" : "settings.escape_rim");
+    this.notify(t("page.class_challenge", { n: s.n_atoms, radius: s.radius, escape }));
   }
 
   // -- actions -------------------------------------------------------------------------------

@@ -18,6 +18,28 @@ export interface Challenge {
   closes_at: string | null;
 }
 
+/** A challenge as the leaderboard's stream tells every page: open or not, seconds left. */
+export interface ChallengeState extends Challenge {
+  open: boolean;
+  /** Seconds left in its window when the server sent it, or null (no window). */
+  closes_in: number | null;
+}
+
+/** The leaderboard document of the server's stream (docs/class.md). */
+export interface Board {
+  info: ChallengeState | null;
+  entries: Array<{ rank: number; name: string; score: number; frames: number }>;
+}
+
+/** A student's standing in the current challenge, as /api/me and /api/submit answer. */
+interface Standing {
+  challenge: number | null;
+  attempts?: number | null;
+  used?: number;
+  best?: number | null;
+  rank?: number | null;
+}
+
 export interface ClassHost {
   notify(text: string): void;
   say(text: string): void;
@@ -29,11 +51,22 @@ export interface ClassHost {
 
 /** The class marker's API base, or null (the page from a file: no class mode). */
 export function classApi(doc: Document): string | null {
+  return marker(doc)?.api ?? null;
+}
+
+/** The server's longest name (its marker says; the name box takes no more). */
+export function classNameMax(doc: Document): number {
+  return marker(doc)?.nameMax ?? 24;
+}
+
+function marker(doc: Document): { api: string; nameMax: number } | null {
   const el = doc.getElementById("evapcool-class");
   if (!el) return null;
   try {
-    const api = (JSON.parse(el.textContent ?? "") as { api?: unknown }).api;
-    return typeof api === "string" && api.startsWith("/") ? api : null;
+    const m = JSON.parse(el.textContent ?? "") as { api?: unknown; name_max?: unknown };
+    if (typeof m.api !== "string" || !m.api.startsWith("/")) return null;
+    const n = m.name_max;
+    return { api: m.api, nameMax: typeof n === "number" && n >= 1 && n <= 100 ? n : 24 };
   } catch {
     return null;
   }
@@ -54,50 +87,182 @@ async function refusal(res: Response): Promise<string> {
 const speaking = (): Record<string, string> => ({ "accept-language": activeTranslator().locale });
 
 const TOKEN_KEY = "evapcool.class.player";
-const POLL_MS = 5000;
+/** Without the stream (refused or gone), the board is asked for this often, ms. */
+const POLL_MS = 3000;
 
+/** m:ss of a number of seconds (rounded up: "0:00" only at the end). */
+export function clock(seconds: number): string {
+  const s = Math.max(0, Math.ceil(seconds));
+  return `${Math.floor(s / 60)}:${String(s % 60).padStart(2, "0")}`;
+}
+
+/**
+ * The student's side of a class competition: the challenge's state from the server's
+ * stream (open with its countdown, closed with the final place), attempts left before and
+ * after each game, the last game's verified score and the best and place, kept current
+ * from the board; in the class bar, never over the cup (a tall screen's band under the
+ * scene, else over the title row).
+ */
 export class ClassMode {
-  challenge: Challenge | null = null;
+  challenge: ChallengeState | null = null;
   player: { token: string; name: string } | null = null;
-  /** Verified results of this visit: [score, rank]. */
-  readonly verified: Array<{ score: number; rank: number }> = [];
+  /** Games of this challenge sent and accepted; the best score and place. */
+  used = 0;
+  best: number | null = null;
+  rank: number | null = null;
+  /** The last game's result: [text, "ok" | "bad" | ""]. */
+  result: [string, string] = ["", ""];
+  private received = 0;
   private form: HTMLFormElement | null = null;
+  readonly bar: HTMLElement;
+  private readonly stateLine: HTMLElement;
+  private readonly resultLine: HTMLElement;
 
   constructor(
     private readonly api: string,
     private readonly host: ClassHost,
     private readonly root: HTMLElement,
     private readonly storage: Storage | null,
+    private readonly nameMax = 24,
+    /** Where the bar goes, CSS px from the top, for its height (a tall screen's band
+     * above the slider; else 0). */
+    private readonly barTop: (height: number) => number = () => 0,
   ) {
     host.onCode.push((code) => void this.submit(code));
+    this.bar = document.createElement("div");
+    this.bar.id = "classbar";
+    this.bar.setAttribute("role", "status");
+    this.stateLine = document.createElement("p");
+    this.resultLine = document.createElement("p");
+    this.bar.append(this.stateLine, this.resultLine);
+    root.append(this.bar);
   }
 
-  /** Find the open challenge (waiting for one if none), then ask for a name if none yet. */
+  /** Follow the challenge (the stream), then ask for a name if none yet. */
   async start(): Promise<void> {
     this.player = this.storedPlayer();
-    await this.findChallenge();
+    this.render();
+    this.follow();
+    setInterval(() => this.render(), 1000);
+    window.addEventListener("resize", () => this.render());
     if (!this.player) this.askName();
-    else this.host.notify(t("page.class_playing_as", { name: this.player.name }));
+    else {
+      this.host.notify(t("page.class_playing_as", { name: this.player.name }));
+      await this.refreshStanding();
+    }
   }
 
-  private async findChallenge(): Promise<void> {
-    for (let first = true; ; first = false) {
+  /** The board from the server's event stream; by polling if the stream is refused. */
+  private follow(): void {
+    if (typeof EventSource === "undefined") return void this.poll();
+    const events = new EventSource(`${this.api}/stream`);
+    events.onmessage = (e) => this.take(JSON.parse(String(e.data)) as Board);
+    events.onerror = () => {
+      if (events.readyState === EventSource.CLOSED) void this.poll();
+    };
+  }
+
+  private async poll(): Promise<void> {
+    for (;;) {
       try {
-        const res = await fetch(`${this.api}/challenge`, {
-          cache: "no-store",
-          headers: speaking(),
-        });
-        if (res.ok) {
-          this.challenge = (await res.json()) as Challenge;
-          this.host.play(this.challenge);
-          return;
-        }
-        if (first) this.host.notify(t("page.class_waiting", { problem: await refusal(res) }));
+        const res = await fetch(`${this.api}/leaderboard`, { cache: "no-store" });
+        if (res.ok) this.take((await res.json()) as Board);
       } catch {
-        if (first) this.host.notify(t("page.class_no_answer"));
+        this.result = [t("page.class_no_answer"), "bad"];
+        this.render();
       }
       await new Promise((resolve) => setTimeout(resolve, POLL_MS));
     }
+  }
+
+  /** A board from the server: a new challenge is played from now on; the standing follows. */
+  take(board: Board): void {
+    const info = board.info;
+    this.received = Date.now();
+    const fresh = info !== null && info.open && info.id !== this.challenge?.id;
+    this.challenge = info;
+    if (fresh) {
+      [this.used, this.best, this.rank, this.result] = [0, null, null, ["", ""]];
+      this.host.play(info);
+      void this.refreshStanding();
+    }
+    const mine = this.player && board.entries.find((e) => e.name === this.player?.name);
+    if (mine) [this.best, this.rank] = [mine.score, mine.rank];
+    this.render();
+  }
+
+  /** Whether the challenge takes games now (open, its window not over). */
+  get open(): boolean {
+    const c = this.challenge;
+    return c !== null && c.open && this.secondsLeft() !== 0;
+  }
+
+  /** Seconds left in the window (null: none), counted from the board's arrival. */
+  secondsLeft(): number | null {
+    const left = this.challenge?.closes_in;
+    if (left === null || left === undefined) return null;
+    return Math.max(0, left - (Date.now() - this.received) / 1000);
+  }
+
+  /** Attempts left, or null (no limit). */
+  get attemptsLeft(): number | null {
+    const limit = this.challenge?.attempts;
+    return typeof limit === "number" ? Math.max(0, limit - this.used) : null;
+  }
+
+  /** The class bar: the challenge's state and attempts; the last result and the standing. */
+  render(): void {
+    const c = this.challenge;
+    const parts: string[] = [];
+    if (c === null) parts.push(t("page.class_no_challenge"));
+    else if (!this.open) parts.push(t("page.class_final"));
+    else {
+      parts.push(t("page.class_open"));
+      const left = this.secondsLeft();
+      if (left !== null) parts.push(t("page.class_time_left", { time: clock(left) }));
+      const attempts = this.attemptsLeft;
+      if (attempts !== null) parts.push(t("page.class_attempts_left", { n: attempts }));
+    }
+    this.stateLine.textContent = parts.join(" · ");
+    const standing =
+      this.best === null || this.rank === null
+        ? c === null
+          ? ""
+          : t("page.class_no_best")
+        : t("page.class_best", { n: this.best, rank: this.rank });
+    const [text, kind] = this.result;
+    this.resultLine.textContent = [text, standing].filter((x) => x).join(" ");
+    this.resultLine.className = kind;
+    this.bar.style.top = `${this.barTop(this.bar.offsetHeight)}px`;
+  }
+
+  /** The student's games sent, best and place from the server (after a reload, a new
+   * challenge); a token the server does not know asks for a name again. */
+  private async refreshStanding(): Promise<void> {
+    const p = this.player;
+    if (!p) return;
+    try {
+      const res = await fetch(`${this.api}/me`, {
+        cache: "no-store",
+        headers: { ...speaking(), authorization: `Bearer ${p.token}` },
+      });
+      if (res.status === 401) {
+        this.player = null;
+        this.askName();
+        return;
+      }
+      if (res.ok) this.takeStanding((await res.json()) as Standing);
+    } catch {
+      /* the stream's board keeps the best and place; the count comes with the next game */
+    }
+  }
+
+  private takeStanding(s: Standing): void {
+    if (s.challenge !== this.challenge?.id) return;
+    this.used = s.used ?? this.used;
+    this.best = s.best ?? null;
+    this.rank = s.rank ?? null;
+    this.render();
   }
 
   private storedPlayer(): { token: string; name: string } | null {
@@ -114,13 +279,14 @@ export class ClassMode {
 
   /** A small form over the page: the display name for the class's leaderboard. */
   private askName(): void {
+    if (this.form) return;
     const form = document.createElement("form");
     form.id = "join";
     const label = document.createElement("label");
     label.textContent = t("page.class_name_label");
     const input = document.createElement("input");
     input.name = "name";
-    input.maxLength = 24;
+    input.maxLength = this.nameMax;
     input.setAttribute("autocomplete", "nickname");
     input.required = true;
     const button = document.createElement("button");
@@ -156,20 +322,28 @@ export class ClassMode {
       this.form?.remove();
       this.form = null;
       this.host.notify(t("page.class_joined", { name: this.player.name }));
+      await this.refreshStanding();
     } catch {
       status.textContent = t("page.class_try_again");
     }
   }
 
-  /** Send a win's code; the server answers once it has replayed and stored it. */
+  /** One line for the last game, in the class bar (never over the cup). */
+  private tell(text: string, kind: "ok" | "bad" | ""): void {
+    this.result = [text, kind];
+    this.render();
+    this.host.say(this.resultLine.textContent ?? text);
+  }
+
+  /** Send a win's code; the server answers once it has replayed and stored it. A game
+   * the challenge cannot take (closed, no attempts left) is not sent, and says so. */
   async submit(code: string): Promise<void> {
     const c = this.challenge;
     const p = this.player;
-    if (!c || !p) {
-      this.host.notify(t("page.class_join_first"));
-      return;
-    }
-    this.host.say(t("page.class_sending"));
+    if (!c || !p) return this.tell(t("page.class_join_first"), "bad");
+    if (!this.open) return this.tell(t("page.class_not_sent_closed"), "bad");
+    if (this.attemptsLeft === 0) return this.tell(t("page.class_not_sent_attempts"), "bad");
+    this.tell(t("page.class_sending"), "");
     try {
       const res = await fetch(`${this.api}/submit`, {
         method: "POST",
@@ -181,14 +355,15 @@ export class ClassMode {
         body: JSON.stringify({ challenge: c.id, code }),
       });
       if (!res.ok) {
-        this.host.notify(t("page.class_refused", { problem: await refusal(res) }));
-        return;
+        const problem = await refusal(res);
+        this.tell(t("page.class_refused", { problem }), "bad");
+        return void this.refreshStanding();
       }
-      const got = (await res.json()) as { score: number; rank: number };
-      this.verified.push({ score: got.score, rank: got.rank });
-      this.host.notify(t("page.class_verified", { n: got.score, rank: got.rank }));
+      const got = (await res.json()) as Standing & { score: number };
+      this.takeStanding(got);
+      this.tell(t("page.class_game_verified", { n: got.score }), "ok");
     } catch {
-      this.host.notify(t("page.class_kept"));
+      this.tell(t("page.class_kept"), "bad");
     }
   }
 }

@@ -2,8 +2,9 @@
 import { haveCore, makeSimulation } from "../game/engine";
 import { loadSettings } from "../game/settingsStore";
 import { drawPageIcon } from "../view/icons";
+import type { Layout } from "../view/geometry";
 import { App } from "./app";
-import { classApi, ClassMode } from "./classmode";
+import { classApi, ClassMode, classNameMax } from "./classmode";
 import { exposeApi } from "./api";
 import { parseParams } from "./params";
 import physicsWorkerCode from "./physics.worker?packed";
@@ -118,7 +119,11 @@ async function main(): Promise<void> {
     },
   );
   await app.play.ready();
-  if (params.replay !== null) await app.watch(params.replay);
+  if (params.replay !== null) {
+    await app.watch(params.replay);
+    // In the class projector's frame the replay plays by itself, again after each end.
+    if (window.parent !== window) playOnItsOwn(app);
+  }
   const api = classApi(document);
   // A replay watched from the projector's link is not a student's game.
   if (api !== null && params.replay === null) startClass(app, api);
@@ -147,9 +152,39 @@ function startClass(app: App, api: string): void {
     },
     byId("app"),
     storage,
+    classNameMax(document),
+    (height) => barTop(app.layout, height),
   );
   app.classMode = mode;
   void mode.start();
+}
+
+/** The class bar's top for its height, CSS px: on a tall screen just above the trap
+ * slider (the band under the large readout; the cup stays clear), else the title row. */
+function barTop(layout: Layout, height: number): number {
+  if (layout.mode !== "tall") return 0;
+  const sliderTop = (layout.slider.y - layout.knobRadius) * layout.scale + layout.offsetY;
+  return Math.max(0, sliderTop - height - 4);
+}
+
+/** Seconds a finished replay stays on the projector before it plays again. */
+const REPLAY_PAUSE_S = 6;
+
+/** A replay that plays without a hand on it (the projector's): unpaused, and started again
+ * a few seconds after its end. */
+function playOnItsOwn(app: App): void {
+  let endedAt: number | null = null;
+  setInterval(() => {
+    const g = app.game;
+    const ended = g.won || g.allEscaped;
+    if (ended) {
+      endedAt ??= performance.now();
+      if (performance.now() - endedAt > REPLAY_PAUSE_S * 1000) {
+        endedAt = null;
+        app.restart();
+      }
+    } else if (g.paused) g.togglePause();
+  }, 250);
 }
 
 /** The tab's icon, drawn in code (no image file). */

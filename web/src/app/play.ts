@@ -148,7 +148,8 @@ export class Play {
   /** The win's notice when the autopilot or a replay won (never a player's score). */
   notAPlayer(score: number): string | null {
     if (this.replaying) return t("page.replay_won", { n: score, claimed: this.replaying.score });
-    if (this.challengeSettings) return t("page.class_won", { n: score });
+    // Class mode: the class bar tells what became of the game (not over the condensate).
+    if (this.challengeSettings) return "";
     const pilot = this.autopilot;
     if (pilot?.flew)
       return t("page.autopilot_won", {

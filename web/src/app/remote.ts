@@ -392,6 +392,7 @@ export class RemoteGame implements GameLike {
       sim.temperature * n,
       sim.criticalTemperature,
       lightest * sim.gravity * HEIGHT_MIN,
+      lightest * sim.gravity * this.trapHeight,
     );
   }
 

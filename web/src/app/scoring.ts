@@ -74,7 +74,7 @@ export class Scoreboard {
     this.host.say(WON(score));
     const other = this.host.notAPlayer(score);
     if (other !== null) {
-      this.host.notify(other);
+      if (other) this.host.notify(other);
       this.readyForNext = true;
     } else if (this.table.qualifies(score, seconds)) {
       this.host.showTable(false); // the name box must be seen

@@ -259,6 +259,7 @@ export class Game {
       sim.temperature * n,
       sim.criticalTemperature,
       lightest * sim.gravity * HEIGHT_MIN,
+      lightest * sim.gravity * this.trapHeight,
     );
   }
 }
@@ -268,17 +269,20 @@ export class Game {
  * desktop's rule). T = E / N changes only when atoms leave, and an atom leaves only with
  * more than escapeEnergy = m g H_min. Out of reach exactly when no atom is left; when one
  * atom is left above Tc(1) (alone it never collides); or when T >= Tc(N) and no atom can
- * ever leave (E <= escapeEnergy).
+ * ever leave (E <= escapeEnergy). With E <= trapEnergy (m g H at the trap as it stands)
+ * and T >= Tc, no atom can leave until the trap is lowered: "lose.stuck_here" says so.
  */
 export function outOfReach(
   n: number,
   energy: number,
   criticalTemperature: number,
   escapeEnergy: number,
+  trapEnergy: number | null = null,
 ): string | null {
   if (n <= 0) return "lose.all_escaped";
   if (energy / n < criticalTemperature) return null; // condensing now
   if (n === 1) return "lose.one_atom";
   if (energy <= escapeEnergy) return "lose.stuck";
+  if (trapEnergy !== null && energy <= trapEnergy) return "lose.stuck_here";
   return null;
 }

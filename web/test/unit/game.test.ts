@@ -369,6 +369,10 @@ describe("too few atoms (the desktop's rule)", () => {
     expect(outOfReach(1, 5, 10, 5)).toBeNull(); // below Tc: condensing
     expect(outOfReach(3, 30, 5, 40)).toBe("lose.stuck");
     expect(outOfReach(3, 300, 5, 40)).toBeNull(); // one may leave with nearly all of it
+    // Issue 34: too cold to leave as the trap stands (E <= m g H), still above Tc.
+    expect(outOfReach(2, 15, 7.2, 5, 20)).toBe("lose.stuck_here");
+    expect(outOfReach(2, 15, 7.2, 5, 10)).toBeNull(); // one may leave over this trap
+    expect(outOfReach(2, 13, 7.2, 5, 20)).toBeNull(); // condensing now
   });
 
   test("the game asks it with the lightest atom's escape energy; never after the win", () => {
