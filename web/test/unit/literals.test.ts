@@ -37,8 +37,8 @@ const ALLOWED = new Set([
   // A replay code's and a setting's refusal details, the class server's and the desktop's
   // words for them (shown only as a translated notice's {problem}, like the desktop's).
   ...[
-    "settings.n_atoms must be ..",
-    "settings.radius must be ..",
+    "settings.n_atoms must be  ..",
+    "settings.radius must be  ..",
     "settings.escape must be rim or knife",
     "settings.tc_exponent must be in (0, 2]",
     "seed must be 0..2^53-1",
