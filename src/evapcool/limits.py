@@ -201,6 +201,9 @@ SCORE_SECONDS_MAX = 1e9
 REPLAY_ATOMS = Range(2, 400, integer=True)
 REPLAY_RADIUS = Range(1.0, 40.0, "px")
 REPLAY_FRAMES_MAX = 36_000
+#: A student's name in a class, characters: what a projector's row shows whole. The server,
+#: the page's name box and the desktop's --name read this one number.
+CLASS_NAME_MAX = 24
 #: Window sides, px: at 8192 the loader's top rows start at 72 px/frame, under VELOCITY_MAX.
 WINDOW_SIDE = Range(160, 8192, "px", integer=True)
 #: Random seed of the shared start generator (physics/start.py): every edition holds it

@@ -116,3 +116,14 @@ def test_a_bad_class_url_is_one_line_and_exit_2(url, capsys):
 def test_name_without_class_is_refused(capsys):
     assert cli.main(["--name", "Ada", "--frames", "1"]) == 2
     assert "--name needs --class" in capsys.readouterr().err
+
+
+def test_a_name_longer_than_the_leaderboard_shows_is_refused(capsys):
+    """One number everywhere (issue 34): the server keeps 24 characters, so --name takes 24."""
+    from evapcool.limits import CLASS_NAME_MAX
+
+    long = "Maximilian Alexander Schmidt"  # 28 characters: the server would keep 24
+    args = ["--class", "http://127.0.0.1:9/", "--name", long, "--frames", "1"]
+    assert cli.main(args) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and "--name" in err[0] and f"at most {CLASS_NAME_MAX}" in err[0]

@@ -24,7 +24,7 @@ from evapcool.game.settings import (
     max_atoms,
     with_overrides,
 )
-from evapcool.limits import USER_FILE_MAX_BYTES, ParameterError
+from evapcool.limits import CLASS_NAME_MAX, USER_FILE_MAX_BYTES, ParameterError
 from evapcool.physics.world import ESCAPE_RULES
 from evapcool.view.screen import WINDOW as SCENE_SIZE
 from evapcool.view.screen import window_room
@@ -184,6 +184,11 @@ def _class_link(args: argparse.Namespace) -> tuple[ClassLink | None, str | None]
     if args.class_url is None:
         return None, "--name needs --class URL" if args.name is not None else None
     name = args.name if args.name is not None else _user_name()
+    if args.name is not None and len(" ".join(args.name.split())) > CLASS_NAME_MAX:
+        return None, (
+            f"--name must be at most {CLASS_NAME_MAX} characters, as the class's leaderboard "
+            f"shows it (got {len(' '.join(args.name.split()))})"
+        )
     try:
         return ClassLink(args.class_url, name), None
     except ValueError as exc:

@@ -13,7 +13,9 @@ import unicodedata
 from functools import cache
 from pathlib import Path
 
-NAME_MAX = 24
+from evapcool.limits import CLASS_NAME_MAX
+
+NAME_MAX = CLASS_NAME_MAX
 NAME_EMPTY = "name: give 1 to {max} visible characters"
 #: Bidirectional overrides and isolates: they can make a name read as another one.
 BIDI_CONTROLS = frozenset("\u202a\u202b\u202c\u202d\u202e\u2066\u2067\u2068\u2069\u200e\u200f")
