@@ -28,8 +28,14 @@ shot="$WORK/screenshot.png"
 rm -f "$shot"
 start=$(date +%s)
 SDL_VIDEODRIVER=dummy SDL_AUDIODRIVER=dummy timeout 180 \
-    "$exe" --frames 60 --seed 1 --screenshot "$shot"
+    "$exe" --frames 60 --seed 1 --screenshot "$shot" 2> "$WORK/stderr.txt"
 run_s=$(( $(date +%s) - start ))
+# The executable carries the compiled core: no note that it plays on the reference engine.
+if grep -q "compiled engine core is not installed" "$WORK/stderr.txt"; then
+    echo "check_exe: the executable has no compiled core:" >&2
+    cat "$WORK/stderr.txt" >&2
+    exit 1
+fi
 
 # A real picture: a PNG of the window's size with the scene's many colours.
 "$PY" - "$shot" <<'PYEOF'
