@@ -81,3 +81,22 @@ export async function openPage(
   await page.waitForFunction(() => window.evapcool !== undefined);
   return { page, log, cdp };
 }
+
+/** The page's state (window.evapcool.state()). */
+export const state = (page) => page.evaluate(() => window.evapcool.state());
+
+/** Win with a scripted ramp (the page's own keys: Space, then ArrowDown every 25 frames);
+ * the win's frame counted, the name box open. Returns the state then. */
+export async function winGame(page) {
+  await page.evaluate(() => localStorage.clear());
+  await page.keyboard.press("Space");
+  let s = await state(page);
+  for (let k = 0; k < 200 && s.wonAt === null; k++) {
+    if (s.trapHeight > 100) await page.keyboard.press("ArrowDown");
+    await page.evaluate(() => window.evapcool.runFrames(25));
+    s = await state(page);
+  }
+  if (s.nameBox !== true) throw new Error("the win did not open the name box");
+  await page.evaluate(() => window.evapcool.runFrames(2));
+  return state(page);
+}

@@ -6,7 +6,7 @@ import { existsSync, readFileSync } from "node:fs";
 import { resolve } from "node:path";
 import { deflateSync, crc32 } from "node:zlib";
 import { after, before, describe, test } from "node:test";
-import { launch, openPage, PAGE, PAGE_URL } from "./browser.mjs";
+import { launch, openPage, PAGE, PAGE_URL, state, winGame } from "./browser.mjs";
 
 /** The page must answer within this (ms): a bounded wait, the test fails past it. */
 const ANSWER_MS = 1000;
@@ -77,8 +77,6 @@ async function openWith(query, pattern) {
   );
   return { page, errors, notices: await notices.jsonValue() };
 }
-
-const state = (page) => page.evaluate(() => window.evapcool.state());
 
 describe("?replay= codes", () => {
   test("a 190 KB code unpacking to 140 MB: refused in one short line, the rest kept", async () => {
@@ -282,15 +280,7 @@ describe("stored scores", () => {
 describe("names", () => {
   test("typed in the name box: cut at 16 whole characters, the family's joiners kept", async () => {
     const { page, log } = await openPage(browser, { query: "?seed=1" });
-    await page.evaluate(() => localStorage.clear());
-    await page.keyboard.press("Space");
-    let s = await state(page);
-    for (let k = 0; k < 200 && s.wonAt === null; k++) {
-      if (s.trapHeight > 100) await page.keyboard.press("ArrowDown");
-      await page.evaluate(() => window.evapcool.runFrames(25));
-      s = await state(page);
-    }
-    assert.equal(s.nameBox, true, "the win opens the name box");
+    await winGame(page);
     const family = "👨‍👩‍👧";
     const kept = `${family}${"a".repeat(14)}e\u0301`; // 16 characters, 23 code points
     await page.focus("#name");

@@ -4,7 +4,7 @@
 import assert from "node:assert/strict";
 import { existsSync } from "node:fs";
 import { after, before, test } from "node:test";
-import { launch, openPage, PAGE } from "./browser.mjs";
+import { launch, openPage, PAGE, state, winGame } from "./browser.mjs";
 
 let browser;
 before(async () => {
@@ -12,22 +12,6 @@ before(async () => {
   browser = await launch();
 });
 after(async () => browser?.close());
-
-const state = (page) => page.evaluate(() => window.evapcool.state());
-
-/** Win with a scripted ramp (the page's own keys), so the name box opens. */
-async function winGame(page) {
-  await page.evaluate(() => localStorage.clear());
-  await page.keyboard.press("Space");
-  let s = await state(page);
-  for (let k = 0; k < 200 && s.wonAt === null; k++) {
-    if (s.trapHeight > 100) await page.keyboard.press("ArrowDown");
-    await page.evaluate(() => window.evapcool.runFrames(25));
-    s = await state(page);
-  }
-  assert.equal(s.nameBox, true, "the win opens the name box");
-  await page.evaluate(() => window.evapcool.runFrames(2));
-}
 
 /** A finger's tap at (x, y) CSS px (touch events through DevTools, as a phone sends them). */
 async function tap(cdp, x, y) {
