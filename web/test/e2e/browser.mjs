@@ -85,10 +85,9 @@ export async function openPage(
 /** The page's state (window.evapcool.state()). */
 export const state = (page) => page.evaluate(() => window.evapcool.state());
 
-/** Win with a scripted ramp (the page's own keys: Space, then ArrowDown every 25 frames);
- * the win's frame counted, the name box open. Returns the state then. */
-export async function winGame(page) {
-  await page.evaluate(() => localStorage.clear());
+/** Press Space, then lower the trap 5 px every 25 frames (real key presses) down to 100,
+ * until the win's frame is counted (at most 5 000 frames). Returns the state then. */
+export async function rampToWin(page) {
   await page.keyboard.press("Space");
   let s = await state(page);
   for (let k = 0; k < 200 && s.wonAt === null; k++) {
@@ -96,7 +95,27 @@ export async function winGame(page) {
     await page.evaluate(() => window.evapcool.runFrames(25));
     s = await state(page);
   }
+  return s;
+}
+
+/** Win with the scripted ramp on an empty table, so the name box opens; the state then. */
+export async function winGame(page) {
+  await page.evaluate(() => localStorage.clear());
+  const s = await rampToWin(page);
   if (s.nameBox !== true) throw new Error("the win did not open the name box");
   await page.evaluate(() => window.evapcool.runFrames(2));
   return state(page);
+}
+
+/** Where the verify panel's Verify button is drawn, in the page's CSS pixels. */
+export function verifyButtonAt(page) {
+  return page.evaluate(() => {
+    const app = window.evapcool.app;
+    const t = app.targets.find((x) => x.action === "verifyrun");
+    const z = app.overlayZoom();
+    const l = app.layout;
+    const x = z.x + (t.rect.x + t.rect.w / 2 - z.cx) * z.k;
+    const y = z.y + (t.rect.y + t.rect.h / 2 - z.cy) * z.k;
+    return [l.offsetX + x * l.scale, l.offsetY + y * l.scale];
+  });
 }

@@ -6,7 +6,7 @@ import { existsSync, readFileSync } from "node:fs";
 import { resolve } from "node:path";
 import { deflateSync, crc32 } from "node:zlib";
 import { after, before, describe, test } from "node:test";
-import { launch, openPage, PAGE, PAGE_URL, state, winGame } from "./browser.mjs";
+import { launch, openPage, PAGE, PAGE_URL, state, verifyButtonAt, winGame } from "./browser.mjs";
 
 /** The page must answer within this (ms): a bounded wait, the test fails past it. */
 const ANSWER_MS = 1000;
@@ -139,16 +139,7 @@ describe("the verify panel", () => {
       area.value = t; // a paste of megabytes: typing it would take hours
       area.dispatchEvent(new Event("input"));
     }, text);
-    await page.evaluate(() => {
-      const app = window.evapcool.app;
-      const t = app.targets.find((x) => x.action === "verifyrun");
-      const z = app.overlayZoom();
-      const l = app.layout;
-      const x = z.x + (t.rect.x + t.rect.w / 2 - z.cx) * z.k;
-      const y = z.y + (t.rect.y + t.rect.h / 2 - z.cy) * z.k;
-      window.__at = [l.offsetX + x * l.scale, l.offsetY + y * l.scale];
-    });
-    const at = await page.evaluate(() => window.__at);
+    const at = await verifyButtonAt(page);
     await page.mouse.click(at[0], at[1]);
   }
 

@@ -6,7 +6,7 @@ import { existsSync, mkdtempSync, writeFileSync } from "node:fs";
 import { tmpdir } from "node:os";
 import { join, resolve } from "node:path";
 import { after, before, describe, test } from "node:test";
-import { launch, openPage, PAGE } from "./browser.mjs";
+import { launch, openPage, PAGE, rampToWin } from "./browser.mjs";
 import { decodePng, pixel, regionStats } from "./png.mjs";
 
 let browser;
@@ -308,14 +308,8 @@ describe("the page", () => {
   test("a scripted ramp wins; the name box takes a name; the table keeps it after a reload", async () => {
     const { page, log } = await openPage(browser, { query: "?seed=1" });
     await page.evaluate(() => localStorage.clear());
-    await page.keyboard.press("Space");
     // Lower the trap 5 px every 25 frames (real key presses), until the gas condenses.
-    let s = await state(page);
-    for (let k = 0; k < 200 && s.wonAt === null; k++) {
-      if (s.trapHeight > 100) await page.keyboard.press("ArrowDown");
-      await page.evaluate(() => window.evapcool.runFrames(25));
-      s = await state(page);
-    }
+    let s = await rampToWin(page);
     assert.equal(s.won, true, "the ramp condenses the gas");
     assert.ok(s.score > 10, `score ${s.score}`);
     // Said at the moment of the win (an atom above the rim may still leave afterwards).

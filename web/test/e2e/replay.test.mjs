@@ -7,7 +7,7 @@ import { execFileSync, spawnSync } from "node:child_process";
 import { existsSync } from "node:fs";
 import { resolve } from "node:path";
 import { after, before, describe, test } from "node:test";
-import { launch, openPage, PAGE } from "./browser.mjs";
+import { launch, openPage, PAGE, rampToWin, verifyButtonAt } from "./browser.mjs";
 
 const PYTHON =
   process.env.EVAPCOOL_PYTHON ?? resolve(import.meta.dirname, "../../../.venv/bin/python");
@@ -23,13 +23,7 @@ const state = (page) => page.evaluate(() => window.evapcool.state());
 
 /** Win with a scripted ramp (the page's keys): 5 px lower every 25 frames down to 100. */
 async function winGame(page) {
-  await page.keyboard.press("Space");
-  let s = await state(page);
-  for (let k = 0; k < 200 && s.wonAt === null; k++) {
-    if (s.trapHeight > 100) await page.keyboard.press("ArrowDown");
-    await page.evaluate(() => window.evapcool.runFrames(25));
-    s = await state(page);
-  }
+  const s = await rampToWin(page);
   assert.equal(s.won, true, "the ramp wins");
   return s;
 }
@@ -83,15 +77,7 @@ describe("replay codes between the editions", { skip: !existsSync(PYTHON) && "no
     await page.waitForSelector("#codes:not([hidden])");
     await page.fill("#codes", [a.code, b.forged, "EC1.broken.00000000", b.code].join("\n"));
     // The panel's Verify button, as drawn (a mouse click on it).
-    const at = await page.evaluate(() => {
-      const app = window.evapcool.app;
-      const t = app.targets.find((x) => x.action === "verifyrun");
-      const z = app.overlayZoom();
-      const l = app.layout;
-      const x = z.x + (t.rect.x + t.rect.w / 2 - z.cx) * z.k;
-      const y = z.y + (t.rect.y + t.rect.h / 2 - z.cy) * z.k;
-      return [l.offsetX + x * l.scale, l.offsetY + y * l.scale];
-    });
+    const at = await verifyButtonAt(page);
     await page.mouse.click(at[0], at[1]);
     await page.waitForFunction(
       () => !window.evapcool.app.verifier.busy && window.evapcool.app.verifier.results.length === 4,
