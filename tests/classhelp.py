@@ -93,7 +93,7 @@ class Server:
     proc: subprocess.Popen[str]
     base: str
     token: str
-    data: Path
+    data: Path | str
 
     @property
     def lecturer(self) -> dict[str, str]:
@@ -124,7 +124,7 @@ def _signal_group(pid: int, sig: int) -> None:
 
 
 def start_server(
-    data: Path,
+    data: Path | str,
     workers: int = 1,
     port: int | None = None,
     token: str | None = None,
@@ -132,8 +132,9 @@ def start_server(
 ) -> Server:
     """`evapcool class` on a free port with `data`; returns once it answers.
 
-    token: the lecturer's token of a file served before (it prints none then; a new one
-    with extra=("--new-link",)).
+    data: a SQLite file, or a PostgreSQL database's URL (--db). token: the lecturer's
+    token of a store served before (it prints none then; a new one with
+    extra=("--new-link",)).
     """
     import httpx
 
@@ -146,7 +147,7 @@ def start_server(
         "class",
         "--port",
         str(port),
-        "--data",
+        "--db" if isinstance(data, str) else "--data",
         str(data),
         "--workers",
         str(workers),

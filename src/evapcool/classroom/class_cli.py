@@ -1,12 +1,12 @@
 """`evapcool class`: the class-competition server; prints the lecturer's and students' links
-once it answers."""
+once it answers. `evapcool class --department`: a department's server of many classes
+(the administrator's link instead); `evapcool class admin ...`: its lecturers and classes."""
 
 from __future__ import annotations
 
 import argparse
 import os
 import socket
-import sqlite3
 import sys
 from pathlib import Path
 
@@ -23,6 +23,12 @@ FILE_NAME = "class.sqlite"
 #: The line printed when the class extra is not installed.
 NEEDS_EXTRA = "evapcool class needs the class extra: pip install 'evapcool[class]'"
 EXTRA_MODULES = ("starlette", "uvicorn", "segno", "confusables")
+#: The line printed when --db names PostgreSQL and psycopg is not installed.
+NEEDS_DEPARTMENT = (
+    "evapcool class --db postgresql://... needs the department extra: "
+    "pip install 'evapcool[department]'"
+)
+DEPARTMENT_MODULES = ("psycopg", "psycopg_pool")
 #: The folder the applet keeps its files in when set (evapcool.app.storage.DATA_ENV).
 DATA_ENV = "EVAPCOOL_DATA_DIR"
 
@@ -89,15 +95,27 @@ def build_parser() -> OneLineParser:
         "folder)",
     )
     parser.add_argument(
+        "--db",
+        default=None,
+        metavar="FILE|URL",
+        help="the store: a SQLite file, or a PostgreSQL database (postgresql://...)",
+    )
+    parser.add_argument(
+        "--department",
+        action="store_true",
+        help="serve a department's classes: join by code at /, the administrator's page",
+    )
+    parser.add_argument(
         "--max-students",
         type=students,
         default=DEFAULT_STUDENTS,
-        help=f"players the class file takes at most ({DEFAULT_STUDENTS})",
+        help=f"players a class takes at most ({DEFAULT_STUDENTS})",
     )
     parser.add_argument(
         "--new-link",
         action="store_true",
-        help="make a new lecturer's link (the last one stops working)",
+        help="make a new lecturer's (--department: administrator's) link; the last one stops "
+        "working",
     )
     parser.add_argument(
         "--workers",
@@ -117,15 +135,40 @@ def _listen(host: str, number: int) -> socket.socket:
     return sock
 
 
+def is_url(text: str) -> bool:
+    """Whether a --db value names a PostgreSQL database (else a SQLite file)."""
+    return text.startswith(("postgresql://", "postgres://"))
+
+
+def store_of(args: argparse.Namespace) -> tuple[Path | str | None, str]:
+    """(the store: a SQLite file or a PostgreSQL URL, or None after printing why not; the
+    option that named it)."""
+    option = "--db" if args.db is not None else "--data"
+    if args.db is not None and is_url(args.db):
+        if not all(available(m) for m in DEPARTMENT_MODULES):
+            print(NEEDS_DEPARTMENT, file=sys.stderr)
+            return None, option
+        return str(args.db), option
+    data = Path(args.db) if args.db is not None else (args.data or default_data())
+    if data.is_dir():
+        print(error_line("class", f"argument {option}: {data} is a folder"), file=sys.stderr)
+        return None, option
+    return data, option
+
+
 def main(argv: list[str] | None = None) -> int:
-    """Parse, bind, print the links, serve until Ctrl+C."""
+    """Parse, bind, print the links, serve until Ctrl+C (`admin ...`: class_admin)."""
+    argv = sys.argv[1:] if argv is None else argv
+    if argv[:1] == ["admin"]:
+        from evapcool.classroom.class_admin import main as admin_main
+
+        return admin_main(argv[1:])
     args = build_parser().parse_args(argv)
     if not all(available(m) for m in EXTRA_MODULES):
         print(NEEDS_EXTRA, file=sys.stderr)
         return EXIT_USAGE
-    data = args.data or default_data()
-    if data.is_dir():
-        print(error_line("class", f"argument --data: {data} is a folder"), file=sys.stderr)
+    data, option = store_of(args)
+    if data is None:
         return EXIT_USAGE
     host = "0.0.0.0" if args.lan else "127.0.0.1"
     try:
@@ -134,53 +177,82 @@ def main(argv: list[str] | None = None) -> int:
         print(error_line("class", f"argument --port: {args.port}: {exc.strerror}"), file=sys.stderr)
         return EXIT_USAGE
     try:
-        token = lecturer_token(data, args.new_link)
-    except (OSError, sqlite3.Error) as exc:
+        token = first_token(data, args.new_link, args.department)
+    except Exception as exc:  # the store's own errors (sqlite3, psycopg)
         sock.close()
-        print(error_line("class", f"argument --data: {data}: {exc}"), file=sys.stderr)
+        print(error_line("class", f"argument {option}: {data}: {exc}"), file=sys.stderr)
         return EXIT_USAGE
     shown = lan_address() if args.lan else host
-    return serve(sock, data, args.workers, shown, token, args.max_students)
+    return serve(sock, data, args.workers, shown, token, args.max_students, args.department)
 
 
-def lecturer_token(data: Path, new: bool) -> str | None:
-    """A new lecturer's token if asked for or the file has none yet, else None (the one
-    made before still works: the file keeps its digest, never the token)."""
-    from evapcool.classroom.server import LECTURER_SECRET, new_lecturer_token
-    from evapcool.classroom.store import Store
+def first_token(data: Path | str, new: bool, department: bool = False) -> str | None:
+    """A new lecturer's (department: administrator's) token if asked for or the store has
+    none yet, else None (the one made before still works: only its digest is kept)."""
+    from evapcool.classroom.department import new_admin_token
+    from evapcool.classroom.server import (
+        ADMIN_SECRET,
+        LECTURER_SECRET,
+        new_lecturer_token,
+        open_store,
+    )
 
-    store = Store(data)
+    store = open_store(data, connections=1)
+    name, make = (
+        (ADMIN_SECRET, new_admin_token) if department else (LECTURER_SECRET, new_lecturer_token)
+    )
     try:
-        if new or store.secret(LECTURER_SECRET) is None:
-            return new_lecturer_token(store)
+        if new or store.secret(name) is None:
+            return make(store)
         return None
     finally:
         store.close()
 
 
-def links(words: Catalog, base: str, token: str | None, data: Path) -> list[str]:
-    """What is printed once the server answers: the lecturer's link (or that the last
-    one still works), the students' link, the file, how to stop."""
-    lecturer = (
-        words.t("class.cli.lecturer", url=f"{base}/lecturer?token={token}")
-        if token
-        else words.t("class.cli.lecturer_kept")
-    )
+def links(
+    words: Catalog, base: str, token: str | None, data: Path | str, department: bool = False
+) -> list[str]:
+    """What is printed once the server answers: the lecturer's (department: the
+    administrator's) link, or that the last one still works, the students' link, the
+    store, how to stop."""
+    if department:
+        first = (
+            words.t("class.cli.admin", url=f"{base}/admin?token={token}")
+            if token
+            else words.t("class.cli.admin_kept")
+        )
+    else:
+        first = (
+            words.t("class.cli.lecturer", url=f"{base}/lecturer?token={token}")
+            if token
+            else words.t("class.cli.lecturer_kept")
+        )
     return [
-        lecturer,
+        first,
         words.t("class.cli.students", url=f"{base}/"),
-        words.t("class.cli.data", path=str(data)),
+        words.t("class.cli.data", path=_shown_store(data)),
         words.t("class.cli.stop"),
     ]
 
 
+def _shown_store(data: Path | str) -> str:
+    """The store as printed: a file's path, a database URL without its password."""
+    text = str(data)
+    if is_url(text) and "@" in text.split("//", 1)[1].split("/", 1)[0]:
+        scheme, rest = text.split("//", 1)
+        user, host = rest.split("@", 1)
+        return f"{scheme}//{user.split(':', 1)[0]}@{host}"
+    return text
+
+
 def serve(
     sock: socket.socket,
-    data: Path,
+    data: Path | str,
     pool_workers: int,
     shown_host: str,
     token: str | None,
     max_students: int = DEFAULT_STUDENTS,
+    department: bool = False,
 ) -> int:
     """Run the server on a bound socket; print the links once it answers."""
     import uvicorn
@@ -188,7 +260,7 @@ def serve(
     from evapcool.classroom.server import Limits, create_app
 
     base = f"http://{shown_host}:{sock.getsockname()[1]}"
-    lines = links(Catalog(choose_locale()), base, token, data)
+    lines = links(Catalog(choose_locale()), base, token, data, department)
 
     class Announcing(uvicorn.Server):
         """uvicorn's server, printing the links once it has started (workers warm)."""
@@ -198,7 +270,8 @@ def serve(
             if self.started:
                 print("\n".join(lines), flush=True)
 
-    app = create_app(data, pool_workers, Limits(students=max_students), join_url=f"{base}/")
+    limits = Limits(students=max_students)
+    app = create_app(data, pool_workers, limits, join_url=f"{base}/", department=department)
     config = uvicorn.Config(app, log_level="warning", timeout_graceful_shutdown=2)
     Announcing(config).run(sockets=[sock])
     return 0

@@ -9,6 +9,7 @@ SHA-256), and lets it talk to this server only.
 from __future__ import annotations
 
 import base64
+import functools
 import hashlib
 import html
 import ipaddress
@@ -329,10 +330,18 @@ def page(
     )
 
 
-def game_page() -> tuple[str, str]:
-    """The browser edition with the class marker before </head>, and its policy: the
-    built page's, talking to this server only (from a file it talks to nothing), its
-    inline scripts allowed by their hashes instead of 'unsafe-inline'."""
+def class_marker(api: str) -> str:
+    """The class marker of a class whose API is at `api` (a path on this server)."""
+    return CLASS_MARKER.replace(
+        '"api":"/api"', json.dumps({"api": api}, separators=(",", ":"))[1:-1]
+    )
+
+
+@functools.lru_cache(maxsize=256)
+def game_page(api: str = "/api") -> tuple[str, str]:
+    """The browser edition with the class marker (its API at `api`) before </head>, and
+    its policy: the built page's, talking to this server only (from a file it talks to
+    nothing), its inline scripts allowed by their hashes instead of 'unsafe-inline'."""
     text = (resources.files("evapcool") / "web" / "evapcool.html").read_text("utf-8")
     at = text.find("</head>")
     meta = META_POLICY.search(text)
@@ -341,7 +350,7 @@ def game_page() -> tuple[str, str]:
     hashes = " ".join(source_hash(body) for body in INLINE_SCRIPT.findall(text))
     policy = meta.group(2).replace("connect-src 'none'", "connect-src 'self'")
     policy = policy.replace("script-src 'unsafe-inline'", f"script-src {hashes}")
-    text = text[: meta.start(2)] + policy + text[meta.end(2) : at] + CLASS_MARKER + text[at:]
+    text = text[: meta.start(2)] + policy + text[meta.end(2) : at] + class_marker(api) + text[at:]
     # Framed by this server's projector only (it plays replays in the game page).
     return text, f"{policy}; base-uri 'none'; frame-ancestors 'self'"
 

@@ -1,8 +1,14 @@
-"""`evapcool class`'s web server (Starlette): challenges, students, verified games, pages.
+"""`evapcool class`'s web server (Starlette): classes, challenges, students, verified games.
 
 Games are replayed in worker processes, shared fairly between addresses (fairqueue); a
-submission is answered 200 only after its entry is committed to SQLite. Store calls run one
-at a time on a thread of their own. The lecturer's token is kept only as a digest.
+submission is answered 200 only after its entry is committed to the store (SQLite, or
+PostgreSQL for a department). SQLite's calls run one at a time on a thread of their own,
+PostgreSQL's on a few threads with a pool of connections. Tokens are kept only as digests.
+
+A single-class server serves its one class at /, /projector, /lecturer and /api/...; every
+class of a department's server has the same under /c/{code}/. With PostgreSQL several
+processes serve one department: a changed board is announced through the database
+(LISTEN/NOTIFY) and each process sends it to its own streams.
 """
 
 from __future__ import annotations
@@ -13,6 +19,7 @@ import hmac
 import json
 import multiprocessing
 import secrets
+import threading
 import time
 from collections.abc import AsyncIterator, Callable
 from concurrent.futures import ProcessPoolExecutor, ThreadPoolExecutor
@@ -24,7 +31,13 @@ from typing import Any, TypeVar
 from starlette.applications import Starlette
 from starlette.exceptions import HTTPException
 from starlette.requests import Request
-from starlette.responses import HTMLResponse, JSONResponse, Response, StreamingResponse
+from starlette.responses import (
+    HTMLResponse,
+    JSONResponse,
+    RedirectResponse,
+    Response,
+    StreamingResponse,
+)
 from starlette.routing import Route
 
 from evapcool.classroom import pages
@@ -32,7 +45,8 @@ from evapcool.classroom.challenge import challenge_doc, parse_challenge
 from evapcool.classroom.errors import RefusedError, read_json, refused_response
 from evapcool.classroom.fairqueue import FairQueue
 from evapcool.classroom.ratelimit import Rate, RateLimiter
-from evapcool.classroom.store import NAME_MAX, ClassFullError, NameTakenError, Store
+from evapcool.classroom.rooms import DEFAULT_ROOM, normal_code
+from evapcool.classroom.store import NAME_MAX, ClassFullError, ClassStore, NameTakenError, Store
 from evapcool.classroom.verifier import check_submission, code_chars_ok, reference_frames, warm
 from evapcool.classroom.words import Words, raw
 from evapcool.game.replay import decode
@@ -51,9 +65,15 @@ SAFE_HEADERS = {
 }
 #: The policy of answers that are not pages (JSON, CSV, events): nothing may run or load.
 DATA_POLICY = "default-src 'none'; frame-ancestors 'none'"
-#: The store's names of the digests of the lecturer's token and the projector's key.
+#: The store's names of the digests of the single class's lecturer's token, its projector's
+#: key, and the department's administrator's token.
 LECTURER_SECRET = "lecturer"
 PROJECTOR_SECRET = "projector"
+ADMIN_SECRET = "admin"
+#: Seconds between forgetting idle rate buckets held in the database.
+BUCKET_SWEEP = 60.0
+#: Threads (and pooled connections) for a store shared by several processes.
+SHARED_DB_THREADS = 8
 
 
 #: API requests per client address (a class behind one NAT address shares it).
@@ -97,7 +117,14 @@ def projector_key(lecturer_token: str) -> str:
     return mac.hexdigest()[:32]
 
 
-def new_lecturer_token(store: Store) -> str:
+def room_projector_key(lecturer_digest: str, code: str) -> str:
+    """A department class's projector key, made from its lecturer's digest and its code
+    (the lecturer's page gives it; the server checks it without storing it)."""
+    mac = hmac.new(lecturer_digest.encode(), b"evapcool projector " + code.encode(), "sha256")
+    return mac.hexdigest()[:32]
+
+
+def new_lecturer_token(store: ClassStore) -> str:
     """A new lecturer's token (the last one stops working); the store keeps its digests."""
     token = secrets.token_urlsafe(24)
     store.set_secret(LECTURER_SECRET, digest(token))
@@ -112,68 +139,98 @@ def _same(given: str, wanted: str | None) -> bool:
 
 @dataclass
 class Listener:
-    """One open event stream: its queue, its address, and whether it holds the key."""
+    """One open event stream: its queue, its address, its class, whether it holds the key."""
 
     queue: asyncio.Queue[str]
     address: str
     keyed: bool
+    room: int = DEFAULT_ROOM
 
 
 @dataclass
 class Hub:
-    """The server's state: store, pools, secrets' digests, limiters, the streams."""
+    """The server's state: store, pools, limiters, this process's streams."""
 
-    store: Store
+    store: ClassStore
     limits: Limits
     pool: ProcessPoolExecutor
     workers: int
+    department: bool = False
     db_thread: ThreadPoolExecutor = field(default_factory=lambda: ThreadPoolExecutor(1))
     words: Words = field(default_factory=Words)
     listeners: list[Listener] = field(default_factory=list)
-    showing: dict[str, Any] | None = None
+    #: Rooms whose board another process (or this one) announced changed, to send.
+    pending: set[int] = field(default_factory=set)
 
     def __post_init__(self) -> None:
+        # Requests per address are one process's flood guard; submissions and joins are
+        # counted in the store (across processes when it is shared).
         self.per_client = RateLimiter(self.limits.client)
-        self.per_token = RateLimiter(self.limits.submit)
-        self.joins = RateLimiter(self.limits.join)
         self.queue = FairQueue(self.workers, self.limits.student_jobs, self.limits.address_jobs)
-        self.lecturer_digest = self.store.secret(LECTURER_SECRET)
-        self.projector_digest = self.store.secret(PROJECTOR_SECRET)
+        self.wake = asyncio.Event()
 
     async def db(self, fn: Callable[..., T], *args: Any) -> T:
-        """Run a Store call on the store's thread (one at a time, off the event loop)."""
+        """Run a store call on the store's threads (off the event loop)."""
         return await asyncio.get_running_loop().run_in_executor(self.db_thread, fn, *args)
 
-    async def board(self, keyed: bool = False) -> dict[str, Any]:
-        """The leaderboard of the current (open, else last) challenge; the replay's code
-        only for the key's holders while that game's challenge is open."""
-        return await self.db(_board, self.store, self.showing, keyed)
+    async def board(self, room: int, keyed: bool = False) -> dict[str, Any]:
+        """The leaderboard of a room's current (open, else last) challenge; the replay's
+        code only for the key's holders while that game's challenge is open."""
+        return await self.db(_board, self.store, room, keyed)
 
-    async def publish(self) -> None:
-        """Send the leaderboard to every event stream; a slow one keeps only the newest."""
-        texts = {keyed: json.dumps(await self.board(keyed)) for keyed in (False, True)}
-        for listener in list(self.listeners):
+    async def publish(self, room: int) -> None:
+        """A room's board changed: tell every process sharing the store, or (one process)
+        send it to this one's streams now."""
+        if self.store.shared:
+            await self.db(self.store.notify, room)
+        else:
+            await self.send(room)
+
+    async def send(self, room: int) -> None:
+        """Send a room's leaderboard to this process's streams of it; a slow one keeps only
+        the newest."""
+        here = [s for s in self.listeners if s.room == room]
+        texts = {}
+        for keyed in {s.keyed for s in here}:
+            texts[keyed] = json.dumps(await self.board(room, keyed))
+        for listener in here:
             if listener.queue.full():
                 listener.queue.get_nowait()
             listener.queue.put_nowait(texts[listener.keyed])
 
+    def changed(self, room: int | None) -> None:
+        """A notice from the store (on the event loop): a room's board changed (None: any
+        may have, after the connection was lost)."""
+        self.pending.update([room] if room is not None else {s.room for s in self.listeners})
+        self.wake.set()
 
-def _replay_seen(store: Store, showing: dict[str, Any] | None, keyed: bool) -> Any:
+    async def forward(self) -> None:
+        """Send the boards of the rooms announced changed (several notices, one board)."""
+        while True:
+            await self.wake.wait()
+            self.wake.clear()
+            rooms, self.pending = self.pending, set()
+            for room in rooms:
+                await self.send(room)
+
+
+def _replay_seen(store: ClassStore, room: int, keyed: bool) -> Any:
     """The replay on the projector as a reader may see it: without its code while its
     challenge is open, unless the reader holds the projector's key (or is the lecturer)."""
+    showing = store.showing(room)
     if showing is None:
         return None
     hidden = {"player"}  # the student's token, never shown
-    now_open = store.open_one()
+    now_open = store.open_one(room)
     if not keyed and _is_open(now_open) and now_open and now_open["id"] == showing["challenge"]:
         hidden.add("code")
     return {k: v for k, v in showing.items() if k not in hidden}
 
 
-def _board(store: Store, showing: dict[str, Any] | None, keyed: bool) -> dict[str, Any]:
+def _board(store: ClassStore, room: int, keyed: bool) -> dict[str, Any]:
     """The leaderboard document (see docs/class.md)."""
-    current = store.latest()
-    replay = _replay_seen(store, showing, keyed)
+    current = store.latest(room)
+    replay = _replay_seen(store, room, keyed)
     if current is None:
         return {
             "challenge": None,
@@ -241,12 +298,36 @@ def guard(request: Request) -> Hub:
     return hub
 
 
-def lecturer(request: Request, query: bool = False) -> Hub:
-    """The Hub if the request carries the lecturer's token, else 403."""
+async def room_of(request: Request, hub: Hub) -> dict[str, Any]:
+    """The class a request is for: /c/{code}/... names it, the other paths are the single
+    class's (404 naming "class" for an unknown code)."""
+    given = request.path_params.get("code")
+    code = normal_code(given) if isinstance(given, str) else None
+    if given is None:
+        room = await hub.db(hub.store.room, DEFAULT_ROOM)
+    else:
+        room = await hub.db(hub.store.room_by_code, code) if code else None
+    if room is None:
+        raise RefusedError(404, "class", "class.error.no_class")
+    return room
+
+
+async def _lecturer_digest(hub: Hub, room: dict[str, Any]) -> str | None:
+    """The digest of the token that may act on a class: its lecturer's, or (the single
+    class, no lecturer) the one `evapcool class` made."""
+    if room["lecturer"] is None:
+        return await hub.db(hub.store.secret, LECTURER_SECRET)
+    return str(room["digest"])
+
+
+async def lecturer(request: Request, query: bool = False) -> tuple[Hub, dict[str, Any]]:
+    """The Hub and the class if the request carries the class's lecturer's token, else
+    403 (another lecturer's token too)."""
     hub = guard(request)
-    if not _same(_lecturer_token(request, query), hub.lecturer_digest):
+    room = await room_of(request, hub)
+    if not _same(_lecturer_token(request, query), await _lecturer_digest(hub, room)):
         raise RefusedError(403, "token", "class.error.lecturer")
-    return hub
+    return hub, room
 
 
 def _lecturer_token(request: Request, query: bool) -> str:
@@ -254,23 +335,37 @@ def _lecturer_token(request: Request, query: bool) -> str:
     return _bearer(request) or (request.query_params.get("token", "") if query else "")
 
 
-def keyed(request: Request, hub: Hub) -> bool:
-    """Whether the request holds the projector's key (?key=); 403 if it gives a wrong one."""
+async def keyed(request: Request, hub: Hub, room: dict[str, Any]) -> bool:
+    """Whether the request holds the class's projector key (?key=); 403 for a wrong one."""
     given = request.query_params.get("key")
     if given is None:
         return False
-    if not _same(given, hub.projector_digest):
+    if room["lecturer"] is None:
+        ok = _same(given, await hub.db(hub.store.secret, PROJECTOR_SECRET))
+    else:
+        ok = secrets.compare_digest(given, room_projector_key(room["digest"], room["code"]))
+    if not ok:
         raise RefusedError(403, "key", "class.error.key")
     return True
+
+
+def _base(room: dict[str, Any]) -> str:
+    """The path prefix of a class's pages and API ('' for the single class's)."""
+    return "" if room["id"] == DEFAULT_ROOM else f"/c/{room['code']}"
 
 
 # -- pages -------------------------------------------------------------------------------------
 
 
 async def game(request: Request) -> Response:
-    """The browser edition in class mode."""
-    guard(request)
-    text, policy = request.app.state.game_page
+    """The browser edition in class mode (a department server's root: join by code)."""
+    hub = guard(request)
+    if "code" not in request.path_params and hub.department:
+        from evapcool.classroom import department
+
+        return await department.join_page(request, hub)
+    room = await room_of(request, hub)
+    text, policy = pages.game_page(_base(room) + "/api")
     # The projector plays replays in the game page in a frame of its own (same origin).
     headers = {"Content-Security-Policy": policy, "X-Frame-Options": "SAMEORIGIN"}
     return HTMLResponse(text, headers=headers)
@@ -280,9 +375,10 @@ async def projector(request: Request) -> Response:
     """The projector page: QR code of the join address, the live leaderboard (with the
     projector's key in ?key=, the replays' codes too)."""
     hub = guard(request)
-    keyed(request, hub)
+    room = await room_of(request, hub)
+    await keyed(request, hub, room)
     words = hub.words.of(request)
-    join_url = request.app.state.join_url or str(request.base_url)
+    join_url = join_url_of(request, room)
     svg = _qr_svg(join_url)
     text = pages.projector_page(
         lambda k: raw(words, k), words.locale, words.meta["direction"], join_url, svg
@@ -291,11 +387,28 @@ async def projector(request: Request) -> Response:
     return HTMLResponse(text, headers=headers)
 
 
+def join_url_of(request: Request, room: dict[str, Any]) -> str:
+    """The students' address of a class: the one given at start (or the one this page was
+    read at), and the class's path."""
+    root = (request.app.state.join_url or str(request.base_url)).rstrip("/")
+    return f"{root}{_base(room)}/"
+
+
 async def lecturer_page(request: Request) -> Response:
-    """The lecturer's page (403 without the token in ?token=)."""
-    hub = lecturer(request, query=True)
+    """The lecturer's page (403 without the token in ?token=); a department's lecturer at
+    /lecturer gets the list of their classes."""
+    hub = guard(request)
+    if "code" not in request.path_params and hub.department:
+        from evapcool.classroom import department
+
+        return await department.classes_page(request, hub)
+    hub, room = await lecturer(request, query=True)
     words = hub.words.of(request)
-    key = projector_key(_lecturer_token(request, query=True))
+    token = _lecturer_token(request, query=True)
+    if room["lecturer"] is None:
+        key = projector_key(token)
+    else:
+        key = room_projector_key(room["digest"], room["code"])
     text = pages.lecturer_page(lambda k: raw(words, k), words.locale, words.meta["direction"], key)
     headers = {"Content-Security-Policy": pages.LECTURER_POLICY, "Cache-Control": "no-store"}
     return HTMLResponse(text, headers=headers)
@@ -318,7 +431,8 @@ def _qr_svg(url: str) -> str:
 async def get_challenge(request: Request) -> Response:
     """The open challenge, or 404."""
     hub = guard(request)
-    row = await hub.db(hub.store.open_one)
+    room = await room_of(request, hub)
+    row = await hub.db(hub.store.open_one, room["id"])
     if not _is_open(row):
         raise RefusedError(404, "challenge", "class.error.no_challenge")
     assert row is not None
@@ -327,7 +441,7 @@ async def get_challenge(request: Request) -> Response:
 
 async def open_challenge(request: Request) -> Response:
     """Open a challenge (closing the one open); the lecturer's."""
-    hub = lecturer(request)
+    hub, room = await lecturer(request)
     new = parse_challenge(await read_json(request, hub.limits.body_bytes))
     max_frames = new.max_frames
     if max_frames is None:  # a real game's length on these settings, with a margin
@@ -341,22 +455,23 @@ async def open_challenge(request: Request) -> Response:
         new.attempts,
         new.closes_at,
         new.lost,
+        room["id"],
     )
-    hub.showing = None
-    await hub.publish()
-    row = await hub.db(hub.store.open_one)
-    assert row is not None and row["id"] == cid
+    await hub.db(hub.store.set_showing, room["id"], None)
+    await hub.publish(room["id"])
+    row = await hub.db(hub.store.challenge, cid, room["id"])
+    assert row is not None
     return JSONResponse(challenge_doc(row))
 
 
 async def close_challenge(request: Request) -> Response:
     """Close the open challenge; the lecturer's."""
-    hub = lecturer(request)
-    row = await hub.db(hub.store.open_one)
+    hub, room = await lecturer(request)
+    row = await hub.db(hub.store.open_one, room["id"])
     if row is None:
         raise RefusedError(404, "challenge", "class.error.no_challenge")
     await hub.db(hub.store.close_challenge, row["id"])
-    await hub.publish()
+    await hub.publish(room["id"])
     return JSONResponse({"id": row["id"], "open": False})
 
 
@@ -371,41 +486,43 @@ async def join(request: Request) -> Response:
     server has (an applet started anew keeps its place and name).
     """
     hub = guard(request)
+    room = await room_of(request, hub)
     doc = await read_json(request, hub.limits.body_bytes)
     earlier = doc.get("token")
     if isinstance(earlier, str) and 0 < len(earlier) <= 64:
-        known = await hub.db(hub.store.player_name, earlier)
+        known = await hub.db(hub.store.player_name, earlier, room["id"])
         if known is not None:
             return JSONResponse({"token": earlier, "name": known})
-    wait = hub.joins.take(address(request))
+    wait = await hub.db(hub.store.take, "join", address(request), hub.limits.join)
     if wait:
         raise RefusedError(429, "client", "class.error.slow_down", retry_after=wait, n=wait)
     try:
-        token = await hub.db(hub.store.join, doc.get("name"), hub.limits.students)
+        token = await hub.db(hub.store.join, doc.get("name"), hub.limits.students, room["id"])
     except ClassFullError:
         raise RefusedError(409, "class", "class.error.full", n=hub.limits.students) from None
     except NameTakenError as taken:
         raise RefusedError(409, "name", "class.error.name_taken", name=taken.name) from None
     except ValueError:
         raise RefusedError(400, "name", "class.error.name", n=NAME_MAX) from None
-    name = await hub.db(hub.store.player_name, token)
+    name = await hub.db(hub.store.player_name, token, room["id"])
     return JSONResponse({"token": token, "name": name})
 
 
-async def _student(request: Request, hub: Hub) -> str:
-    """The student token of a request (401 if none known), within its submission rate."""
+async def _student(request: Request, hub: Hub, room: int) -> str:
+    """The student token of a request (401 if none known in this class), within its
+    submission rate."""
     token = _bearer(request)
-    if not token or len(token) > 64 or await hub.db(hub.store.player_name, token) is None:
+    if not token or len(token) > 64 or await hub.db(hub.store.player_name, token, room) is None:
         raise RefusedError(401, "token", "class.error.token")
-    wait = hub.per_token.take(token)
+    wait = await hub.db(hub.store.take, "submit", token, hub.limits.submit)
     if wait:
         raise RefusedError(429, "token", "class.error.slow_down", retry_after=wait, n=wait)
     return token
 
 
-async def _open_for(hub: Hub, doc: dict[str, Any], token: str) -> dict[str, Any]:
+async def _open_for(hub: Hub, doc: dict[str, Any], token: str, room: int) -> dict[str, Any]:
     """The open challenge a submission names, if it may take one more game from `token`."""
-    row = await hub.db(hub.store.open_one)
+    row = await hub.db(hub.store.open_one, room)
     if not _is_open(row):
         raise RefusedError(409, "challenge", "class.error.closed")
     assert row is not None
@@ -421,11 +538,12 @@ async def me(request: Request) -> Response:
     """A student's standing in the current challenge: games sent and accepted of the
     limit, best score and place (the student's page shows them before each game)."""
     hub = guard(request)
+    room = await room_of(request, hub)
     token = _bearer(request)
-    name = await hub.db(hub.store.player_name, token) if 0 < len(token) <= 64 else None
+    name = await hub.db(hub.store.player_name, token, room["id"]) if 0 < len(token) <= 64 else None
     if name is None:
         raise RefusedError(401, "token", "class.error.token")
-    row = await hub.db(hub.store.latest)
+    row = await hub.db(hub.store.latest, room["id"])
     if row is None:
         return JSONResponse({"name": name, "challenge": None})
     return JSONResponse({"name": name, **await _standing(hub, row, token)})
@@ -457,10 +575,11 @@ def _game_of(doc: dict[str, Any]) -> tuple[object, str]:
 async def submit(request: Request) -> Response:
     """A game replayed in a worker; 200 only once its entry is committed."""
     hub = guard(request)
-    token = await _student(request, hub)
+    room = (await room_of(request, hub))["id"]
+    token = await _student(request, hub, room)
     doc = await read_json(request, hub.limits.body_bytes)
     item, how = _game_of(doc)
-    row = await _open_for(hub, doc, token)
+    row = await _open_for(hub, doc, token, room)
     loop = asyncio.get_running_loop()
 
     def verify() -> asyncio.Future[dict[str, Any]]:
@@ -468,25 +587,25 @@ async def submit(request: Request) -> Response:
 
     got = await hub.queue.run(address(request), token, verify)
     if "error" in got:
-        await _refuse(hub, row["id"], got["error"])
+        await _refuse(hub, row, got["error"])
     result = (got["score"], got["frames"], got["edition"], got["code"], got["moves"])
     entry = await hub.db(hub.store.add_if_allowed, row["id"], token, result, time.time())
     if entry == "code":
-        await _refuse(hub, row["id"], {"field": "code", "key": "class.error.copied", "args": {}})
+        await _refuse(hub, row, {"field": "code", "key": "class.error.copied", "args": {}})
     if isinstance(entry, str):
         key = "class.error.attempts" if entry == "attempts" else "class.error.closed"
         raise RefusedError(409, entry, key, n=row["attempts"] or 0)
-    await hub.publish()
+    await hub.publish(room)
     standing = await _standing(hub, row, token)
     return JSONResponse(
         {"entry": entry, "score": got["score"], "frames": got["frames"], **standing}
     )
 
 
-async def _refuse(hub: Hub, challenge: int, error: dict[str, Any]) -> None:
+async def _refuse(hub: Hub, challenge: dict[str, Any], error: dict[str, Any]) -> None:
     """Count a refused game, tell the boards, and answer 422 naming the field."""
-    await hub.db(hub.store.count_rejected, challenge)
-    await hub.publish()
+    await hub.db(hub.store.count_rejected, challenge["id"])
+    await hub.publish(challenge["room"])
     raise RefusedError(422, error["field"], error["key"], **error["args"])
 
 
@@ -504,37 +623,39 @@ def _entry_id(doc: dict[str, Any]) -> int:
 async def hide(request: Request) -> Response:
     """Hide the student of an entry: all their entries, later ones too, leave the board
     ({"entry", "hidden": false} puts them back: the lecturer's undo)."""
-    hub = lecturer(request)
+    hub, room = await lecturer(request)
     doc = await read_json(request, hub.limits.body_bytes)
     entry = _entry_id(doc)
     hidden = doc.get("hidden", True)
     if not isinstance(hidden, bool):
         raise RefusedError(400, "hidden", "class.error.value", allowed="true, false")
-    if not await hub.db(hub.store.hide, entry, hidden):
+    if not await hub.db(hub.store.hide, entry, hidden, room["id"]):
         raise RefusedError(404, "entry", "class.error.no_entry")
-    player = await hub.db(hub.store.entry_player, entry)
-    if hidden and hub.showing and hub.showing["player"] == player:
-        hub.showing = None
-    await hub.publish()
+    player = await hub.db(hub.store.entry_player, entry, room["id"])
+    showing = await hub.db(hub.store.showing, room["id"])
+    if hidden and showing and showing["player"] == player:
+        await hub.db(hub.store.set_showing, room["id"], None)
+    await hub.publish(room["id"])
     return JSONResponse({"entry": entry, "hidden": hidden})
 
 
 async def rename(request: Request) -> Response:
     """Rename the student of an entry ({entry, name}); the name as at joining."""
-    hub = lecturer(request)
+    hub, room = await lecturer(request)
     doc = await read_json(request, hub.limits.body_bytes)
     entry = _entry_id(doc)
     try:
-        name = await hub.db(hub.store.rename, entry, doc.get("name"))
+        name = await hub.db(hub.store.rename, entry, doc.get("name"), room["id"])
     except NameTakenError as taken:
         raise RefusedError(409, "name", "class.error.name_taken", name=taken.name) from None
     except ValueError:
         raise RefusedError(400, "name", "class.error.name", n=NAME_MAX) from None
     if name is None:
         raise RefusedError(404, "entry", "class.error.no_entry")
-    if hub.showing and hub.showing["player"] == await hub.db(hub.store.entry_player, entry):
-        hub.showing = {**hub.showing, "name": name}
-    await hub.publish()
+    showing = await hub.db(hub.store.showing, room["id"])
+    if showing and showing["player"] == await hub.db(hub.store.entry_player, entry, room["id"]):
+        await hub.db(hub.store.set_showing, room["id"], {**showing, "name": name})
+    await hub.publish(room["id"])
     return JSONResponse({"entry": entry, "name": name})
 
 
@@ -553,50 +674,93 @@ def moves_summary(code: str) -> dict[str, Any]:
 
 async def show(request: Request) -> Response:
     """Put an entry's replay on the projector ({"entry": null} takes it off)."""
-    hub = lecturer(request)
+    hub, room = await lecturer(request)
     doc = await read_json(request, hub.limits.body_bytes)
-    if doc.get("entry") is None:
-        hub.showing = None
-    else:
+    showing = None
+    if doc.get("entry") is not None:
         entry = _entry_id(doc)
-        found = await hub.db(hub.store.entry_code, entry)
+        found = await hub.db(hub.store.entry_code, entry, room["id"])
         if found is None:
             raise RefusedError(404, "entry", "class.error.no_entry")
         name, code, challenge = found
-        hub.showing = {
+        showing = {
             "entry": entry,
             "name": name,
             "code": code,
             "summary": moves_summary(code),
             "challenge": challenge,
-            "player": await hub.db(hub.store.entry_player, entry),
+            "player": await hub.db(hub.store.entry_player, entry, room["id"]),
         }
-    await hub.publish()
-    return JSONResponse({"replay": await hub.db(_replay_seen, hub.store, hub.showing, True)})
+    await hub.db(hub.store.set_showing, room["id"], showing)
+    await hub.publish(room["id"])
+    return JSONResponse({"replay": await hub.db(_replay_seen, hub.store, room["id"], True)})
+
+
+async def _challenge_asked(request: Request, hub: Hub, room: dict[str, Any]) -> Any:
+    """The challenge ?challenge= names (a past one of the class's), else the current one
+    (None if the class has none); 404 for one not of this class."""
+    asked = request.query_params.get("challenge")
+    if asked is None:
+        return await hub.db(hub.store.latest, room["id"])
+    if not asked.isdigit() or not 0 < int(asked) < 2**63:
+        raise RefusedError(404, "challenge", "class.error.no_challenge")
+    row = await hub.db(hub.store.challenge, int(asked), room["id"])
+    if row is None:
+        raise RefusedError(404, "challenge", "class.error.no_challenge")
+    return row
 
 
 async def entries(request: Request) -> Response:
-    """Every entry of the current challenge, hidden ones too (the lecturer's list)."""
-    hub = lecturer(request)
-    row = await hub.db(hub.store.latest)
+    """Every entry of the current (or ?challenge=) challenge, hidden ones too (the
+    lecturer's list)."""
+    hub, room = await lecturer(request)
+    row = await _challenge_asked(request, hub, room)
     if row is None:
         return JSONResponse({"challenge": None, "entries": [], "rejected": 0})
     listed = await hub.db(hub.store.entries, row["id"])
     doc = challenge_info(row)
-    showing = hub.showing["entry"] if hub.showing else None
+    showing = await hub.db(hub.store.showing, room["id"])
     return JSONResponse(
-        {"challenge": doc, "entries": listed, "rejected": row["rejected"], "showing": showing}
+        {
+            "challenge": doc,
+            "entries": listed,
+            "rejected": row["rejected"],
+            "showing": showing["entry"] if showing else None,
+        }
     )
 
 
+async def challenges(request: Request) -> Response:
+    """The class's challenges, newest first, with games and students counted (the term)."""
+    hub, room = await lecturer(request, query=True)
+    rows = await hub.db(hub.store.challenges, room["id"])
+    listed = [
+        {
+            **challenge_info(r),
+            "games": r["games"],
+            "students": r["students"],
+            "rejected": r["rejected"],
+        }
+        for r in rows
+    ]
+    return JSONResponse({"class": _room_doc(room), "challenges": listed})
+
+
+def _room_doc(room: dict[str, Any]) -> dict[str, Any]:
+    """What the API says of a class (never its lecturer's digest)."""
+    return {"code": room["code"], "name": room["name"], "path": _base(room) + "/"}
+
+
 async def export_csv(request: Request) -> Response:
-    """The current challenge's leaderboard as CSV (token as Bearer or ?token=)."""
-    hub = lecturer(request, query=True)
-    row = await hub.db(hub.store.latest)
+    """The current (or ?challenge=) challenge's games as CSV (token as Bearer or ?token=)."""
+    hub, room = await lecturer(request, query=True)
+    row = await _challenge_asked(request, hub, room)
     if row is None:
         raise RefusedError(404, "challenge", "class.error.no_challenge")
     text = await hub.db(hub.store.results_csv, row["id"])
     name = f"evapcool-class-{row['id']}.csv"
+    if room["id"] != DEFAULT_ROOM:
+        name = f"evapcool-class-{room['code']}-{row['id']}.csv"
     return Response(
         text,
         media_type="text/csv; charset=utf-8",
@@ -613,15 +777,17 @@ async def export_csv(request: Request) -> Response:
 async def leaderboard(request: Request) -> Response:
     """The current challenge's leaderboard (the replay's code as for the stream)."""
     hub = guard(request)
-    return JSONResponse(await hub.board(keyed(request, hub)))
+    room = await room_of(request, hub)
+    return JSONResponse(await hub.board(room["id"], await keyed(request, hub, room)))
 
 
-def _stream_refusal(hub: Hub, request: Request, with_key: bool) -> RefusedError | None:
+def _stream_refusal(hub: Hub, request: Request, with_key: bool, room: int) -> RefusedError | None:
     """Why one more stream is refused: too many in all or from this address (429); the
-    key's holders are counted apart, so students' streams never crowd the projector out."""
+    key's holders are counted apart (per class), so students' streams never crowd the
+    projector out."""
     limits = hub.limits
     if with_key:
-        if sum(1 for s in hub.listeners if s.keyed) >= limits.keyed_listeners:
+        if sum(1 for s in hub.listeners if s.keyed and s.room == room) >= limits.keyed_listeners:
             return RefusedError(
                 429, "key", "class.error.streams", retry_after=30, n=limits.keyed_listeners
             )
@@ -639,13 +805,14 @@ def _stream_refusal(hub: Hub, request: Request, with_key: bool) -> RefusedError 
 async def stream(request: Request) -> Response:
     """Server-Sent Events: the leaderboard at connect and after every change."""
     hub = guard(request)
-    with_key = keyed(request, hub)
-    refused = _stream_refusal(hub, request, with_key)
+    room = await room_of(request, hub)
+    with_key = await keyed(request, hub, room)
+    refused = _stream_refusal(hub, request, with_key, room["id"])
     if refused:
         raise refused
-    listener = Listener(asyncio.Queue(maxsize=4), address(request), with_key)
+    listener = Listener(asyncio.Queue(maxsize=4), address(request), with_key, room["id"])
     hub.listeners.append(listener)
-    first = json.dumps(await hub.board(with_key))
+    first = json.dumps(await hub.board(room["id"], with_key))
     return StreamingResponse(
         _events(hub, listener, first),
         media_type="text/event-stream",
@@ -671,24 +838,41 @@ async def _events(hub: Hub, listener: Listener, first: str) -> AsyncIterator[str
 # -- the app -----------------------------------------------------------------------------------
 
 
-ROUTES = [
-    Route("/", game),
-    Route("/projector", projector),
-    Route("/lecturer", lecturer_page),
-    Route("/api/challenge", get_challenge, methods=["GET"]),
-    Route("/api/challenge", open_challenge, methods=["POST"]),
-    Route("/api/challenge/close", close_challenge, methods=["POST"]),
-    Route("/api/join", join, methods=["POST"]),
-    Route("/api/submit", submit, methods=["POST"]),
-    Route("/api/me", me),
-    Route("/api/hide", hide, methods=["POST"]),
-    Route("/api/rename", rename, methods=["POST"]),
-    Route("/api/show", show, methods=["POST"]),
-    Route("/api/entries", entries),
-    Route("/api/leaderboard", leaderboard),
-    Route("/api/stream", stream),
-    Route("/api/export.csv", export_csv),
+#: A class's pages and API: at these paths for the single class, under /c/{code} for each
+#: class of a department's server.
+CLASS_ROUTES: list[tuple[str, Callable[[Request], Any], list[str] | None]] = [
+    ("/", game, None),
+    ("/projector", projector, None),
+    ("/lecturer", lecturer_page, None),
+    ("/api/challenge", get_challenge, ["GET"]),
+    ("/api/challenge", open_challenge, ["POST"]),
+    ("/api/challenge/close", close_challenge, ["POST"]),
+    ("/api/challenges", challenges, None),
+    ("/api/join", join, ["POST"]),
+    ("/api/submit", submit, ["POST"]),
+    ("/api/me", me, None),
+    ("/api/hide", hide, ["POST"]),
+    ("/api/rename", rename, ["POST"]),
+    ("/api/show", show, ["POST"]),
+    ("/api/entries", entries, None),
+    ("/api/leaderboard", leaderboard, None),
+    ("/api/stream", stream, None),
+    ("/api/export.csv", export_csv, None),
 ]
+
+
+async def _to_class(request: Request) -> Response:
+    """/c/{code} without its slash: the class's game page."""
+    return RedirectResponse(f"/c/{request.path_params['code']}/", status_code=308)
+
+
+def routes() -> list[Route]:
+    """The single class's routes, each class's under /c/{code}, the department's."""
+    from evapcool.classroom import department
+
+    out = [Route(path, fn, methods=methods) for path, fn, methods in CLASS_ROUTES]
+    out += [Route("/c/{code}" + path, fn, methods=methods) for path, fn, methods in CLASS_ROUTES]
+    return [*out, Route("/c/{code}", _to_class), *department.ROUTES]
 
 
 async def _refused(request: Request, exc: Exception) -> Response:
@@ -715,50 +899,137 @@ def _pool(workers: int) -> ProcessPoolExecutor:
     return ProcessPoolExecutor(workers, mp_context=context, initializer=warm)
 
 
+def open_store(where: Path | str, connections: int = SHARED_DB_THREADS) -> ClassStore:
+    """The store at a SQLite file, or a PostgreSQL database's URL (postgresql://...)."""
+    text = str(where)
+    if text.startswith(("postgresql://", "postgres://")):
+        from evapcool.classroom.pgstore import PostgresStore
+
+        return PostgresStore(text, connections)
+    return Store(Path(where))
+
+
 def create_app(
     store_path: Path | str,
     pool_workers: int,
     limits: Limits | None = None,
     join_url: str | None = None,
+    department: bool = False,
 ) -> Starlette:
-    """The class server's app: SQLite at store_path, `pool_workers` verifying processes.
+    """The class server's app: the store at store_path (a SQLite file or a PostgreSQL URL),
+    `pool_workers` verifying processes.
 
-    The lecturer's token is the one whose digest the store holds (`new_lecturer_token`).
-    join_url: the students' address shown on the projector (default: the one it was read at).
+    The single class's lecturer's token is the one whose digest the store holds
+    (`new_lecturer_token`). join_url: the students' address shown on the projector
+    (default: the one it was read at). department: the root is the join-by-code page and
+    /lecturer lists a lecturer's classes.
     """
 
     @asynccontextmanager
     async def lifespan(app: Starlette) -> AsyncIterator[None]:
-        store = Store(Path(store_path))
-        hub = Hub(store, limits or Limits(), _pool(pool_workers), pool_workers)
+        store = open_store(store_path)
+        threads = SHARED_DB_THREADS if store.shared else 1
+        hub = Hub(
+            store,
+            limits or Limits(),
+            _pool(pool_workers),
+            pool_workers,
+            department,
+            ThreadPoolExecutor(threads),
+        )
         app.state.hub = hub
-        app.state.game_page = pages.game_page()
+        pages.game_page()  # read and hashed once, before the first student asks
         loop = asyncio.get_running_loop()
         await asyncio.gather(*(loop.run_in_executor(hub.pool, _ready) for _ in range(pool_workers)))
-        watcher = asyncio.create_task(_close_on_time(hub))
+        tasks = [asyncio.create_task(_close_on_time(hub)), asyncio.create_task(hub.forward())]
+        stop = threading.Event()
+        listening = _listen(hub, loop, stop) if store.shared else None
         try:
             yield
         finally:
-            watcher.cancel()
+            stop.set()
+            for task in tasks:
+                task.cancel()
             hub.pool.shutdown(cancel_futures=True)
+            if listening:
+                listening.join(5)
             hub.db_thread.submit(hub.store.close).result()
             hub.db_thread.shutdown()
 
     handlers = {RefusedError: _refused, 404: _no_route, 405: _no_route}
-    app = Starlette(routes=ROUTES, lifespan=lifespan, exception_handlers=handlers)
+    app = Starlette(routes=routes(), lifespan=lifespan, exception_handlers=handlers)
     app.state.join_url = join_url
     app.add_middleware(_SafeHeaders)
     return app
 
 
+def _listen(hub: Hub, loop: asyncio.AbstractEventLoop, stop: threading.Event) -> threading.Thread:
+    """A thread following the store's notices (its own connection): each changed room is
+    handed to the event loop, whose `forward` sends it to this process's streams."""
+
+    def changed(room: int | None) -> None:
+        loop.call_soon_threadsafe(hub.changed, room)
+
+    thread = threading.Thread(
+        target=hub.store.listen, args=(changed, stop), daemon=True, name="listen"
+    )
+    thread.start()
+    return thread
+
+
+#: The environment `app_from_env` reads (uvicorn --factory ... --workers N).
+ENV_DB = "EVAPCOOL_CLASS_DB"
+ENV_WORKERS = "EVAPCOOL_CLASS_WORKERS"
+ENV_JOIN_URL = "EVAPCOOL_CLASS_URL"
+ENV_STUDENTS = "EVAPCOOL_CLASS_MAX_STUDENTS"
+
+
+def app_from_env() -> Starlette:
+    """A department's app configured by the environment, for
+    `uvicorn --factory evapcool.classroom.server:app_from_env --workers N`:
+    EVAPCOOL_CLASS_DB (the PostgreSQL URL), EVAPCOOL_CLASS_WORKERS (verifying processes of
+    each server process, 1), EVAPCOOL_CLASS_URL (the students' address),
+    EVAPCOOL_CLASS_MAX_STUDENTS (per class, 2000)."""
+    import os
+
+    where = os.environ.get(ENV_DB)
+    if not where:
+        raise ValueError(f"{ENV_DB}: give the database (postgresql://... or a SQLite file)")
+    workers = _env_int(ENV_WORKERS, 1, 64, 1)
+    students = _env_int(ENV_STUDENTS, 1, 100_000, Limits().students)
+    return create_app(
+        where,
+        workers,
+        Limits(students=students),
+        join_url=os.environ.get(ENV_JOIN_URL),
+        department=True,
+    )
+
+
+def _env_int(name: str, low: int, high: int, default: int) -> int:
+    """A whole number low..high from the environment (ValueError naming it otherwise)."""
+    import os
+
+    text = os.environ.get(name)
+    if text is None:
+        return default
+    if not text.isdigit() or not low <= int(text) <= high:
+        raise ValueError(f"{name}: must be a whole number {low}..{high} (got {text!r})")
+    return int(text)
+
+
 async def _close_on_time(hub: Hub) -> None:
-    """Close the open challenge as its time window ends and tell every page at once
-    (not only refuse games later): projector, lecturer and students see it together."""
+    """Close each open challenge as its time window ends and tell every page at once (not
+    only refuse games later). Every process looks; the store closes each once, and the
+    process that closed it announces it."""
+    swept = time.monotonic()
     while True:
-        row = await hub.db(hub.store.open_one)
-        if row is not None and row["closes_at"] is not None and not _is_open(row):
-            await hub.db(hub.store.close_challenge, row["id"])
-            await hub.publish()
+        for room, challenge in await hub.db(hub.store.due, time.time()):
+            if await hub.db(hub.store.close_challenge, challenge):
+                await hub.publish(room)
+        if time.monotonic() - swept > BUCKET_SWEEP:
+            swept = time.monotonic()
+            await hub.db(hub.store.forget_buckets)
         await asyncio.sleep(WINDOW_CHECK)
 
 
