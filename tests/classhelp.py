@@ -182,10 +182,11 @@ def start_server(
 
 
 def lecturer_line(out: IO[str]) -> str:
-    """The first line about the lecturer's page (the engine may say it compiles first)."""
+    """The first line about the lecturer's page, or (--department) the administrator's
+    (the engine may say it compiles first)."""
     for _ in range(20):
         line = out.readline()
-        if not line or line.startswith("Lecturer"):
+        if not line or line.startswith(("Lecturer", "Administrator")):
             return line
     return ""
 

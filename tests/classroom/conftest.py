@@ -19,7 +19,9 @@ def postgres() -> Iterator[Postgres]:
     """A PostgreSQL for the session, stopped afterwards (skipped if not installed)."""
     if pg_bin() is None:
         pytest.skip(MISSING)
-    pytest.importorskip("psycopg", reason="the department extra: pip install 'evapcool[department]'")
+    pytest.importorskip(
+        "psycopg", reason="the department extra: pip install 'evapcool[department]'"
+    )
     with tempfile.TemporaryDirectory(prefix="evapcool-pg-") as folder:
         running = start_postgres(Path(folder))
         try:
