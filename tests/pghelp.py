@@ -56,7 +56,8 @@ class Postgres:
 
 
 def start_postgres(folder: Path) -> Postgres:
-    """initdb and start PostgreSQL in `folder` (trust on its socket only; no TCP)."""
+    """initdb and start PostgreSQL in `folder` (trust on its socket only; no TCP). Run by
+    root, the folder is given to the postgres user (its parents must let it through)."""
     binaries = pg_bin()
     assert binaries is not None, MISSING
     user = "postgres" if os.geteuid() == 0 else os.environ.get("USER", "postgres")

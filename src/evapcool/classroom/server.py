@@ -80,7 +80,7 @@ SHARED_DB_THREADS = 8
 CLIENT_RATE = Rate(burst=600, per_second=100)
 #: Submissions per student token.
 SUBMIT_RATE = Rate(burst=5, per_second=0.5)
-#: Joins per client address: a lecture hall behind one address joins at once, then
+#: Joins per class and client address: a lecture hall behind one address joins at once, then
 #: one more every 10 s (a flood of joins adds at most 360 players an hour).
 JOIN_RATE = Rate(burst=320, per_second=0.1)
 
@@ -493,7 +493,10 @@ async def join(request: Request) -> Response:
         known = await hub.db(hub.store.player_name, earlier, room["id"])
         if known is not None:
             return JSONResponse({"token": earlier, "name": known})
-    wait = await hub.db(hub.store.take, "join", address(request), hub.limits.join)
+    # Per class and address: a lecture hall joins its class at once, whatever other
+    # classes behind the same address (a campus's NAT) do.
+    where = f"{room['id']}@{address(request)}"
+    wait = await hub.db(hub.store.take, "join", where, hub.limits.join)
     if wait:
         raise RefusedError(429, "client", "class.error.slow_down", retry_after=wait, n=wait)
     try:
