@@ -50,17 +50,23 @@ def build_parser() -> OneLineParser:
         help="the server's address as students reach it (for the links printed)",
     )
     commands = parser.add_subparsers(dest="command", required=True, metavar="COMMAND")
-    commands.add_parser("token", help="a new administrator's link (the last one stops working)")
-    lecturer = commands.add_parser("lecturer", help="a new lecturer: prints their link")
+    commands.add_parser(
+        "token", command=COMMAND, help="a new administrator's link (the last one stops working)"
+    )
+    lecturer = commands.add_parser(
+        "lecturer", command=COMMAND, help="a new lecturer: prints their link"
+    )
     lecturer.add_argument("name", type=title)
-    relink = commands.add_parser("relink", help="a lecturer's new link (the last one stops)")
+    relink = commands.add_parser(
+        "relink", command=COMMAND, help="a lecturer's new link (the last one stops)"
+    )
     relink.add_argument("lecturer", type=int, metavar="ID")
-    made = commands.add_parser("class", help="a new class of a lecturer: prints its code")
+    made = commands.add_parser(
+        "class", command=COMMAND, help="a new class of a lecturer: prints its code"
+    )
     made.add_argument("name", type=title)
     made.add_argument("--lecturer", type=int, required=True, metavar="ID")
-    commands.add_parser("list", help="the lecturers and classes")
-    for sub in commands.choices.values():
-        sub.error = parser.error  # type: ignore[method-assign]  # one line, as the parser's
+    commands.add_parser("list", command=COMMAND, help="the lecturers and classes")
     return parser
 
 
