@@ -6,6 +6,7 @@ from __future__ import annotations
 
 import asyncio
 import json
+import threading
 from collections.abc import AsyncIterator, Iterator
 from typing import Any
 
@@ -189,3 +190,31 @@ def test_kill_9_of_one_process_keeps_every_game_and_the_other_carries_on(
         assert "Late" in asyncio.run(run())
     finally:
         again.stop()
+
+
+def test_processes_starting_together_make_the_schema_once(postgres: Postgres) -> None:
+    from evapcool.classroom.pgstore import SCHEMA_VERSION, PostgresStore
+
+    url = postgres.new_database()
+    opened: list[PostgresStore] = []
+    failed: list[BaseException] = []
+
+    def start() -> None:
+        try:
+            opened.append(PostgresStore(url, 1))
+        except BaseException as exc:  # the test reports it
+            failed.append(exc)
+
+    starting = [threading.Thread(target=start) for _ in range(4)]
+    for thread in starting:
+        thread.start()
+    for thread in starting:
+        thread.join(60)
+    try:
+        assert not failed and len(opened) == 4
+        assert [r["id"] for r in opened[0].rooms()] == [1]
+        versions = opened[0]._rows("SELECT version FROM schema_version")
+        assert versions == [(SCHEMA_VERSION,)]
+    finally:
+        for store in opened:
+            store.close()

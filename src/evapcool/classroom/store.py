@@ -296,13 +296,14 @@ class SqlStore:
         return made
 
     def _ensure_default_room(self) -> None:
-        """The single class's room (a file made before classes holds its data)."""
+        """The single class's room (a file made before classes holds its data); two
+        processes starting at once make it once."""
         with self._tx() as q:
-            if q("SELECT 1 FROM room WHERE id = ?", (DEFAULT_ROOM,)).fetchone() is None:
-                q(
-                    "INSERT INTO room (id, code, name, created) VALUES (?, ?, ?, ?)",
-                    (DEFAULT_ROOM, new_code(), "", time.time()),
-                )
+            q(
+                "INSERT INTO room (id, code, name, created) VALUES (?, ?, ?, ?) "
+                "ON CONFLICT (id) DO NOTHING",
+                (DEFAULT_ROOM, new_code(), "", time.time()),
+            )
 
     def _rooms(self, where: str, params: Sequence[Any]) -> list[dict[str, Any]]:
         rows = self._rows(
