@@ -80,7 +80,7 @@ PAGE = Template("""<!doctype html>
 <html lang="$lang" dir="$dir"><head><meta charset="utf-8">
 <meta name="viewport" content="width=device-width, initial-scale=1">
 <title>$title</title><style>$style</style></head>
-<body>$body
+<body$body_base>$body
 <script type="application/json" id="words">$words</script>
 <script>$script</script></body></html>
 """)
@@ -94,7 +94,7 @@ $loopback<div id="qr">$qr</div><p id="join">$join</p>
 <iframe id="replay-frame" title="$replay" hidden></iframe></div></div></div>""")
 
 LECTURER_BODY = Template("""<h1>$title</h1>
-<p><a id="projector" href="/projector?key=$key" target="_blank">$projector</a> ·
+<p><a id="projector" href="$base/projector?key=$key" target="_blank">$projector</a> ·
 <a id="export" download>$export</a></p>
 <p id="current"></p><p id="current-settings"></p>
 <p><button id="close">$close</button> <button id="stop">$stop</button></p>
@@ -145,10 +145,19 @@ def words_json(t: dict[str, str]) -> str:
 
 
 def page(
-    lang: str, direction: str, title: str, body: str, words: str, style: str, script: str
+    lang: str,
+    direction: str,
+    title: str,
+    body: str,
+    words: str,
+    style: str,
+    script: str,
+    base: str = "",
 ) -> str:
-    """A whole page; every argument already escaped (body HTML, words JSON)."""
+    """A whole page; every argument already escaped (body HTML, words JSON). base: the
+    class's path on a department's server ("/c/CODE"; the scripts read it)."""
     return PAGE.substitute(
+        body_base=f' data-base="{html.escape(base)}"' if base else "",
         lang=html.escape(lang),
         dir=html.escape(direction),
         title=html.escape(title),
@@ -195,10 +204,16 @@ def loopback(url: str) -> bool:
 
 
 def projector_page(
-    raw: Callable[[str], str], lang: str, direction: str, join_url: str, qr_svg: str
+    raw: Callable[[str], str],
+    lang: str,
+    direction: str,
+    join_url: str,
+    qr_svg: str,
+    base: str = "",
 ) -> str:
     """The projector: join address and QR code (a warning in large type if phones cannot
-    reach it), the challenge's state, the live leaderboard and the replay playing."""
+    reach it), the challenge's state, the live leaderboard and the replay playing (base:
+    the class's path, "" for the single class)."""
     words = {k: raw(v) for k, v in PAGE_WORDS.items()}
     join = raw("class.projector.join").replace("{url}", join_url)
     warning = ""
@@ -223,6 +238,7 @@ def projector_page(
         words_json(words),
         STYLE_PROJECTOR,
         SCRIPT_PROJECTOR,
+        base,
     )
 
 
@@ -255,13 +271,18 @@ GAME_LABELS = {
 }
 
 
-def lecturer_page(raw: Callable[[str], str], lang: str, direction: str, key: str) -> str:
+def lecturer_page(
+    raw: Callable[[str], str], lang: str, direction: str, key: str, base: str = ""
+) -> str:
     """The lecturer's page: open and close a challenge, the entries, hide, rename, replay,
-    export, and the projector's link with its key."""
+    export, and the projector's link with its key (base: the class's path, "" for the
+    single class)."""
     words = {k: raw(v) for k, v in PAGE_WORDS.items()}
     labels = {k: html.escape(raw(f"class.lecturer.{k}")) for k in LECTURER_LABELS}
     shared = {k: html.escape(raw(f"settings.{v}")) for k, v in GAME_LABELS.items()}
-    body = LECTURER_BODY.substitute(labels, **shared, key=html.escape(key))
+    body = LECTURER_BODY.substitute(
+        labels, **shared, key=html.escape(key), base=html.escape(base)
+    )
     return page(
         lang,
         direction,
@@ -270,4 +291,5 @@ def lecturer_page(raw: Callable[[str], str], lang: str, direction: str, key: str
         words_json(words),
         STYLE_LECTURER,
         SCRIPT_LECTURER,
+        base,
     )

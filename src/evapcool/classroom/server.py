@@ -381,7 +381,7 @@ async def projector(request: Request) -> Response:
     join_url = join_url_of(request, room)
     svg = _qr_svg(join_url)
     text = pages.projector_page(
-        lambda k: raw(words, k), words.locale, words.meta["direction"], join_url, svg
+        lambda k: raw(words, k), words.locale, words.meta["direction"], join_url, svg, _base(room)
     )
     headers = {"Content-Security-Policy": pages.PROJECTOR_POLICY, "Cache-Control": "no-store"}
     return HTMLResponse(text, headers=headers)
@@ -409,7 +409,9 @@ async def lecturer_page(request: Request) -> Response:
         key = projector_key(token)
     else:
         key = room_projector_key(room["digest"], room["code"])
-    text = pages.lecturer_page(lambda k: raw(words, k), words.locale, words.meta["direction"], key)
+    text = pages.lecturer_page(
+        lambda k: raw(words, k), words.locale, words.meta["direction"], key, _base(room)
+    )
     headers = {"Content-Security-Policy": pages.LECTURER_POLICY, "Cache-Control": "no-store"}
     return HTMLResponse(text, headers=headers)
 

@@ -26,6 +26,15 @@ export function fill(text: string, args: Readonly<Record<string, unknown>>): str
   );
 }
 
+/**
+ * The path of this page's class on the server: "" for a single-class server's one class,
+ * "/c/CODE" for a class of a department's server (the server writes it in the body's
+ * data-base). Every API path is this plus "/api/...".
+ */
+export function classBase(): string {
+  return document.body.dataset["base"] ?? "";
+}
+
 /** A parameter of the page's own address, or null. */
 export function queryParam(name: string): string | null {
   return new URLSearchParams(location.search).get(name);

@@ -15,6 +15,7 @@ import {
 } from "./board";
 import {
   byId,
+  classBase,
   fill,
   getJson,
   listen,
@@ -35,6 +36,7 @@ interface Entries {
 }
 
 const words = pageWords();
+const base = classBase();
 const challenge = new ChallengeClock();
 const token = queryParam("token") || "";
 const auth = { Authorization: "Bearer " + token, "Content-Type": "application/json" };
@@ -44,7 +46,7 @@ function say(text: string): void {
 }
 
 async function post(path: string, body: unknown): Promise<void> {
-  const answer = await postJson<Refusal>(path, body, auth);
+  const answer = await postJson<Refusal>(base + path, body, auth);
   say(answer.ok ? "" : refusalText(answer.body));
   await refresh();
 }
@@ -95,7 +97,7 @@ function actions(e: LecturerEntry, showing: number | null | undefined): HTMLElem
 }
 
 async function refresh(): Promise<void> {
-  const answer = await getJson<Entries>("/api/entries", auth);
+  const answer = await getJson<Entries>(base + "/api/entries", auth);
   if (!answer.ok) return;
   const d = answer.body;
   challenge.take(d.challenge);
@@ -130,8 +132,9 @@ byId<HTMLFormElement>("open").onsubmit = (ev) => {
 };
 byId("close").onclick = () => post("/api/challenge/close", {});
 byId("stop").onclick = () => post("/api/show", { entry: null });
-byId<HTMLAnchorElement>("export").href = "/api/export.csv?token=" + encodeURIComponent(token);
+byId<HTMLAnchorElement>("export").href =
+  base + "/api/export.csv?token=" + encodeURIComponent(token);
 setInterval(tick, 1000);
 // The projector's key (in its link) lets this page's stream past the students' streams.
 const projectorLink = byId<HTMLAnchorElement>("projector");
-listen("/api/stream" + new URL(projectorLink.href).search, () => void refresh());
+listen(base + "/api/stream" + new URL(projectorLink.href).search, () => void refresh());

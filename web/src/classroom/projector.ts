@@ -15,9 +15,10 @@ import {
   type Board,
   type Replay,
 } from "./board";
-import { byId, listen, pageWords, queryParam } from "./common";
+import { byId, classBase, listen, pageWords, queryParam } from "./common";
 
 const words = pageWords();
+const base = classBase();
 const challenge = new ChallengeClock();
 const key = queryParam("key");
 let open = false;
@@ -33,7 +34,7 @@ function tick(): void {
 /** The game page replaying a code, in the projector's language. */
 function replayAddress(code: string): string {
   const lang = encodeURIComponent(document.documentElement.lang);
-  return "/?replay=" + encodeURIComponent(code) + "&lang=" + lang;
+  return base + "/?replay=" + encodeURIComponent(code) + "&lang=" + lang;
 }
 
 function showReplay(replay: Replay | null): void {
@@ -78,4 +79,4 @@ function render(board: Board): void {
 
 setInterval(tick, 1000);
 const query = key ? "?key=" + encodeURIComponent(key) : "";
-listen("/api/stream" + query, (doc) => render(doc as Board));
+listen(base + "/api/stream" + query, (doc) => render(doc as Board));

@@ -1,0 +1,178 @@
+// A department's class server in real Chromium (issue 35): a real `evapcool class
+// --department` on 127.0.0.1; the administrator's call makes a lecturer and the lecturer
+// a class; a phone types the join code at the server's root and lands in the class's game
+// page, which talks to the class's API; the class's lecturer page opens a challenge and
+// its projector (at the class's path) follows it; the phone's verified game reaches both.
+// No page may log a script error or a blocked resource.
+import assert from "node:assert/strict";
+import { spawn } from "node:child_process";
+import { existsSync, mkdtempSync, rmSync } from "node:fs";
+import { createServer } from "node:net";
+import { tmpdir } from "node:os";
+import { join, resolve } from "node:path";
+import { after, before, test } from "node:test";
+import { chromium } from "playwright-core";
+import { CHROMIUM } from "./browser.mjs";
+
+const PYTHON =
+  process.env.EVAPCOOL_PYTHON ?? resolve(import.meta.dirname, "../../../.venv/bin/python");
+const SKIP = !existsSync(PYTHON) && "no Python with evapcool (set EVAPCOOL_PYTHON)";
+const SEED = 77;
+
+let server;
+let browser;
+let dir;
+
+async function freePort() {
+  const s = createServer();
+  await new Promise((ok) => s.listen(0, "127.0.0.1", ok));
+  const { port } = s.address();
+  await new Promise((ok) => s.close(ok));
+  return port;
+}
+
+/** `evapcool class --department` on a fresh file: its base address and the admin's token. */
+async function startServer() {
+  dir = mkdtempSync(join(tmpdir(), "evapcool-dept-"));
+  const port = await freePort();
+  const args = ["-m", "evapcool", "class", "--department", "--port", String(port)];
+  const proc = spawn(PYTHON, [...args, "--data", join(dir, "d.sqlite")], {
+    env: { ...process.env, LANG: "C.UTF-8", LANGUAGE: "en" },
+    stdio: ["ignore", "pipe", "pipe"],
+    detached: true, // its own process group: stopping it reaches its workers too
+  });
+  let out = "";
+  proc.stdout.on("data", (d) => (out += d));
+  proc.stderr.on("data", (d) => (out += d));
+  const base = `http://127.0.0.1:${port}`;
+  for (let k = 0; k < 150; k++) {
+    const token = /admin\?token=(\S+)/.exec(out)?.[1];
+    if (token) {
+      try {
+        if ((await fetch(`${base}/`)).ok) return { proc, base, token };
+      } catch {
+        /* not listening yet */
+      }
+    }
+    await new Promise((r) => setTimeout(r, 200));
+  }
+  proc.kill("SIGKILL");
+  throw new Error(`the class server did not start: ${out}`);
+}
+
+before(async () => {
+  if (SKIP) return;
+  server = await startServer();
+  browser = await chromium.launch({
+    executablePath: CHROMIUM,
+    args: ["--no-sandbox", "--disable-gpu"],
+  });
+});
+
+after(async () => {
+  await browser?.close();
+  if (server) {
+    server.proc.kill("SIGTERM");
+    await new Promise((r) => setTimeout(r, 1500));
+    try {
+      process.kill(-server.proc.pid, "SIGKILL");
+    } catch {
+      /* all gone */
+    }
+  }
+  if (dir) rmSync(dir, { recursive: true, force: true });
+});
+
+async function post(path, token, body) {
+  const r = await fetch(server.base + path, {
+    method: "POST",
+    headers: { Authorization: `Bearer ${token}`, "Content-Type": "application/json" },
+    body: JSON.stringify(body),
+  });
+  assert.equal(r.status, 200, await r.clone().text());
+  return r.json();
+}
+
+/** Play one game with a ramp down to `floor`; its state at the win (or after the budget). */
+async function play(page, floor) {
+  await page.keyboard.press("r");
+  let s = await page.evaluate(() => window.evapcool.state());
+  for (let k = 0; k < 300 && s.wonAt === null; k++) {
+    if (s.trapHeight > floor) await page.keyboard.press("ArrowDown");
+    await page.evaluate(() => window.evapcool.runFrames(25));
+    s = await page.evaluate(() => window.evapcool.state());
+  }
+  return s;
+}
+
+test(
+  "a class of a department: join by code, its lecturer's page and projector",
+  { skip: SKIP },
+  async () => {
+    const errors = [];
+    const watch = (page) => {
+      page.on("pageerror", (e) => errors.push(e.message));
+      page.on("console", (m) => m.type() === "error" && errors.push(m.text()));
+      return page;
+    };
+    const lecturerToken = (await post("/api/admin/lecturers", server.token, { name: "Ada" })).token;
+    const room = await post("/api/classes", lecturerToken, { name: "Optics" });
+    const base = `/c/${room.code}`;
+
+    const lecturer = watch(await browser.newPage({ viewport: { width: 1280, height: 900 } }));
+    await lecturer.goto(`${server.base}${base}/lecturer?token=${lecturerToken}`);
+    const link = await lecturer.getAttribute("#projector", "href");
+    assert.ok(link.startsWith(`${base}/projector?key=`), link);
+    await lecturer.fill("#seed", String(SEED));
+    await lecturer.getByRole("button", { name: "Open", exact: true }).click();
+    await lecturer.waitForFunction(() =>
+      document.getElementById("current").textContent.includes("Open"),
+    );
+    const projector = watch(await browser.newPage({ viewport: { width: 1920, height: 1080 } }));
+    await projector.goto(`${server.base}${link}`);
+    await projector.waitForFunction(() =>
+      /^Open/.test(document.getElementById("state").textContent),
+    );
+    assert.ok((await projector.textContent("#join")).includes(`${base}/`), "the class's address");
+
+    const context = await browser.newContext({
+      viewport: { width: 390, height: 844 },
+      isMobile: true,
+      hasTouch: true,
+    });
+    const phone = watch(await context.newPage());
+    await phone.goto(`${server.base}/`);
+    await phone.fill("#code", room.code.toLowerCase().replace(/(...)/, "$1 "));
+    await phone.tap("button");
+    await phone.waitForURL(`${server.base}${base}/`);
+    await phone.waitForFunction(() => window.evapcool !== undefined);
+    await phone.waitForSelector("#join input");
+    const joined = phone.waitForResponse((r) => r.url().endsWith(`${base}/api/join`));
+    await phone.fill("#join input", "Zoë");
+    await phone.tap("#join button");
+    assert.equal((await joined).status(), 200);
+    await phone.waitForFunction(() => window.evapcool.app.play.fixedSeed !== null);
+    assert.equal(await phone.evaluate(() => window.evapcool.app.play.fixedSeed), SEED);
+    const s = await play(phone, 100);
+    assert.equal(s.won, true);
+    await phone.waitForFunction(
+      () => /Verified/.test(document.getElementById("classbar").textContent),
+      null,
+      { timeout: 30_000 },
+    );
+    await projector.waitForFunction(() =>
+      document.getElementById("board").textContent.includes("Zoë"),
+    );
+    await lecturer.waitForFunction(() =>
+      document.getElementById("entries").textContent.includes("Zoë"),
+    );
+
+    const admin = watch(await browser.newPage());
+    await admin.goto(`${server.base}/admin?token=${server.token}`);
+    assert.ok((await admin.textContent("body")).includes(room.code));
+    const mine = watch(await browser.newPage());
+    await mine.goto(`${server.base}/lecturer?token=${lecturerToken}`);
+    assert.ok((await mine.textContent("body")).includes(room.code));
+    assert.deepEqual(errors, []);
+  },
+);
