@@ -3,6 +3,7 @@
     python scripts/bench_class.py [--students 300] [--workers 2] [--spread 60] [--burst 50]
     python scripts/bench_class.py --flood [--tokens 40] [--games 12] [--workers 2]
     python scripts/bench_class.py --department [--classes 10] [--students 300] [--spread 120]
+        [--arrivals burst,spread]
     python scripts/bench_class.py --department --kill [--classes 10] [--spread 120]
 
 Starts a real `evapcool class` on 127.0.0.1, opens a challenge, lets every student join,
@@ -451,6 +452,7 @@ def department_bench(args: argparse.Namespace) -> None:
                 ("PostgreSQL, 2 processes, 1 worker each", pg, 2, 1, burst, args.burst, None),
                 ("PostgreSQL, 2 processes, 1 worker each", pg, 2, 1, spread, len(entries), None),
             ]
+            runs = [r for r in runs if ("burst" if r[4] is burst else "spread") in args.arrivals]
             if args.kill:
                 runs = [
                     (
@@ -508,6 +510,9 @@ def main() -> int:
     p.add_argument("--department", action="store_true", help="classes on 2 processes (issue 35)")
     p.add_argument("--classes", type=int, default=10, help="classes at once (--department)")
     p.add_argument("--kill", action="store_true", help="kill -9 of one process (--department)")
+    p.add_argument(
+        "--arrivals", default="burst,spread", help="which runs (--department): burst, spread"
+    )
     args = p.parse_args()
     if args.flood:
         flood_bench(args)

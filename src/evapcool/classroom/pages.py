@@ -280,9 +280,7 @@ def lecturer_page(
     words = {k: raw(v) for k, v in PAGE_WORDS.items()}
     labels = {k: html.escape(raw(f"class.lecturer.{k}")) for k in LECTURER_LABELS}
     shared = {k: html.escape(raw(f"settings.{v}")) for k, v in GAME_LABELS.items()}
-    body = LECTURER_BODY.substitute(
-        labels, **shared, key=html.escape(key), base=html.escape(base)
-    )
+    body = LECTURER_BODY.substitute(labels, **shared, key=html.escape(key), base=html.escape(base))
     return page(
         lang,
         direction,
