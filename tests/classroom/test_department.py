@@ -210,6 +210,8 @@ def test_join_by_code_admin_page_and_class_pages(department: Server) -> None:
     assert httpx.get(department.base + "/api/admin/classes", headers=bearer(ada)).status_code == 403
     page = httpx.get(department.base + "/admin", params={"token": department.token})
     assert page.status_code == 200 and made["code"] in page.text and "Ada" in page.text
+    listed = httpx.get(department.base + "/api/admin/classes", headers=admin(department)).json()
+    assert [c["code"] for c in listed["classes"]] == [made["code"]]  # not the empty single class
     posted = httpx.post(
         department.base + "/admin",
         data={"token": department.token, "what": "lecturer", "name": "Cy"},

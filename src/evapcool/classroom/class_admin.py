@@ -125,6 +125,10 @@ def run(store: Any, args: argparse.Namespace, words: Catalog) -> int:
     else:
         for row in store.lecturers():
             print(words.t("class.cli.list_lecturer", id=row["id"], name=row["name"]))
+        from evapcool.classroom.rooms import DEFAULT_ROOM
+
         for room in store.rooms():
+            if room["id"] == DEFAULT_ROOM and store.latest(DEFAULT_ROOM) is None:
+                continue  # the single class's room, empty: not a class of the department
             print(f"{room['code']}  {room['name']}  ({room['lecturer_name'] or '-'})")
     return 0

@@ -19,7 +19,7 @@ from starlette.routing import Route
 
 from evapcool.classroom import pages
 from evapcool.classroom.errors import RefusedError, read_json
-from evapcool.classroom.rooms import normal_code
+from evapcool.classroom.rooms import DEFAULT_ROOM, normal_code
 from evapcool.classroom.server import (
     ADMIN_SECRET,
     Hub,
@@ -87,6 +87,16 @@ async def _lecturer_of(request: Request, token: str) -> tuple[Hub, dict[str, Any
     return hub, found
 
 
+async def listed_rooms(hub: Hub) -> list[dict[str, Any]]:
+    """Every class the administrator sees: the single class's room only if it holds a
+    challenge (a file of one class brought into a department), not the empty one every
+    store has."""
+    rooms = await hub.db(hub.store.rooms)
+    if await hub.db(hub.store.latest, DEFAULT_ROOM) is None:
+        rooms = [r for r in rooms if r["id"] != DEFAULT_ROOM]
+    return rooms
+
+
 def class_doc(request: Request, room: dict[str, Any]) -> dict[str, Any]:
     """A class as the administrator and its lecturer see it: code, name, its links (the
     lecturer's needs the lecturer's token added: ?token=)."""
@@ -121,7 +131,7 @@ async def admin_classes(request: Request) -> Response:
     """GET: every class; POST {name, lecturer}: a new class for a lecturer."""
     hub = await _admin(request, _bearer(request))
     if request.method == "GET":
-        rooms = await hub.db(hub.store.rooms)
+        rooms = await listed_rooms(hub)
         return JSONResponse({"classes": [class_doc(request, r) for r in rooms]})
     doc = await read_json(request, hub.limits.body_bytes)
     name = clean_title(doc.get("name"), "name")
@@ -295,7 +305,7 @@ async def admin_post(request: Request) -> Response:
 async def _admin_view(request: Request, hub: Hub, token: str, note: str) -> Response:
     words = hub.words.of(request)
     lecturers = await hub.db(hub.store.lecturers)
-    rooms = await hub.db(hub.store.rooms)
+    rooms = await listed_rooms(hub)
     names = {row["id"]: row["name"] for row in lecturers}
     hidden = f'<input type="hidden" name="token" value="{html.escape(token)}">'
     lecturer_rows = [[str(r["id"]), html.escape(r["name"]), str(r["classes"])] for r in lecturers]
