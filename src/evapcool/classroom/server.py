@@ -29,6 +29,7 @@ from starlette.routing import Route
 
 from evapcool.classroom import pages
 from evapcool.classroom.challenge import challenge_doc, parse_challenge
+from evapcool.classroom.debrief import Law, Showing, debrief_doc, every_frame, law_of, without_names
 from evapcool.classroom.errors import RefusedError, read_json, refused_response
 from evapcool.classroom.fairqueue import FairQueue
 from evapcool.classroom.ratelimit import Rate, RateLimiter
@@ -131,6 +132,10 @@ class Hub:
     words: Words = field(default_factory=Words)
     listeners: list[Listener] = field(default_factory=list)
     showing: dict[str, Any] | None = None
+    #: The debrief's state (issue 36), the challenges' critical lines, the pair's paths.
+    debrief: Showing = field(default_factory=Showing)
+    laws: dict[int, Law] = field(default_factory=dict)
+    pair_paths: dict[int, dict[str, Any]] = field(default_factory=dict)
 
     def __post_init__(self) -> None:
         self.per_client = RateLimiter(self.limits.client)
@@ -147,7 +152,9 @@ class Hub:
     async def board(self, keyed: bool = False) -> dict[str, Any]:
         """The leaderboard of the current (open, else last) challenge; the replay's code
         only for the key's holders while that game's challenge is open."""
-        return await self.db(_board, self.store, self.showing, keyed)
+        board = await self.db(_board, self.store, self.showing, keyed)
+        board["debrief"] = self.debrief.to_json()
+        return without_names(board) if self.debrief.anonymous else board
 
     async def publish(self) -> None:
         """Send the leaderboard to every event stream; a slow one keeps only the newest."""
@@ -343,6 +350,7 @@ async def open_challenge(request: Request) -> Response:
         new.lost,
     )
     hub.showing = None
+    hub.debrief = Showing(anonymous=hub.debrief.anonymous)
     await hub.publish()
     row = await hub.db(hub.store.open_one)
     assert row is not None and row["id"] == cid
@@ -470,7 +478,9 @@ async def submit(request: Request) -> Response:
     if "error" in got:
         await _refuse(hub, row["id"], got["error"])
     result = (got["score"], got["frames"], got["edition"], got["code"], got["moves"])
-    entry = await hub.db(hub.store.add_if_allowed, row["id"], token, result, time.time())
+    entry = await hub.db(
+        hub.store.add_if_allowed, row["id"], token, result, time.time(), got["path"]
+    )
     if entry == "code":
         await _refuse(hub, row["id"], {"field": "code", "key": "class.error.copied", "args": {}})
     if isinstance(entry, str):
@@ -555,24 +565,120 @@ async def show(request: Request) -> Response:
     """Put an entry's replay on the projector ({"entry": null} takes it off)."""
     hub = lecturer(request)
     doc = await read_json(request, hub.limits.body_bytes)
-    if doc.get("entry") is None:
-        hub.showing = None
-    else:
-        entry = _entry_id(doc)
-        found = await hub.db(hub.store.entry_code, entry)
-        if found is None:
-            raise RefusedError(404, "entry", "class.error.no_entry")
-        name, code, challenge = found
-        hub.showing = {
-            "entry": entry,
-            "name": name,
-            "code": code,
-            "summary": moves_summary(code),
-            "challenge": challenge,
-            "player": await hub.db(hub.store.entry_player, entry),
-        }
+    await _show(hub, None if doc.get("entry") is None else _entry_id(doc))
     await hub.publish()
     return JSONResponse({"replay": await hub.db(_replay_seen, hub.store, hub.showing, True)})
+
+
+async def _show(hub: Hub, entry: int | None) -> None:
+    """The replay the projector plays: an entry's (404 if none), or none."""
+    if entry is None:
+        hub.showing = None
+        return
+    found = await hub.db(hub.store.entry_code, entry)
+    if found is None:
+        raise RefusedError(404, "entry", "class.error.no_entry")
+    name, code, challenge = found
+    hub.showing = {
+        "entry": entry,
+        "name": name,
+        "code": code,
+        "summary": moves_summary(code),
+        "challenge": challenge,
+        "player": await hub.db(hub.store.entry_player, entry),
+    }
+
+
+# -- the debrief (issue 36) ----------------------------------------------------------------
+
+
+async def _debrief_challenge(request: Request, hub: Hub) -> tuple[dict[str, Any], bool]:
+    """The challenge debriefed and whether the lecturer asks: 409 while it is open, unless
+    the lecturer asks (their early look; the projector and students wait for the close)."""
+    is_lecturer = _same(_bearer(request), hub.lecturer_digest)
+    row = await hub.db(hub.store.latest)
+    if row is None:
+        raise RefusedError(404, "challenge", "class.error.no_challenge")
+    if _is_open(row) and not is_lecturer:
+        raise RefusedError(409, "challenge", "class.error.debrief_open")
+    return row, is_lecturer
+
+
+async def _law(hub: Hub, row: dict[str, Any]) -> Law:
+    """The critical line of a challenge (computed once, in a worker)."""
+    if row["id"] not in hub.laws:
+        loop = asyncio.get_running_loop()
+        law = await loop.run_in_executor(hub.pool, law_of, row["settings"], row["seed"])
+        hub.laws[row["id"]] = law
+    return hub.laws[row["id"]]
+
+
+async def debrief(request: Request) -> Response:
+    """The debrief document: every student's best game's path, the archetypes, and (with a
+    student's token) `you`. Names left out in anonymous mode, except for the lecturer."""
+    hub = guard(request)
+    row, is_lecturer = await _debrief_challenge(request, hub)
+    games = await hub.db(hub.store.best_games, row["id"])
+    law = await _law(hub, row)
+    viewer = None if is_lecturer else _bearer(request) or None
+    anonymous = hub.debrief.anonymous and not is_lecturer
+    doc = debrief_doc(row, games, law, anonymous, viewer)
+    doc["showing"] = hub.debrief.to_json()
+    return JSONResponse(doc, headers={"Cache-Control": "no-store"})
+
+
+async def debrief_pair(request: Request) -> Response:
+    """The two games the lecturer set side by side, their paths at every frame."""
+    hub = guard(request)
+    row, is_lecturer = await _debrief_challenge(request, hub)
+    if hub.debrief.pair is None:
+        raise RefusedError(404, "pair", "class.error.no_entry")
+    loop = asyncio.get_running_loop()
+    games = []
+    for entry in hub.debrief.pair:
+        found = await hub.db(hub.store.entry_code, entry)
+        if found is None or found[2] != row["id"]:
+            raise RefusedError(404, "pair", "class.error.no_entry")
+        if entry not in hub.pair_paths:
+            path = await loop.run_in_executor(hub.pool, every_frame, found[1])
+            hub.pair_paths[entry] = path
+        name = None if hub.debrief.anonymous and not is_lecturer else found[0]
+        games.append({"entry": entry, "name": name, "path": hub.pair_paths[entry]})
+    return JSONResponse({"challenge": row["id"], "games": games})
+
+
+def _pair_of(doc: dict[str, Any]) -> tuple[int, int] | None:
+    """The pair a lecturer names: two different entries, or null (400 otherwise)."""
+    pair = doc.get("pair")
+    if pair is None:
+        return None
+    if not isinstance(pair, list) or len(pair) != 2 or pair[0] == pair[1]:
+        raise RefusedError(400, "pair", "class.error.value", allowed="[entry, entry]")
+    a, b = (_entry_id({"entry": e}) for e in pair)
+    return (a, b)
+
+
+async def set_debrief(request: Request) -> Response:
+    """The lecturer sets the debrief: {anonymous: bool, pick: entry | null (its replay on
+    the projector), pair: [entry, entry] | null (side by side)}; fields left out stay."""
+    hub = lecturer(request)
+    doc = await read_json(request, hub.limits.body_bytes)
+    state = hub.debrief
+    anonymous = doc.get("anonymous", state.anonymous)
+    if not isinstance(anonymous, bool):
+        raise RefusedError(400, "anonymous", "class.error.value", allowed="true, false")
+    pick, pair = state.pick, state.pair
+    if "pick" in doc:
+        pick = None if doc["pick"] is None else _entry_id({"entry": doc["pick"]})
+        await _show(hub, pick)
+    if "pair" in doc:
+        pair = _pair_of(doc)
+        for entry in pair or ():
+            if await hub.db(hub.store.entry_code, entry) is None:
+                raise RefusedError(404, "pair", "class.error.no_entry")
+    hub.debrief = Showing(anonymous, pick, pair)
+    await hub.publish()
+    return JSONResponse(hub.debrief.to_json())
 
 
 async def entries(request: Request) -> Response:
@@ -686,6 +792,9 @@ ROUTES = [
     Route("/api/show", show, methods=["POST"]),
     Route("/api/entries", entries),
     Route("/api/leaderboard", leaderboard),
+    Route("/api/debrief", debrief, methods=["GET"]),
+    Route("/api/debrief", set_debrief, methods=["POST"]),
+    Route("/api/debrief/pair", debrief_pair),
     Route("/api/stream", stream),
     Route("/api/export.csv", export_csv),
 ]

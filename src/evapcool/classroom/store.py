@@ -52,6 +52,8 @@ ADDED_COLUMNS = (
     ("player", "hidden", "INTEGER NOT NULL DEFAULT 0"),
     # The game's moves up to its win (verifier.moves_key): a copy has the same.
     ("entry", "moves", "TEXT"),
+    # The game's path, computed once at verification (game/path.py): JSON text.
+    ("entry", "path", "TEXT"),
 )
 CHALLENGE_KEYS = (
     "id",
@@ -275,13 +277,18 @@ class Store:
         return int(cur.lastrowid or 0)
 
     def add_if_allowed(
-        self, challenge: int, token: str, result: tuple[int, int, str, str, str], now: float
+        self,
+        challenge: int,
+        token: str,
+        result: tuple[int, int, str, str, str],
+        now: float,
+        path: str | None = None,
     ) -> int | str:
         """The new entry's id, or the field refusing it: "challenge" (closed), "attempts",
         "code" (the same moves as another player's entry of this challenge: a copy).
 
-        result: (score, frames, edition, code, moves key). One transaction: the checks and
-        the insert cannot interleave with another one.
+        result: (score, frames, edition, code, moves key); path: the game's path (JSON text).
+        One transaction: the checks and the insert cannot interleave with another one.
         """
         score, frames, edition, code, moves = result
         with self.db:
@@ -302,9 +309,9 @@ class Store:
             if copied is not None:
                 return "code"
             cur = self.db.execute(
-                "INSERT INTO entry (challenge, player, score, frames, edition, code, moves) "
-                "VALUES (?,?,?,?,?,?,?)",
-                (challenge, token, score, frames, edition, code, moves),
+                "INSERT INTO entry (challenge, player, score, frames, edition, code, moves, path) "
+                "VALUES (?,?,?,?,?,?,?,?)",
+                (challenge, token, score, frames, edition, code, moves, path),
             )
         return int(cur.lastrowid or 0)
 
@@ -353,6 +360,29 @@ class Store:
             (entry,),
         ).fetchone()
         return None if row is None else (str(row[0]), str(row[1]), int(row[2]))
+
+    def best_games(self, challenge: int) -> list[dict[str, object]]:
+        """Each shown student's best game, best first, with its place and its stored path
+        (JSON text, None if stored before paths were): the debrief's curves."""
+        shown = [row for row in self._best(challenge) if not row[6]]
+        paths = dict(
+            self.db.execute(
+                "SELECT id, path FROM entry WHERE challenge = ? AND path IS NOT NULL",
+                (challenge,),
+            ).fetchall()
+        )
+        return [
+            {
+                "entry": row[0],
+                "name": row[1],
+                "score": row[2],
+                "frames": row[3],
+                "player": row[5],
+                "rank": place,
+                "path": paths.get(row[0]),
+            }
+            for place, row in enumerate(shown, 1)
+        ]
 
     def entry_player(self, entry: int) -> str | None:
         """The token of an entry's player, or None."""

@@ -16,6 +16,7 @@ import zlib
 from typing import Any
 
 from evapcool.classroom.depth import MAX_DEPTH, too_deep
+from evapcool.game.path import game_path
 from evapcool.game.replay import (
     CODE_PREFIX,
     DAMAGED,
@@ -171,7 +172,9 @@ def _mismatch(rec: Recording, challenge: dict[str, Any]) -> dict[str, Any] | Non
 
 
 def check_submission(item: object, how: str, challenge: dict[str, Any]) -> dict[str, Any]:
-    """The verified result {score, frames, edition, code, moves}, or a refusal (`refusal`).
+    """The verified result {score, frames, edition, code, moves, path}, or a refusal
+    (`refusal`). path: the game's path (game/path.py) as JSON text, computed here once so
+    the debrief draws every game without replaying any.
 
     A game that does not claim a win is refused before it is replayed, unless the
     challenge takes lost games (`lost`).
@@ -192,4 +195,5 @@ def check_submission(item: object, how: str, challenge: dict[str, Any]) -> dict[
         "edition": rec.edition,
         "code": encode(rec),
         "moves": moves_key(rec, got.frames),
+        "path": json.dumps(game_path(rec, got.frames, ENGINE).to_json(), separators=(",", ":")),
     }
