@@ -22,14 +22,14 @@ const CASES: Array<{ path: PathColumns }> = JSON.parse(
 ).cases;
 
 const WORDS: Record<string, string> = {
-  "class.debrief.anonymous_name": "Student {n}",
-  "class.debrief.describe": "{count} games; best {name} from {n0} at {t0} to {score} in {frames}",
-  "class.debrief.best": "Best game",
-  "class.debrief.fastest": "Fastest win",
-  "class.debrief.frame": "frame {k}",
+  "debrief.anonymous_name": "Student {n}",
+  "debrief.describe": "{count} games; best {name} from {n0} at {t0} to {score} in {frames}",
+  "debrief.best": "Best game",
+  "debrief.fastest": "Fastest win",
+  "debrief.frame": "frame {k}",
   "chart.readout_path": "N = {n} T = {t} Tc = {tc}",
 };
-const tr = (key: string, args: Record<string, unknown> = {}) =>
+const tr = (key: string, args: Record<string, string | number> = {}) =>
   (WORDS[key] ?? key).replace(/\{(\w+)\}/g, (_, k: string) => String(args[k]));
 
 /** The golden games as a class: the three wins (first classic one best) and the lost one. */

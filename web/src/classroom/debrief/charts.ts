@@ -248,10 +248,10 @@ function drawItem(
 
 function pathItems(o: ChartOptions): Item[] {
   return [
-    { text: o.tr("class.debrief.scale"), kind: "scale" },
+    { text: o.tr("debrief.scale"), kind: "scale" },
     { text: o.tr("chart.legend.tc_line"), kind: "line" },
     { text: o.tr("chart.legend.condensate"), kind: "bar" },
-    { text: o.tr("class.debrief.legend_end"), kind: "dot" },
+    { text: o.tr("debrief.legend_end"), kind: "dot" },
   ];
 }
 
@@ -280,7 +280,7 @@ export function drawPaths(
   ctx.rect(r.x, r.y, r.w, r.h);
   ctx.clip();
   const bottom = legendBottom(ctx, r, fs, o, doc.max_score);
-  const plot = frame(ctx, r, o.tr("class.debrief.paths"), words, fs, bottom);
+  const plot = frame(ctx, r, o.tr("debrief.paths"), words, fs, bottom);
   const range = ranges(doc);
   const px = (n: number, t: number): [number, number] => [
     plot.x + plot.w * logFrac(n, ...range.n),
@@ -372,7 +372,7 @@ export function drawHeights(
   ctx.rect(r.x, r.y, r.w, r.h);
   ctx.clip();
   const bottom = legendBottom(ctx, r, fs, o, doc.max_score);
-  const plot = frame(ctx, r, o.tr("class.debrief.heights"), words, fs, bottom);
+  const plot = frame(ctx, r, o.tr("debrief.heights"), words, fs, bottom);
   legendFlow(ctx, words, r, fs, pathItems(o).slice(0, 1), o, doc.max_score, true);
   const order = drawOrder(doc, o.focus ?? o.highlight ?? null);
   let kMax = 1;
@@ -417,7 +417,7 @@ export function drawHeights(
     ctx.fillRect(plot.x - 6, y - 1, 6, 2);
     word(ctx, words, tickText(v, o.locale), small, INK, plot.x - 8, y, "right");
   }
-  const [xName, yName] = [o.tr("class.debrief.axis_time"), o.tr("class.debrief.axis_height")];
+  const [xName, yName] = [o.tr("debrief.axis_time"), o.tr("debrief.axis_height")];
   axisNames(ctx, words, r, plot, xName, yName, fs);
   ctx.strokeStyle = INK;
   ctx.lineWidth = 2;

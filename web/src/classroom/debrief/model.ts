@@ -39,6 +39,13 @@ export interface DebriefGame {
 
 export const ARCHETYPES = ["best", "fastest", "most_lost", "never_won"] as const;
 export type Archetype = (typeof ARCHETYPES)[number];
+/** Each archetype's words (literal keys: the page's catalogs keep the keys its code names). */
+export const ARCHETYPE_WORDS: Record<Archetype, string> = {
+  best: "debrief.best",
+  fastest: "debrief.fastest",
+  most_lost: "debrief.most_lost",
+  never_won: "debrief.never_won",
+};
 
 /** What the lecturer set the debrief to show. */
 export interface Showing {
@@ -66,7 +73,7 @@ export interface PairDoc {
 }
 
 /** A catalog text with its placeholders filled (the page's `t`, or the class pages' fill). */
-export type Tr = (key: string, args?: Record<string, unknown>) => string;
+export type Tr = (key: string, args?: Record<string, string | number>) => string;
 
 /** The critical temperature with n atoms. */
 export function tcOf(law: Law, n: number): number {
@@ -75,7 +82,7 @@ export function tcOf(law: Law, n: number): number {
 
 /** A game's name, or "Student {rank}" in anonymous mode. */
 export function nameOf(game: { name: string | null; rank?: number }, tr: Tr, n = 0): string {
-  return game.name ?? tr("class.debrief.anonymous_name", { n: game.rank ?? n });
+  return game.name ?? tr("debrief.anonymous_name", { n: game.rank ?? n });
 }
 
 /** The games in drawing order: the last place first, the best last (on top), then the
@@ -97,7 +104,7 @@ export function archetypeList(
   for (const kind of ARCHETYPES) {
     const entry = doc.archetypes[kind];
     if (entry !== null && entry !== undefined)
-      out.push({ kind, entry, label: tr(`class.debrief.${kind}`) });
+      out.push({ kind, entry, label: tr(ARCHETYPE_WORDS[kind]) });
   }
   return out;
 }
@@ -117,10 +124,10 @@ export function numberText(v: number, locale: string): string {
 export function describeBest(doc: Debrief, tr: Tr, locale: string): string {
   const best = gameOf(doc, doc.archetypes.best);
   const path = best?.path;
-  if (!best || !path || path.k.length === 0) return tr("class.debrief.describe_none");
+  if (!best || !path || path.k.length === 0) return tr("debrief.describe_none");
   const mid = path.k.findIndex((k) => k >= path.frames / 2);
   const at = mid < 0 ? path.k.length - 1 : mid;
-  return tr("class.debrief.describe", {
+  return tr("debrief.describe", {
     count: doc.games.length,
     name: nameOf(best, tr),
     n0: path.n[0],

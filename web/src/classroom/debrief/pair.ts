@@ -85,7 +85,7 @@ function one(
 ): void {
   const fs = Math.max(textSize(r), Math.floor(r.h / 9));
   const pad = fs / 2;
-  const title = `${name} · ${tr("class.debrief.frame", { k: s.k })}`;
+  const title = `${name} · ${tr("debrief.frame", { k: s.k })}`;
   const size = fitted(ctx, title, fs, r.w - 2 * pad, 14);
   word(ctx, words, title, size, INK, r.x + pad, r.y + fs * 0.8, "left");
   const readout = tr("chart.readout_path", {
@@ -95,7 +95,7 @@ function one(
   });
   const small = fitted(ctx, readout, Math.floor(0.8 * fs), r.w - 2 * pad - 2 * fs, 14);
   word(ctx, words, readout, small, INK, r.x + pad, r.y + 2.1 * fs, "left");
-  const height = `${tr("class.debrief.axis_height")} = ${Math.round(s.h)}`;
+  const height = `${tr("debrief.axis_height")} = ${Math.round(s.h)}`;
   const hs = fitted(ctx, height, Math.floor(0.8 * fs), r.w - 2 * pad - 2 * fs, 14);
   word(ctx, words, height, hs, INK, r.x + pad, r.y + 3.2 * fs, "left");
   // The atoms, big: the score the class compares.

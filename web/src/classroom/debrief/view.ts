@@ -63,7 +63,7 @@ export class DebriefView {
     this.root = element("section", "debrief", parent);
     this.root.hidden = true;
     this.heading = element("h2", "debrief-title", this.root);
-    this.heading.textContent = o.tr("class.debrief.title");
+    this.heading.textContent = o.tr("debrief.title");
     this.picked = element("p", "debrief-pick", this.root);
     const charts = element("div", "debrief-charts", this.root);
     this.paths = element("canvas", "debrief-paths", charts);
@@ -82,15 +82,15 @@ export class DebriefView {
     this.root.hidden = false;
     const game = gameOf(doc, highlight);
     this.picked.textContent = game
-      ? this.o.tr("class.debrief.picked", {
+      ? this.o.tr("debrief.picked", {
           name: nameOf(game, this.o.tr),
           score: game.score,
           frames: game.frames,
         })
       : "";
     this.described.textContent = describeBest(doc, this.o.tr, this.o.locale);
-    this.paths.setAttribute("aria-label", this.o.tr("class.debrief.paths"));
-    this.heights.setAttribute("aria-label", this.o.tr("class.debrief.heights"));
+    this.paths.setAttribute("aria-label", this.o.tr("debrief.paths"));
+    this.heights.setAttribute("aria-label", this.o.tr("debrief.heights"));
     this.draw();
   }
 
@@ -125,7 +125,7 @@ export class DebriefView {
     this.pairCanvas.hidden = pair === null;
     this.root.classList.toggle("pairing", pair !== null);
     if (!pair) return;
-    this.pairCanvas.setAttribute("aria-label", this.o.tr("class.debrief.side_by_side"));
+    this.pairCanvas.setAttribute("aria-label", this.o.tr("debrief.side_by_side"));
     this.pairStart = this.now();
     this.tick();
     this.pairTimer = window.setInterval(() => this.tick(), 1000 / 30);
