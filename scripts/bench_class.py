@@ -2,6 +2,7 @@
 
     python scripts/bench_class.py [--students 300] [--workers 2] [--spread 60] [--burst 50]
     python scripts/bench_class.py --flood [--tokens 40] [--games 12] [--workers 2]
+    python scripts/bench_class.py --debrief [--students 300] [--runs 5] [--workers 2]
 
 Starts a real `evapcool class` on 127.0.0.1, opens a challenge, lets every student join,
 then sends one game per student (real recordings of the autopilot, perturbed so that each
@@ -196,6 +197,46 @@ def flood_bench(args: argparse.Namespace) -> None:
     print(f"ratio of medians: {statistics.median(loaded) / statistics.median(idle):.2f}x")
 
 
+def debrief_bench(args: argparse.Namespace) -> None:
+    """Close-to-first-draw of the projector's debrief, `args.runs` times; prints the median."""
+    import json
+    import re
+    import subprocess
+
+    web = Path(__file__).resolve().parents[1] / "web"
+    codes = [code for _, code, _ in student_games(args.students, forged_every=10**9)]
+    took: list[float] = []
+    with tempfile.TemporaryDirectory() as tmp:
+        server = start_server(Path(tmp) / "class.sqlite", workers=args.workers)
+        try:
+            page = httpx.get(server.base + "/lecturer", params={"token": server.token}).text
+            found = re.search(r'href="/projector\?key=([0-9a-f]+)"', page)
+            assert found, "no projector link on the lecturer's page"
+            for run in range(args.runs):
+                challenge = open_challenge(server)["id"]
+                time.sleep(2.0)
+                entries = [(f"Run {run} student {i:03d}", c, True) for i, c in enumerate(codes)]
+                asyncio.run(send_all(server, challenge, entries, [0.0] * len(entries), 50))
+                cmd = ["node", "test/e2e/bench-debrief.mjs", server.base, found.group(1)]
+                proc = subprocess.Popen(cmd, cwd=web, stdout=subprocess.PIPE, text=True)
+                assert proc.stdout is not None and proc.stdout.readline().strip() == "ready"
+                close_at = time.time() * 1000.0
+                httpx.post(server.base + "/api/challenge/close", headers=server.lecturer)
+                got = json.loads(proc.stdout.readline())
+                proc.wait(60)
+                took.append((got["drawn_at"] - close_at) / 1000.0)
+                print(
+                    f"run {run + 1}: {got['curves']} curves drawn {took[-1]:.3f} s after the close"
+                )
+        finally:
+            server.stop()
+    print(
+        f"debrief, {args.students} games: close -> first draw "
+        f"median {statistics.median(took):.3f} s "
+        f"(min {min(took):.3f}, max {max(took):.3f}, {len(took)} runs)"
+    )
+
+
 def main() -> int:
     p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     p.add_argument("--students", type=int, default=300)
@@ -205,9 +246,14 @@ def main() -> int:
     p.add_argument("--flood", action="store_true", help="the flood benchmark (issue 33)")
     p.add_argument("--tokens", type=int, default=40, help="flooding tokens (--flood)")
     p.add_argument("--games", type=int, default=12, help="honest games idle and flooded")
+    p.add_argument("--debrief", action="store_true", help="the debrief's first draw (issue 36)")
+    p.add_argument("--runs", type=int, default=5, help="closes measured (--debrief)")
     args = p.parse_args()
     if args.flood:
         flood_bench(args)
+        return 0
+    if args.debrief:
+        debrief_bench(args)
         return 0
     entries = student_games(args.students)
     rng = random.Random(1)

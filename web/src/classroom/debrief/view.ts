@@ -96,6 +96,7 @@ export class DebriefView {
 
   hide(): void {
     this.root.hidden = true;
+    delete this.root.dataset.drawnAt;
     this.setPair(null);
   }
 
@@ -116,6 +117,8 @@ export class DebriefView {
     this.drawn = { paths, heights };
     this.paths.dataset.curves = paths.curves.join(",");
     this.root.dataset.drawn = String((Number(this.root.dataset.drawn) || 0) + 1);
+    // When it was drawn, on the machine's clock (the benchmark's close-to-draw time).
+    this.root.dataset.drawnAt ??= String(Math.round(performance.timeOrigin + performance.now()));
   }
 
   /** Play two games side by side in step (null: stop). */
