@@ -2,8 +2,10 @@
 
 Names never enter these templates: the pages' scripts put them in with textContent. The
 words come from the message catalog, escaped here (html.escape, or JSON with < escaped).
-Each page's Content-Security-Policy lets only its own script and style run (by their
-SHA-256), and lets it talk to this server only.
+The projector's and lecturer's scripts and styles are TypeScript and CSS in
+web/src/classroom, built into web/class/ (package data) and inlined here. Each page's
+Content-Security-Policy lets only its own script and style run (by their SHA-256), and lets
+it talk to this server only.
 """
 
 from __future__ import annotations
@@ -58,193 +60,20 @@ PAGE_WORDS = {
     "tc_law": "settings.tc_law",
 }
 
-STYLE_PROJECTOR = """
-html,body{height:100%;margin:0}
-body{background:#0b0f17;color:#f2f4f8;font:1.6vw/1.3 system-ui,sans-serif;overflow:hidden}
-#page{display:grid;grid-template-columns:minmax(0,30vw) minmax(0,1fr);gap:2vw;height:100%;
-box-sizing:border-box;padding:1.5vw 2vw}
-#side,#main{display:flex;flex-direction:column;min-height:0;overflow:hidden}
-h1{font-size:2.6vw;margin:0 0 .8vw}
-#qr svg{display:block;width:min(26vw,44vh);height:auto;background:#fff;border-radius:1vw}
-#join{font-size:2.4vw;font-weight:700;word-break:break-all;margin:.8vw 0}
-#loopback{font-size:1.8vw;font-weight:700;background:#7a1010;color:#fff;padding:.8vw;
-margin:0 0 .8vw}#loopback+#qr svg{width:min(20vw,28vh)}
-.command{white-space:nowrap;font-family:ui-monospace,monospace}
-#settings{font-size:1.5vw;color:#9fd3ff;margin:0 0 .6vw}#rejected{color:#ffb4a8;margin:.4vw 0}
-#state{font-size:2.4vw;font-weight:700;margin:0 0 .6vw}#state.open{color:#8fe39a}
-#state.closed{color:#ffd27a}
-#board-box{flex:0 1 auto;min-height:0;overflow:hidden}
-table{border-collapse:collapse;width:100%;table-layout:fixed;font-size:2.2vw}
-td,th{padding:.2vw .8vw;text-align:start;white-space:nowrap;overflow:hidden;
-text-overflow:ellipsis}tr:nth-child(even){background:#151c2a}
-th{color:#9aa3b5;font-weight:400}col.rank{width:5em}col.score{width:5.5em}
-col.frames{width:6.5em}
-#replay{flex:1 1 0;min-height:0;display:flex;flex-direction:column;border-top:.3vw solid #9fd3ff;
-margin-top:.6vw;padding-top:.4vw}#replay[hidden]{display:none}
-#replay-head{font-size:1.4vw;white-space:nowrap;overflow:hidden;text-overflow:ellipsis}
-#replay-code{font-size:.9vw;word-break:break-all;max-height:2.4vw;overflow:hidden}
-#replay-frame{flex:1 1 0;min-height:0;width:100%;border:0;background:#000}a{color:#9fd3ff}
-"""
-STYLE_LECTURER = """
-body{font:16px/1.4 system-ui,sans-serif;margin:1.5em;max-width:70em}
-form{display:grid;grid-template-columns:max-content 14em;gap:.4em 1em;margin-bottom:1em}
-table{border-collapse:collapse}td,th{border-bottom:1px solid #ccc;padding:.3em .8em;
-text-align:start}tr.hidden{opacity:.45}tr.showing{background:#e4f1ff}#status{color:#a00}
-button{margin-inline-end:.3em}#current{font-weight:700}
-"""
 
-SCRIPT_COMMON = """
-const W = JSON.parse(document.getElementById("words").textContent);
-const fill = (t, a) => t.replace(/\\{(\\w+)\\}/g, (m, k) => (k in a ? String(a[k]) : m));
-function row(table, cells, tag = "td") {
-  const tr = document.createElement("tr");
-  for (const c of cells) {
-    const td = document.createElement(tag);
-    if (c instanceof Node) td.appendChild(c); else td.textContent = String(c);
-    tr.appendChild(td);
-  }
-  table.appendChild(tr);
-  return tr;
-}
-// The challenge's state as every page says it; its window counted down from the server's
-// own "seconds left" (no clocks compared), ticking once a second.
-let info = null, infoAt = 0;
-const laws = {"0.6666666666666666": "2/3", "0.4": "2/5"};
-function settingsText(c) {
-  const s = c.settings, p = String(s.tc_exponent);
-  let text = fill(W.settings, {n: s.n_atoms, radius: s.radius,
-    escape: W[s.escape] || s.escape, seed: c.seed});
-  text += " · " + W.tc_law + " " + (laws[p] || Number(s.tc_exponent).toFixed(3));
-  if (c.attempts) text += " · " + fill(W.per_student, {n: c.attempts});
-  return text;
-}
-function clock(seconds) {
-  const s = Math.max(0, Math.ceil(seconds));
-  return Math.floor(s / 60) + ":" + String(s % 60).padStart(2, "0");
-}
-function stateText() {
-  if (!info) return ["", W.waiting];
-  const left = info.closes_in === null ? null : info.closes_in - (Date.now() - infoAt) / 1000;
-  if (!info.open || (left !== null && left <= 0)) return ["closed", W.final];
-  return ["open", W.open + (left === null ? "" : " · " + fill(W.closes_in, {time: clock(left)}))];
-}
-function takeInfo(b) { info = b.info; infoAt = Date.now(); }
-"""
+def built(name: str) -> str:
+    """A class page's built script or stylesheet (web/src/classroom, built by `npm run
+    build` into the package's web/class/), to be inlined whole."""
+    text = (resources.files("evapcool") / "web" / "class" / name).read_text("utf-8").strip()
+    if re.search(r"</(script|style)", text, re.I):
+        raise ValueError(f"web/class/{name} holds a closing tag; it cannot be inlined")
+    return text
 
-SCRIPT_PROJECTOR = """
-const key = new URLSearchParams(location.search).get("key");
-let open = false, playing = null;
-function tick() {
-  const [kind, text] = stateText(), box = document.getElementById("state");
-  box.textContent = text; box.className = kind;
-}
-setInterval(tick, 1000);
-function showReplay(p) {
-  const box = document.getElementById("replay"), frame = document.getElementById("replay-frame");
-  box.hidden = !p;
-  const src = p && p.code ? "/?replay=" + encodeURIComponent(p.code) + "&lang=" +
-    encodeURIComponent(document.documentElement.lang) : null;
-  if (src !== playing) { playing = src; frame.src = src || "about:blank"; }
-  frame.hidden = !src;
-  if (!p) return;
-  document.getElementById("replay-head").textContent =
-    W.replay + ": " + p.name + " · " + fill(W.summary, p.summary);
-  // The code comes only with the projector's key while the challenge is open; it is
-  // printed on the screen only once the challenge is closed.
-  document.getElementById("replay-code").textContent = p.code && !open ? p.code : "";
-}
-function render(b) {
-  open = b.open;
-  takeInfo(b); tick();
-  document.getElementById("settings").textContent = info ? settingsText(info) : "";
-  const t = document.getElementById("board");
-  t.replaceChildren();
-  const cols = document.createElement("colgroup");
-  for (const c of ["rank", "name", "score", "frames"]) {
-    const col = document.createElement("col"); col.className = c; cols.appendChild(col);
-  }
-  t.appendChild(cols);
-  row(t, [W.rank, W.name, W.score, W.frames], "th");
-  // With a replay playing, the board keeps its top rows and the replay fills the rest.
-  const rows = b.replay && b.replay.code ? b.entries.slice(0, 5) : b.entries;
-  for (const e of rows) row(t, [e.rank, e.name, e.score, e.frames]);
-  document.getElementById("rejected").textContent = W.refused + ": " + b.rejected;
-  showReplay(b.replay);
-}
-const query = key ? "?key=" + encodeURIComponent(key) : "";
-new EventSource("/api/stream" + query).onmessage = (e) => render(JSON.parse(e.data));
-"""
 
-SCRIPT_LECTURER = """
-const token = new URLSearchParams(location.search).get("token") || "";
-const auth = {"Authorization": "Bearer " + token, "Content-Type": "application/json"};
-const say = (text) => { document.getElementById("status").textContent = text; };
-async function post(path, body) {
-  const r = await fetch(path, {method: "POST", headers: auth, body: JSON.stringify(body)});
-  const d = await r.json();
-  say(r.ok ? "" : d.error.field + ": " + d.error.message);
-  await refresh();
-}
-const num = (id) => {
-  const v = document.getElementById(id).value.trim();
-  return v === "" ? null : Number(v);
-};
-document.getElementById("open").onsubmit = (ev) => {
-  ev.preventDefault();
-  post("/api/challenge", {n_atoms: num("n_atoms"), radius: num("radius"),
-    escape: document.getElementById("escape").value, seed: num("seed"),
-    tc_exponent: Number(document.getElementById("tc_law").value),
-    minutes: num("minutes"), attempts: num("attempts"),
-    lost: document.getElementById("lost").checked});
-};
-document.getElementById("close").onclick = () => post("/api/challenge/close", {});
-document.getElementById("stop").onclick = () => post("/api/show", {entry: null});
-document.getElementById("export").href = "/api/export.csv?token=" + encodeURIComponent(token);
-function button(text, action) {
-  const b = document.createElement("button");
-  b.textContent = text; b.onclick = action; return b;
-}
-function tick() {
-  const c = info;
-  const [kind, text] = stateText();
-  document.getElementById("current").textContent = c ? fill(W.open_now, {id: c.id, seed: c.seed})
-    + (kind === "open" ? " · " + text : " (" + W.closed + ")") : W.none;
-  document.getElementById("current-settings").textContent = c ? settingsText(c) : "";
-}
-setInterval(tick, 1000);
-async function refresh() {
-  const r = await fetch("/api/entries", {headers: auth});
-  if (!r.ok) return;
-  const d = await r.json();
-  takeInfo({info: d.challenge}); tick();
-  document.getElementById("close").disabled = !(info && info.open);
-  document.getElementById("stop").disabled = d.showing === null;
-  document.getElementById("rejected").textContent = W.refused + ": " + d.rejected;
-  const t = document.getElementById("entries");
-  t.replaceChildren();
-  row(t, [W.rank, W.name, W.score, W.frames, W.edition, ""], "th");
-  for (const e of d.entries) {
-    const acts = document.createElement("span");
-    acts.appendChild(e.hidden
-      ? button(W.unhide, () => post("/api/hide", {entry: e.entry, hidden: false}))
-      : button(W.hide, () => post("/api/hide", {entry: e.entry})));
-    acts.appendChild(e.entry === d.showing
-      ? button(W.on_projector, () => post("/api/show", {entry: null}))
-      : button(W.show, () => post("/api/show", {entry: e.entry})));
-    acts.appendChild(button(W.rename, () => {
-      const name = prompt(W.rename_prompt, e.name);
-      if (name !== null) post("/api/rename", {entry: e.entry, name: name});
-    }));
-    const tr = row(t, [e.rank === null ? "" : e.rank, e.name, e.score, e.frames, e.edition, acts]);
-    tr.dataset.entry = e.entry;
-    if (e.hidden) { tr.className = "hidden"; tr.title = W.hidden; }
-    if (e.entry === d.showing) tr.className += " showing";
-  }
-}
-// The projector's key (in its link) lets this page's stream past the students' streams.
-const projectorLink = document.getElementById("projector");
-new EventSource("/api/stream" + new URL(projectorLink.href).search).onmessage = () => refresh();
-"""
+STYLE_PROJECTOR = built("projector.css")
+STYLE_LECTURER = built("lecturer.css")
+SCRIPT_PROJECTOR = built("projector.js")
+SCRIPT_LECTURER = built("lecturer.js")
 
 PAGE = Template("""<!doctype html>
 <html lang="$lang" dir="$dir"><head><meta charset="utf-8">
@@ -295,7 +124,7 @@ def page_policy(script: str, style: str, frames: str = "'none'") -> str:
     """The policy of a page: its one script and one style, talking to this server only
     (frames: what it may show in a frame; the projector, this server's game page)."""
     return (
-        f"default-src 'none'; script-src {source_hash(SCRIPT_COMMON + script)}; "
+        f"default-src 'none'; script-src {source_hash(script)}; "
         f"style-src {source_hash(style)}; connect-src 'self'; frame-src {frames}; "
         "base-uri 'none'; form-action 'none'; frame-ancestors 'none'"
     )
@@ -325,7 +154,7 @@ def page(
         style=style,
         body=body,
         words=words,
-        script=SCRIPT_COMMON + script,
+        script=script,
     )
 
 

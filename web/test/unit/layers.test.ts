@@ -4,7 +4,8 @@ import { dirname, join, relative, resolve, sep } from "node:path";
 import { expect, test } from "vitest";
 
 const SRC = resolve(import.meta.dirname, "../../src");
-const ORDER = ["physics", "game", "view", "app"];
+// classroom/: the class server's pages, above the app (nothing below imports them).
+const ORDER = ["physics", "game", "view", "app", "classroom"];
 
 // Every form a module names another in: static imports (type-only too), side-effect
 // imports, re-exports (`export ... from`), dynamic `import()` and `typeof import()` types.

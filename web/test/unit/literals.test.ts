@@ -1,5 +1,5 @@
-// No English sentence on the page outside the catalogs (issue 23): scans the view, app and
-// game layers for string literals a person could read. Not counted: comments; the words
+// No English sentence on the page outside the catalogs (issue 23): scans the view, app, game and
+// classroom layers for string literals a person could read. Not counted: comments; the words
 // of exceptions, the console and the physics (a thrown message reaches the screen only as a
 // catalog message's {problem}); import paths; message keys. Exceptions by file: ALLOWED.
 import { readdirSync, readFileSync } from "node:fs";
@@ -8,7 +8,7 @@ import { describe, expect, it } from "vitest";
 import { CATALOGS } from "../../src/i18n";
 
 const SRC = resolve(import.meta.dirname, "../../src");
-const LAYERS = ["view", "app", "game"];
+const LAYERS = ["view", "app", "game", "classroom"];
 /** Calls whose string arguments are for programmers (exceptions, the console). */
 const TERMINAL = /(Error|console\.\w+|warn|fail|reject|matchMedia|mq|load|Worker)$/;
 /** What makes a literal read as words: a word, a space or comma, another word. */
@@ -34,6 +34,8 @@ const ALLOWED = new Set([
   "view/text.ts|'Noto Naskh Arabic', Tahoma, sans-serif",
   "app/main.ts|evapcool physics",
   "app/main.ts|evapcool verify",
+  // The projector's empty frame (an address, not words).
+  "classroom/projector.ts|about:blank",
   // A replay code's and a setting's refusal details, the class server's and the desktop's
   // words for them (shown only as a translated notice's {problem}, like the desktop's).
   ...[
@@ -129,7 +131,7 @@ function english(path: string): string[] {
 }
 
 const files = LAYERS.flatMap((layer) =>
-  readdirSync(join(SRC, layer))
+  (readdirSync(join(SRC, layer), { recursive: true }) as string[])
     .filter((f) => f.endsWith(".ts") && !f.endsWith(".d.ts"))
     .map((f) => `${layer}/${f}`),
 );
