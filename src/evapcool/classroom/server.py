@@ -634,6 +634,7 @@ async def debrief_pair(request: Request) -> Response:
     if hub.debrief.pair is None:
         raise RefusedError(404, "pair", "class.error.no_entry")
     loop = asyncio.get_running_loop()
+    ranks = {g["entry"]: g["rank"] for g in await hub.db(hub.store.best_games, row["id"])}
     games = []
     for entry in hub.debrief.pair:
         found = await hub.db(hub.store.entry_code, entry)
@@ -643,7 +644,8 @@ async def debrief_pair(request: Request) -> Response:
             path = await loop.run_in_executor(hub.pool, every_frame, found[1])
             hub.pair_paths[entry] = path
         name = None if hub.debrief.anonymous and not is_lecturer else found[0]
-        games.append({"entry": entry, "name": name, "path": hub.pair_paths[entry]})
+        path = hub.pair_paths[entry]
+        games.append({"entry": entry, "name": name, "rank": ranks.get(entry), "path": path})
     return JSONResponse({"challenge": row["id"], "games": games})
 
 
@@ -660,7 +662,8 @@ def _pair_of(doc: dict[str, Any]) -> tuple[int, int] | None:
 
 async def set_debrief(request: Request) -> Response:
     """The lecturer sets the debrief: {anonymous: bool, pick: entry | null (its replay on
-    the projector), pair: [entry, entry] | null (side by side)}; fields left out stay."""
+    the projector, in the pair's place), pair: [entry, entry] | null (side by side)};
+    fields left out stay."""
     hub = lecturer(request)
     doc = await read_json(request, hub.limits.body_bytes)
     state = hub.debrief
@@ -671,6 +674,7 @@ async def set_debrief(request: Request) -> Response:
     if "pick" in doc:
         pick = None if doc["pick"] is None else _entry_id({"entry": doc["pick"]})
         await _show(hub, pick)
+        pair = None  # the picked game's replay takes the pair's place
     if "pair" in doc:
         pair = _pair_of(doc)
         for entry in pair or ():

@@ -9,8 +9,8 @@ import { activeTranslator, t } from "../i18n";
 import type { Recording, ReplaySettings } from "../game/replay";
 import { gamePath, type GamePath } from "../game/path";
 import type { SimFactory } from "../game/rules";
-import { DebriefView } from "../classroom/debrief/view";
-import type { Debrief } from "../classroom/debrief/model";
+import { DebriefView } from "../view/debrief/view";
+import type { Debrief } from "../view/debrief/model";
 
 export interface Challenge {
   id: number;

@@ -24,6 +24,7 @@ import {
   refusalText,
   type Refusal,
 } from "./common";
+import { LecturerDebrief } from "./debrief/lecturer";
 
 /** The lecturer's list as /api/entries sends it. */
 interface Entries {
@@ -128,10 +129,26 @@ byId<HTMLFormElement>("open").onsubmit = (ev) => {
     lost: byId<HTMLInputElement>("lost").checked,
   });
 };
+// The debrief's controls (issue 36), under the entries.
+const debriefBox = document.createElement("div");
+byId("entries").after(debriefBox);
+const debrief = new LecturerDebrief(
+  debriefBox,
+  (k, args = {}) => fill(words[k] ?? k, args),
+  document.documentElement.lang,
+  auth,
+  post,
+);
+
 byId("close").onclick = () => post("/api/challenge/close", {});
 byId("stop").onclick = () => post("/api/show", { entry: null });
 byId<HTMLAnchorElement>("export").href = "/api/export.csv?token=" + encodeURIComponent(token);
 setInterval(tick, 1000);
 // The projector's key (in its link) lets this page's stream past the students' streams.
 const projectorLink = byId<HTMLAnchorElement>("projector");
-listen("/api/stream" + new URL(projectorLink.href).search, () => void refresh());
+listen("/api/stream" + new URL(projectorLink.href).search, () => {
+  // Once closed, or once the lecturer has looked early: the debrief kept current.
+  void refresh().then(() => {
+    if (debrief.doc || (challenge.info && !challenge.info.open)) void debrief.refresh();
+  });
+});

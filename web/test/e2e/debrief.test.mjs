@@ -217,7 +217,7 @@ test(
     );
     const names = ["Ada Phone"];
     for (const [k, g] of games.entries()) {
-      const name = `Student ${String.fromCharCode(65 + (k % 26))}${k}`;
+      const name = `Learner-${k + 1}`;
       names.push(name);
       const { token } = await api("/api/join", {
         body: { name },
@@ -270,15 +270,149 @@ test(
     }
     assert.ok(whole >= 30, `the live chart drew ${whole} whole frames`);
     assert.deepEqual(ada.errors, []);
-    await checkProjector(doc, names, games, mine);
+    await checkProjector(doc, names, games);
   },
 );
 
-/** The projector's part (after the student's). */
-async function checkProjector(doc, names, games, mine) {
-  void doc;
-  void names;
-  void games;
-  void mine;
-  if (SHOTS) mkdirSync(SHOTS, { recursive: true });
+/** The projector's key, from the link on the lecturer's page. */
+async function projectorKey() {
+  const page = await (await fetch(`${server.base}/lecturer?token=${server.token}`)).text();
+  return /href="\/projector\?key=([0-9a-f]+)"/.exec(page)[1];
+}
+
+async function projectorPage(key) {
+  const context = await browser.newContext({ viewport: { width: 1920, height: 1080 } });
+  const page = await context.newPage();
+  page.errors = [];
+  page.on("pageerror", (e) => page.errors.push(e.message));
+  await recordReceived(page);
+  await page.goto(`${server.base}/projector?key=${key}`);
+  await page.waitForFunction(() => document.getElementById("debrief-paths")?.dataset.curves);
+  return page;
+}
+
+const curvesOf = (page) =>
+  page.evaluate(() =>
+    document.getElementById("debrief-paths").dataset.curves.split(",").map(Number),
+  );
+
+async function shot(page, name) {
+  if (!SHOTS) return;
+  mkdirSync(SHOTS, { recursive: true });
+  await page.screenshot({ path: join(SHOTS, name) });
+}
+
+/** The projector's part: curves, sizes, archetypes picked, a pair in step, anonymity. */
+async function checkProjector(doc, names, games) {
+  const key = await projectorKey();
+  const projector = await projectorPage(key);
+  const curves = await curvesOf(projector);
+  assert.equal(curves.length, STUDENTS, "one curve a student");
+  assert.equal(curves.at(-1), doc.archetypes.best, "the best game on top");
+  assert.equal(doc.games[0].entry, doc.archetypes.best);
+  // The archetypes, from the games' own results.
+  const won = doc.games.filter((g) => g.won);
+  const by = (key) => (a, b) => key(a) - key(b) || a.entry - b.entry;
+  assert.equal(doc.archetypes.fastest, [...won].sort(by((g) => g.frames))[0].entry);
+  const mostLost = [...won].sort((a, b) => a.score - b.score || b.frames - a.frames)[0];
+  assert.equal(doc.archetypes.most_lost, mostLost.entry);
+  const lostNames = games.map((g, k) => [g, names[k + 1]]).filter(([g]) => !g.won);
+  assert.equal(lostNames.length, 1, "the last ramp never wins");
+  const neverWon = doc.games.find((g) => g.entry === doc.archetypes.never_won);
+  assert.equal(neverWon.name, lostNames[0][1], "the game that never won");
+  // Readable at the back of the hall: no word under 24 px, none cut off.
+  for (const id of ["debrief-paths", "debrief-heights"]) {
+    const d = await projector.evaluate((i) => ({ ...document.getElementById(i).dataset }), id);
+    assert.ok(Number(d.minText) >= 24, `${id}: smallest word ${d.minText} px`);
+    assert.equal(d.outside, "", `${id}: words outside the chart`);
+  }
+  const described = await projector.textContent("#debrief-describe");
+  assert.ok(described.includes(doc.games[0].name), described);
+  await shot(projector, "class-debrief-projector.png");
+
+  // The lecturer picks each archetype: highlighted on top, named, its replay playing.
+  const context = await browser.newContext({ viewport: { width: 1280, height: 900 } });
+  const lecturerPage = await context.newPage();
+  await lecturerPage.goto(`${server.base}/lecturer?token=${server.token}`);
+  await lecturerPage.waitForSelector("#debrief-picks button");
+  const kinds = await lecturerPage.$$eval("#debrief-picks button", (bs) =>
+    bs.map((b) => [b.dataset.kind, Number(b.dataset.entry)]),
+  );
+  assert.deepEqual(
+    kinds.map(([k]) => k),
+    ["best", "fastest", "most_lost", "never_won"],
+  );
+  for (const [kind, entry] of kinds) {
+    assert.equal(entry, doc.archetypes[kind], kind);
+    await lecturerPage.click(`#debrief-picks button[data-kind="${kind}"]`);
+    await projector.waitForFunction(
+      (e) =>
+        document.getElementById("debrief-paths").dataset.curves.split(",").at(-1) === String(e),
+      entry,
+    );
+    const game = doc.games.find((g) => g.entry === entry);
+    await projector.waitForFunction(
+      (n) => document.getElementById("debrief-pick").textContent.startsWith(n + ":"),
+      game.name,
+    );
+    await projector.waitForFunction(() =>
+      document.getElementById("replay-frame").src.includes("replay="),
+    );
+  }
+  await shot(projector, "class-debrief-picked.png");
+
+  // Two games side by side: the same frame in both, to the last.
+  const [a, b] = [doc.archetypes.fastest, doc.archetypes.best];
+  await lecturerPage.selectOption("#debrief-pair-a", String(a));
+  await lecturerPage.selectOption("#debrief-pair-b", String(b));
+  await lecturerPage.click("#debrief-pair-go");
+  await projector.waitForFunction(() => !document.getElementById("debrief-pair").hidden);
+  const frames = [a, b].map((e) => doc.games.find((g) => g.entry === e).frames);
+  const last = Math.max(...frames);
+  let seen = 0;
+  for (let k = 0; k < 2000; k++) {
+    const d = await projector.evaluate(() => ({
+      ...document.getElementById("debrief-pair").dataset,
+    }));
+    const frame = Number(d.frame);
+    assert.deepEqual(
+      d.frames.split(",").map(Number),
+      frames.map((f) => Math.min(frame, f)),
+      `in step at frame ${frame}`,
+    );
+    seen += 1;
+    if (frame >= last) break;
+    if (k === 5) await shot(projector, "class-debrief-pair.png");
+    await new Promise((r) => setTimeout(r, 50));
+  }
+  const end = await projector.evaluate(
+    () => document.getElementById("debrief-pair").dataset.frames,
+  );
+  assert.equal(end, frames.join(","), "each game at its own last frame");
+  assert.ok(seen > 10);
+
+  // Anonymous: no name in a projector's page nor in anything it receives.
+  await lecturerPage.click("#debrief-anonymous");
+  await projector.waitForFunction(() =>
+    /^Student \d+:/.test(document.getElementById("debrief-pick").textContent),
+  );
+  const fresh = await projectorPage(key);
+  await fresh.waitForFunction(() =>
+    /^Student \d+:/.test(document.getElementById("debrief-pick").textContent),
+  );
+  for (const page of [projector, fresh]) {
+    const text = await page.evaluate(() => document.body.innerText);
+    const events = await page.evaluate(() => window.__events);
+    const after = page === fresh ? [...page.received, ...events] : [];
+    for (const name of names) {
+      assert.ok(!text.includes(name), `${name} on the anonymous projector`);
+      for (const got of after) assert.ok(!got.includes(name), `${name} in ${got.slice(0, 80)}`);
+    }
+    assert.deepEqual(page.errors, []);
+  }
+  assert.ok(
+    fresh.received.some((r) => r.includes('"games"')),
+    "the debrief's JSON was seen",
+  );
+  await shot(fresh, "class-debrief-anonymous.png");
 }

@@ -4,8 +4,8 @@
 // and the best path is put in words. Data: the golden games' paths (golden/paths.json).
 import { readFileSync } from "node:fs";
 import { describe, expect, it } from "vitest";
-import { luminance, scaleRgb, scoreColor } from "../../src/classroom/debrief/colors";
-import { drawHeights, drawPaths, MIN_TEXT } from "../../src/classroom/debrief/charts";
+import { luminance, scaleRgb, scoreColor } from "../../src/view/debrief/colors";
+import { drawHeights, drawPaths, MIN_TEXT } from "../../src/view/debrief/charts";
 import {
   archetypeList,
   describeBest,
@@ -14,8 +14,8 @@ import {
   type Debrief,
   type PairDoc,
   type PathColumns,
-} from "../../src/classroom/debrief/model";
-import { drawPair, frameAt, stateAt } from "../../src/classroom/debrief/pair";
+} from "../../src/view/debrief/model";
+import { drawPair, frameAt, stateAt } from "../../src/view/debrief/pair";
 
 const CASES: Array<{ path: PathColumns }> = JSON.parse(
   readFileSync(new URL("../golden/paths.json", import.meta.url), "utf8"),
@@ -167,8 +167,8 @@ describe("two games side by side", () => {
     const pair: PairDoc = {
       challenge: 1,
       games: [
-        { entry: 1, name: "A", path: everyFrame(120, 49) },
-        { entry: 2, name: null, path: everyFrame(300, 49) },
+        { entry: 1, name: "A", rank: 1, path: everyFrame(120, 49) },
+        { entry: 2, name: null, rank: 2, path: everyFrame(300, 49) },
       ],
     };
     const law = { n0: 49, tc0: 60, exponent: 2 / 3, t0: 80 };

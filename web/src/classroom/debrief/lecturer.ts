@@ -3,8 +3,8 @@
  * on this page only), hide the names, pick an archetype (its curve highlighted and its
  * replay on the projector), set two entries side by side.
  */
-import { archetypeList, nameOf, type Debrief, type Tr } from "./model";
-import { DebriefView } from "./view";
+import { archetypeList, nameOf, type Debrief, type Tr } from "../../view/debrief/model";
+import { DebriefView } from "../../view/debrief/view";
 
 function made<K extends keyof HTMLElementTagNameMap>(
   tag: K,

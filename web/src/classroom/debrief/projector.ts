@@ -4,12 +4,12 @@
  * picks a game (highlighted, its name unless anonymous; its replay plays in the replay
  * box) and playing two games side by side when the lecturer sets a pair.
  */
-import type { Debrief, PairDoc, Showing, Tr } from "./model";
-import { DebriefView } from "./view";
+import type { Debrief, PairDoc, Showing, Tr } from "../../view/debrief/model";
+import { DebriefView } from "../../view/debrief/view";
 
 /** What the projector reads of a leaderboard message for the debrief. */
 export interface BoardForDebrief {
-  challenge: number | null;
+  challenge?: number | null;
   open: boolean;
   entries: unknown[];
   debrief?: Showing;
@@ -19,7 +19,7 @@ export class ProjectorDebrief {
   readonly view: DebriefView;
   private docKey = "";
   private pairKey = "";
-  private doc: Debrief | null = null;
+  doc: Debrief | null = null;
   /** performance.now() when the last debrief document was asked for, and first drawn. */
   asked = 0;
   firstDrawn = 0;
@@ -37,7 +37,7 @@ export class ProjectorDebrief {
 
   /** Follow a leaderboard message; true while the debrief is shown. */
   take(board: BoardForDebrief): boolean {
-    const shown = board.challenge !== null && !board.open;
+    const shown = board.challenge !== null && board.challenge !== undefined && !board.open;
     document.body.classList.toggle("debriefing", shown);
     if (!shown) {
       [this.docKey, this.pairKey, this.doc] = ["", "", null];

@@ -39,6 +39,17 @@ function sized(canvas: HTMLCanvasElement): [CanvasRenderingContext2D, number, nu
   return [ctx, w, h];
 }
 
+/** The smallest word's size and the words outside the canvas, kept on it (the tests:
+ * readable at the back of a lecture hall, nothing cut off). */
+function measured(canvas: HTMLCanvasElement, drawn: ChartDrawn, w: number, h: number): void {
+  const sizes = drawn.words.map((x) => x.size);
+  canvas.dataset.minText = String(Math.min(...sizes));
+  const out = drawn.words.filter(
+    (x) => x.x < -1 || x.y < -1 || x.x + x.w > w + 1 || x.y + x.h > h + 1,
+  );
+  canvas.dataset.outside = out.map((x) => x.text).join("|");
+}
+
 export class DebriefView {
   readonly root: HTMLElement;
   readonly heading: HTMLElement;
@@ -116,6 +127,8 @@ export class DebriefView {
     const heights = drawHeights(hc, { x: 0, y: 0, w: hw, h: hh }, doc, opts);
     this.drawn = { paths, heights };
     this.paths.dataset.curves = paths.curves.join(",");
+    measured(this.paths, paths, pw, ph);
+    measured(this.heights, heights, hw, hh);
     this.root.dataset.drawn = String((Number(this.root.dataset.drawn) || 0) + 1);
     // When it was drawn, on the machine's clock (the benchmark's close-to-draw time).
     this.root.dataset.drawnAt ??= String(Math.round(performance.timeOrigin + performance.now()));

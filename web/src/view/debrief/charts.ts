@@ -40,30 +40,36 @@ const INK = "rgb(20,20,25)";
 const CONDENSATE = "rgb(200,222,248)";
 const TC_LINE = "rgb(25,60,150)";
 const EDGE = "rgb(0,0,0)";
-/** The words' size: a 24th of the chart's height (45 px on a 1080-line projector's
- * whole height), never under MIN_TEXT. */
+/** The smallest words drawn (a phone's chart); a projector's are far larger. */
 export const MIN_TEXT = 14;
 
+/** The titles' size: an 18th of the chart's height or a 24th of its width (ticks and
+ * legends at three quarters of it: 25 px on a 1080-line projector's debrief). */
 export function textSize(r: Box): number {
-  return Math.max(MIN_TEXT, Math.floor(Math.min(r.h / 24, r.w / 22)));
+  return Math.max(MIN_TEXT, Math.floor(Math.min(r.h / 18, r.w / 24)));
 }
 
 function logFrac(v: number, lo: number, hi: number): number {
   return (Math.log(v) - Math.log(lo)) / (Math.log(hi) - Math.log(lo));
 }
 
-/** The (N, T) ranges: all atoms to one, the hottest start to half the lowest Tc or T. */
+/** The (N, T) ranges: around the games' paths (the line and the start in view), so the
+ * class's strategies spread over the plot rather than crowd its corner. */
 export function ranges(doc: Debrief): { n: [number, number]; t: [number, number] } {
   const law = doc.law;
-  let tLo = 0.5 * Math.min(tcOf(law, 1), law.t0);
-  let tHi = 1.6 * law.t0;
+  let [nLo, tLo, tHi] = [law.n0, law.t0, law.t0];
   for (const g of doc.games) {
-    for (const t of g.path?.t ?? []) {
-      tLo = Math.min(tLo, 0.8 * t);
-      tHi = Math.max(tHi, 1.1 * t);
+    const p = g.path;
+    if (!p) continue;
+    for (let i = 0; i < p.n.length; i++) {
+      nLo = Math.min(nLo, p.n[i]);
+      tLo = Math.min(tLo, p.t[i]);
+      tHi = Math.max(tHi, p.t[i]);
     }
   }
-  return { n: [1, 1.25 * Math.max(law.n0, 2)], t: [Math.max(tLo, 1e-12), tHi] };
+  nLo = Math.max(1, 0.8 * nLo);
+  tLo = Math.min(tLo, tcOf(law, nLo));
+  return { n: [nLo, 1.15 * Math.max(law.n0, 2)], t: [Math.max(0.8 * tLo, 1e-12), 1.25 * tHi] };
 }
 
 function logTicks(lo: number, hi: number): number[] {

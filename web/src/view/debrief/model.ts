@@ -69,7 +69,7 @@ export interface Debrief {
 /** Two games side by side: their paths at every frame. */
 export interface PairDoc {
   challenge: number;
-  games: Array<{ entry: number; name: string | null; path: PathColumns }>;
+  games: Array<{ entry: number; name: string | null; rank: number | null; path: PathColumns }>;
 }
 
 /** A catalog text with its placeholders filled (the page's `t`, or the class pages' fill). */
@@ -81,8 +81,8 @@ export function tcOf(law: Law, n: number): number {
 }
 
 /** A game's name, or "Student {rank}" in anonymous mode. */
-export function nameOf(game: { name: string | null; rank?: number }, tr: Tr, n = 0): string {
-  return game.name ?? tr("debrief.anonymous_name", { n: game.rank ?? n });
+export function nameOf(game: { name: string | null; rank?: number | null }, tr: Tr): string {
+  return game.name ?? tr("debrief.anonymous_name", { n: game.rank ?? "" });
 }
 
 /** The games in drawing order: the last place first, the best last (on top), then the

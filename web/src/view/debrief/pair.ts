@@ -66,7 +66,7 @@ export function drawPair(
     const box = { x: r.x + i * half, y: r.y, w: half, h: r.h };
     const s = stateAt(g.path, law, k);
     shown.push(s.k);
-    one(ctx, box, words, nameOf(g, tr, i + 1), s, law, tr, locale);
+    one(ctx, box, words, nameOf(g, tr), s, law, tr, locale);
   });
   ctx.fillStyle = INK;
   for (let i = 1; i < pair.games.length; i++) ctx.fillRect(r.x + i * half - 1, r.y, 2, r.h);
