@@ -197,6 +197,26 @@ def flood_bench(args: argparse.Namespace) -> None:
     print(f"ratio of medians: {statistics.median(loaded) / statistics.median(idle):.2f}x")
 
 
+async def send_codes(server: Server, challenge: object, tokens: list[str], codes: list[str]) -> int:
+    """Each student (a token) sends their code, 50 at a time; the games accepted."""
+    limit = asyncio.Semaphore(50)
+
+    async def one(client: httpx.AsyncClient, token: str, code: str) -> bool:
+        async with limit:
+            answer = await client.post(
+                server.base + "/api/submit",
+                headers={"Authorization": f"Bearer {token}"},
+                json={"challenge": challenge, "code": code},
+            )
+            return answer.status_code == 200
+
+    async with httpx.AsyncClient(timeout=600) as client:
+        done = await asyncio.gather(
+            *(one(client, t, c) for t, c in zip(tokens, codes, strict=True))
+        )
+    return sum(done)
+
+
 def debrief_bench(args: argparse.Namespace) -> None:
     """Close-to-first-draw of the projector's debrief, `args.runs` times; prints the median."""
     import json
@@ -212,11 +232,17 @@ def debrief_bench(args: argparse.Namespace) -> None:
             page = httpx.get(server.base + "/lecturer", params={"token": server.token}).text
             found = re.search(r'href="/projector\?key=([0-9a-f]+)"', page)
             assert found, "no projector link on the lecturer's page"
+            names = [f"Student {i:03d}" for i in range(len(codes))]
+            tokens = [
+                httpx.post(server.base + "/api/join", json={"name": n}).json()["token"]
+                for n in names
+            ]
             for run in range(args.runs):
                 challenge = open_challenge(server)["id"]
                 time.sleep(2.0)
-                entries = [(f"Run {run} student {i:03d}", c, True) for i, c in enumerate(codes)]
-                asyncio.run(send_all(server, challenge, entries, [0.0] * len(entries), 50))
+                taken = asyncio.run(send_codes(server, challenge, tokens, codes))
+                # Two variants may share their moves up to the win: a copy, refused.
+                assert taken >= 0.99 * len(codes), f"{taken} of {len(codes)} games taken"
                 cmd = ["node", "test/e2e/bench-debrief.mjs", server.base, found.group(1)]
                 proc = subprocess.Popen(cmd, cwd=web, stdout=subprocess.PIPE, text=True)
                 assert proc.stdout is not None and proc.stdout.readline().strip() == "ready"

@@ -27,11 +27,12 @@ from evapcool.game.replay import (
     Recording,
     ReplayError,
     Settings,
+    Verdict,
+    check_claim,
     decode,
     encode,
     record_autopilot,
     replay,
-    verify,
 )
 
 #: The compiled core where it is built, else the reference engine (the same results).
@@ -186,7 +187,10 @@ def check_submission(item: object, how: str, challenge: dict[str, Any]) -> dict[
             return wrong
         if not rec.won and not challenge.get("lost"):
             return refusal("won", "class.error.not_won")
-        got = verify(rec, ENGINE)
+        rec.check()
+        # One replay gives the result and the path (game_path plays the frames verify would).
+        path = game_path(rec, engine=ENGINE)
+        got = check_claim(rec, Verdict(path.won, path.score, path.frames))
     except ReplayError as exc:
         return _replay_refusal(exc, how)
     return {
@@ -195,5 +199,5 @@ def check_submission(item: object, how: str, challenge: dict[str, Any]) -> dict[
         "edition": rec.edition,
         "code": encode(rec),
         "moves": moves_key(rec, got.frames),
-        "path": json.dumps(game_path(rec, got.frames, ENGINE).to_json(), separators=(",", ":")),
+        "path": json.dumps(path.to_json(), separators=(",", ":")),
     }

@@ -9,7 +9,7 @@
 // receives. EVAPCOOL_SHOTS=DIR saves the projector's debrief there.
 import assert from "node:assert/strict";
 import { execFileSync, spawn } from "node:child_process";
-import { existsSync, mkdirSync, mkdtempSync, rmSync } from "node:fs";
+import { existsSync, mkdirSync, mkdtempSync, readdirSync, rmSync } from "node:fs";
 import { createServer } from "node:net";
 import { tmpdir } from "node:os";
 import { join, resolve } from "node:path";
@@ -24,6 +24,10 @@ const ROOT = resolve(import.meta.dirname, "../../..");
 const SEED = 77;
 const STUDENTS = 30;
 const SHOTS = process.env.EVAPCOOL_SHOTS;
+/** Every language the catalogs speak. */
+const LOCALES = readdirSync(join(ROOT, "src/evapcool/locales"))
+  .map((f) => f.replace(/\.json$/, ""))
+  .sort();
 
 let server;
 let browser;
@@ -270,6 +274,7 @@ test(
     }
     assert.ok(whole >= 30, `the live chart drew ${whole} whole frames`);
     assert.deepEqual(ada.errors, []);
+    await shot(ada, "class-debrief-phone.png");
     await checkProjector(doc, names, games);
   },
 );
@@ -280,8 +285,11 @@ async function projectorKey() {
   return /href="\/projector\?key=([0-9a-f]+)"/.exec(page)[1];
 }
 
-async function projectorPage(key) {
-  const context = await browser.newContext({ viewport: { width: 1920, height: 1080 } });
+async function projectorPage(key, locale = "en") {
+  const context = await browser.newContext({
+    viewport: { width: 1920, height: 1080 },
+    extraHTTPHeaders: { "accept-language": locale },
+  });
   const page = await context.newPage();
   page.errors = [];
   page.on("pageerror", (e) => page.errors.push(e.message));
@@ -320,11 +328,19 @@ async function checkProjector(doc, names, games) {
   assert.equal(lostNames.length, 1, "the last ramp never wins");
   const neverWon = doc.games.find((g) => g.entry === doc.archetypes.never_won);
   assert.equal(neverWon.name, lostNames[0][1], "the game that never won");
-  // Readable at the back of the hall: no word under 24 px, none cut off.
-  for (const id of ["debrief-paths", "debrief-heights"]) {
-    const d = await projector.evaluate((i) => ({ ...document.getElementById(i).dataset }), id);
-    assert.ok(Number(d.minText) >= 24, `${id}: smallest word ${d.minText} px`);
-    assert.equal(d.outside, "", `${id}: words outside the chart`);
+  // Readable at the back of the hall in every language: no word under 24 px, none cut off.
+  for (const locale of LOCALES) {
+    const page = locale === "en" ? projector : await projectorPage(key, locale);
+    assert.equal(await page.getAttribute("html", "lang"), locale);
+    for (const id of ["debrief-paths", "debrief-heights"]) {
+      const d = await page.evaluate((i) => ({ ...document.getElementById(i).dataset }), id);
+      assert.ok(Number(d.minText) >= 24, `${locale} ${id}: smallest word ${d.minText} px`);
+      assert.equal(d.outside, "", `${locale} ${id}: words outside the chart`);
+    }
+    if (locale !== "en") {
+      if (locale === "ja" || locale === "ar") await shot(page, `class-debrief-${locale}.png`);
+      await page.context().close();
+    }
   }
   const described = await projector.textContent("#debrief-describe");
   assert.ok(described.includes(doc.games[0].name), described);
