@@ -24,8 +24,8 @@ void calendar_init(Core *core, int32_t n) {
   core->run.n_bins = nb < 16 ? 16 : nb;
   for (int32_t r = 0; r < n; r++) {
     core->queued[r].key_t = INF;
-    core->queued[r].heap_pos = -1;
-    core->queued[r].bin = -1;
+    core->filing[r].heap_pos = -1;
+    core->filing[r].bin = -1;
   }
 }
 
@@ -46,7 +46,7 @@ static void sift(Core *core, int32_t p) {
     int32_t q = (p - 1) >> 2;
     if (!comes_before(core, e.t, e.row, core->heap[q].t, core->heap[q].row)) break;
     core->heap[p] = core->heap[q];
-    core->queued[core->heap[p].row].heap_pos = p;
+    core->filing[core->heap[p].row].heap_pos = p;
     p = q;
   }
   for (;;) {
@@ -57,19 +57,19 @@ static void sift(Core *core, int32_t p) {
       if (comes_before(core, core->heap[d].t, core->heap[d].row, core->heap[c].t, core->heap[c].row)) c = d;
     if (!comes_before(core, core->heap[c].t, core->heap[c].row, e.t, e.row)) break;
     core->heap[p] = core->heap[c];
-    core->queued[core->heap[p].row].heap_pos = p;
+    core->filing[core->heap[p].row].heap_pos = p;
     p = c;
   }
   core->heap[p] = e;
-  core->queued[e.row].heap_pos = p;
+  core->filing[e.row].heap_pos = p;
 }
 
 static void list_add(Core *core, int32_t r, int32_t l) {
   int32_t h = core->bins[l];
-  core->queued[r].bin = l;
-  core->queued[r].next = h;
-  core->queued[r].prev = -1;
-  if (h >= 0) core->queued[h].prev = r;
+  core->filing[r].bin = l;
+  core->filing[r].next = h;
+  core->filing[r].prev = -1;
+  if (h >= 0) core->filing[h].prev = r;
   core->bins[l] = r;
   if (l < core->run.n_bins)
     core->run.n_ring++;
@@ -78,13 +78,13 @@ static void list_add(Core *core, int32_t r, int32_t l) {
 }
 
 static void list_remove(Core *core, int32_t r) {
-  Queued *u = &core->queued[r];
+  Filing *u = &core->filing[r];
   int32_t l = u->bin, p = u->prev, q = u->next;
   if (p >= 0)
-    core->queued[p].next = q;
+    core->filing[p].next = q;
   else
     core->bins[l] = q;
-  if (q >= 0) core->queued[q].prev = p;
+  if (q >= 0) core->filing[q].prev = p;
   u->bin = -1;
   if (l < core->run.n_bins)
     core->run.n_ring--;
@@ -94,8 +94,8 @@ static void list_remove(Core *core, int32_t r) {
 
 /* File row r under its key time: in the heap if its bin has come, else in a list. */
 void file_atom(Core *core, int32_t r) {
-  Queued *u = &core->queued[r];
-  double t = u->key_t;
+  Filing *u = &core->filing[r];
+  double t = core->queued[r].key_t;
   double q = (t - core->run.bin_base) / core->run.bin_width;
   int32_t p = u->heap_pos;
   if (q < (double)(core->run.bin + 1)) {
@@ -124,7 +124,7 @@ void file_atom(Core *core, int32_t r) {
   int32_t last = --core->run.heap_size;
   if (p == last) return;
   core->heap[p] = core->heap[last];
-  core->queued[core->heap[p].row].heap_pos = p;
+  core->filing[core->heap[p].row].heap_pos = p;
   sift(core, p);
 }
 
@@ -132,8 +132,8 @@ static void reset(Core *core, double base, double width) {
   int32_t n = core->run.n_atoms;
   for (int32_t l = 0; l < core->run.n_bins + 2; l++) core->bins[l] = -1;
   for (int32_t r = 0; r < n; r++) {
-    core->queued[r].heap_pos = -1;
-    core->queued[r].bin = -1;
+    core->filing[r].heap_pos = -1;
+    core->filing[r].bin = -1;
   }
   core->run.heap_size = 0;
   core->run.n_ring = 0;
@@ -174,7 +174,7 @@ void calendar_rebuild(Core *core, double now) { reset(core, now, bin_width(core,
 /* Nothing in the ring: jump to the overflow's earliest bin; 0 if no row has an event. */
 static int jump_to_overflow(Core *core) {
   double m = INF;
-  for (int32_t j = core->bins[core->run.n_bins]; j >= 0; j = core->queued[j].next)
+  for (int32_t j = core->bins[core->run.n_bins]; j >= 0; j = core->filing[j].next)
     if (core->queued[j].key_t < m) m = core->queued[j].key_t;
   if (!(m < INF)) return 0; /* only a NaN could do this: nothing to hand out */
   double q = (m - core->run.bin_base) / core->run.bin_width;
@@ -202,23 +202,26 @@ static int next_bin(Core *core) {
       /* The ring moved on by its length: re-file the overflow list. */
       core->run.scan_bin = cb;
       for (int32_t j = core->bins[nb]; j >= 0;) {
-        int32_t k = core->queued[j].next;
+        int32_t k = core->filing[j].next;
         file_atom(core, j);
         j = k;
       }
     }
     int32_t s = (int32_t)(cb % nb);
-    int32_t j = core->bins[s];
+    /* (the overflow's re-filing above may have put rows in the heap already) */
+    int32_t first = core->run.heap_size, total = first;
+    for (int32_t j = core->bins[s]; j >= 0; j = core->filing[j].next) {
+      core->filing[j].bin = -1;
+      core->heap[total++].row = j;
+      __builtin_prefetch(&core->queued[j]);
+    }
     core->bins[s] = -1;
-    while (j >= 0) {
-      int32_t k = core->queued[j].next;
-      core->queued[j].bin = -1;
-      core->run.n_ring--;
-      int32_t p = core->run.heap_size++;
-      core->heap[p].row = j;
-      core->heap[p].t = core->queued[j].key_t;
+    core->run.n_ring -= total - first;
+    /* The keys asked for above, into the heap one by one (what lies beyond is not yet in it). */
+    for (int32_t p = first; p < total; p++) {
+      core->run.heap_size = p + 1;
+      core->heap[p].t = core->queued[core->heap[p].row].key_t;
       sift(core, p);
-      j = k;
     }
   }
   return 1;

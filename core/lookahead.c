@@ -4,8 +4,8 @@
  * event would start by waiting for its row's records, its partner's and the heads of the
  * cells it scans. While one event is processed the loop asks for what the next will read:
  * the next event is most likely the earliest of the heap root's children. From
- * DEEP_MIN_ATOMS on it also asks, two events ahead, for the heads of the cells a scan will
- * read, and an event ahead for the first atoms of those cells.
+ * DEEP_MIN_ATOMS on it also asks for the rows of the event after that, for the heads of the
+ * cells their scans will read, and an event later for the first atoms of those cells.
  */
 #include "tables.h"
 
@@ -72,11 +72,16 @@ static int32_t after_next(const Core *core, int32_t c) {
   return best;
 }
 
-/* Before row i's event of this kind: ask for what it and the next read; the likely next
- * row, or -1. */
-int32_t look_before(Core *core, int32_t i, int32_t kind) {
+/* Before row i's event of this kind: ask for the records of the next two events' rows (the
+ * likely next, and from DEEP_MIN_ATOMS on the one after), for i's partner's and for the
+ * heads of the cells i's scans read; for the next row, whose heads were asked an event
+ * ago, its cells' first atoms. Only lines already asked for are read: a read that misses
+ * would stall the loop it is meant to spare. The likely next row (or -1) and, in *after,
+ * the one after it (or -1). */
+int32_t look_before(Core *core, int32_t i, int32_t kind, int32_t *after) {
   const int32_t n = core->run.heap_size;
   int32_t next = -1;
+  *after = -1;
   if (n > 1) {
     int32_t c = 1;
     for (int32_t d = 2; d < 5 && d < n; d++)
@@ -84,8 +89,12 @@ int32_t look_before(Core *core, int32_t i, int32_t kind) {
     next = core->heap[c].row;
     ask_row(core, next);
     if (core->run.n_atoms >= DEEP_MIN_ATOMS && n > 2) {
-      int32_t after = after_next(core, c);
-      if (after >= 0) ask_heads(core, core->heap[after].row);
+      int32_t a = after_next(core, c);
+      if (a >= 0) {
+        *after = core->heap[a].row;
+        ask_row(core, *after);
+      }
+      ask_firsts(core, next);
     }
   }
   if (kind == KIND_PAIR) ask_row(core, core->plan[i].partner);
@@ -93,16 +102,15 @@ int32_t look_before(Core *core, int32_t i, int32_t kind) {
   return next;
 }
 
-/* After the event, before the predictions (the slow part): the next row's records have
- * come, so ask for its partner's and what its scans read. */
-void look_after(Core *core, int32_t next) {
+/* After the event, before the predictions (the slow part): the rows asked for before it
+ * have come, so ask for the next row's partner and the heads of the cells the next two
+ * rows' scans read. */
+void look_after(Core *core, int32_t next, int32_t after) {
   if (next < 0) return;
   const Plan *p = &core->plan[next];
   if (p->rank != RANK_CROSS && p->real_kind == KIND_PAIR) ask_row(core, p->partner);
-  if (core->run.n_atoms >= DEEP_MIN_ATOMS)
-    ask_firsts(core, next);
-  else
-    ask_heads(core, next);
+  ask_heads(core, next);
+  if (after >= 0) ask_heads(core, after);
 }
 
 #endif

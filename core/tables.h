@@ -43,12 +43,16 @@ typedef struct {
   double cross_t;     /* time of its next cell crossing, inf if none */
   double arc_cross_t; /* last y crossing taken on the current arc (-inf: none) */
   double mass;
+} Queued;
+
+/* Where the calendar keeps a row (calendar.c). A table of its own, four to a line: moving a
+ * bin's list into the heap walks `next` from row to row, and that walk stays in the caches. */
+typedef struct {
   int32_t heap_pos; /* place in the heap, -1 if in a list */
-  int32_t bin;      /* list it is filed in (calendar.c), -1 if in the heap */
+  int32_t bin;      /* list it is filed in, -1 if in the heap */
   int32_t next;     /* neighbours in that list, -1 at the ends */
   int32_t prev;
-  int64_t pad;
-} Queued;
+} Filing;
 
 /* The atom's pending events (key parts, kinds, partner) and where it is. */
 typedef struct {
@@ -118,6 +122,7 @@ typedef struct Core {
   Queued *queued;
   Plan *plan;
   HeapEntry *heap;
+  Filing *filing;     /* by row, reset whenever the calendar is rebuilt (not renumbered) */
   int32_t *bins;      /* first row of each list: n_bins ring lists, overflow, no event */
   int32_t *cells;     /* first row of each cell (row-major), then the next row in cell */
   int32_t *row_of;    /* row of every World atom */
@@ -182,8 +187,8 @@ int32_t crossing_event(Core *core, int32_t i, double te, int32_t kind);
 void renumber(Core *core);
 
 /* lookahead.c (native builds) */
-int32_t look_before(Core *core, int32_t i, int32_t kind);
-void look_after(Core *core, int32_t next);
+int32_t look_before(Core *core, int32_t i, int32_t kind, int32_t *after);
+void look_after(Core *core, int32_t next, int32_t after);
 
 /* memory.c: n zeroed bytes on a 64-byte line, 0 if none are left */
 void *core_take(Core *core, uintptr_t bytes);

@@ -16,11 +16,12 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable
-from dataclasses import dataclass, replace
+from dataclasses import dataclass, fields, replace
+from typing import Any
 
 from evapcool.i18n import t
 from evapcool.limits import APPLET_SPEED
-from evapcool.physics.config import SimulationConfig
+from evapcool.physics.config import CHECKED_KEYWORDS, SimulationConfig
 from evapcool.physics.room import CLASSIC_ROOM, Room
 from evapcool.physics.simulation import (
     ATOM_RADIUS,
@@ -70,25 +71,24 @@ def check_speed(speed: object) -> float:
     return APPLET_SPEED.check("speed", speed)
 
 
+#: Every game's physics (the applet's), beside what its GameConfig chooses.
+GAME_PHYSICS: dict[str, Any] = {
+    "mass": 1.0,
+    "curvature": CURVATURE,
+    "gravity": GRAVITY,
+    "trap_height": HEIGHT_START,
+    "record_events": False,
+    "win": True,
+}
+
+
 def make_simulation(config: GameConfig) -> Simulation:
     """A fresh simulation for config; the reference engine if the compiled core is missing."""
 
     # Checked once, here at the game's boundary; the fallback below is not checked again.
-    checked = SimulationConfig.checked(
-        n_atoms=config.n_atoms,
-        radius=config.radius,
-        mass=1.0,
-        curvature=CURVATURE,
-        gravity=GRAVITY,
-        trap_height=HEIGHT_START,
-        room=config.room,
-        seed=config.seed,
-        engine=config.engine,
-        tc_exponent=config.tc_exponent,
-        escape=config.escape,
-        record_events=False,
-        win=True,
-    )
+    # The config's own fields that are the simulation's (all but speed), by their names.
+    chosen = {f.name: getattr(config, f.name) for f in fields(config) if f.name in CHECKED_KEYWORDS}
+    checked = SimulationConfig.checked(**chosen, **GAME_PHYSICS)
     try:
         return Simulation.from_config(checked)
     except ImportError:

@@ -7,6 +7,7 @@ parameter, so each command line can name its own option from a table.
 
 from __future__ import annotations
 
+import inspect
 import numbers
 from dataclasses import dataclass
 
@@ -106,6 +107,11 @@ class SimulationConfig:
         return SimulationConfig(
             **{**self.__dict__, "positions": pos, "velocities": vel},
         )
+
+
+#: The keywords SimulationConfig.checked takes: a caller's own config passes those of its
+#: fields on by name (game/rules.py), so the list is written once, there.
+CHECKED_KEYWORDS = frozenset(inspect.signature(SimulationConfig.checked).parameters)
 
 
 def fast_available() -> bool:

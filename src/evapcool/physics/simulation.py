@@ -47,6 +47,7 @@ from evapcool.physics.world import (
     EVENT_NAMES,
     TRAPPED,
     World,
+    world_in,
 )
 
 if TYPE_CHECKING:
@@ -152,23 +153,8 @@ class Simulation:
             pos, vel = load_cup(c.n_atoms, r_ref, c.curvature, c.room.top(r_ref), self.seed)
         else:
             pos, vel = c.positions.copy(), c.velocities.copy()
-        x_left, x_right, y_bottom = c.room.escape_box(r_ref)
-        self._world = World(
-            pos=pos,
-            vel=vel,
-            radius=c.radii.copy(),
-            mass=c.masses.copy(),
-            curvature=c.curvature,
-            gravity=c.gravity,
-            trap_height=c.trap_height,
-            x_left=x_left,
-            x_right=x_right,
-            y_bottom=y_bottom,
-            tc_exponent=c.tc_exponent,
-            escape_rule=c.escape,
-            record_events=c.record_events,
-            win_rule=c.win,
-        )
+        atoms = (pos, vel, c.radii.copy(), c.masses.copy())
+        self._world = world_in(c.room, c, atoms, c.record_events)
         self._engine = self._make_engine(c.engine, c.n_atoms)
         self._engine.set_trap_height(c.trap_height)
         self._score: int | None = None

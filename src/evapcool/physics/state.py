@@ -27,7 +27,7 @@ from evapcool.physics.constants import (
 )
 from evapcool.physics.room import Room
 from evapcool.physics.validation import first_overlap
-from evapcool.physics.world import ESCAPE_RULES, TRAPPED, World
+from evapcool.physics.world import ESCAPE_RULES, TRAPPED, World, world_in
 
 STATE_FORMAT = "evapcool-state"
 STATE_VERSION = 1
@@ -390,23 +390,8 @@ def world_from_state(
         "state.atoms", xn, yn, p.radius, trapped, p.curvature, STATE_TOLERANCE, not p.won
     )
     room = room_of_window(p.window)
-    x_left, x_right, y_bottom = room.escape_box(float(p.radius[0]))
-    w = World(
-        pos=np.column_stack((p.x, p.y)),
-        vel=np.column_stack((p.vx, p.vy)),
-        radius=p.radius,
-        mass=p.mass,
-        curvature=p.curvature,
-        gravity=p.gravity,
-        trap_height=p.trap_height,
-        x_left=x_left,
-        x_right=x_right,
-        y_bottom=y_bottom,
-        tc_exponent=p.tc_exponent,
-        escape_rule=p.escape,
-        record_events=bool(record_events),
-        win_rule=p.win,
-    )
+    atoms = (np.column_stack((p.x, p.y)), np.column_stack((p.vx, p.vy)), p.radius, p.mass)
+    w = world_in(room, p, atoms, bool(record_events))
     w.t_atom[:] = p.t
     w.status[:] = p.status
     w.n_trapped = int(np.count_nonzero(trapped))

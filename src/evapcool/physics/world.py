@@ -9,11 +9,13 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
+from typing import Protocol
 
 import numpy as np
 
 from evapcool.physics.kernels import flight_vy, flight_x, flight_y
 from evapcool.physics.portable import power
+from evapcool.physics.room import Room
 
 # Atom lifecycle, SPEC 2.3: trapped -> escaped -> gone.
 TRAPPED = 0
@@ -139,3 +141,48 @@ class World:
         """Window edges for atom i's centre, pushed out by its radius."""
         r = float(self.radius[i])
         return self.x_left - r, self.x_right + r, self.y_bottom - r
+
+
+class WorldRules(Protocol):
+    """A World's rules by the names a SimulationConfig and a saved state both give them."""
+
+    @property
+    def curvature(self) -> float: ...
+    @property
+    def gravity(self) -> float: ...
+    @property
+    def trap_height(self) -> float: ...
+    @property
+    def tc_exponent(self) -> float: ...
+    @property
+    def escape(self) -> str: ...
+    @property
+    def win(self) -> bool: ...
+
+
+def world_in(
+    room: Room,
+    rules: WorldRules,
+    atoms: tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray],
+    record_events: bool,
+) -> World:
+    """A World of atoms (positions, velocities, radii, masses) under rules, its escape box
+    room's for the first atom's radius (the trap origin's height above the wall)."""
+    pos, vel, radius, mass = atoms
+    x_left, x_right, y_bottom = room.escape_box(float(radius[0]))
+    return World(
+        pos=pos,
+        vel=vel,
+        radius=radius,
+        mass=mass,
+        curvature=rules.curvature,
+        gravity=rules.gravity,
+        trap_height=rules.trap_height,
+        x_left=x_left,
+        x_right=x_right,
+        y_bottom=y_bottom,
+        tc_exponent=rules.tc_exponent,
+        escape_rule=rules.escape,
+        record_events=record_events,
+        win_rule=rules.win,
+    )
