@@ -5,6 +5,7 @@
     python scripts/bench_class.py --department [--classes 10] [--students 300] [--spread 120]
         [--arrivals burst,spread]
     python scripts/bench_class.py --department --kill [--classes 10] [--spread 120]
+    python scripts/bench_class.py --debrief [--students 300] [--runs 5] [--workers 2]
 
 Starts a real `evapcool class` on 127.0.0.1, opens a challenge, lets every student join,
 then sends one game per student (real recordings of the autopilot, perturbed so that each
@@ -498,6 +499,72 @@ def department_bench(args: argparse.Namespace) -> None:
             pg.stop()
 
 
+async def send_codes(server: Server, challenge: object, tokens: list[str], codes: list[str]) -> int:
+    """Each student (a token) sends their code, 50 at a time; the games accepted."""
+    limit = asyncio.Semaphore(50)
+
+    async def one(client: httpx.AsyncClient, token: str, code: str) -> bool:
+        async with limit:
+            answer = await client.post(
+                server.base + "/api/submit",
+                headers={"Authorization": f"Bearer {token}"},
+                json={"challenge": challenge, "code": code},
+            )
+            return answer.status_code == 200
+
+    async with httpx.AsyncClient(timeout=600) as client:
+        done = await asyncio.gather(
+            *(one(client, t, c) for t, c in zip(tokens, codes, strict=True))
+        )
+    return sum(done)
+
+
+def debrief_bench(args: argparse.Namespace) -> None:
+    """Close-to-first-draw of the projector's debrief, `args.runs` times; prints the median."""
+    import json
+    import re
+    import subprocess
+
+    web = Path(__file__).resolve().parents[1] / "web"
+    codes = [code for _, code, _ in student_games(args.students, forged_every=10**9)]
+    took: list[float] = []
+    with tempfile.TemporaryDirectory() as tmp:
+        server = start_server(Path(tmp) / "class.sqlite", workers=args.workers)
+        try:
+            page = httpx.get(server.base + "/lecturer", params={"token": server.token}).text
+            found = re.search(r'href="/projector\?key=([0-9a-f]+)"', page)
+            assert found, "no projector link on the lecturer's page"
+            names = [f"Student {i:03d}" for i in range(len(codes))]
+            tokens = [
+                httpx.post(server.base + "/api/join", json={"name": n}).json()["token"]
+                for n in names
+            ]
+            for run in range(args.runs):
+                challenge = open_challenge(server)["id"]
+                time.sleep(2.0)
+                taken = asyncio.run(send_codes(server, challenge, tokens, codes))
+                # Two variants may share their moves up to the win: a copy, refused.
+                assert taken >= 0.99 * len(codes), f"{taken} of {len(codes)} games taken"
+                cmd = ["node", "test/e2e/bench-debrief.mjs", server.base, found.group(1)]
+                proc = subprocess.Popen(cmd, cwd=web, stdout=subprocess.PIPE, text=True)
+                assert proc.stdout is not None and proc.stdout.readline().strip() == "ready"
+                close_at = time.time() * 1000.0
+                httpx.post(server.base + "/api/challenge/close", headers=server.lecturer)
+                got = json.loads(proc.stdout.readline())
+                proc.wait(60)
+                took.append((got["drawn_at"] - close_at) / 1000.0)
+                print(
+                    f"run {run + 1}: {got['curves']} curves drawn {took[-1]:.3f} s after the close"
+                )
+        finally:
+            server.stop()
+    print(
+        f"debrief, {args.students} games: close -> first draw "
+        f"median {statistics.median(took):.3f} s "
+        f"(min {min(took):.3f}, max {max(took):.3f}, {len(took)} runs)"
+    )
+
+
 def main() -> int:
     p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     p.add_argument("--students", type=int, default=300)
@@ -513,12 +580,17 @@ def main() -> int:
     p.add_argument(
         "--arrivals", default="burst,spread", help="which runs (--department): burst, spread"
     )
+    p.add_argument("--debrief", action="store_true", help="the debrief's first draw (issue 36)")
+    p.add_argument("--runs", type=int, default=5, help="closes measured (--debrief)")
     args = p.parse_args()
     if args.flood:
         flood_bench(args)
         return 0
     if args.department:
         department_bench(args)
+        return 0
+    if args.debrief:
+        debrief_bench(args)
         return 0
     entries = student_games(args.students)
     rng = random.Random(1)

@@ -1,7 +1,7 @@
 """Golden starts and golden wins: what the shared start generator and the game's rules must
 give in every edition (issue 22.1). The web edition's tests read them (web/test/start.test.ts).
 
-    python scripts/golden_starts.py write    # web/test/golden/starts.json and wins.json
+    python scripts/golden_starts.py write    # web/test/golden/starts.json, wins.json, paths.json
     python scripts/golden_starts.py check    # the committed files still match (exit 1 if not)
 """
 
@@ -13,7 +13,8 @@ import sys
 from pathlib import Path
 
 from evapcool.fileio import atomic_write_text
-from evapcool.game.replay import Settings, record_autopilot
+from evapcool.game.path import game_path
+from evapcool.game.replay import Recording, Settings, record_autopilot
 from evapcool.physics.simulation import Simulation
 from evapcool.physics.start import SEED_PORTABLE_MAX
 
@@ -67,10 +68,21 @@ def wins() -> dict:
     return {"format": "evapcool-wins", "generator": 1, "recordings": cases}
 
 
+def paths() -> dict:
+    """The debrief's paths (issue 36) of the won games and of a lost one (a slow ramp)."""
+    recordings = [Recording.from_json(doc) for doc in wins()["recordings"]]
+    lost = Recording(Settings(n_atoms=49), 3, ((400.0, 30), (300.0, 500)), False, 0, 530)
+    out = []
+    for rec in [*recordings, lost]:
+        out.append({"recording": rec.to_json(), "path": game_path(rec).to_json()})
+    return {"format": "evapcool-paths", "generator": 1, "cases": out}
+
+
 def texts() -> dict[str, str]:
     return {
         "starts.json": json.dumps(starts()) + "\n",
         "wins.json": json.dumps(wins()) + "\n",
+        "paths.json": json.dumps(paths()) + "\n",
     }
 
 

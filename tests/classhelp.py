@@ -74,6 +74,29 @@ def _play(seed: int, k: int, budget: int = 5000) -> Recording:
     return recorder.finish(game.won, game.score)
 
 
+def ramp_game(seed: int, k: int, lost_from: int = 28) -> Recording:
+    """Game k on `seed` played by a ramp: the trap lowered by 3 to 6 px every 12 + k frames
+    to a floor (60 to 100 px); from k = lost_from on, held at 300 px for 1500 frames, a game
+    that never wins (the debrief's tests: every k a different game)."""
+    from evapcool.game.rules import Game
+
+    lost = k >= lost_from
+    step, every, floor = 3 + k % 4, 12 + k, 300 if lost else 60 + 10 * (k % 5)
+    game = Game(SETTINGS.game_config(seed, "fast"))
+    game.toggle_pause()
+    recorder = Recorder(SETTINGS, seed, edition="web")
+    height = 400.0
+    for frame in range(1500 if lost else 6000):
+        if frame % every == 0 and height > floor:
+            height = max(floor, height - step)
+        game.set_trap_height(height)
+        recorder.frame(game.trap_height)
+        game.run_frames(1)
+        if game.won or game.sim.n_trapped == 0:
+            break
+    return recorder.finish(game.won, game.score)
+
+
 def code(seed: int, k: int) -> str:
     """The replay code of game k on `seed`."""
     return encode(variant(seed, k))
@@ -235,3 +258,15 @@ async def watch_board(client: httpx.AsyncClient, server: Server, seen: dict[str,
                 now = time.perf_counter()
                 for e in json.loads(line[6:])["entries"]:
                     seen.setdefault(e["name"], now)
+
+
+if __name__ == "__main__":
+    # `python tests/classhelp.py ramps N SEED`: N ramp games' codes as JSON (the Chromium
+    # debrief test sends them).
+    if len(sys.argv) == 4 and sys.argv[1] == "ramps":
+        n, seed = int(sys.argv[2]), int(sys.argv[3])
+        games = [ramp_game(seed, k) for k in range(n)]
+        out = [
+            {"code": encode(r), "won": r.won, "score": r.score, "frames": r.frames} for r in games
+        ]
+        print(json.dumps(out))

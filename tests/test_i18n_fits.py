@@ -67,6 +67,8 @@ WRAPPED = ("notice.", "lose.", "start.", "help.", "table.footer", "table.clear")
 WRAPPED += ("table.autopilot_row", "settings.overrides", "settings.max_atoms", "settings.save")
 WRAPPED += ("win.next_player", "win.not_stored", "scores.", "settings.saved", "desk.", "replay.")
 WRAPPED += ("storage.", "status.slow", "help.choose")
+# The debrief's best path in words: a paragraph for screen readers (wrapped by the page).
+WRAPPED += ("debrief.describe",)
 WRAP_WIDTH = HELP_WIDTH - 150 - 16
 SAMPLE = {"n": 12345, "p": 0.667, "height": 400, "percent": 87, "problem": "disk full"}
 SAMPLE |= {"radius": 2.5, "mode": "autopilot", "name": "Anonymous"}

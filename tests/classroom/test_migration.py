@@ -22,6 +22,7 @@ SINGLE_CLASS_COLUMNS = (
     ("player", "skeleton", "TEXT"),
     ("player", "hidden", "INTEGER NOT NULL DEFAULT 0"),
     ("entry", "moves", "TEXT"),
+    ("entry", "path", "TEXT"),
 )
 TOKEN = "the-lecturers-token-of-last-term"
 #: The test game's settings as the server stored them.

@@ -60,6 +60,36 @@ PAGE_WORDS = {
     "knife": "settings.escape_knife",
     "tc_law": "settings.tc_law",
 }
+#: The debrief's words (issue 36), under their catalog keys (web/src/view/debrief).
+DEBRIEF_WORDS = (
+    "debrief.title",
+    "debrief.paths",
+    "debrief.heights",
+    "debrief.axis_time",
+    "debrief.axis_height",
+    "debrief.scale",
+    "debrief.legend_end",
+    "debrief.best",
+    "debrief.fastest",
+    "debrief.most_lost",
+    "debrief.never_won",
+    "debrief.anonymous_name",
+    "debrief.picked",
+    "debrief.describe",
+    "debrief.describe_none",
+    "debrief.side_by_side",
+    "debrief.frame",
+    "debrief.show",
+    "debrief.early",
+    "debrief.anonymous",
+    "debrief.pair",
+    "chart.axis.atoms",
+    "chart.axis.temperature",
+    "chart.legend.tc_line",
+    "chart.legend.condensate",
+    "chart.readout_path",
+)
+PAGE_WORDS.update({key: key for key in DEBRIEF_WORDS})
 
 
 def built(name: str) -> str:

@@ -42,6 +42,7 @@ from starlette.routing import Route
 
 from evapcool.classroom import pages
 from evapcool.classroom.challenge import challenge_doc, parse_challenge
+from evapcool.classroom.debrief import Law, Showing, debrief_doc, every_frame, law_of, without_names
 from evapcool.classroom.errors import RefusedError, read_json, refused_response
 from evapcool.classroom.fairqueue import FairQueue
 from evapcool.classroom.ratelimit import Rate, RateLimiter
@@ -161,6 +162,10 @@ class Hub:
     listeners: list[Listener] = field(default_factory=list)
     #: Rooms whose board another process (or this one) announced changed, to send.
     pending: set[int] = field(default_factory=set)
+    #: The challenges' critical lines and the pair's paths (issue 36's debrief), computed
+    #: once per process (the same in every process: they follow from the games).
+    laws: dict[int, Law] = field(default_factory=dict)
+    pair_paths: dict[int, dict[str, Any]] = field(default_factory=dict)
 
     def __post_init__(self) -> None:
         # Requests per address are one process's flood guard; submissions and joins are
@@ -175,7 +180,8 @@ class Hub:
 
     async def board(self, room: int, keyed: bool = False) -> dict[str, Any]:
         """The leaderboard of a room's current (open, else last) challenge; the replay's
-        code only for the key's holders while that game's challenge is open."""
+        code only for the key's holders while that game's challenge is open; the debrief's
+        state (no names in its anonymous mode)."""
         return await self.db(_board, self.store, room, keyed)
 
     async def publish(self, room: int) -> None:
@@ -227,8 +233,8 @@ def _replay_seen(store: ClassStore, room: int, keyed: bool) -> Any:
     return {k: v for k, v in showing.items() if k not in hidden}
 
 
-def _board(store: ClassStore, room: int, keyed: bool) -> dict[str, Any]:
-    """The leaderboard document (see docs/class.md)."""
+def _leaderboard(store: ClassStore, room: int, keyed: bool) -> dict[str, Any]:
+    """The leaderboard of a room's current challenge (see docs/class.md)."""
     current = store.latest(room)
     replay = _replay_seen(store, room, keyed)
     if current is None:
@@ -253,6 +259,15 @@ def _board(store: ClassStore, room: int, keyed: bool) -> dict[str, Any]:
         "rejected": current["rejected"],
         "replay": replay,
     }
+
+
+def _board(store: ClassStore, room: int, keyed: bool) -> dict[str, Any]:
+    """The leaderboard document with the debrief's state (see docs/class.md); no names
+    in the debrief's anonymous mode."""
+    board = _leaderboard(store, room, keyed)
+    state = showing_of(store.debrief_state(room))
+    board["debrief"] = state.to_json()
+    return without_names(board) if state.anonymous else board
 
 
 def challenge_info(row: dict[str, Any], now: float | None = None) -> dict[str, Any]:
@@ -460,6 +475,9 @@ async def open_challenge(request: Request) -> Response:
         room["id"],
     )
     await hub.db(hub.store.set_showing, room["id"], None)
+    state = await debrief_state(hub, room["id"])
+    fresh = Showing(anonymous=state.anonymous).to_json()
+    await hub.db(hub.store.set_debrief_state, room["id"], fresh)
     await hub.publish(room["id"])
     row = await hub.db(hub.store.challenge, cid, room["id"])
     assert row is not None
@@ -594,7 +612,9 @@ async def submit(request: Request) -> Response:
     if "error" in got:
         await _refuse(hub, row, got["error"])
     result = (got["score"], got["frames"], got["edition"], got["code"], got["moves"])
-    entry = await hub.db(hub.store.add_if_allowed, row["id"], token, result, time.time())
+    entry = await hub.db(
+        hub.store.add_if_allowed, row["id"], token, result, time.time(), got["path"]
+    )
     if entry == "code":
         await _refuse(hub, row, {"field": "code", "key": "class.error.copied", "args": {}})
     if isinstance(entry, str):
@@ -681,10 +701,16 @@ async def show(request: Request) -> Response:
     """Put an entry's replay on the projector ({"entry": null} takes it off)."""
     hub, room = await lecturer(request)
     doc = await read_json(request, hub.limits.body_bytes)
+    await _show(hub, room["id"], None if doc.get("entry") is None else _entry_id(doc))
+    await hub.publish(room["id"])
+    return JSONResponse({"replay": await hub.db(_replay_seen, hub.store, room["id"], True)})
+
+
+async def _show(hub: Hub, room: int, entry: int | None) -> None:
+    """The replay a room's projector plays: an entry's of the room (404 if none), or none."""
     showing = None
-    if doc.get("entry") is not None:
-        entry = _entry_id(doc)
-        found = await hub.db(hub.store.entry_code, entry, room["id"])
+    if entry is not None:
+        found = await hub.db(hub.store.entry_code, entry, room)
         if found is None:
             raise RefusedError(404, "entry", "class.error.no_entry")
         name, code, challenge = found
@@ -694,11 +720,9 @@ async def show(request: Request) -> Response:
             "code": code,
             "summary": moves_summary(code),
             "challenge": challenge,
-            "player": await hub.db(hub.store.entry_player, entry, room["id"]),
+            "player": await hub.db(hub.store.entry_player, entry, room),
         }
-    await hub.db(hub.store.set_showing, room["id"], showing)
-    await hub.publish(room["id"])
-    return JSONResponse({"replay": await hub.db(_replay_seen, hub.store, room["id"], True)})
+    await hub.db(hub.store.set_showing, room, showing)
 
 
 async def _challenge_asked(request: Request, hub: Hub, room: dict[str, Any]) -> Any:
@@ -713,6 +737,123 @@ async def _challenge_asked(request: Request, hub: Hub, room: dict[str, Any]) -> 
     if row is None:
         raise RefusedError(404, "challenge", "class.error.no_challenge")
     return row
+
+
+# -- the debrief (issue 36) ----------------------------------------------------------------
+
+
+def showing_of(doc: dict[str, Any] | None) -> Showing:
+    """The debrief's state as the store keeps it (JSON), or the default."""
+    if not doc:
+        return Showing()
+    pair = doc.get("pair")
+    return Showing(
+        bool(doc.get("anonymous")), doc.get("pick"), (pair[0], pair[1]) if pair else None
+    )
+
+
+async def debrief_state(hub: Hub, room: int) -> Showing:
+    """What a room's lecturer set the debrief to show (in the store: every process sees it)."""
+    return showing_of(await hub.db(hub.store.debrief_state, room))
+
+
+async def _debrief_challenge(
+    request: Request, hub: Hub
+) -> tuple[dict[str, Any], dict[str, Any], bool]:
+    """The class, the challenge debriefed and whether its lecturer asks: 409 while it is
+    open, unless the lecturer asks (their early look; the projector and students wait for
+    the close)."""
+    room = await room_of(request, hub)
+    is_lecturer = _same(_bearer(request), await _lecturer_digest(hub, room))
+    row = await hub.db(hub.store.latest, room["id"])
+    if row is None:
+        raise RefusedError(404, "challenge", "class.error.no_challenge")
+    if _is_open(row) and not is_lecturer:
+        raise RefusedError(409, "challenge", "class.error.debrief_open")
+    return room, row, is_lecturer
+
+
+async def _law(hub: Hub, row: dict[str, Any]) -> Law:
+    """The critical line of a challenge (computed once, in a worker)."""
+    if row["id"] not in hub.laws:
+        loop = asyncio.get_running_loop()
+        law = await loop.run_in_executor(hub.pool, law_of, row["settings"], row["seed"])
+        hub.laws[row["id"]] = law
+    return hub.laws[row["id"]]
+
+
+async def debrief(request: Request) -> Response:
+    """The debrief document: every student's best game's path, the archetypes, and (with a
+    student's token) `you`. Names left out in anonymous mode, except for the lecturer."""
+    hub = guard(request)
+    room, row, is_lecturer = await _debrief_challenge(request, hub)
+    games = await hub.db(hub.store.best_games, row["id"])
+    law = await _law(hub, row)
+    viewer = None if is_lecturer else _bearer(request) or None
+    state = await debrief_state(hub, room["id"])
+    doc = debrief_doc(row, games, law, state.anonymous and not is_lecturer, viewer)
+    doc["showing"] = state.to_json()
+    return JSONResponse(doc, headers={"Cache-Control": "no-store"})
+
+
+async def debrief_pair(request: Request) -> Response:
+    """The two games the lecturer set side by side, their paths at every frame."""
+    hub = guard(request)
+    room, row, is_lecturer = await _debrief_challenge(request, hub)
+    state = await debrief_state(hub, room["id"])
+    if state.pair is None:
+        raise RefusedError(404, "pair", "class.error.no_entry")
+    loop = asyncio.get_running_loop()
+    ranks = {g["entry"]: g["rank"] for g in await hub.db(hub.store.best_games, row["id"])}
+    games = []
+    for entry in state.pair:
+        found = await hub.db(hub.store.entry_code, entry, room["id"])
+        if found is None or found[2] != row["id"]:
+            raise RefusedError(404, "pair", "class.error.no_entry")
+        if entry not in hub.pair_paths:
+            path = await loop.run_in_executor(hub.pool, every_frame, found[1])
+            hub.pair_paths[entry] = path
+        name = None if state.anonymous and not is_lecturer else found[0]
+        path = hub.pair_paths[entry]
+        games.append({"entry": entry, "name": name, "rank": ranks.get(entry), "path": path})
+    return JSONResponse({"challenge": row["id"], "games": games})
+
+
+def _pair_of(doc: dict[str, Any]) -> tuple[int, int] | None:
+    """The pair a lecturer names: two different entries, or null (400 otherwise)."""
+    pair = doc.get("pair")
+    if pair is None:
+        return None
+    if not isinstance(pair, list) or len(pair) != 2 or pair[0] == pair[1]:
+        raise RefusedError(400, "pair", "class.error.value", allowed="[entry, entry]")
+    a, b = (_entry_id({"entry": e}) for e in pair)
+    return (a, b)
+
+
+async def set_debrief(request: Request) -> Response:
+    """The lecturer sets the debrief: {anonymous: bool, pick: entry | null (its replay on
+    the projector, in the pair's place), pair: [entry, entry] | null (side by side)};
+    fields left out stay."""
+    hub, room = await lecturer(request)
+    doc = await read_json(request, hub.limits.body_bytes)
+    state = await debrief_state(hub, room["id"])
+    anonymous = doc.get("anonymous", state.anonymous)
+    if not isinstance(anonymous, bool):
+        raise RefusedError(400, "anonymous", "class.error.value", allowed="true, false")
+    pick, pair = state.pick, state.pair
+    if "pick" in doc:
+        pick = None if doc["pick"] is None else _entry_id({"entry": doc["pick"]})
+        await _show(hub, room["id"], pick)
+        pair = None  # the picked game's replay takes the pair's place
+    if "pair" in doc:
+        pair = _pair_of(doc)
+        for entry in pair or ():
+            if await hub.db(hub.store.entry_code, entry, room["id"]) is None:
+                raise RefusedError(404, "pair", "class.error.no_entry")
+    new = Showing(anonymous, pick, pair)
+    await hub.db(hub.store.set_debrief_state, room["id"], new.to_json())
+    await hub.publish(room["id"])
+    return JSONResponse(new.to_json())
 
 
 async def entries(request: Request) -> Response:
@@ -861,6 +1002,9 @@ CLASS_ROUTES: list[tuple[str, Callable[[Request], Any], list[str] | None]] = [
     ("/api/show", show, ["POST"]),
     ("/api/entries", entries, None),
     ("/api/leaderboard", leaderboard, None),
+    ("/api/debrief", debrief, ["GET"]),
+    ("/api/debrief", set_debrief, ["POST"]),
+    ("/api/debrief/pair", debrief_pair, None),
     ("/api/stream", stream, None),
     ("/api/export.csv", export_csv, None),
 ]

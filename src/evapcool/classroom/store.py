@@ -69,18 +69,21 @@ ADDED_COLUMNS = (
     ("player", "hidden", "INTEGER NOT NULL DEFAULT 0"),
     # The game's moves up to its win (verifier.moves_key): a copy has the same.
     ("entry", "moves", "TEXT"),
+    # The game's path, computed once at verification (game/path.py): JSON text.
+    ("entry", "path", "TEXT"),
     # The class (room) a challenge and a player belong to: a file of one class is room 1.
     ("challenge", "room", f"INTEGER NOT NULL DEFAULT {DEFAULT_ROOM}"),
     ("player", "room", f"INTEGER NOT NULL DEFAULT {DEFAULT_ROOM}"),
 )
 #: Tables added with classes (rooms): the lecturers (their tokens' digests), the classes
-#: (join code, name, lecturer, the replay on the projector as JSON).
+#: (join code, name, lecturer, the replay on the projector and the debrief's state, JSON).
 ROOM_SCHEMA = """
 CREATE TABLE IF NOT EXISTS lecturer (
     id INTEGER PRIMARY KEY, name TEXT NOT NULL, digest TEXT NOT NULL UNIQUE);
 CREATE TABLE IF NOT EXISTS room (
     id INTEGER PRIMARY KEY, code TEXT NOT NULL UNIQUE, name TEXT NOT NULL,
-    lecturer INTEGER REFERENCES lecturer(id), showing TEXT, created REAL NOT NULL);
+    lecturer INTEGER REFERENCES lecturer(id), showing TEXT, created REAL NOT NULL,
+    debrief TEXT);
 CREATE INDEX IF NOT EXISTS challenge_room ON challenge(room, open);
 CREATE INDEX IF NOT EXISTS player_room ON player(room, skeleton);
 """
@@ -143,6 +146,8 @@ class ClassStore(Protocol):
     def rooms(self, lecturer: int | None = None) -> list[dict[str, Any]]: ...
     def showing(self, room: int) -> dict[str, Any] | None: ...
     def set_showing(self, room: int, shown: dict[str, Any] | None) -> None: ...
+    def debrief_state(self, room: int) -> dict[str, Any] | None: ...
+    def set_debrief_state(self, room: int, state: dict[str, Any] | None) -> None: ...
     def take(self, kind: str, key: str, rate: Rate) -> int: ...
     def notify(self, room: int) -> None: ...
     def forget_buckets(self) -> None: ...
@@ -172,8 +177,14 @@ class ClassStore(Protocol):
     def hide(self, entry: int, hidden: bool = True, room: int = DEFAULT_ROOM) -> bool: ...
     def attempts(self, challenge: int, token: str) -> int: ...
     def add_if_allowed(
-        self, challenge: int, token: str, result: tuple[int, int, str, str, str], now: float
+        self,
+        challenge: int,
+        token: str,
+        result: tuple[int, int, str, str, str],
+        now: float,
+        path: str | None = None,
     ) -> int | str: ...
+    def best_games(self, challenge: int) -> list[dict[str, object]]: ...
     def entries(self, challenge: int) -> list[dict[str, object]]: ...
     def standing(self, challenge: int, token: str) -> dict[str, int | None]: ...
     def entry_code(self, entry: int, room: int = DEFAULT_ROOM) -> tuple[str, str, int] | None: ...
@@ -329,15 +340,28 @@ class SqlStore:
 
     def showing(self, room: int) -> dict[str, Any] | None:
         """The replay on a room's projector (every process sees the same), or None."""
-        row = self._one("SELECT showing FROM room WHERE id = ?", (room,))
-        if row is None or row[0] is None:
-            return None
-        shown: dict[str, Any] = json.loads(row[0])
-        return shown
+        return self._room_json(room, "showing")
 
     def set_showing(self, room: int, shown: dict[str, Any] | None) -> None:
-        text = None if shown is None else json.dumps(shown, sort_keys=True)
-        self._write("UPDATE room SET showing = ? WHERE id = ?", (text, room))
+        self._set_room_json(room, "showing", shown)
+
+    def debrief_state(self, room: int) -> dict[str, Any] | None:
+        """What a room's lecturer set the debrief to show (issue 36), or None."""
+        return self._room_json(room, "debrief")
+
+    def set_debrief_state(self, room: int, state: dict[str, Any] | None) -> None:
+        self._set_room_json(room, "debrief", state)
+
+    def _room_json(self, room: int, column: str) -> dict[str, Any] | None:
+        row = self._one(f"SELECT {column} FROM room WHERE id = ?", (room,))
+        if row is None or row[0] is None:
+            return None
+        doc: dict[str, Any] = json.loads(row[0])
+        return doc
+
+    def _set_room_json(self, room: int, column: str, doc: dict[str, Any] | None) -> None:
+        text = None if doc is None else json.dumps(doc, sort_keys=True)
+        self._write(f"UPDATE room SET {column} = ? WHERE id = ?", (text, room))
 
     # -- challenges ------------------------------------------------------------------------
 
@@ -521,14 +545,19 @@ class SqlStore:
             return int(got.fetchone()[0])
 
     def add_if_allowed(
-        self, challenge: int, token: str, result: tuple[int, int, str, str, str], now: float
+        self,
+        challenge: int,
+        token: str,
+        result: tuple[int, int, str, str, str],
+        now: float,
+        path: str | None = None,
     ) -> int | str:
         """The new entry's id, or the field refusing it: "challenge" (closed), "attempts",
         "code" (the same moves as another player's entry of this challenge: a copy).
 
-        result: (score, frames, edition, code, moves key). One transaction holding the
-        challenge's lock: the checks and the insert cannot interleave with another one's,
-        in this process or another.
+        result: (score, frames, edition, code, moves key); path: the game's path (JSON text).
+        One transaction holding the challenge's lock: the checks and the insert cannot
+        interleave with another one's, in this process or another.
         """
         score, frames, edition, code, moves = result
         with self._tx() as q:
@@ -552,9 +581,9 @@ class SqlStore:
             if copied is not None:
                 return "code"
             got = q(
-                "INSERT INTO entry (challenge, player, score, frames, edition, code, moves) "
-                "VALUES (?,?,?,?,?,?,?) RETURNING id",
-                (challenge, token, score, frames, edition, code, moves),
+                "INSERT INTO entry (challenge, player, score, frames, edition, code, moves, path) "
+                "VALUES (?,?,?,?,?,?,?,?) RETURNING id",
+                (challenge, token, score, frames, edition, code, moves, path),
             )
             return int(got.fetchone()[0])
 
@@ -610,6 +639,29 @@ class SqlStore:
             (entry, room),
         )
         return None if row is None else (str(row[0]), str(row[1]), int(row[2]))
+
+    def best_games(self, challenge: int) -> list[dict[str, object]]:
+        """Each shown student's best game, best first, with its place and its stored path
+        (JSON text, None if stored before paths were): the debrief's curves."""
+        shown = [row for row in _best(self._all(challenge)) if not row[6]]
+        paths = dict(
+            self._rows(
+                "SELECT id, path FROM entry WHERE challenge = ? AND path IS NOT NULL",
+                (challenge,),
+            )
+        )
+        return [
+            {
+                "entry": row[0],
+                "name": row[1],
+                "score": row[2],
+                "frames": row[3],
+                "player": row[5],
+                "rank": place,
+                "path": paths.get(row[0]),
+            }
+            for place, row in enumerate(shown, 1)
+        ]
 
     def entry_player(self, entry: int, room: int = DEFAULT_ROOM) -> str | None:
         """The token of the player of an entry of the room, or None."""

@@ -16,6 +16,7 @@ import zlib
 from typing import Any
 
 from evapcool.classroom.depth import MAX_DEPTH, too_deep
+from evapcool.game.path import game_path
 from evapcool.game.replay import (
     CODE_PREFIX,
     DAMAGED,
@@ -26,11 +27,12 @@ from evapcool.game.replay import (
     Recording,
     ReplayError,
     Settings,
+    Verdict,
+    check_claim,
     decode,
     encode,
     record_autopilot,
     replay,
-    verify,
 )
 
 #: The compiled core where it is built, else the reference engine (the same results).
@@ -171,7 +173,9 @@ def _mismatch(rec: Recording, challenge: dict[str, Any]) -> dict[str, Any] | Non
 
 
 def check_submission(item: object, how: str, challenge: dict[str, Any]) -> dict[str, Any]:
-    """The verified result {score, frames, edition, code, moves}, or a refusal (`refusal`).
+    """The verified result {score, frames, edition, code, moves, path}, or a refusal
+    (`refusal`). path: the game's path (game/path.py) as JSON text, computed here once so
+    the debrief draws every game without replaying any.
 
     A game that does not claim a win is refused before it is replayed, unless the
     challenge takes lost games (`lost`).
@@ -183,7 +187,10 @@ def check_submission(item: object, how: str, challenge: dict[str, Any]) -> dict[
             return wrong
         if not rec.won and not challenge.get("lost"):
             return refusal("won", "class.error.not_won")
-        got = verify(rec, ENGINE)
+        rec.check()
+        # One replay gives the result and the path (game_path plays the frames verify would).
+        path = game_path(rec, engine=ENGINE)
+        got = check_claim(rec, Verdict(path.won, path.score, path.frames))
     except ReplayError as exc:
         return _replay_refusal(exc, how)
     return {
@@ -192,4 +199,5 @@ def check_submission(item: object, how: str, challenge: dict[str, Any]) -> dict[
         "edition": rec.edition,
         "code": encode(rec),
         "moves": moves_key(rec, got.frames),
+        "path": json.dumps(path.to_json(), separators=(",", ":")),
     }

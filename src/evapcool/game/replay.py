@@ -272,7 +272,12 @@ def replay(rec: Recording, engine: str = "auto") -> Verdict:
 def verify(rec: Recording, engine: str = "auto") -> Verdict:
     """The replayed result if it is the one claimed, else ReplayError(WRONG_SCORE)."""
     rec.check()
-    got = replay(rec, engine)
+    return check_claim(rec, replay(rec, engine))
+
+
+def check_claim(rec: Recording, got: Verdict) -> Verdict:
+    """The replayed result `got` if it is the one the recording claims, else
+    ReplayError(WRONG_SCORE)."""
     if (got.won, got.score, got.frames) != (rec.won, rec.score, rec.frames):
         raise ReplayError(
             WRONG_SCORE,

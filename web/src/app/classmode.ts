@@ -7,6 +7,10 @@
  */
 import { activeTranslator, t } from "../i18n";
 import type { Recording, ReplaySettings } from "../game/replay";
+import { gamePath, type GamePath } from "../game/path";
+import type { SimFactory } from "../game/rules";
+import { DebriefView } from "../view/debrief/view";
+import type { Debrief } from "../view/debrief/model";
 
 export interface Challenge {
   id: number;
@@ -28,7 +32,9 @@ export interface ChallengeState extends Challenge {
 /** The leaderboard document of the server's stream (docs/class.md). */
 export interface Board {
   info: ChallengeState | null;
-  entries: Array<{ rank: number; name: string; score: number; frames: number }>;
+  /** name: null in the debrief's anonymous mode. */
+  entries: Array<{ rank: number; name: string | null; score: number; frames: number }>;
+  debrief?: { anonymous: boolean };
 }
 
 /** A student's standing in the current challenge, as /api/me and /api/submit answer. */
@@ -47,6 +53,8 @@ export interface ClassHost {
   play(challenge: Challenge): void;
   /** Called with each win's code. */
   readonly onCode: Array<(code: string, rec: Recording) => void>;
+  /** The page's engine: the debrief draws the student's own game's path from it. */
+  readonly factory?: SimFactory;
 }
 
 /** The class marker's API base, or null (the page from a file: no class mode). */
@@ -117,6 +125,13 @@ export class ClassMode {
   readonly bar: HTMLElement;
   private readonly stateLine: HTMLElement;
   private readonly resultLine: HTMLElement;
+  /** After the close: the student's best path over the class's cloud, and their place. */
+  debrief: DebriefView | null = null;
+  private debriefKey = "";
+  /** This challenge's games the server took, by entry: the page's own paths of them. */
+  private readonly sent = new Map<number, Recording>();
+  /** The path this page computed of its best game for the debrief (equal to the server's). */
+  ownPath: GamePath | null = null;
 
   constructor(
     private readonly api: string,
@@ -128,7 +143,7 @@ export class ClassMode {
      * above the slider; else 0). */
     private readonly barTop: (height: number) => number = () => 0,
   ) {
-    host.onCode.push((code) => void this.submit(code));
+    host.onCode.push((code, rec) => void this.submit(code, rec));
     this.bar = document.createElement("div");
     this.bar.id = "classbar";
     this.bar.setAttribute("role", "status");
@@ -183,12 +198,79 @@ export class ClassMode {
     this.challenge = info;
     if (fresh) {
       [this.used, this.best, this.rank, this.result] = [0, null, null, ["", ""]];
+      this.sent.clear();
       this.host.play(info);
       void this.refreshStanding();
     }
     const mine = this.player && board.entries.find((e) => e.name === this.player?.name);
     if (mine) [this.best, this.rank] = [mine.score, mine.rank];
     this.render();
+    const closed = info !== null && !info.open;
+    const key = closed ? `${info.id}:${board.debrief?.anonymous}:${board.entries.length}` : "";
+    if (key !== this.debriefKey) {
+      this.debriefKey = key;
+      if (closed) void this.showDebrief();
+      else this.closeDebrief();
+    }
+  }
+
+  /** The debrief, once the challenge is closed: the student's own path over the cloud. */
+  private async showDebrief(): Promise<void> {
+    const p = this.player;
+    if (!p) return;
+    try {
+      const res = await fetch(`${this.api}/debrief`, {
+        cache: "no-store",
+        headers: { ...speaking(), authorization: `Bearer ${p.token}` },
+      });
+      if (!res.ok) return;
+      const doc = (await res.json()) as Debrief;
+      this.drawOwn(doc);
+      const view = this.debriefPanel();
+      view.show(doc, null, doc.you?.entry ?? null);
+      const you = view.root.querySelector("#debrief-you")!;
+      you.textContent = doc.you
+        ? t("debrief.you", { rank: doc.you.rank, count: doc.games.length })
+        : t("debrief.you_none");
+      view.draw();
+    } catch {
+      /* the debrief is a look back: the game goes on without it */
+    }
+  }
+
+  /** The student's own game drawn from this page's replay of it (the server's is the same:
+   * same engine, same frames), when the page sent it. */
+  private drawOwn(doc: Debrief): void {
+    const mine = doc.games.find((g) => g.entry === doc.you?.entry);
+    const rec = mine && this.sent.get(mine.entry);
+    if (!mine || !rec || !this.host.factory) return;
+    this.ownPath = gamePath(rec, this.host.factory, mine.frames);
+    mine.path = this.ownPath;
+  }
+
+  private debriefPanel(): DebriefView {
+    if (this.debrief) return this.debrief;
+    const panel = document.createElement("div");
+    panel.id = "class-debrief";
+    this.root.append(panel);
+    const view = new DebriefView(panel, { tr: t, locale: activeTranslator().locale });
+    const you = document.createElement("p");
+    you.id = "debrief-you";
+    view.picked.after(you);
+    const close = document.createElement("button");
+    close.type = "button";
+    close.textContent = t("button.close");
+    close.addEventListener("click", () => this.closeDebrief());
+    view.heading.before(close);
+    panel.addEventListener("keydown", (ev) => ev.stopPropagation()); // not the game's keys
+    window.addEventListener("resize", () => view.draw());
+    this.debrief = view;
+    return view;
+  }
+
+  private closeDebrief(): void {
+    this.debrief?.root.parentElement?.remove();
+    this.debrief = null;
   }
 
   /** Whether the challenge takes games now (open, its window not over). */
@@ -337,7 +419,7 @@ export class ClassMode {
 
   /** Send a win's code; the server answers once it has replayed and stored it. A game
    * the challenge cannot take (closed, no attempts left) is not sent, and says so. */
-  async submit(code: string): Promise<void> {
+  async submit(code: string, rec?: Recording): Promise<void> {
     const c = this.challenge;
     const p = this.player;
     if (!c || !p) return this.tell(t("page.class_join_first"), "bad");
@@ -359,7 +441,8 @@ export class ClassMode {
         this.tell(t("page.class_refused", { problem }), "bad");
         return void this.refreshStanding();
       }
-      const got = (await res.json()) as Standing & { score: number };
+      const got = (await res.json()) as Standing & { score: number; entry: number };
+      if (rec) this.sent.set(got.entry, rec);
       this.takeStanding(got);
       this.tell(t("page.class_game_verified", { n: got.score }), "ok");
     } catch {

@@ -149,6 +149,7 @@ function startClass(app: App, api: string): void {
       say: (t) => app.say(t),
       play: (c) => app.playChallenge(c),
       onCode: app.replays.onCode,
+      factory: makeSimulation,
     },
     byId("app"),
     storage,

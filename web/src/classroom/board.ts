@@ -24,10 +24,10 @@ export interface ChallengeInfo {
   closes_in: number | null;
 }
 
-/** One row of the public leaderboard. */
+/** One row of the public leaderboard (name null in the debrief's anonymous mode). */
 export interface BoardEntry {
   rank: number;
-  name: string;
+  name: string | null;
   score: number;
   frames: number;
   edition: string;
@@ -42,21 +42,25 @@ export interface ReplaySummary {
   last: string;
 }
 
-/** The replay on the projector (its code only while a reader may see it). */
+/** The replay on the projector (its code only while a reader may see it; name null in
+ * the debrief's anonymous mode). */
 export interface Replay {
   entry: number;
-  name: string;
+  name: string | null;
   code?: string;
   summary: ReplaySummary;
 }
 
 /** The leaderboard document of the event stream. */
 export interface Board {
+  challenge?: number | null;
   open: boolean;
   info: ChallengeInfo | null;
   entries: BoardEntry[];
   rejected: number;
   replay: Replay | null;
+  /** What the lecturer set the debrief to show (issue 36). */
+  debrief?: { anonymous: boolean; pick: number | null; pair: [number, number] | null };
 }
 
 /** The two cooling laws the lecturer's form offers, by the exponent's JSON text. */
@@ -121,14 +125,21 @@ export function boardRows(board: Board): BoardEntry[] {
   return board.replay && board.replay.code ? board.entries.slice(0, 5) : board.entries;
 }
 
-/** A board row's cells. */
-export function boardCells(e: BoardEntry): (string | number)[] {
-  return BOARD_COLUMNS.map((c) => e[c]);
+/** A student's name, or "Student {rank}" in the debrief's anonymous mode. */
+export function shownName(words: Words, name: string | null, rank: number | null): string {
+  return name ?? (rank === null ? "" : fill(words["debrief.anonymous_name"], { n: rank }));
 }
 
-/** The replay's heading: who played it, and what its moves were. */
-export function replayHeading(words: Words, replay: Replay): string {
-  return words.replay + ": " + replay.name + " · " + fill(words.summary, { ...replay.summary });
+/** A board row's cells. */
+export function boardCells(e: BoardEntry, words: Words = {}): (string | number)[] {
+  return BOARD_COLUMNS.map((c) => (c === "name" ? shownName(words, e.name, e.rank) : e[c]));
+}
+
+/** The replay's heading: who played it (`rank`: its place, named so when anonymous), and
+ * what its moves were. */
+export function replayHeading(words: Words, replay: Replay, rank: number | null = null): string {
+  const name = shownName(words, replay.name, rank);
+  return words.replay + ": " + name + " · " + fill(words.summary, { ...replay.summary });
 }
 
 /** The refused-games count as the pages say it. */

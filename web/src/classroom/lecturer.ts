@@ -25,6 +25,7 @@ import {
   refusalText,
   type Refusal,
 } from "./common";
+import { LecturerDebrief } from "./debrief/lecturer";
 
 /** The lecturer's list as /api/entries sends it. */
 interface Entries {
@@ -130,6 +131,17 @@ byId<HTMLFormElement>("open").onsubmit = (ev) => {
     lost: byId<HTMLInputElement>("lost").checked,
   });
 };
+// The debrief's controls (issue 36), under the entries.
+const debriefBox = document.createElement("div");
+byId("entries").after(debriefBox);
+const debrief = new LecturerDebrief(
+  debriefBox,
+  (k, args = {}) => fill(words[k] ?? k, args),
+  document.documentElement.lang,
+  auth,
+  post,
+);
+
 byId("close").onclick = () => post("/api/challenge/close", {});
 byId("stop").onclick = () => post("/api/show", { entry: null });
 byId<HTMLAnchorElement>("export").href =
@@ -137,4 +149,9 @@ byId<HTMLAnchorElement>("export").href =
 setInterval(tick, 1000);
 // The projector's key (in its link) lets this page's stream past the students' streams.
 const projectorLink = byId<HTMLAnchorElement>("projector");
-listen(base + "/api/stream" + new URL(projectorLink.href).search, () => void refresh());
+listen(base + "/api/stream" + new URL(projectorLink.href).search, () => {
+  // Once closed, or once the lecturer has looked early: the debrief kept current.
+  void refresh().then(() => {
+    if (debrief.doc || (challenge.info && !challenge.info.open)) void debrief.refresh();
+  });
+});

@@ -15,7 +15,9 @@ import {
   type Board,
   type Replay,
 } from "./board";
-import { byId, classBase, listen, pageWords, queryParam } from "./common";
+import { byId, classBase, fill, listen, pageWords, queryParam } from "./common";
+import { ProjectorDebrief } from "./debrief/projector";
+import { gameOf } from "../view/debrief/model";
 
 const words = pageWords();
 const base = classBase();
@@ -23,6 +25,14 @@ const challenge = new ChallengeClock();
 const key = queryParam("key");
 let open = false;
 let playing: string | null = null;
+const query = key ? "?key=" + encodeURIComponent(key) : "";
+// After the close: the class's paths (issue 36), in the main column above the replay.
+const debrief = new ProjectorDebrief(
+  byId("main"),
+  (k, args = {}) => fill(words[k] ?? k, args),
+  document.documentElement.lang,
+  query,
+);
 
 function tick(): void {
   const [kind, text] = challenge.state(words);
@@ -47,7 +57,8 @@ function showReplay(replay: Replay | null): void {
   }
   frame.hidden = !src;
   if (!replay) return;
-  byId("replay-head").textContent = replayHeading(words, replay);
+  const rank = debrief.doc ? (gameOf(debrief.doc, replay.entry)?.rank ?? null) : null;
+  byId("replay-head").textContent = replayHeading(words, replay, rank);
   // The code comes only with the projector's key while the challenge is open; it is
   // printed on the screen only once the challenge is closed.
   byId("replay-code").textContent = replay.code && !open ? replay.code : "";
@@ -72,11 +83,11 @@ function render(board: Board): void {
     BOARD_COLUMNS.map((c) => words[c]),
     "th",
   );
-  for (const e of boardRows(board)) row(table, boardCells(e));
+  for (const e of boardRows(board)) row(table, boardCells(e, words));
   byId("rejected").textContent = rejectedText(words, board.rejected);
+  debrief.take(board);
   showReplay(board.replay);
 }
 
 setInterval(tick, 1000);
-const query = key ? "?key=" + encodeURIComponent(key) : "";
 listen(base + "/api/stream" + query, (doc) => render(doc as Board));

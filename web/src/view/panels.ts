@@ -383,6 +383,8 @@ export class PathPanel {
   private done = false;
   n: number[] = [];
   t: number[] = [];
+  /** The physics time (frames) of each point: the class debrief's paths sample whole ones. */
+  time: number[] = [];
   n0 = 1;
   t0 = 1;
   tc0 = 0.75;
@@ -394,6 +396,7 @@ export class PathPanel {
     this.gen = -1;
     this.n = [];
     this.t = [];
+    this.time = [];
     this.done = false;
   }
 
@@ -424,6 +427,7 @@ export class PathPanel {
     if (n <= 0 || !(t > 0 && Number.isFinite(t))) return false;
     this.n.push(n);
     this.t.push(t);
+    this.time.push(sim.time);
     if (sim.won) this.done = true;
     return true;
   }

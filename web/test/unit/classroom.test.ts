@@ -128,6 +128,15 @@ describe("the projector's board", () => {
     expect(boardCells(hostile)).toEqual([1, "<img src=x onerror=alert(1)>", 49, 901]);
   });
 
+  it("names no one in the debrief's anonymous mode (issue 36)", () => {
+    const words = { ...WORDS, "debrief.anonymous_name": "Student {n}" };
+    expect(boardCells({ ...entry(3), name: null }, words)).toEqual([3, "Student 3", 47, 903]);
+    const anonymous = { entry: 1, name: null, summary };
+    expect(replayHeading(words, anonymous, 2)).toBe(
+      "Replay: Student 2 · 901 frames, 4 moves, 12 to 3",
+    );
+  });
+
   it("says the refused count and the replay's heading", () => {
     expect(rejectedText(WORDS, 2)).toBe("Refused: 2");
     expect(replayHeading(WORDS, { entry: 1, name: "Ada", summary })).toBe(
@@ -137,8 +146,8 @@ describe("the projector's board", () => {
 });
 
 describe("the lecturer's entries", () => {
-  const shown: LecturerEntry = { ...entry(2), entry: 8, hidden: false };
-  const hidden: LecturerEntry = { ...entry(1), rank: null, entry: 9, hidden: true };
+  const shown: LecturerEntry = { ...entry(2), name: "P2", entry: 8, hidden: false };
+  const hidden: LecturerEntry = { ...entry(1), name: "P1", rank: null, entry: 9, hidden: true };
 
   it("gives a hidden entry no rank", () => {
     expect(entryCells(shown)).toEqual([2, "P2", 48, 902, "web"]);

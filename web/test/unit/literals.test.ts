@@ -32,6 +32,7 @@ const ALLOWED = new Set([
   // The font stack (names of fonts) and the worker's name in the browser's task manager.
   "view/text.ts|'Microsoft YaHei', 'Hiragino Sans', 'Yu Gothic', 'Malgun Gothic', 'Noto Sans Arabic',",
   "view/text.ts|'Noto Naskh Arabic', Tahoma, sans-serif",
+  "view/debrief/text.ts|'Hiragino Sans', 'Malgun Gothic', 'Noto Sans Arabic', 'Noto Naskh Arabic', Tahoma, sans-serif",
   "app/main.ts|evapcool physics",
   "app/main.ts|evapcool verify",
   // The projector's empty frame (an address, not words).

@@ -1,0 +1,103 @@
+/**
+ * The lecturer's debrief controls: look at the debrief early (while the challenge is open,
+ * on this page only), hide the names, pick an archetype (its curve highlighted and its
+ * replay on the projector), set two entries side by side.
+ */
+import { classBase } from "../common";
+import { archetypeList, nameOf, type Debrief, type Tr } from "../../view/debrief/model";
+import { DebriefView } from "../../view/debrief/view";
+
+function made<K extends keyof HTMLElementTagNameMap>(
+  tag: K,
+  parent: HTMLElement,
+  id = "",
+): HTMLElementTagNameMap[K] {
+  const e = document.createElement(tag);
+  if (id) e.id = id;
+  parent.append(e);
+  return e;
+}
+
+export class LecturerDebrief {
+  readonly box: HTMLElement;
+  readonly early: HTMLElement;
+  readonly picks: HTMLElement;
+  readonly anonymous: HTMLInputElement;
+  readonly pairA: HTMLSelectElement;
+  readonly pairB: HTMLSelectElement;
+  readonly view: DebriefView;
+  doc: Debrief | null = null;
+
+  constructor(
+    parent: HTMLElement,
+    private readonly tr: Tr,
+    locale: string,
+    private readonly headers: Record<string, string>,
+    /** POST to the server (the page says any refusal and refreshes). */
+    private readonly post: (path: string, body: unknown) => Promise<void>,
+  ) {
+    this.box = made("section", parent, "debrief-controls");
+    const show = made("button", this.box, "debrief-show");
+    show.textContent = tr("debrief.show");
+    show.onclick = () => void this.refresh();
+    const label = made("label", this.box);
+    this.anonymous = document.createElement("input");
+    this.anonymous.type = "checkbox";
+    this.anonymous.id = "debrief-anonymous";
+    label.append(this.anonymous, " ", tr("debrief.anonymous"));
+    this.anonymous.onchange = () =>
+      void this.post("/api/debrief", { anonymous: this.anonymous.checked });
+    this.early = made("p", this.box, "debrief-early");
+    this.picks = made("p", this.box, "debrief-picks");
+    const pair = made("p", this.box, "debrief-pair-pick");
+    this.pairA = made("select", pair, "debrief-pair-a");
+    this.pairB = made("select", pair, "debrief-pair-b");
+    const go = made("button", pair, "debrief-pair-go");
+    go.textContent = tr("debrief.pair");
+    go.onclick = () =>
+      void this.post("/api/debrief", {
+        pair: [Number(this.pairA.value), Number(this.pairB.value)],
+      });
+    this.view = new DebriefView(this.box, { tr, locale });
+  }
+
+  /** The debrief as the lecturer sees it (names always; early while the challenge is open). */
+  async refresh(): Promise<void> {
+    const res = await fetch(classBase() + "/api/debrief", {
+      headers: this.headers,
+      cache: "no-store",
+    });
+    if (!res.ok) return;
+    const doc = (await res.json()) as Debrief;
+    this.doc = doc;
+    const open = await this.isOpen();
+    this.early.textContent = open ? this.tr("debrief.early") : "";
+    this.anonymous.checked = doc.showing?.anonymous ?? false;
+    this.picks.replaceChildren();
+    for (const a of archetypeList(doc, this.tr)) {
+      const b = made("button", this.picks);
+      b.dataset.kind = a.kind;
+      b.dataset.entry = String(a.entry);
+      b.textContent = a.label;
+      b.onclick = () => void this.post("/api/debrief", { pick: a.entry });
+    }
+    for (const select of [this.pairA, this.pairB]) {
+      const was = select.value;
+      select.replaceChildren();
+      for (const g of doc.games) {
+        const o = made("option", select);
+        o.value = String(g.entry);
+        o.textContent = `${g.rank}. ${nameOf(g, this.tr)} (${g.score})`;
+      }
+      if (was) select.value = was;
+    }
+    if (!this.pairB.value || this.pairB.value === this.pairA.value)
+      this.pairB.selectedIndex = Math.min(1, doc.games.length - 1);
+    this.view.show(doc, doc.showing?.pick ?? null);
+  }
+
+  private async isOpen(): Promise<boolean> {
+    const res = await fetch(classBase() + "/api/leaderboard", { cache: "no-store" });
+    return res.ok && Boolean(((await res.json()) as { open: boolean }).open);
+  }
+}

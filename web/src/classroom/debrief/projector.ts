@@ -1,0 +1,78 @@
+/**
+ * The debrief on the projector: shown once the challenge is closed (never while it is
+ * open: the lecturer's early look stays on the lecturer's page), redrawn when the lecturer
+ * picks a game (highlighted, its name unless anonymous; its replay plays in the replay
+ * box) and playing two games side by side when the lecturer sets a pair.
+ */
+import { classBase } from "../common";
+import type { Debrief, PairDoc, Showing, Tr } from "../../view/debrief/model";
+import { DebriefView } from "../../view/debrief/view";
+
+/** What the projector reads of a leaderboard message for the debrief. */
+export interface BoardForDebrief {
+  challenge?: number | null;
+  open: boolean;
+  entries: unknown[];
+  debrief?: Showing;
+}
+
+export class ProjectorDebrief {
+  readonly view: DebriefView;
+  private docKey = "";
+  private pairKey = "";
+  doc: Debrief | null = null;
+  /** performance.now() when the last debrief document was asked for, and first drawn. */
+  asked = 0;
+  firstDrawn = 0;
+
+  constructor(
+    parent: HTMLElement,
+    tr: Tr,
+    locale: string,
+    /** The projector's own query (its key), for the API's addresses. */
+    private readonly query: string,
+  ) {
+    this.view = new DebriefView(parent, { tr, locale });
+    window.addEventListener("resize", () => this.view.draw());
+  }
+
+  /** Follow a leaderboard message; true while the debrief is shown. */
+  take(board: BoardForDebrief): boolean {
+    const shown = board.challenge !== null && board.challenge !== undefined && !board.open;
+    document.body.classList.toggle("debriefing", shown);
+    if (!shown) {
+      [this.docKey, this.pairKey, this.doc] = ["", "", null];
+      this.view.hide();
+      return false;
+    }
+    const s = board.debrief ?? { anonymous: false, pick: null, pair: null };
+    const key = `${board.challenge}:${s.anonymous}:${board.entries.length}`;
+    if (key !== this.docKey) {
+      this.docKey = key;
+      void this.load(s);
+    } else if (this.doc && s.pick !== this.view.highlight) this.view.show(this.doc, s.pick);
+    const pairKey = s.pair ? `${key}:${s.pair.join(",")}` : "";
+    if (pairKey !== this.pairKey) {
+      this.pairKey = pairKey;
+      void this.loadPair(pairKey);
+    }
+    return true;
+  }
+
+  private async load(s: Showing): Promise<void> {
+    const key = this.docKey;
+    this.asked = performance.now();
+    const res = await fetch(classBase() + "/api/debrief" + this.query, { cache: "no-store" });
+    if (!res.ok || key !== this.docKey) return;
+    this.doc = (await res.json()) as Debrief;
+    this.view.show(this.doc, this.doc.showing?.pick ?? s.pick);
+    if (!this.firstDrawn) this.firstDrawn = performance.now();
+  }
+
+  private async loadPair(key: string): Promise<void> {
+    if (!key) return this.view.setPair(null);
+    const res = await fetch(classBase() + "/api/debrief/pair" + this.query, { cache: "no-store" });
+    if (!res.ok || key !== this.pairKey) return;
+    this.view.setPair((await res.json()) as PairDoc);
+  }
+}
