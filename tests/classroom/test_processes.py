@@ -218,3 +218,28 @@ def test_processes_starting_together_make_the_schema_once(postgres: Postgres) ->
     finally:
         for store in opened:
             store.close()
+
+
+def test_the_projectors_replay_and_the_debrief_hold_across_processes(
+    pair: tuple[Server, Server],
+) -> None:
+    one, two = pair
+    base, lecturer, challenge = a_class(one)
+    who = student(one, base, "Shown")
+    sent = httpx.post(
+        one.base + base + "api/submit",
+        json={"challenge": challenge, "code": code(SEED, 3)},
+        headers=who,
+        timeout=60,
+    )
+    assert sent.status_code == 200, sent.text
+    entry = sent.json()["entry"]
+    shown = httpx.post(two.base + base + "api/show", json={"entry": entry}, headers=lecturer)
+    assert shown.status_code == 200, shown.text
+    board = httpx.get(one.base + base + "api/leaderboard").json()
+    assert board["replay"]["entry"] == entry and "code" not in board["replay"]
+    hidden = httpx.post(two.base + base + "api/debrief", json={"anonymous": True}, headers=lecturer)
+    assert hidden.status_code == 200, hidden.text
+    board = httpx.get(one.base + base + "api/leaderboard").json()
+    assert board["debrief"]["anonymous"] is True
+    assert [e["name"] for e in board["entries"]] == [None]
