@@ -11,6 +11,7 @@ from classhelp import free_port
 
 from evapcool.classroom import class_admin, class_cli
 from evapcool.classroom.server import digest, open_store
+from evapcool.classroom.store import NEEDS_DEPARTMENT
 from evapcool.cli import main
 
 
@@ -75,12 +76,12 @@ def test_postgresql_without_the_extra_is_named(
     monkeypatch.setattr(class_cli, "available", lambda module: not module.startswith("psycopg"))
     url = "postgresql://nobody@/nothing?host=/nonexistent"
     assert main(["class", "--port", str(free_port()), "--db", url]) == 2
-    assert capsys.readouterr().err.strip() == class_cli.NEEDS_DEPARTMENT
+    assert capsys.readouterr().err.strip() == NEEDS_DEPARTMENT
     monkeypatch.setattr(
         "evapcool.extras.available", lambda module: not module.startswith("psycopg")
     )
     assert class_admin.main(["--db", url, "list"]) == 2
-    assert capsys.readouterr().err.strip() == class_cli.NEEDS_DEPARTMENT
+    assert capsys.readouterr().err.strip() == NEEDS_DEPARTMENT
 
 
 def test_an_unreachable_database_is_one_line(capsys: pytest.CaptureFixture[str]) -> None:

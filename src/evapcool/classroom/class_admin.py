@@ -73,7 +73,7 @@ def build_parser() -> OneLineParser:
 def main(argv: list[str]) -> int:
     """Run one administrator's command; one line naming the parameter on bad input."""
     args = build_parser().parse_args(argv)
-    from evapcool.classroom.class_cli import DEPARTMENT_MODULES, NEEDS_DEPARTMENT, is_url
+    from evapcool.classroom.store import DEPARTMENT_MODULES, NEEDS_DEPARTMENT, is_url
     from evapcool.extras import available
 
     if is_url(args.db) and not all(available(m) for m in DEPARTMENT_MODULES):

@@ -12,6 +12,7 @@ from pathlib import Path
 
 from evapcool.about import APP_NAME, error_line
 from evapcool.argtypes import OneLineParser
+from evapcool.classroom.store import DEPARTMENT_MODULES, NEEDS_DEPARTMENT, is_url
 from evapcool.extras import available
 from evapcool.i18n import Catalog, choose_locale
 
@@ -23,12 +24,6 @@ FILE_NAME = "class.sqlite"
 #: The line printed when the class extra is not installed.
 NEEDS_EXTRA = "evapcool class needs the class extra: pip install 'evapcool[class]'"
 EXTRA_MODULES = ("starlette", "uvicorn", "segno", "confusables")
-#: The line printed when --db names PostgreSQL and psycopg is not installed.
-NEEDS_DEPARTMENT = (
-    "evapcool class --db postgresql://... needs the department extra: "
-    "pip install 'evapcool[department]'"
-)
-DEPARTMENT_MODULES = ("psycopg", "psycopg_pool")
 #: The folder the applet keeps its files in when set (evapcool.app.storage.DATA_ENV).
 DATA_ENV = "EVAPCOOL_DATA_DIR"
 
@@ -133,11 +128,6 @@ def _listen(host: str, number: int) -> socket.socket:
     sock.bind((host, number))
     sock.listen(2048)
     return sock
-
-
-def is_url(text: str) -> bool:
-    """Whether a --db value names a PostgreSQL database (else a SQLite file)."""
-    return text.startswith(("postgresql://", "postgres://"))
 
 
 def store_of(args: argparse.Namespace) -> tuple[Path | str | None, str]:
@@ -257,7 +247,8 @@ def serve(
     """Run the server on a bound socket; print the links once it answers."""
     import uvicorn
 
-    from evapcool.classroom.server import Limits, create_app
+    from evapcool.classroom.app import create_app
+    from evapcool.classroom.server import Limits
 
     base = f"http://{shown_host}:{sock.getsockname()[1]}"
     lines = links(Catalog(choose_locale()), base, token, data, department)

@@ -186,8 +186,9 @@ async def _form(request: Request) -> dict[str, str]:
     return {k: v[-1] for k, v in fields.items()}
 
 
-async def join_page(request: Request, hub: Hub) -> Response:
+async def join_page(request: Request) -> Response:
     """The department's root: a box for the join code; a known code goes to its class."""
+    hub = guard(request)
     words = hub.words.of(request)
     given = request.query_params.get("code")
     error = ""
@@ -210,7 +211,7 @@ def _rows(cells: list[list[str]]) -> str:
     return "".join("<tr>" + "".join(f"<td>{c}</td>" for c in row) + "</tr>" for row in cells)
 
 
-async def classes_page(request: Request, hub: Hub) -> Response:
+async def classes_page(request: Request) -> Response:
     """A department's lecturer's page (?token=): their classes with links and past
     challenges, and a form for a new class."""
     token = request.query_params.get("token", "")
@@ -336,6 +337,11 @@ async def _admin_view(request: Request, hub: Hub, token: str, note: str) -> Resp
     return _page(words, words.t("class.admin.title"), body)
 
 
+#: A department's root and lecturer's page (before the single class's at the same paths).
+ROOT_ROUTES = [
+    Route("/", join_page, methods=["GET"]),
+    Route("/lecturer", classes_page, methods=["GET"]),
+]
 ROUTES = [
     Route("/admin", admin_page, methods=["GET"]),
     Route("/admin", admin_post, methods=["POST"]),

@@ -65,11 +65,6 @@ SCHEMA_VERSION = MIGRATIONS[-1][0]
 NOW = "extract(epoch from clock_timestamp())::float8"
 
 
-def is_url(text: str) -> bool:
-    """Whether a --db value names a PostgreSQL database (else it is a SQLite file)."""
-    return text.startswith(("postgresql://", "postgres://"))
-
-
 class PostgresStore(SqlStore):
     """A PostgreSQL database through a pool of connections; safe for several threads and
     several processes (row locks where SQLite holds the file's)."""

@@ -19,16 +19,13 @@ import hmac
 import json
 import multiprocessing
 import secrets
-import threading
 import time
 from collections.abc import AsyncIterator, Callable
 from concurrent.futures import ProcessPoolExecutor, ThreadPoolExecutor
-from contextlib import asynccontextmanager
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any, TypeVar
 
-from starlette.applications import Starlette
 from starlette.exceptions import HTTPException
 from starlette.requests import Request
 from starlette.responses import (
@@ -38,7 +35,6 @@ from starlette.responses import (
     Response,
     StreamingResponse,
 )
-from starlette.routing import Route
 
 from evapcool.classroom import pages
 from evapcool.classroom.challenge import challenge_doc, parse_challenge
@@ -47,7 +43,14 @@ from evapcool.classroom.errors import RefusedError, read_json, refused_response
 from evapcool.classroom.fairqueue import FairQueue
 from evapcool.classroom.ratelimit import Rate, RateLimiter
 from evapcool.classroom.rooms import DEFAULT_ROOM, normal_code
-from evapcool.classroom.store import NAME_MAX, ClassFullError, ClassStore, NameTakenError, Store
+from evapcool.classroom.store import (
+    NAME_MAX,
+    ClassFullError,
+    ClassStore,
+    NameTakenError,
+    Store,
+    is_url,
+)
 from evapcool.classroom.verifier import check_submission, code_chars_ok, reference_frames, warm
 from evapcool.classroom.words import Words, raw
 from evapcool.game.replay import decode
@@ -156,7 +159,6 @@ class Hub:
     limits: Limits
     pool: ProcessPoolExecutor
     workers: int
-    department: bool = False
     db_thread: ThreadPoolExecutor = field(default_factory=lambda: ThreadPoolExecutor(1))
     words: Words = field(default_factory=Words)
     listeners: list[Listener] = field(default_factory=list)
@@ -373,12 +375,8 @@ def _base(room: dict[str, Any]) -> str:
 
 
 async def game(request: Request) -> Response:
-    """The browser edition in class mode (a department server's root: join by code)."""
+    """The browser edition in class mode (a department's root is its join page instead)."""
     hub = guard(request)
-    if "code" not in request.path_params and hub.department:
-        from evapcool.classroom import department
-
-        return await department.join_page(request, hub)
     room = await room_of(request, hub)
     text, policy = pages.game_page(_base(room) + "/api")
     # The projector plays replays in the game page in a frame of its own (same origin).
@@ -410,13 +408,8 @@ def join_url_of(request: Request, room: dict[str, Any]) -> str:
 
 
 async def lecturer_page(request: Request) -> Response:
-    """The lecturer's page (403 without the token in ?token=); a department's lecturer at
-    /lecturer gets the list of their classes."""
-    hub = guard(request)
-    if "code" not in request.path_params and hub.department:
-        from evapcool.classroom import department
-
-        return await department.classes_page(request, hub)
+    """The lecturer's page (403 without the token in ?token=); a department's lecturers get
+    the list of their classes at /lecturer instead (department.py)."""
     hub, room = await lecturer(request, query=True)
     words = hub.words.of(request)
     token = _lecturer_token(request, query=True)
@@ -1015,15 +1008,6 @@ async def _to_class(request: Request) -> Response:
     return RedirectResponse(f"/c/{request.path_params['code']}/", status_code=308)
 
 
-def routes() -> list[Route]:
-    """The single class's routes, each class's under /c/{code}, the department's."""
-    from evapcool.classroom import department
-
-    out = [Route(path, fn, methods=methods) for path, fn, methods in CLASS_ROUTES]
-    out += [Route("/c/{code}" + path, fn, methods=methods) for path, fn, methods in CLASS_ROUTES]
-    return [*out, Route("/c/{code}", _to_class), *department.ROUTES]
-
-
 async def _refused(request: Request, exc: Exception) -> Response:
     """The JSON answer of a RefusedError."""
     assert isinstance(exc, RefusedError)
@@ -1051,120 +1035,11 @@ def _pool(workers: int) -> ProcessPoolExecutor:
 def open_store(where: Path | str, connections: int = SHARED_DB_THREADS) -> ClassStore:
     """The store at a SQLite file, or a PostgreSQL database's URL (postgresql://...)."""
     text = str(where)
-    if text.startswith(("postgresql://", "postgres://")):
+    if is_url(text):
         from evapcool.classroom.pgstore import PostgresStore
 
         return PostgresStore(text, connections)
     return Store(Path(where))
-
-
-def create_app(
-    store_path: Path | str,
-    pool_workers: int,
-    limits: Limits | None = None,
-    join_url: str | None = None,
-    department: bool = False,
-) -> Starlette:
-    """The class server's app: the store at store_path (a SQLite file or a PostgreSQL URL),
-    `pool_workers` verifying processes.
-
-    The single class's lecturer's token is the one whose digest the store holds
-    (`new_lecturer_token`). join_url: the students' address shown on the projector
-    (default: the one it was read at). department: the root is the join-by-code page and
-    /lecturer lists a lecturer's classes.
-    """
-
-    @asynccontextmanager
-    async def lifespan(app: Starlette) -> AsyncIterator[None]:
-        store = open_store(store_path)
-        threads = SHARED_DB_THREADS if store.shared else 1
-        hub = Hub(
-            store,
-            limits or Limits(),
-            _pool(pool_workers),
-            pool_workers,
-            department,
-            ThreadPoolExecutor(threads),
-        )
-        app.state.hub = hub
-        pages.game_page()  # read and hashed once, before the first student asks
-        loop = asyncio.get_running_loop()
-        await asyncio.gather(*(loop.run_in_executor(hub.pool, _ready) for _ in range(pool_workers)))
-        tasks = [asyncio.create_task(_close_on_time(hub)), asyncio.create_task(hub.forward())]
-        stop = threading.Event()
-        listening = _listen(hub, loop, stop) if store.shared else None
-        try:
-            yield
-        finally:
-            stop.set()
-            for task in tasks:
-                task.cancel()
-            hub.pool.shutdown(cancel_futures=True)
-            if listening:
-                listening.join(5)
-            hub.db_thread.submit(hub.store.close).result()
-            hub.db_thread.shutdown()
-
-    handlers = {RefusedError: _refused, 404: _no_route, 405: _no_route}
-    app = Starlette(routes=routes(), lifespan=lifespan, exception_handlers=handlers)
-    app.state.join_url = join_url
-    app.add_middleware(_SafeHeaders)
-    return app
-
-
-def _listen(hub: Hub, loop: asyncio.AbstractEventLoop, stop: threading.Event) -> threading.Thread:
-    """A thread following the store's notices (its own connection): each changed room is
-    handed to the event loop, whose `forward` sends it to this process's streams."""
-
-    def changed(room: int | None) -> None:
-        loop.call_soon_threadsafe(hub.changed, room)
-
-    thread = threading.Thread(
-        target=hub.store.listen, args=(changed, stop), daemon=True, name="listen"
-    )
-    thread.start()
-    return thread
-
-
-#: The environment `app_from_env` reads (uvicorn --factory ... --workers N).
-ENV_DB = "EVAPCOOL_CLASS_DB"
-ENV_WORKERS = "EVAPCOOL_CLASS_WORKERS"
-ENV_JOIN_URL = "EVAPCOOL_CLASS_URL"
-ENV_STUDENTS = "EVAPCOOL_CLASS_MAX_STUDENTS"
-
-
-def app_from_env() -> Starlette:
-    """A department's app configured by the environment, for
-    `uvicorn --factory evapcool.classroom.server:app_from_env --workers N`:
-    EVAPCOOL_CLASS_DB (the PostgreSQL URL), EVAPCOOL_CLASS_WORKERS (verifying processes of
-    each server process, 1), EVAPCOOL_CLASS_URL (the students' address),
-    EVAPCOOL_CLASS_MAX_STUDENTS (per class, 2000)."""
-    import os
-
-    where = os.environ.get(ENV_DB)
-    if not where:
-        raise ValueError(f"{ENV_DB}: give the database (postgresql://... or a SQLite file)")
-    workers = _env_int(ENV_WORKERS, 1, 64, 1)
-    students = _env_int(ENV_STUDENTS, 1, 100_000, Limits().students)
-    return create_app(
-        where,
-        workers,
-        Limits(students=students),
-        join_url=os.environ.get(ENV_JOIN_URL),
-        department=True,
-    )
-
-
-def _env_int(name: str, low: int, high: int, default: int) -> int:
-    """A whole number low..high from the environment (ValueError naming it otherwise)."""
-    import os
-
-    text = os.environ.get(name)
-    if text is None:
-        return default
-    if not text.isdigit() or not low <= int(text) <= high:
-        raise ValueError(f"{name}: must be a whole number {low}..{high} (got {text!r})")
-    return int(text)
 
 
 async def _close_on_time(hub: Hub) -> None:

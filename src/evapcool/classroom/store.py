@@ -105,6 +105,19 @@ ENTRY_KEYS = ("entry", "name", "score", "frames", "edition", "hidden")
 EntryRow = tuple[int, str, int, int, str, str, int]
 
 
+#: What a PostgreSQL store needs (the department extra), and the line saying so.
+DEPARTMENT_MODULES = ("psycopg", "psycopg_pool")
+NEEDS_DEPARTMENT = (
+    "evapcool class --db postgresql://... needs the department extra: "
+    "pip install 'evapcool[department]'"
+)
+
+
+def is_url(text: str) -> bool:
+    """Whether a --db value names a PostgreSQL database (else a SQLite file)."""
+    return text.startswith(("postgresql://", "postgres://"))
+
+
 class NameTakenError(Exception):
     """A name that looks like another player's (`name`: the one it clashes with)."""
 

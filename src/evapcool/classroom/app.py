@@ -1,0 +1,150 @@
+"""The class server's app: its routes (a single class's, each class's under /c/{code}, a
+department's), its start and stop (the store, the verifying workers, the watcher closing
+challenges on time, the thread following other processes' notices), and the app factory
+for `uvicorn --factory` configured by the environment."""
+
+from __future__ import annotations
+
+import asyncio
+import threading
+from collections.abc import AsyncIterator
+from concurrent.futures import ThreadPoolExecutor
+from contextlib import asynccontextmanager
+from pathlib import Path
+
+from starlette.applications import Starlette
+from starlette.routing import Route
+
+from evapcool.classroom import department, pages
+from evapcool.classroom.errors import RefusedError
+from evapcool.classroom.server import (
+    CLASS_ROUTES,
+    SHARED_DB_THREADS,
+    Hub,
+    Limits,
+    _close_on_time,
+    _no_route,
+    _pool,
+    _ready,
+    _refused,
+    _SafeHeaders,
+    _to_class,
+    open_store,
+)
+
+
+def routes(for_department: bool = False) -> list[Route]:
+    """The single class's routes, each class's under /c/{code}, the department's calls; a
+    department's root and /lecturer (its join page, a lecturer's classes) come first."""
+    out = [Route(path, fn, methods=methods) for path, fn, methods in CLASS_ROUTES]
+    out += [Route("/c/{code}" + path, fn, methods=methods) for path, fn, methods in CLASS_ROUTES]
+    first = department.ROOT_ROUTES if for_department else []
+    return [*first, *out, Route("/c/{code}", _to_class), *department.ROUTES]
+
+
+def create_app(
+    store_path: Path | str,
+    pool_workers: int,
+    limits: Limits | None = None,
+    join_url: str | None = None,
+    department: bool = False,
+) -> Starlette:
+    """The class server's app: the store at store_path (a SQLite file or a PostgreSQL URL),
+    `pool_workers` verifying processes.
+
+    The single class's lecturer's token is the one whose digest the store holds
+    (`new_lecturer_token`). join_url: the students' address shown on the projector
+    (default: the one it was read at). department: the root is the join-by-code page and
+    /lecturer lists a lecturer's classes.
+    """
+
+    @asynccontextmanager
+    async def lifespan(app: Starlette) -> AsyncIterator[None]:
+        store = open_store(store_path)
+        threads = SHARED_DB_THREADS if store.shared else 1
+        hub = Hub(
+            store,
+            limits or Limits(),
+            _pool(pool_workers),
+            pool_workers,
+            ThreadPoolExecutor(threads),
+        )
+        app.state.hub = hub
+        pages.game_page()  # read and hashed once, before the first student asks
+        loop = asyncio.get_running_loop()
+        await asyncio.gather(*(loop.run_in_executor(hub.pool, _ready) for _ in range(pool_workers)))
+        tasks = [asyncio.create_task(_close_on_time(hub)), asyncio.create_task(hub.forward())]
+        stop = threading.Event()
+        listening = _listen(hub, loop, stop) if store.shared else None
+        try:
+            yield
+        finally:
+            stop.set()
+            for task in tasks:
+                task.cancel()
+            hub.pool.shutdown(cancel_futures=True)
+            if listening:
+                listening.join(5)
+            hub.db_thread.submit(hub.store.close).result()
+            hub.db_thread.shutdown()
+
+    handlers = {RefusedError: _refused, 404: _no_route, 405: _no_route}
+    app = Starlette(routes=routes(department), lifespan=lifespan, exception_handlers=handlers)
+    app.state.join_url = join_url
+    app.add_middleware(_SafeHeaders)
+    return app
+
+
+def _listen(hub: Hub, loop: asyncio.AbstractEventLoop, stop: threading.Event) -> threading.Thread:
+    """A thread following the store's notices (its own connection): each changed room is
+    handed to the event loop, whose `forward` sends it to this process's streams."""
+
+    def changed(room: int | None) -> None:
+        loop.call_soon_threadsafe(hub.changed, room)
+
+    thread = threading.Thread(
+        target=hub.store.listen, args=(changed, stop), daemon=True, name="listen"
+    )
+    thread.start()
+    return thread
+
+
+#: The environment `app_from_env` reads (uvicorn --factory ... --workers N).
+ENV_DB = "EVAPCOOL_CLASS_DB"
+ENV_WORKERS = "EVAPCOOL_CLASS_WORKERS"
+ENV_JOIN_URL = "EVAPCOOL_CLASS_URL"
+ENV_STUDENTS = "EVAPCOOL_CLASS_MAX_STUDENTS"
+
+
+def app_from_env() -> Starlette:
+    """A department's app configured by the environment, for
+    `uvicorn --factory evapcool.classroom.app:app_from_env --workers N`:
+    EVAPCOOL_CLASS_DB (the PostgreSQL URL), EVAPCOOL_CLASS_WORKERS (verifying processes of
+    each server process, 1), EVAPCOOL_CLASS_URL (the students' address),
+    EVAPCOOL_CLASS_MAX_STUDENTS (per class, 2000)."""
+    import os
+
+    where = os.environ.get(ENV_DB)
+    if not where:
+        raise ValueError(f"{ENV_DB}: give the database (postgresql://... or a SQLite file)")
+    workers = _env_int(ENV_WORKERS, 1, 64, 1)
+    students = _env_int(ENV_STUDENTS, 1, 100_000, Limits().students)
+    return create_app(
+        where,
+        workers,
+        Limits(students=students),
+        join_url=os.environ.get(ENV_JOIN_URL),
+        department=True,
+    )
+
+
+def _env_int(name: str, low: int, high: int, default: int) -> int:
+    """A whole number low..high from the environment (ValueError naming it otherwise)."""
+    import os
+
+    text = os.environ.get(name)
+    if text is None:
+        return default
+    if not text.isdigit() or not low <= int(text) <= high:
+        raise ValueError(f"{name}: must be a whole number {low}..{high} (got {text!r})")
+    return int(text)
