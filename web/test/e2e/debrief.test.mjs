@@ -374,6 +374,17 @@ async function checkProjector(doc, names, games) {
     await projector.waitForFunction(() =>
       document.getElementById("replay-frame").src.includes("replay="),
     );
+    // The replay beside the paths: both in view, the paths' words still large.
+    const box = await projector.evaluate(() => {
+      const r = document.getElementById("replay-frame").getBoundingClientRect();
+      return {
+        w: r.width,
+        h: r.height,
+        min: document.getElementById("debrief-paths").dataset.minText,
+      };
+    });
+    assert.ok(box.h >= 400 && box.w >= 600, `the replay's frame ${box.w} x ${box.h}`);
+    assert.ok(Number(box.min) >= 24, `the paths' smallest word beside a replay: ${box.min} px`);
   }
   await shot(projector, "class-debrief-picked.png");
 
