@@ -233,6 +233,23 @@ test(
       });
       assert.equal(got.score, g.score);
     }
+    // While open: the lecturer's early look on their own page; the projector shows none.
+    const early = await browser.newContext({ viewport: { width: 1280, height: 900 } });
+    const lecturerPage = await early.newPage();
+    await lecturerPage.goto(`${server.base}/lecturer?token=${server.token}`);
+    await lecturerPage.click("#debrief-show");
+    await lecturerPage.waitForFunction(
+      () => document.getElementById("debrief-paths")?.dataset.curves,
+    );
+    const earlyCurves = await curvesOf(lecturerPage);
+    assert.equal(earlyCurves.length, STUDENTS);
+    assert.match(await lecturerPage.textContent("#debrief-early"), /Only you see this/);
+    const openProjector = await browser.newPage({ viewport: { width: 1920, height: 1080 } });
+    await openProjector.goto(`${server.base}/projector?key=${await projectorKey()}`);
+    await openProjector.waitForFunction(() => document.querySelectorAll("#board tr").length > 1);
+    assert.equal(await openProjector.isVisible("#debrief"), false, "no debrief while open");
+    await openProjector.close();
+    await early.close();
     await api("/api/challenge/close", { body: {}, headers: lecturer() });
 
     // The phone: its own path over the class's cloud, and its place.
