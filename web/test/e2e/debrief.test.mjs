@@ -292,7 +292,7 @@ test(
     assert.ok(whole >= 30, `the live chart drew ${whole} whole frames`);
     assert.deepEqual(ada.errors, []);
     await shot(ada, "class-debrief-phone.png");
-    await checkProjector(doc, names, games);
+    await checkProjector(doc, names, games, ada);
   },
 );
 
@@ -328,7 +328,7 @@ async function shot(page, name) {
 }
 
 /** The projector's part: curves, sizes, archetypes picked, a pair in step, anonymity. */
-async function checkProjector(doc, names, games) {
+async function checkProjector(doc, names, games, ada) {
   const key = await projectorKey();
   const projector = await projectorPage(key);
   const curves = await curvesOf(projector);
@@ -459,4 +459,14 @@ async function checkProjector(doc, names, games) {
     "the debrief's JSON was seen",
   );
   await shot(fresh, "class-debrief-anonymous.png");
+  // The phone fetches the debrief anew, without the others' names.
+  await ada.waitForFunction(() => document.getElementById("class-debrief") !== null);
+  const anonymousSent = () =>
+    [...ada.received]
+      .reverse()
+      .find((r) => r.includes('"games"') && r.includes('"anonymous":true'));
+  for (let k = 0; k < 100 && !anonymousSent(); k++) await new Promise((r) => setTimeout(r, 100));
+  const phoneGot = anonymousSent();
+  assert.ok(phoneGot, "the phone fetched the anonymous debrief");
+  for (const name of names.slice(1)) assert.ok(!phoneGot.includes(name), `${name} sent to a phone`);
 }
