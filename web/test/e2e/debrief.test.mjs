@@ -404,6 +404,7 @@ async function checkProjector(doc, names, games, ada) {
     assert.ok(Number(box.min) >= 24, `the paths' smallest word beside a replay: ${box.min} px`);
   }
   await shot(projector, "class-debrief-picked.png");
+  await shot(lecturerPage, "class-debrief-lecturer.png");
 
   // Two games side by side: the same frame in both, to the last.
   const [a, b] = [doc.archetypes.fastest, doc.archetypes.best];
