@@ -14,7 +14,7 @@ const RESOLVED = "\0evapcool-catalogs";
 /** The catalogs' folder seen from web/ (the Vite root): one JSON file per locale. */
 export const LOCALES_FOLDER = "../src/evapcool/locales";
 /** Keys the page never shows: the desktop's own screens and the class server's pages. */
-export const NOT_ON_THE_PAGE = ["class.", "desk.", "progress."];
+export const NOT_ON_THE_PAGE = ["class.", "desk.", "progress.", "debrief."];
 
 /** The message keys the page's code names (as quoted literals in src/**\/*.ts). */
 export function keysInSource(srcDir) {

@@ -9,8 +9,8 @@ import { activeTranslator, t } from "../i18n";
 import type { Recording, ReplaySettings } from "../game/replay";
 import { gamePath, type GamePath } from "../game/path";
 import type { SimFactory } from "../game/rules";
-import { DebriefView } from "../view/debrief/view";
-import type { Debrief } from "../view/debrief/model";
+import { rect } from "../view/geometry";
+import { PathPanel } from "../view/panels";
 
 export interface Challenge {
   id: number;
@@ -35,6 +35,13 @@ export interface Board {
   /** name: null in the debrief's anonymous mode. */
   entries: Array<{ rank: number; name: string | null; score: number; frames: number }>;
   debrief?: { anonymous: boolean };
+}
+
+/** What the student's page reads of the server's debrief (docs/class.md). */
+interface ClassDebrief {
+  law: { n0: number; tc0: number; exponent: number; t0: number };
+  games: Array<{ entry: number; frames: number; path: { n: number[]; t: number[] } | null }>;
+  you: { entry: number; rank: number } | null;
 }
 
 /** A student's standing in the current challenge, as /api/me and /api/submit answer. */
@@ -126,7 +133,7 @@ export class ClassMode {
   private readonly stateLine: HTMLElement;
   private readonly resultLine: HTMLElement;
   /** After the close: the student's best path over the class's cloud, and their place. */
-  debrief: DebriefView | null = null;
+  debrief: HTMLElement | null = null;
   private debriefKey = "";
   /** This challenge's games the server took, by entry: the page's own paths of them. */
   private readonly sent = new Map<number, Recording>();
@@ -223,53 +230,75 @@ export class ClassMode {
         cache: "no-store",
         headers: { ...speaking(), authorization: `Bearer ${p.token}` },
       });
-      if (!res.ok) return;
-      const doc = (await res.json()) as Debrief;
-      this.drawOwn(doc);
-      const view = this.debriefPanel();
-      view.show(doc, null, doc.you?.entry ?? null);
-      const you = view.root.querySelector("#debrief-you")!;
-      you.textContent = doc.you
-        ? t("debrief.you", { rank: doc.you.rank, count: doc.games.length })
-        : t("debrief.you_none");
-      view.draw();
+      if (res.ok) this.drawDebrief((await res.json()) as ClassDebrief);
     } catch {
       /* the debrief is a look back: the game goes on without it */
     }
   }
 
-  /** The student's own game drawn from this page's replay of it (the server's is the same:
-   * same engine, same frames), when the page sent it. */
-  private drawOwn(doc: Debrief): void {
+  /** The student's best path (from this page's own replay of it, when the page sent it:
+   * the server's is the same, same engine and frames) over the class's, and their place. */
+  private drawDebrief(doc: ClassDebrief): void {
     const mine = doc.games.find((g) => g.entry === doc.you?.entry);
     const rec = mine && this.sent.get(mine.entry);
-    if (!mine || !rec || !this.host.factory) return;
-    this.ownPath = gamePath(rec, this.host.factory, mine.frames);
-    mine.path = this.ownPath;
+    if (mine && rec && this.host.factory) {
+      this.ownPath = gamePath(rec, this.host.factory, mine.frames);
+      mine.path = this.ownPath;
+    }
+    const others = doc.games.filter((g) => g !== mine && g.path);
+    const panel = this.debriefPanel();
+    const you = panel.querySelector("#debrief-you")!;
+    you.textContent = doc.you
+      ? t("page.class_debrief_you", { rank: doc.you.rank, count: doc.games.length })
+      : t("page.class_debrief_you_none");
+    const canvas = panel.querySelector("canvas")!;
+    canvas.setAttribute("aria-label", you.textContent);
+    canvas.dataset.curves = [...others, ...(mine?.path ? [mine] : [])]
+      .map((g) => g.entry)
+      .join(",");
+    const chart = new PathPanel();
+    chart.showClass(
+      doc.law,
+      mine?.path ?? { n: [], t: [] },
+      others.map((g) => g.path!),
+    );
+    const draw = () => {
+      const dpr = window.devicePixelRatio || 1;
+      const [w, h] = [canvas.clientWidth, canvas.clientHeight];
+      [canvas.width, canvas.height] = [Math.round(w * dpr), Math.round(h * dpr)];
+      const ctx = canvas.getContext("2d");
+      if (!ctx || w === 0) return;
+      ctx.setTransform(dpr, 0, 0, dpr, 0, 0);
+      chart.draw(ctx, rect(0, 0, w, h));
+    };
+    draw();
+    window.addEventListener("resize", draw);
   }
 
-  private debriefPanel(): DebriefView {
+  private debriefPanel(): HTMLElement {
     if (this.debrief) return this.debrief;
     const panel = document.createElement("div");
     panel.id = "class-debrief";
-    this.root.append(panel);
-    const view = new DebriefView(panel, { tr: t, locale: activeTranslator().locale });
-    const you = document.createElement("p");
-    you.id = "debrief-you";
-    view.picked.after(you);
     const close = document.createElement("button");
     close.type = "button";
     close.textContent = t("button.close");
     close.addEventListener("click", () => this.closeDebrief());
-    view.heading.before(close);
+    const title = document.createElement("h2");
+    title.textContent = t("page.class_debrief_title");
+    const you = document.createElement("p");
+    you.id = "debrief-you";
+    const canvas = document.createElement("canvas");
+    canvas.id = "debrief-paths";
+    canvas.setAttribute("role", "img");
+    panel.append(close, title, you, canvas);
     panel.addEventListener("keydown", (ev) => ev.stopPropagation()); // not the game's keys
-    window.addEventListener("resize", () => view.draw());
-    this.debrief = view;
-    return view;
+    this.root.append(panel);
+    this.debrief = panel;
+    return panel;
   }
 
   private closeDebrief(): void {
-    this.debrief?.root.parentElement?.remove();
+    this.debrief?.remove();
     this.debrief = null;
   }
 

@@ -85,8 +85,8 @@ function render(board: Board): void {
   );
   for (const e of boardRows(board)) row(table, boardCells(e, words));
   byId("rejected").textContent = rejectedText(words, board.rejected);
-  debrief.take(board);
   showReplay(board.replay);
+  debrief.take(board);
 }
 
 setInterval(tick, 1000);

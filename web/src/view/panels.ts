@@ -33,6 +33,12 @@ const PATH_LEGEND: readonly LegendItem[] = [
   { swatch: "line", color: TC_LINE, text: "chart.legend.tc_line" },
   { swatch: "bar", color: CONDENSATE, text: "chart.legend.condensate" },
 ];
+/** The class's other paths under the student's own, after a class challenge (issue 36). */
+const CLOUD = "rgba(70,80,110,0.35)";
+const CLOUD_LEGEND: readonly LegendItem[] = [
+  ...PATH_LEGEND,
+  { swatch: "line", color: "rgb(150,155,170)", text: "page.class_debrief_cloud" },
+];
 
 const fontSize = (r: Rect) => Math.max(18, Math.min(30, Math.floor(r.h / 11)));
 
@@ -391,6 +397,29 @@ export class PathPanel {
   exponent = 2 / 3;
   nRange: [number, number] = [1, 1.25];
   tRange: [number, number] = [0.1, 1.6];
+  /** Other games' paths drawn faint under this one (the class's, after a challenge). */
+  cloud: Array<{ n: number[]; t: number[] }> = [];
+
+  /** Show a finished game's path over the class's (its law: Tc0, N0, p, T0). */
+  showClass(
+    law: { n0: number; tc0: number; exponent: number; t0: number },
+    own: { n: number[]; t: number[] },
+    cloud: Array<{ n: number[]; t: number[] }>,
+  ): void {
+    this.reset();
+    this.done = true;
+    [this.n0, this.t0, this.tc0, this.exponent] = [law.n0, law.t0, law.tc0, law.exponent];
+    [this.n, this.t, this.cloud] = [own.n, own.t, cloud];
+    // Around the paths (the class's strategies spread over the plot, not in its corner).
+    let [nLo, tLo, tHi] = [this.n0, this.t0, this.t0];
+    for (const p of [own, ...cloud])
+      p.n.forEach((n, k) => {
+        [nLo, tLo, tHi] = [Math.min(nLo, n), Math.min(tLo, p.t[k]), Math.max(tHi, p.t[k])];
+      });
+    nLo = Math.max(1, 0.8 * nLo);
+    this.nRange = [nLo, 1.15 * Math.max(this.n0, 2)];
+    this.tRange = [Math.max(0.8 * Math.min(tLo, this.tc(nLo)), 1e-12), 1.25 * tHi];
+  }
 
   reset(): void {
     this.gen = -1;
@@ -459,7 +488,8 @@ export class PathPanel {
         tc: tickText(this.tc(n)),
       });
     }
-    const head = header(ctx, r, PATH_LEGEND, readout, fs, small);
+    const legend = this.cloud.length ? CLOUD_LEGEND : PATH_LEGEND;
+    const head = header(ctx, r, legend, readout, fs, small);
     const plot = margins(r, head.bottom - r.y);
     ctx.save();
     ctx.beginPath();
@@ -487,6 +517,17 @@ export class PathPanel {
     ctx.moveTo(xa, ya);
     ctx.lineTo(xb, yb);
     ctx.stroke();
+    ctx.strokeStyle = CLOUD;
+    ctx.lineWidth = 2;
+    for (const c of this.cloud) {
+      ctx.beginPath();
+      c.n.forEach((n, k) => {
+        const [x, y] = this.toPixel(n, c.t[k], plot);
+        if (k) ctx.lineTo(x, y);
+        else ctx.moveTo(x, y);
+      });
+      ctx.stroke();
+    }
     // The path and its markers, then the current point.
     if (this.n.length) {
       ctx.strokeStyle = PATH;

@@ -233,6 +233,23 @@ test(
       });
       assert.equal(got.score, g.score);
     }
+    // While open: the lecturer's early look on their own page; the projector shows none.
+    const early = await browser.newContext({ viewport: { width: 1280, height: 900 } });
+    const lecturerPage = await early.newPage();
+    await lecturerPage.goto(`${server.base}/lecturer?token=${server.token}`);
+    await lecturerPage.click("#debrief-show");
+    await lecturerPage.waitForFunction(
+      () => document.getElementById("debrief-paths")?.dataset.curves,
+    );
+    const earlyCurves = await curvesOf(lecturerPage);
+    assert.equal(earlyCurves.length, STUDENTS);
+    assert.match(await lecturerPage.textContent("#debrief-early"), /Only you see this/);
+    const openProjector = await browser.newPage({ viewport: { width: 1920, height: 1080 } });
+    await openProjector.goto(`${server.base}/projector?key=${await projectorKey()}`);
+    await openProjector.waitForFunction(() => document.querySelectorAll("#board tr").length > 1);
+    assert.equal(await openProjector.isVisible("#debrief"), false, "no debrief while open");
+    await openProjector.close();
+    await early.close();
     await api("/api/challenge/close", { body: {}, headers: lecturer() });
 
     // The phone: its own path over the class's cloud, and its place.
@@ -275,7 +292,7 @@ test(
     assert.ok(whole >= 30, `the live chart drew ${whole} whole frames`);
     assert.deepEqual(ada.errors, []);
     await shot(ada, "class-debrief-phone.png");
-    await checkProjector(doc, names, games);
+    await checkProjector(doc, names, games, ada);
   },
 );
 
@@ -311,7 +328,7 @@ async function shot(page, name) {
 }
 
 /** The projector's part: curves, sizes, archetypes picked, a pair in step, anonymity. */
-async function checkProjector(doc, names, games) {
+async function checkProjector(doc, names, games, ada) {
   const key = await projectorKey();
   const projector = await projectorPage(key);
   const curves = await curvesOf(projector);
@@ -374,8 +391,20 @@ async function checkProjector(doc, names, games) {
     await projector.waitForFunction(() =>
       document.getElementById("replay-frame").src.includes("replay="),
     );
+    // The replay beside the paths: both in view, the paths' words still large.
+    const box = await projector.evaluate(() => {
+      const r = document.getElementById("replay-frame").getBoundingClientRect();
+      return {
+        w: r.width,
+        h: r.height,
+        min: document.getElementById("debrief-paths").dataset.minText,
+      };
+    });
+    assert.ok(box.h >= 400 && box.w >= 600, `the replay's frame ${box.w} x ${box.h}`);
+    assert.ok(Number(box.min) >= 24, `the paths' smallest word beside a replay: ${box.min} px`);
   }
   await shot(projector, "class-debrief-picked.png");
+  await shot(lecturerPage, "class-debrief-lecturer.png");
 
   // Two games side by side: the same frame in both, to the last.
   const [a, b] = [doc.archetypes.fastest, doc.archetypes.best];
@@ -431,4 +460,14 @@ async function checkProjector(doc, names, games) {
     "the debrief's JSON was seen",
   );
   await shot(fresh, "class-debrief-anonymous.png");
+  // The phone fetches the debrief anew, without the others' names.
+  await ada.waitForFunction(() => document.getElementById("class-debrief") !== null);
+  const anonymousSent = () =>
+    [...ada.received]
+      .reverse()
+      .find((r) => r.includes('"games"') && r.includes('"anonymous":true'));
+  for (let k = 0; k < 100 && !anonymousSent(); k++) await new Promise((r) => setTimeout(r, 100));
+  const phoneGot = anonymousSent();
+  assert.ok(phoneGot, "the phone fetched the anonymous debrief");
+  for (const name of names.slice(1)) assert.ok(!phoneGot.includes(name), `${name} sent to a phone`);
 }

@@ -52,6 +52,8 @@ export class LecturerDebrief {
     const pair = made("p", this.box, "debrief-pair-pick");
     this.pairA = made("select", pair, "debrief-pair-a");
     this.pairB = made("select", pair, "debrief-pair-b");
+    for (const select of [this.pairA, this.pairB])
+      select.setAttribute("aria-label", tr("debrief.side_by_side"));
     const go = made("button", pair, "debrief-pair-go");
     go.textContent = tr("debrief.pair");
     go.onclick = () =>

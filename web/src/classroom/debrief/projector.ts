@@ -32,7 +32,9 @@ export class ProjectorDebrief {
     /** The projector's own query (its key), for the API's addresses. */
     private readonly query: string,
   ) {
-    this.view = new DebriefView(parent, { tr, locale });
+    // Ticks and legends at least 24 px on a 1080-line projector (in proportion on others).
+    const minSmall = () => Math.round((24 * window.innerHeight) / 1080);
+    this.view = new DebriefView(parent, { tr, locale, minSmall });
     window.addEventListener("resize", () => this.view.draw());
   }
 

@@ -23,6 +23,8 @@ export interface ChartOptions {
   highlight?: number | null;
   /** The viewer's own game: the others are drawn faint (the class's cloud). */
   focus?: number | null;
+  /** The least size of the smallest words (ticks), px: a projector's, for the back row. */
+  minSmall?: number;
 }
 
 /** What a chart drew: its plot, its words, the entries of its curves in drawing order. */
@@ -45,8 +47,9 @@ export const MIN_TEXT = 14;
 
 /** The titles' size: an 18th of the chart's height or a 24th of its width (ticks and
  * legends at three quarters of it: 25 px on a 1080-line projector's debrief). */
-export function textSize(r: Box): number {
-  return Math.max(MIN_TEXT, Math.floor(Math.min(r.h / 18, r.w / 24)));
+export function textSize(r: Box, minSmall = 0): number {
+  const fromBox = Math.floor(Math.min(r.h / 18, r.w / 24));
+  return Math.max(MIN_TEXT, fromBox, Math.ceil(minSmall / 0.75));
 }
 
 function logFrac(v: number, lo: number, hi: number): number {
@@ -120,16 +123,19 @@ function axisNames(
   const small = Math.floor(0.8 * fs);
   const xs = fitted(ctx, x, small, plot.w, MIN_TEXT);
   word(ctx, words, x, xs, INK, plot.x + plot.w / 2, r.y + r.h - 0.55 * fs, "center");
+  // Turned a quarter in the left margin, from the plot's top to the chart's foot (nothing
+  // else is drawn in that strip: the ticks' words end right of it).
+  const span = r.y + r.h - 4 - plot.y;
+  const middle = plot.y + span / 2;
   ctx.save();
-  ctx.translate(r.x + 0.5 * fs, plot.y + plot.h / 2);
+  ctx.translate(r.x + 0.5 * fs, middle);
   ctx.rotate(-Math.PI / 2);
-  const ys = fitted(ctx, y, small, plot.h, MIN_TEXT);
+  const ys = fitted(ctx, y, small, span, MIN_TEXT);
   const drawn: DrawnWord[] = [];
   word(ctx, drawn, y, ys, INK, 0, 0, "center");
   ctx.restore();
-  // Turned a quarter: its box is the word's, upright.
-  for (const d of drawn)
-    words.push({ ...d, x: r.x, y: plot.y + plot.h / 2 - d.w / 2, w: d.h, h: d.w });
+  // Its box is the word's, upright.
+  for (const d of drawn) words.push({ ...d, x: r.x, y: middle - d.w / 2, w: d.h, h: d.w });
 }
 
 /** A curve through points, with a dark edge if `edge`. */
@@ -279,7 +285,7 @@ export function drawPaths(
   doc: Debrief,
   o: ChartOptions,
 ): ChartDrawn {
-  const fs = textSize(r);
+  const fs = textSize(r, o.minSmall);
   const words: DrawnWord[] = [];
   ctx.save();
   ctx.beginPath();
@@ -371,7 +377,7 @@ export function drawHeights(
   doc: Debrief,
   o: ChartOptions,
 ): ChartDrawn {
-  const fs = textSize(r);
+  const fs = textSize(r, o.minSmall);
   const words: DrawnWord[] = [];
   ctx.save();
   ctx.beginPath();

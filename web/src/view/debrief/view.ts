@@ -12,6 +12,8 @@ export interface DebriefOptions {
   locale: string;
   /** The page's own clock (tests give theirs). */
   now?: () => number;
+  /** The least size of the charts' smallest words, px (a projector's: the back row's). */
+  minSmall?: () => number;
 }
 
 function element<K extends keyof HTMLElementTagNameMap>(
@@ -85,6 +87,12 @@ export class DebriefView {
     this.pairCanvas = element("canvas", "debrief-pair", this.root);
     this.pairCanvas.setAttribute("role", "img");
     this.pairCanvas.hidden = true;
+    // A page's layout may change the charts' size (a replay beside them): drawn anew.
+    if (typeof ResizeObserver !== "undefined") {
+      const watch = new ResizeObserver(() => this.draw());
+      watch.observe(this.paths);
+      watch.observe(this.heights);
+    }
   }
 
   /** Show a debrief (highlight: a picked game; focus: the viewer's own, others faint). */
@@ -115,7 +123,9 @@ export class DebriefView {
   draw(): void {
     const doc = this.doc;
     if (!doc || this.root.hidden) return;
+    const shown = (c: HTMLCanvasElement) => c.clientWidth > 0 && c.clientHeight > 0;
     const opts = {
+      minSmall: this.o.minSmall?.() ?? 0,
       tr: this.o.tr,
       locale: this.o.locale,
       highlight: this.highlight,
@@ -123,12 +133,16 @@ export class DebriefView {
     };
     const [pc, pw, ph] = sized(this.paths);
     const paths = drawPaths(pc, { x: 0, y: 0, w: pw, h: ph }, doc, opts);
-    const [hc, hw, hh] = sized(this.heights);
-    const heights = drawHeights(hc, { x: 0, y: 0, w: hw, h: hh }, doc, opts);
-    this.drawn = { paths, heights };
     this.paths.dataset.curves = paths.curves.join(",");
     measured(this.paths, paths, pw, ph);
-    measured(this.heights, heights, hw, hh);
+    let heights = this.drawn?.heights ?? null;
+    if (shown(this.heights)) {
+      // Not drawn while hidden (a phone's narrow screen, a replay beside the paths).
+      const [hc, hw, hh] = sized(this.heights);
+      heights = drawHeights(hc, { x: 0, y: 0, w: hw, h: hh }, doc, opts);
+      measured(this.heights, heights, hw, hh);
+    }
+    this.drawn = { paths, heights: heights ?? paths };
     this.root.dataset.drawn = String((Number(this.root.dataset.drawn) || 0) + 1);
     // When it was drawn, on the machine's clock (the benchmark's close-to-draw time).
     this.root.dataset.drawnAt ??= String(Math.round(performance.timeOrigin + performance.now()));
