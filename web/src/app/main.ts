@@ -194,10 +194,12 @@ function playOnItsOwn(app: App, driven: () => boolean): void {
  * window's properties): `evapcoolFrame(k)` shows the replay's frame k, paused, or its
  * last if it ended before; returns the frame shown and whether the game has ended. */
 function followParent(app: App): () => boolean {
-  let driven = false;
+  // "#in-step": the projector's pair; paused on frame 0 until its clock asks for a frame.
+  let driven = location.hash === "#in-step";
   const ended = () => app.game.won || app.game.allEscaped;
   const show = (k: number) => {
-    if (!Number.isInteger(k) || k < 0) throw new RangeError("frame must be a whole number >= 0");
+    if (!Number.isInteger(k) || k < 0)
+      throw new RangeError(`frame must be a whole number >= 0 (got ${k})`);
     driven = true;
     if (!app.game.paused) app.game.paused = true;
     if (app.game.sim.time > k) app.restart();

@@ -68,6 +68,7 @@ export class PairReplays {
 
   private address(code: string): string {
     const lang = encodeURIComponent(this.locale);
-    return classBase() + "/?replay=" + encodeURIComponent(code) + "&lang=" + lang;
+    // "#in-step": the page waits for this clock instead of playing by itself.
+    return classBase() + "/?replay=" + encodeURIComponent(code) + "&lang=" + lang + "#in-step";
   }
 }
