@@ -450,7 +450,7 @@ async function checkProjector(doc, names, games, ada) {
   assert.ok(left[0] + left[2] <= right[0] && left[2] >= 300 && left[3] >= 300, `${left} ${right}`);
   assert.ok(Math.abs(left[1] - right[1]) < 1, "side by side");
   assert.ok(now.views.every((v) => v.src.includes("replay=")));
-  for (let k = 0; k < 3000; k++) {
+  for (let k = 0; k < 20000; k++) {
     now = await look();
     const shown = now.views.map((v) => v.frame);
     if (shown.every((f) => f !== null)) {
