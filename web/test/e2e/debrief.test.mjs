@@ -330,6 +330,8 @@ async function shot(page, name) {
 
 /** The projector's part: curves, sizes, archetypes picked, a pair in step, anonymity. */
 async function checkProjector(doc, names, games, ada) {
+  // No pair yet (the phone's part set one): two replays in step take the charts' place.
+  await api("/api/debrief", { body: { pair: null }, headers: lecturer() });
   const key = await projectorKey();
   const projector = await projectorPage(key);
   const curves = await curvesOf(projector);
