@@ -7,7 +7,7 @@ import httpx
 from classhelp import SEED, SETTINGS, Server, join, open_challenge, variant
 
 from evapcool.game.path import game_path
-from evapcool.game.replay import Recording, encode
+from evapcool.game.replay import Recording, decode, encode
 
 #: A game that never wins: the trap held high (taken when the challenge takes lost games).
 LOST = Recording(SETTINGS, SEED, ((400.0, 300),), won=False, score=0, frames=300)
@@ -91,6 +91,8 @@ def test_anonymous_pick_and_pair(server: Server) -> None:
     for g in pair:
         path = g["path"]
         assert path["k"] == list(range(path["frames"] + 1))
+        # Its replay code, for the projector to play both in step: the same game.
+        assert decode(g["code"]).frames == path["frames"]
         sampled = httpx.get(server.base + "/api/debrief").json()["games"]
         kept = next(s["path"] for s in sampled if s["entry"] == g["entry"])
         at = dict(zip(path["k"], zip(path["n"], path["t"], strict=True), strict=True))

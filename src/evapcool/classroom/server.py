@@ -790,7 +790,7 @@ async def debrief(request: Request) -> Response:
 
 
 async def debrief_pair(request: Request) -> Response:
-    """The two games the lecturer set side by side, their paths at every frame."""
+    """The two games the lecturer set side by side: their paths at every frame, codes."""
     hub = guard(request)
     room, row, is_lecturer = await _debrief_challenge(request, hub)
     state = await debrief_state(hub, room["id"])
@@ -808,7 +808,9 @@ async def debrief_pair(request: Request) -> Response:
             hub.pair_paths[entry] = path
         name = None if state.anonymous and not is_lecturer else found[0]
         path = hub.pair_paths[entry]
-        games.append({"entry": entry, "name": name, "rank": ranks.get(entry), "path": path})
+        # The code: the projector plays both replays in step (codes are public once closed).
+        game = {"entry": entry, "name": name, "rank": ranks.get(entry), "path": path}
+        games.append({**game, "code": found[1]})
     return JSONResponse({"challenge": row["id"], "games": games})
 
 

@@ -121,8 +121,9 @@ async function main(): Promise<void> {
   await app.play.ready();
   if (params.replay !== null) {
     await app.watch(params.replay);
-    // In the class projector's frame the replay plays by itself, again after each end.
-    if (window.parent !== window) playOnItsOwn(app);
+    // In the class projector's frame the replay plays by itself, again after each end,
+    // unless the projector holds its clock (two games in step, issue 36).
+    if (window.parent !== window) playOnItsOwn(app, followParent(app));
   }
   const api = classApi(document);
   // A replay watched from the projector's link is not a student's game.
@@ -173,9 +174,10 @@ const REPLAY_PAUSE_S = 6;
 
 /** A replay that plays without a hand on it (the projector's): unpaused, and started again
  * a few seconds after its end. */
-function playOnItsOwn(app: App): void {
+function playOnItsOwn(app: App, driven: () => boolean): void {
   let endedAt: number | null = null;
   setInterval(() => {
+    if (driven()) return;
     const g = app.game;
     const ended = g.won || g.allEscaped;
     if (ended) {
@@ -186,6 +188,27 @@ function playOnItsOwn(app: App): void {
       }
     } else if (g.paused) g.togglePause();
   }, 250);
+}
+
+/** The projector's clock (same origin only: a cross-origin parent cannot reach the
+ * window's properties): `evapcoolFrame(k)` shows the replay's frame k, paused, or its
+ * last if it ended before; returns the frame shown and whether the game has ended. */
+function followParent(app: App): () => boolean {
+  // "#in-step": the projector's pair; paused on frame 0 until its clock asks for a frame.
+  let driven = location.hash === "#in-step";
+  const ended = () => app.game.won || app.game.allEscaped;
+  const show = (k: number) => {
+    if (!Number.isInteger(k) || k < 0)
+      throw new RangeError(`frame must be a whole number >= 0 (got ${k})`);
+    driven = true;
+    if (!app.game.paused) app.game.paused = true;
+    if (app.game.sim.time > k) app.restart();
+    while (app.game.sim.time < k && !ended()) app.game.step();
+    app.dirty = true;
+    return { frame: Math.round(app.game.sim.time), ended: ended() };
+  };
+  (window as unknown as { evapcoolFrame: typeof show }).evapcoolFrame = show;
+  return () => driven;
 }
 
 /** The tab's icon, drawn in code (no image file). */

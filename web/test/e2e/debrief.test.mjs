@@ -5,7 +5,8 @@
 // for its game equals the one its own page drew, point for point. The projector (1920 x
 // 1080) shows 30 curves, the best on top; the archetypes point at the right entries and
 // picking one highlights it and plays its replay; two games side by side stay in step to
-// the last frame; anonymous mode shows no name anywhere, in the page nor in the JSON it
+// the last frame, both their replays (the game page in two frames) and their numbers;
+// anonymous mode shows no name anywhere, in the page nor in the JSON it
 // receives. EVAPCOOL_SHOTS=DIR saves the projector's debrief there.
 import assert from "node:assert/strict";
 import { execFileSync, spawn } from "node:child_process";
@@ -329,6 +330,8 @@ async function shot(page, name) {
 
 /** The projector's part: curves, sizes, archetypes picked, a pair in step, anonymity. */
 async function checkProjector(doc, names, games, ada) {
+  // No pair yet (the phone's part set one): two replays in step take the charts' place.
+  await api("/api/debrief", { body: { pair: null }, headers: lecturer() });
   const key = await projectorKey();
   const projector = await projectorPage(key);
   const curves = await curvesOf(projector);
@@ -406,35 +409,93 @@ async function checkProjector(doc, names, games, ada) {
   await shot(projector, "class-debrief-picked.png");
   await shot(lecturerPage, "class-debrief-lecturer.png");
 
-  // Two games side by side: the same frame in both, to the last.
-  const [a, b] = [doc.archetypes.fastest, doc.archetypes.best];
+  // Two games side by side: their replays (the game page in two frames) and their
+  // numbers, the same frame in both at every moment, to the last of the longer game.
+  // The fastest win and the best (or, were they as long, the slowest win): two lengths.
+  const framesOf = (e) => doc.games.find((g) => g.entry === e).frames;
+  const a = doc.archetypes.fastest;
+  const slowest = [...won].sort(by((g) => -g.frames))[0].entry;
+  const b = framesOf(doc.archetypes.best) !== framesOf(a) ? doc.archetypes.best : slowest;
   await lecturerPage.selectOption("#debrief-pair-a", String(a));
   await lecturerPage.selectOption("#debrief-pair-b", String(b));
   await lecturerPage.click("#debrief-pair-go");
   await projector.waitForFunction(() => !document.getElementById("debrief-pair").hidden);
-  const frames = [a, b].map((e) => doc.games.find((g) => g.entry === e).frames);
+  await projector.waitForFunction(() => !document.getElementById("debrief-replays").hidden);
+  const frames = [a, b].map(framesOf);
   const last = Math.max(...frames);
+  assert.notEqual(frames[0], frames[1], "two games of different lengths");
+  // One look at everything in one task: what each replay's page shows, and the numbers.
+  const look = () =>
+    projector.evaluate(() => {
+      const views = [...document.querySelectorAll("#debrief-replays iframe")].map((f) => {
+        const r = f.getBoundingClientRect();
+        const api = f.contentWindow.evapcool;
+        const g = api?.app.game;
+        const state = api?.stateNow();
+        return {
+          src: f.src,
+          box: [r.left, r.top, r.width, r.height],
+          frame: g ? Math.round(g.sim.time) : null,
+          paused: g?.paused,
+          won: state?.won,
+          trapped: state?.nTrapped,
+        };
+      });
+      const d = document.getElementById("debrief-pair").dataset;
+      return { views, numbers: d.frames ?? "", frame: Number(d.frame) };
+    });
   let seen = 0;
-  for (let k = 0; k < 2000; k++) {
-    const d = await projector.evaluate(() => ({
-      ...document.getElementById("debrief-pair").dataset,
-    }));
-    const frame = Number(d.frame);
-    assert.deepEqual(
-      d.frames.split(",").map(Number),
-      frames.map((f) => Math.min(frame, f)),
-      `in step at frame ${frame}`,
-    );
-    seen += 1;
-    if (frame >= last) break;
-    if (k === 5) await shot(projector, "class-debrief-pair.png");
-    await new Promise((r) => setTimeout(r, 50));
+  let shotTaken = false;
+  let now = await look();
+  assert.equal(now.views.length, 2, "two replays");
+  const [left, right] = now.views.map((v) => v.box);
+  assert.ok(left[0] + left[2] <= right[0] && left[2] >= 300 && left[3] >= 300, `${left} ${right}`);
+  assert.ok(Math.abs(left[1] - right[1]) < 1, "side by side");
+  assert.ok(now.views.every((v) => v.src.includes("replay=")));
+  for (let k = 0; k < 20000; k++) {
+    now = await look();
+    const shown = now.views.map((v) => v.frame);
+    if (shown.every((f) => f !== null)) {
+      // The shared frame: the longer game's; the shorter holds its last frame.
+      const at = Math.max(...shown);
+      assert.deepEqual(
+        shown,
+        frames.map((f) => Math.min(at, f)),
+        `in step at frame ${at}`,
+      );
+      assert.equal(now.numbers, shown.join(","), `the numbers at frame ${at}`);
+      assert.ok(
+        now.views.every((v) => v.paused),
+        "the projector's clock, not the page's",
+      );
+      seen += 1;
+      if (at > 60 && !shotTaken) {
+        shotTaken = true;
+        await shot(projector, "class-debrief-pair.png");
+      }
+      if (at >= last) break;
+    }
+    await new Promise((r) => setTimeout(r, 40));
   }
-  const end = await projector.evaluate(
-    () => document.getElementById("debrief-pair").dataset.frames,
+  assert.deepEqual(
+    now.views.map((v) => v.frame),
+    frames,
+    "each game at its own last frame",
   );
-  assert.equal(end, frames.join(","), "each game at its own last frame");
-  assert.ok(seen > 10);
+  const pairWon = [a, b].map((e) => doc.games.find((g) => g.entry === e).won);
+  assert.deepEqual(
+    now.views.map((v) => v.won),
+    pairWon,
+    "each replay's own end",
+  );
+  assert.equal(now.numbers, frames.join(","), "the numbers at each game's last frame");
+  assert.ok(seen > 10, `${seen} looks`);
+  // The end holds: no replay starts again by itself (alone, one would after 6 s).
+  await new Promise((r) => setTimeout(r, 7000));
+  assert.deepEqual(
+    (await look()).views.map((v) => v.frame),
+    frames,
+  );
 
   // Anonymous: no name in a projector's page nor in anything it receives.
   await lecturerPage.click("#debrief-anonymous");

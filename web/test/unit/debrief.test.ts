@@ -15,7 +15,14 @@ import {
   type PairDoc,
   type PathColumns,
 } from "../../src/view/debrief/model";
-import { drawPair, frameAt, stateAt } from "../../src/view/debrief/pair";
+import {
+  allEnded,
+  drawPair,
+  frameAt,
+  nextFrame,
+  stateAt,
+  type Shown,
+} from "../../src/view/debrief/pair";
 
 const CASES: Array<{ path: PathColumns }> = JSON.parse(
   readFileSync(new URL("../golden/paths.json", import.meta.url), "utf8"),
@@ -189,5 +196,62 @@ describe("two games side by side", () => {
       expect(stateAt(pair.games[0].path, law, k).n).toBe(49 - Math.floor(Math.min(k, 120) / 10));
       expect(drawn.words.some((w) => w.text.startsWith("Student 2 · frame"))).toBe(true);
     }
+  });
+});
+
+describe("the shared clock of two replays in step", () => {
+  /** A replay of `last` frames that shows the frame asked for (or its last), unless it is
+   * still loading or lags (then it stays where it was). */
+  function replay(last: number) {
+    let frame = 0;
+    return (k: number, ready: boolean): Shown => {
+      if (!ready) return null;
+      frame = Math.min(k, last);
+      return { frame, ended: frame === last };
+    };
+  }
+
+  it("moves on only when both show the shared frame, and ends on each one's last", () => {
+    const lasts = [7, 12];
+    const replays = lasts.map(replay);
+    let k = 0;
+    const seen: number[][] = [];
+    for (let tick = 0; tick < 60; tick++) {
+      // The second replay is not ready for the first 3 ticks, and misses every 4th ask.
+      const shown = replays.map((r, i) => r(k, i === 0 || (tick >= 3 && tick % 4 !== 1)));
+      if (shown.every((s) => s !== null)) seen.push(shown.map((s) => s!.frame));
+      const next = nextFrame(k, shown);
+      if (shown.some((s) => s === null)) expect(next).toBe(k);
+      expect(next - k).toBeLessThanOrEqual(1);
+      k = next;
+      if (allEnded(shown)) break;
+    }
+    expect(k).toBe(12);
+    for (const [a, b] of seen) expect(a).toBe(Math.min(b, 7));
+    expect(seen.at(-1)).toEqual([7, 12]);
+    expect(new Set(seen.map(([, b]) => b)).size).toBe(13);
+  });
+
+  it("holds the shared frame while one replay lags behind it", () => {
+    expect(
+      nextFrame(5, [
+        { frame: 5, ended: false },
+        { frame: 4, ended: false },
+      ]),
+    ).toBe(5);
+    expect(
+      nextFrame(5, [
+        { frame: 5, ended: false },
+        { frame: 3, ended: true },
+      ]),
+    ).toBe(6);
+    expect(
+      nextFrame(5, [
+        { frame: 5, ended: true },
+        { frame: 3, ended: true },
+      ]),
+    ).toBe(5);
+    expect(allEnded([{ frame: 5, ended: true }, null])).toBe(false);
+    expect(allEnded([])).toBe(false);
   });
 });

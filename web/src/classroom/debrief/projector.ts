@@ -2,11 +2,13 @@
  * The debrief on the projector: shown once the challenge is closed (never while it is
  * open: the lecturer's early look stays on the lecturer's page), redrawn when the lecturer
  * picks a game (highlighted, its name unless anonymous; its replay plays in the replay
- * box) and playing two games side by side when the lecturer sets a pair.
+ * box) and playing two games' replays side by side, in step, when the lecturer sets a pair.
  */
 import { classBase } from "../common";
 import type { Debrief, PairDoc, Showing, Tr } from "../../view/debrief/model";
+import { frameAt } from "../../view/debrief/pair";
 import { DebriefView } from "../../view/debrief/view";
+import { PairReplays } from "./replays";
 
 /** What the projector reads of a leaderboard message for the debrief. */
 export interface BoardForDebrief {
@@ -18,6 +20,7 @@ export interface BoardForDebrief {
 
 export class ProjectorDebrief {
   readonly view: DebriefView;
+  readonly replays: PairReplays;
   private docKey = "";
   private pairKey = "";
   doc: Debrief | null = null;
@@ -34,7 +37,10 @@ export class ProjectorDebrief {
   ) {
     // Ticks and legends at least 24 px on a 1080-line projector (in proportion on others).
     const minSmall = () => Math.round((24 * window.innerHeight) / 1080);
-    this.view = new DebriefView(parent, { tr, locale, minSmall });
+    // Two games' numbers follow their replays' shared clock (the page's, without them).
+    const pairFrame = (pair: PairDoc, ms: number) => this.replays.step() ?? frameAt(pair, ms);
+    this.view = new DebriefView(parent, { tr, locale, minSmall, pairFrame });
+    this.replays = new PairReplays(this.view.pairCanvas, tr, locale);
     window.addEventListener("resize", () => this.view.draw());
   }
 
@@ -45,6 +51,7 @@ export class ProjectorDebrief {
     if (!shown) {
       [this.docKey, this.pairKey, this.doc] = ["", "", null];
       this.view.hide();
+      this.replays.set(null);
       return false;
     }
     const s = board.debrief ?? { anonymous: false, pick: null, pair: null };
@@ -72,9 +79,14 @@ export class ProjectorDebrief {
   }
 
   private async loadPair(key: string): Promise<void> {
-    if (!key) return this.view.setPair(null);
+    if (!key) {
+      this.replays.set(null);
+      return this.view.setPair(null);
+    }
     const res = await fetch(classBase() + "/api/debrief/pair" + this.query, { cache: "no-store" });
     if (!res.ok || key !== this.pairKey) return;
-    this.view.setPair((await res.json()) as PairDoc);
+    const pair = (await res.json()) as PairDoc;
+    this.replays.set(pair);
+    this.view.setPair(pair);
   }
 }

@@ -66,10 +66,17 @@ export interface Debrief {
   showing?: Showing;
 }
 
-/** Two games side by side: their paths at every frame. */
+/** Two games side by side: their paths at every frame, their replay codes. */
 export interface PairDoc {
   challenge: number;
-  games: Array<{ entry: number; name: string | null; rank: number | null; path: PathColumns }>;
+  games: Array<{
+    entry: number;
+    name: string | null;
+    rank: number | null;
+    path: PathColumns;
+    /** The game's replay code (the projector plays both replays in step). */
+    code?: string;
+  }>;
 }
 
 /** A catalog text with its placeholders filled (the page's `t`, or the class pages' fill). */

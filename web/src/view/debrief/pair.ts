@@ -30,6 +30,25 @@ export function frameAt(pair: PairDoc, elapsedMs: number, fps = PAIR_FPS): numbe
   return Math.min(last, Math.max(0, Math.floor((elapsedMs / 1000) * fps)));
 }
 
+/** What a replay reported after being asked for a frame: the frame it shows, and whether
+ * its game has ended (it holds its last frame); null: not ready (still loading). */
+export type Shown = { frame: number; ended: boolean } | null;
+
+/** The shared clock of replays played in step: the frame to ask for after the shared frame
+ * k was asked for and each replay showed `shown`. It moves on one frame only once every
+ * replay shows k or has ended before it (a lagging one holds the others), and stops once
+ * all have ended. */
+export function nextFrame(k: number, shown: Shown[]): number {
+  if (shown.some((s) => s === null || (!s.ended && s.frame !== k))) return k;
+  if (shown.every((s) => s!.ended)) return k;
+  return k + 1;
+}
+
+/** Whether every replay has ended (each on its own last frame). */
+export function allEnded(shown: Shown[]): boolean {
+  return shown.length > 0 && shown.every((s) => s !== null && s.ended);
+}
+
 /** The state of a game at frame k: atoms, temperature, its Tc, trap height. */
 export function stateAt(path: PathColumns, law: Law, k: number) {
   const i = Math.min(path.k.length - 1, Math.max(0, path.k.indexOf(shownFrame(path, k))));

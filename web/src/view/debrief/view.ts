@@ -14,6 +14,9 @@ export interface DebriefOptions {
   now?: () => number;
   /** The least size of the charts' smallest words, px (a projector's: the back row's). */
   minSmall?: () => number;
+  /** The pair's shared frame at each tick (the projector's: its replays' clock), else
+   * the page's clock at the game's pace. */
+  pairFrame?: (pair: PairDoc, elapsedMs: number) => number;
 }
 
 function element<K extends keyof HTMLElementTagNameMap>(
@@ -168,7 +171,7 @@ export class DebriefView {
   private tick(): void {
     const pair = this.pairDoc;
     if (!pair || !this.doc) return;
-    const k = frameAt(pair, this.now() - this.pairStart);
+    const k = (this.o.pairFrame ?? frameAt)(pair, this.now() - this.pairStart);
     const [ctx, w, h] = sized(this.pairCanvas);
     this.pairDrawn = drawPair(
       ctx,
