@@ -5,14 +5,12 @@
 // its projector (at the class's path) follows it; the phone's verified game reaches both.
 // No page may log a script error or a blocked resource.
 import assert from "node:assert/strict";
-import { spawn } from "node:child_process";
-import { existsSync, mkdtempSync, rmSync } from "node:fs";
-import { createServer } from "node:net";
-import { tmpdir } from "node:os";
-import { join, resolve } from "node:path";
+import { existsSync, rmSync } from "node:fs";
+import { resolve } from "node:path";
 import { after, before, test } from "node:test";
 import { chromium } from "playwright-core";
 import { CHROMIUM } from "./browser.mjs";
+import { startClassServer } from "./class-server.mjs";
 
 const PYTHON =
   process.env.EVAPCOOL_PYTHON ?? resolve(import.meta.dirname, "../../../.venv/bin/python");
@@ -23,41 +21,17 @@ let server;
 let browser;
 let dir;
 
-async function freePort() {
-  const s = createServer();
-  await new Promise((ok) => s.listen(0, "127.0.0.1", ok));
-  const { port } = s.address();
-  await new Promise((ok) => s.close(ok));
-  return port;
-}
-
-/** `evapcool class --department` on a fresh file: its base address and the admin's token. */
+/** `evapcool class` on a fresh data file (class-server.mjs); `dir` for the cleanup. */
 async function startServer() {
-  dir = mkdtempSync(join(tmpdir(), "evapcool-dept-"));
-  const port = await freePort();
-  const args = ["-m", "evapcool", "class", "--department", "--port", String(port)];
-  const proc = spawn(PYTHON, [...args, "--data", join(dir, "d.sqlite")], {
-    env: { ...process.env, LANG: "C.UTF-8", LANGUAGE: "en" },
-    stdio: ["ignore", "pipe", "pipe"],
-    detached: true, // its own process group: stopping it reaches its workers too
+  const started = await startClassServer(PYTHON, {
+    prefix: "evapcool-dept-",
+    args: ["--department"],
+    token: /admin\?token=(\S+)/,
+    readyPath: "/",
+    tries: 150,
   });
-  let out = "";
-  proc.stdout.on("data", (d) => (out += d));
-  proc.stderr.on("data", (d) => (out += d));
-  const base = `http://127.0.0.1:${port}`;
-  for (let k = 0; k < 150; k++) {
-    const token = /admin\?token=(\S+)/.exec(out)?.[1];
-    if (token) {
-      try {
-        if ((await fetch(`${base}/`)).ok) return { proc, base, token };
-      } catch {
-        /* not listening yet */
-      }
-    }
-    await new Promise((r) => setTimeout(r, 200));
-  }
-  proc.kill("SIGKILL");
-  throw new Error(`the class server did not start: ${out}`);
+  dir = started.dir;
+  return started;
 }
 
 before(async () => {

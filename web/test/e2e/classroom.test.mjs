@@ -7,14 +7,12 @@
 // reach every page within 2 s. EVAPCOOL_SHOTS=DIR saves the projector's states and a phone
 // there (`npm run screenshots:class`: into docs/).
 import assert from "node:assert/strict";
-import { spawn } from "node:child_process";
-import { existsSync, mkdirSync, mkdtempSync, rmSync } from "node:fs";
-import { createServer } from "node:net";
-import { tmpdir } from "node:os";
+import { existsSync, mkdirSync, rmSync } from "node:fs";
 import { join, resolve } from "node:path";
 import { after, before, test } from "node:test";
 import { chromium } from "playwright-core";
 import { CHROMIUM } from "./browser.mjs";
+import { startClassServer } from "./class-server.mjs";
 
 const PYTHON =
   process.env.EVAPCOOL_PYTHON ?? resolve(import.meta.dirname, "../../../.venv/bin/python");
@@ -25,44 +23,17 @@ let server;
 let browser;
 let dir;
 
-async function freePort() {
-  const s = createServer();
-  await new Promise((ok) => s.listen(0, "127.0.0.1", ok));
-  const { port } = s.address();
-  await new Promise((ok) => s.close(ok));
-  return port;
-}
-
-/** `evapcool class` on a fresh data file; resolves with its base address and lecturer token. */
+/** `evapcool class` on a fresh data file (class-server.mjs); `dir` for the cleanup. */
 async function startServer() {
-  dir = mkdtempSync(join(tmpdir(), "evapcool-class-"));
-  const port = await freePort();
-  const proc = spawn(
-    PYTHON,
-    ["-m", "evapcool", "class", "--port", String(port), "--data", join(dir, "c.sqlite")],
-    {
-      env: { ...process.env, LANG: "C.UTF-8", LANGUAGE: "en" },
-      stdio: ["ignore", "pipe", "pipe"],
-      detached: true, // its own process group: stopping it reaches its workers too
-    },
-  );
-  let out = "";
-  proc.stdout.on("data", (d) => (out += d));
-  proc.stderr.on("data", (d) => (out += d));
-  const base = `http://127.0.0.1:${port}`;
-  for (let k = 0; k < 150; k++) {
-    const token = /token=(\S+)/.exec(out)?.[1];
-    if (token) {
-      try {
-        if ((await fetch(`${base}/api/leaderboard`)).ok) return { proc, base, token };
-      } catch {
-        /* not listening yet */
-      }
-    }
-    await new Promise((r) => setTimeout(r, 200));
-  }
-  proc.kill("SIGKILL");
-  throw new Error(`the class server did not start: ${out}`);
+  const started = await startClassServer(PYTHON, {
+    prefix: "evapcool-class-",
+    args: [],
+    token: /token=(\S+)/,
+    readyPath: "/api/leaderboard",
+    tries: 150,
+  });
+  dir = started.dir;
+  return started;
 }
 
 before(async () => {

@@ -1,0 +1,52 @@
+/**
+ * A real `evapcool class` for the Chromium tests of the class pages: started on a free port
+ * of 127.0.0.1 with a fresh data file, answered once its link is printed and it serves.
+ */
+import { spawn } from "node:child_process";
+import { mkdtempSync } from "node:fs";
+import { createServer } from "node:net";
+import { tmpdir } from "node:os";
+import { join } from "node:path";
+
+/** A TCP port of 127.0.0.1 free a moment ago. */
+export async function freePort() {
+  const s = createServer();
+  await new Promise((ok) => s.listen(0, "127.0.0.1", ok));
+  const { port } = s.address();
+  await new Promise((ok) => s.close(ok));
+  return port;
+}
+
+/**
+ * Start the server with `python`: `args` after `class`, the token read from its output by
+ * `token` (a pattern with one group), ready once `readyPath` answers 200. Returns its
+ * process, base address, token, data folder and everything it printed so far.
+ */
+export async function startClassServer(python, { prefix, args = [], token, readyPath, tries }) {
+  const dir = mkdtempSync(join(tmpdir(), prefix));
+  const port = await freePort();
+  const command = ["-m", "evapcool", "class", ...args, "--port", String(port)];
+  const proc = spawn(python, [...command, "--data", join(dir, "c.sqlite")], {
+    env: { ...process.env, LANG: "C.UTF-8", LANGUAGE: "en" },
+    stdio: ["ignore", "pipe", "pipe"],
+    detached: true, // its own process group: stopping it reaches its workers too
+  });
+  let out = "";
+  proc.stdout.on("data", (d) => (out += d));
+  proc.stderr.on("data", (d) => (out += d));
+  const base = `http://127.0.0.1:${port}`;
+  for (let k = 0; k < tries; k++) {
+    const found = token.exec(out)?.[1];
+    if (found) {
+      try {
+        if ((await fetch(base + readyPath)).ok)
+          return { proc, base, token: found, dir, output: () => out };
+      } catch {
+        /* not listening yet */
+      }
+    }
+    await new Promise((r) => setTimeout(r, 200));
+  }
+  proc.kill("SIGKILL");
+  throw new Error(`the class server did not start: ${out}`);
+}
