@@ -3,7 +3,7 @@
  * of 127.0.0.1 with a fresh data file, answered once its link is printed and it serves.
  */
 import { spawn } from "node:child_process";
-import { mkdtempSync } from "node:fs";
+import { mkdtempSync, rmSync } from "node:fs";
 import { createServer } from "node:net";
 import { tmpdir } from "node:os";
 import { join } from "node:path";
@@ -49,4 +49,17 @@ export async function startClassServer(python, { prefix, args = [], token, ready
   }
   proc.kill("SIGKILL");
   throw new Error(`the class server did not start: ${out}`);
+}
+
+/** Stop a server of startClassServer (its whole process group) and remove its data folder. */
+export async function stopClassServer(server) {
+  if (!server) return;
+  server.proc.kill("SIGTERM");
+  await new Promise((r) => setTimeout(r, 1500));
+  try {
+    process.kill(-server.proc.pid, "SIGKILL"); // anything of its group still there
+  } catch {
+    /* all gone */
+  }
+  rmSync(server.dir, { recursive: true, force: true });
 }

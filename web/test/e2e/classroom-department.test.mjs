@@ -5,12 +5,12 @@
 // its projector (at the class's path) follows it; the phone's verified game reaches both.
 // No page may log a script error or a blocked resource.
 import assert from "node:assert/strict";
-import { existsSync, rmSync } from "node:fs";
+import { existsSync } from "node:fs";
 import { resolve } from "node:path";
 import { after, before, test } from "node:test";
 import { chromium } from "playwright-core";
 import { CHROMIUM } from "./browser.mjs";
-import { startClassServer } from "./class-server.mjs";
+import { startClassServer, stopClassServer } from "./class-server.mjs";
 
 const PYTHON =
   process.env.EVAPCOOL_PYTHON ?? resolve(import.meta.dirname, "../../../.venv/bin/python");
@@ -19,24 +19,17 @@ const SEED = 77;
 
 let server;
 let browser;
-let dir;
 
-/** `evapcool class` on a fresh data file (class-server.mjs); `dir` for the cleanup. */
-async function startServer() {
-  const started = await startClassServer(PYTHON, {
+before(async () => {
+  if (SKIP) return;
+  // `evapcool class` on a fresh data file (class-server.mjs)
+  server = await startClassServer(PYTHON, {
     prefix: "evapcool-dept-",
     args: ["--department"],
     token: /admin\?token=(\S+)/,
     readyPath: "/",
     tries: 150,
   });
-  dir = started.dir;
-  return started;
-}
-
-before(async () => {
-  if (SKIP) return;
-  server = await startServer();
   browser = await chromium.launch({
     executablePath: CHROMIUM,
     args: ["--no-sandbox", "--disable-gpu"],
@@ -45,16 +38,7 @@ before(async () => {
 
 after(async () => {
   await browser?.close();
-  if (server) {
-    server.proc.kill("SIGTERM");
-    await new Promise((r) => setTimeout(r, 1500));
-    try {
-      process.kill(-server.proc.pid, "SIGKILL");
-    } catch {
-      /* all gone */
-    }
-  }
-  if (dir) rmSync(dir, { recursive: true, force: true });
+  await stopClassServer(server);
 });
 
 async function post(path, token, body) {

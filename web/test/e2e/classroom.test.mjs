@@ -7,12 +7,12 @@
 // reach every page within 2 s. EVAPCOOL_SHOTS=DIR saves the projector's states and a phone
 // there (`npm run screenshots:class`: into docs/).
 import assert from "node:assert/strict";
-import { existsSync, mkdirSync, rmSync } from "node:fs";
+import { existsSync, mkdirSync } from "node:fs";
 import { join, resolve } from "node:path";
 import { after, before, test } from "node:test";
 import { chromium } from "playwright-core";
 import { CHROMIUM } from "./browser.mjs";
-import { startClassServer } from "./class-server.mjs";
+import { startClassServer, stopClassServer } from "./class-server.mjs";
 
 const PYTHON =
   process.env.EVAPCOOL_PYTHON ?? resolve(import.meta.dirname, "../../../.venv/bin/python");
@@ -21,24 +21,17 @@ const SEED = 77;
 
 let server;
 let browser;
-let dir;
 
-/** `evapcool class` on a fresh data file (class-server.mjs); `dir` for the cleanup. */
-async function startServer() {
-  const started = await startClassServer(PYTHON, {
+before(async () => {
+  if (SKIP) return;
+  // `evapcool class` on a fresh data file (class-server.mjs)
+  server = await startClassServer(PYTHON, {
     prefix: "evapcool-class-",
     args: [],
     token: /token=(\S+)/,
     readyPath: "/api/leaderboard",
     tries: 150,
   });
-  dir = started.dir;
-  return started;
-}
-
-before(async () => {
-  if (SKIP) return;
-  server = await startServer();
   browser = await chromium.launch({
     executablePath: CHROMIUM,
     args: ["--no-sandbox", "--disable-gpu"],
@@ -47,16 +40,7 @@ before(async () => {
 
 after(async () => {
   await browser?.close();
-  if (server) {
-    server.proc.kill("SIGTERM");
-    await new Promise((r) => setTimeout(r, 1500));
-    try {
-      process.kill(-server.proc.pid, "SIGKILL"); // anything of its group still there
-    } catch {
-      /* all gone */
-    }
-  }
-  if (dir) rmSync(dir, { recursive: true, force: true });
+  await stopClassServer(server);
 });
 
 const SHOTS = process.env.EVAPCOOL_SHOTS ?? null;

@@ -10,12 +10,12 @@
 // receives. EVAPCOOL_SHOTS=DIR saves the projector's debrief there.
 import assert from "node:assert/strict";
 import { execFileSync } from "node:child_process";
-import { existsSync, mkdirSync, readdirSync, rmSync } from "node:fs";
+import { existsSync, mkdirSync, readdirSync } from "node:fs";
 import { join, resolve } from "node:path";
 import { after, before, test } from "node:test";
 import { chromium } from "playwright-core";
 import { CHROMIUM } from "./browser.mjs";
-import { startClassServer } from "./class-server.mjs";
+import { startClassServer, stopClassServer } from "./class-server.mjs";
 
 const PYTHON =
   process.env.EVAPCOOL_PYTHON ?? resolve(import.meta.dirname, "../../../.venv/bin/python");
@@ -31,24 +31,17 @@ const LOCALES = readdirSync(join(ROOT, "src/evapcool/locales"))
 
 let server;
 let browser;
-let dir;
 
-/** `evapcool class` on a fresh data file (class-server.mjs); `dir` for the cleanup. */
-async function startServer() {
-  const started = await startClassServer(PYTHON, {
+before(async () => {
+  if (SKIP) return;
+  // `evapcool class` on a fresh data file (class-server.mjs)
+  server = await startClassServer(PYTHON, {
     prefix: "evapcool-debrief-",
     args: [],
     token: /token=(\S+)/,
     readyPath: "/api/leaderboard",
     tries: 300,
   });
-  dir = started.dir;
-  return started;
-}
-
-before(async () => {
-  if (SKIP) return;
-  server = await startServer();
   browser = await chromium.launch({
     executablePath: CHROMIUM,
     args: ["--no-sandbox", "--disable-gpu"],
@@ -57,16 +50,7 @@ before(async () => {
 
 after(async () => {
   await browser?.close();
-  if (server) {
-    server.proc.kill("SIGTERM");
-    await new Promise((r) => setTimeout(r, 1500));
-    try {
-      process.kill(-server.proc.pid, "SIGKILL");
-    } catch {
-      /* all gone */
-    }
-  }
-  if (dir) rmSync(dir, { recursive: true, force: true });
+  await stopClassServer(server);
 });
 
 const lecturer = () => ({
