@@ -3,6 +3,7 @@
  * read from it: the critical line, each game's name (or its anonymous label), the order
  * the curves are drawn in, the archetypes and the best game's path in words.
  */
+import type { GamePath } from "../../game/path";
 
 /** Tc(N) = tc0 (N / n0)^exponent; t0: every game's starting temperature. */
 export interface Law {
@@ -12,18 +13,8 @@ export interface Law {
   t0: number;
 }
 
-/** A game's path, sampled (the server's game/path.py): frames k, atoms n, temperature t,
- * trap height h held during frame k. */
-export interface PathColumns {
-  k: number[];
-  n: number[];
-  t: number[];
-  h: number[];
-  frames: number;
-  won: boolean;
-  score: number;
-  t0: number;
-}
+/** A game's path, sampled (game/path.ts, the server's game/path.py's twin). */
+export type PathColumns = GamePath;
 
 export interface DebriefGame {
   entry: number;
