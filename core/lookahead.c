@@ -72,6 +72,23 @@ static int32_t after_next(const Core *core, int32_t c) {
   return best;
 }
 
+/* One row further along the list of the bin the calendar opens next, asking for the row
+ * after it: when the bin moves into the heap, its walk from row to row finds every line in
+ * the caches instead of waiting for each in turn (about as many events as rows per bin). */
+static void walk_next_bin(Core *core) {
+  if (core->run.walk_bin != core->run.bin) {
+    core->run.walk_bin = core->run.bin;
+    int64_t b = core->run.bin + 1;
+    core->run.walk = b >= 0 ? core->bins[(int32_t)(b % core->run.n_bins)] : -1;
+  } else if (core->run.walk >= 0) {
+    core->run.walk = core->filing[core->run.walk].next;
+  }
+  if (core->run.walk >= 0) {
+    __builtin_prefetch(&core->filing[core->run.walk]);
+    __builtin_prefetch(&core->queued[core->run.walk]);
+  }
+}
+
 /* Before row i's event of this kind: ask for the records of the next two events' rows (the
  * likely next, and from DEEP_MIN_ATOMS on the one after), for i's partner's and for the
  * heads of the cells i's scans read; for the next row, whose heads were asked an event
@@ -99,6 +116,7 @@ int32_t look_before(Core *core, int32_t i, int32_t kind, int32_t *after) {
   }
   if (kind == KIND_PAIR) ask_row(core, core->plan[i].partner);
   ask_heads(core, i);
+  walk_next_bin(core);
   return next;
 }
 

@@ -106,6 +106,8 @@ typedef struct {
   double bin_base, bin_width;
   int64_t bin, scan_bin; /* the current bin (its atoms are in the heap); the last refiling */
   int32_t heap_size, n_bins, n_ring, n_over;
+  int64_t walk_bin; /* look-ahead: the bin whose successor's list is being walked ... */
+  int32_t walk;     /* ... and the row it has reached (-1: at the end) */
 } Run;
 
 /* Lifecycle (SPEC 2.3) and log kinds, the wall's and the win's numbers: world.py's. */
