@@ -50,66 +50,6 @@ export interface EngineAtoms {
 /** What storedOf(i, k) returns for each k: the core's State fields in order, then the mass. */
 export const STORED = { x: 0, y: 1, vx: 2, vy: 3, t: 4, radius: 5, mass: 6 } as const;
 
-/** What Simulation uses of an engine. */
-export interface EngineCore {
-  // fixed for the engine's life
-  /** Atoms at the start (N0), gone ones included. */
-  readonly nAtoms: number;
-  readonly gravity: number;
-  readonly curvature: number;
-  readonly knife: boolean;
-  readonly winRule: boolean;
-  readonly tcExponent: number;
-  readonly initialTemperature: number;
-  /** The cell grid's columns, rows and cell edge. */
-  readonly gridColumns: number;
-  readonly gridRows: number;
-  readonly cellSize: number;
-  // the running state
-  readonly time: number;
-  readonly trapHeight: number;
-  readonly xRim: number;
-  readonly won: boolean;
-  readonly nTrapped: number;
-  readonly pairCount: number;
-  readonly wallCount: number;
-  readonly energySum: number;
-  readonly nLog: number;
-  readonly crossingCount: number;
-  readonly staleCount: number;
-  /** Process every event with time <= tEnd in time order, then set the clock. */
-  advanceTo(tEnd: number): void;
-  /** New rim height, at once; with the knife rule, atoms above m g H go now, in index order. */
-  setTrapHeight(height: number): void;
-  /** Declare the gas condensed now (demonstrations and tests). */
-  forceWin(): void;
-  /** Tc(N) = Tc0 (N / N0)^p, seed Eq. (46) with exponent p. */
-  criticalTemperatureOf(nTrapped: number): number;
-  /** Sum of trapped energies added in world index order (the engines continue it). */
-  sequentialEnergySum(): number;
-  statusOf(i: number): number;
-  /** Stored value k (STORED) of world atom i. */
-  storedOf(i: number, k: number): number;
-  /** World atom i's energy 1/2 m v^2 + m g y from its stored state (conserved in flight). */
-  atomEnergy(i: number): number;
-  /** Position and velocity of world atom i carried to time t into out = [x, y, vx, vy]. */
-  stateAt(i: number, t: number, out: Float64Array): void;
-  /** Trapped atoms filed more than one cell away from their cell now (0 if sound). */
-  gridErrors(): number;
-  /** Event k of the log: [kind, i, j, time] with world indices. */
-  logEntry(k: number): [number, number, number, number];
-  /** One whole frame from a whole frame, the trap at `height` during it (from its start,
-   * not after the win), then its end: the win seen, the score fixed (core/game.c). */
-  frame(height: number): void;
-  /** The end of a whole frame reached by advanceTo: the win seen, the score fixed. */
-  frameEnd(): void;
-  /** Atoms trapped at the end of the whole frame the win was seen in; null before. */
-  readonly score: number | null;
-  /** [height, frames] runs from a whole frame, up to the win or `limit` frames: the frames
-   * played (no event log is kept). */
-  replay(runs: ReadonlyArray<readonly [number, number]>, limit: number): number;
-}
-
 /** A Core's address in the instance's memory (core/tables.h). */
 type Core = number;
 
@@ -180,6 +120,11 @@ interface CoreExports {
   ): number;
   core_cup_capacity(radius: number, curvature: number, yTop: number): number;
 }
+
+/** Entry points called with a Core alone that answer a number: its scalars (core/tables.c) among them. */
+type Reader = {
+  [K in keyof CoreExports]: CoreExports[K] extends (core: Core) => number ? K : never;
+}[keyof CoreExports];
 
 /** core_advance_to's answer (CORE_LOG_FULL) when the log must be emptied before it goes on. */
 const LOG_FULL = 1;
@@ -296,16 +241,14 @@ function writeInputs(buffer: ArrayBuffer, at: number, atoms: EngineAtoms): void 
   for (let i = 0; i < n; i++) status[i] = atoms.status[i];
 }
 
-export class WasmEngine implements EngineCore {
+/** One engine: a Core in an instance of its own, loaded with the atoms and started. */
+export class WasmEngine {
+  /** Atoms at the start (N0), gone ones included. */
   readonly nAtoms: number;
-  readonly gravity: number;
-  readonly curvature: number;
-  readonly knife: boolean;
-  readonly winRule: boolean;
-  readonly tcExponent: number;
-  readonly recordEvents: boolean;
+  /** T at the start (Tc0 = 0.75 of it). */
   readonly initialTemperature: number;
   readonly tc0: number;
+  /** The cell grid's columns, rows and cell edge. */
   readonly gridColumns: number;
   readonly gridRows: number;
   readonly cellSize: number;
@@ -322,15 +265,12 @@ export class WasmEngine implements EngineCore {
   private logT = new Float64Array(0);
   nLog = 0;
 
-  constructor(setup: EngineSetup, atoms: EngineAtoms) {
+  constructor(
+    readonly setup: EngineSetup,
+    atoms: EngineAtoms,
+  ) {
     const n = atoms.x.length;
     this.nAtoms = n;
-    this.gravity = setup.gravity;
-    this.curvature = setup.curvature;
-    this.knife = setup.knife;
-    this.winRule = setup.winRule;
-    this.tcExponent = setup.tcExponent;
-    this.recordEvents = setup.recordEvents;
     const c = instance();
     this.c = c;
     const core = c.core_new();
@@ -361,7 +301,7 @@ export class WasmEngine implements EngineCore {
     this.initialTemperature = atoms.initialTemperature ?? (nTrapped > 0 ? energySum / nTrapped : 0);
     // seed Eq. (46): Tc0 is 3/4 of the starting temperature; the core reads Tc(N) from a table.
     this.tc0 = 0.75 * this.initialTemperature;
-    c.core_fill_tc_table(core, this.tc0, this.tcExponent);
+    c.core_fill_tc_table(core, this.tc0, setup.tcExponent);
     if (!c.core_start(core, energySum, setup.trapHeight)) throw new RangeError(OUT_OF_MEMORY(n));
     this.gridColumns = c.core_nx(core);
     this.gridRows = c.core_ny(core);
@@ -369,69 +309,43 @@ export class WasmEngine implements EngineCore {
     this.mem = new Float64Array(c.memory.buffer);
   }
 
-  get time(): number {
-    return this.c.core_time(this.core);
-  }
-  get trapHeight(): number {
-    return this.c.core_trap_height(this.core);
-  }
-  get xRim(): number {
-    return this.c.core_x_rim(this.core);
-  }
-  get won(): boolean {
-    return this.c.core_won(this.core) !== 0;
-  }
-  get nTrapped(): number {
-    return this.c.core_n_trapped(this.core);
-  }
-  get pairCount(): number {
-    return this.c.core_pairs(this.core);
-  }
-  get wallCount(): number {
-    return this.c.core_walls(this.core);
-  }
-  get energySum(): number {
-    return this.c.core_energy_sum(this.core);
-  }
-  get crossingCount(): number {
-    return this.c.core_crossings(this.core);
-  }
-  get staleCount(): number {
-    return this.c.core_stale(this.core);
-  }
-  get renumberCount(): number {
-    return this.c.core_renumbered(this.core);
+  /** What entry point `name` answers now: a scalar such as the clock, the trap, a count. */
+  read(name: Reader): number {
+    return this.c[name](this.core);
   }
 
+  /** Process every event with time <= tEnd in time order, then set the clock. */
   advanceTo(tEnd: number): void {
     while (this.c.core_advance_to(this.core, tEnd) === LOG_FULL) this.drainLog();
     this.drainLog();
   }
 
+  /** New rim height, at once; with the knife rule, atoms above m g H go now, in index order. */
   setTrapHeight(height: number): void {
     this.drainLog(); // the knife may log every atom: the buffer holds n + 8 lines
     this.c.core_set_trap_height(this.core, height);
     this.drainLog();
   }
 
+  /** Declare the gas condensed now (demonstrations and tests). */
   forceWin(): void {
     this.c.core_force_win(this.core);
   }
 
+  /** One whole frame from a whole frame, the trap at `height` during it (from its start,
+   * not after the win), then its end: the win seen, the score fixed (core/game.c). */
   frame(height: number): void {
     while (this.c.core_frame(this.core, height) === LOG_FULL) this.drainLog();
     this.drainLog();
   }
 
+  /** The end of a whole frame reached by advanceTo: the win seen, the score fixed. */
   frameEnd(): void {
     this.c.core_frame_end(this.core);
   }
 
-  get score(): number | null {
-    const score = this.c.core_score(this.core);
-    return score < 0 ? null : score;
-  }
-
+  /** [height, frames] runs from a whole frame, up to the win or `limit` frames: the frames
+   * played (no event log is kept). */
   replay(runs: ReadonlyArray<readonly [number, number]>, limit: number): number {
     const at = this.c.core_buffer(this.core, 2 * runs.length);
     if (at === 0 && runs.length > 0) throw new RangeError(OUT_OF_MEMORY(this.nAtoms));
@@ -440,10 +354,12 @@ export class WasmEngine implements EngineCore {
     return this.c.core_replay(this.core, at, runs.length, limit);
   }
 
+  /** Tc(N) = Tc0 (N / N0)^p, seed Eq. (46) with exponent p. */
   criticalTemperatureOf(nTrapped: number): number {
-    return this.tc0 * this.c.core_power(nTrapped / this.nAtoms, this.tcExponent);
+    return this.tc0 * this.c.core_power(nTrapped / this.nAtoms, this.setup.tcExponent);
   }
 
+  /** Sum of trapped energies added in world index order (the engines continue it). */
   sequentialEnergySum(): number {
     return this.c.core_sequential_energy_sum(this.core);
   }
@@ -452,14 +368,17 @@ export class WasmEngine implements EngineCore {
     return this.c.core_status_of(this.core, i);
   }
 
+  /** Stored value k (STORED) of world atom i. */
   storedOf(i: number, k: number): number {
     return this.c.core_stored_of(this.core, i, k);
   }
 
+  /** World atom i's energy 1/2 m v^2 + m g y from its stored state (conserved in flight). */
   atomEnergy(i: number): number {
     return this.c.core_atom_energy(this.core, i);
   }
 
+  /** Position and velocity of world atom i carried to time t into out = [x, y, vx, vy]. */
   stateAt(i: number, t: number, out: Float64Array): void {
     const at = this.c.core_state_at(this.core, i, t) >> 3;
     let mem = this.mem;
@@ -471,10 +390,12 @@ export class WasmEngine implements EngineCore {
     out[3] = mem[at + 3];
   }
 
+  /** Trapped atoms filed more than one cell away from their cell now (0 if sound). */
   gridErrors(): number {
     return this.c.core_grid_errors(this.core);
   }
 
+  /** Event k of the log: [kind, i, j, time] with world indices. */
   logEntry(k: number): [number, number, number, number] {
     return [this.logKind[k], this.logI[k], this.logJ[k], this.logT[k]];
   }
