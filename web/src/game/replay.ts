@@ -5,9 +5,8 @@
  * `EC1.<base64url(zlib(json))>.<crc32 hex>`, read and written by both editions.
  */
 import { version } from "../../package.json";
-import { SEED_PORTABLE_MAX, START_GENERATOR } from "./engine";
+import { SEED_PORTABLE_MAX, START_GENERATOR, type EscapeRule } from "./engine";
 import { Game, HEIGHT_MAX, HEIGHT_MIN, type GameConfig, type SimFactory } from "./rules";
-import type { EscapeRule } from "./constants";
 import { REPLAY_ATOMS, REPLAY_FRAMES_MAX, REPLAY_RADIUS } from "../limits";
 export { MoveRecorder } from "./moves";
 

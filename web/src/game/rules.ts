@@ -10,7 +10,7 @@
  * C as the desktop's: GameSim).
  */
 import { MoveRecorder } from "./moves";
-import { FPS, N_ATOMS, ATOM_RADIUS, TC_EXPONENT_SEED, type EscapeRule } from "./constants";
+import { FPS, N_ATOMS, ATOM_RADIUS, TC_EXPONENT_SEED, type EscapeRule } from "./engine";
 import type { GameSim } from "./sim";
 
 export const HEIGHT_MIN = 25;

@@ -4,8 +4,14 @@
  * bad falls back to its default with a notice. No DOM here: `store.ts` persists them.
  */
 import { t } from "../i18n";
-import { ATOM_RADIUS, ESCAPE_RULES, N_ATOMS, TC_EXPONENT_CUP, TC_EXPONENT_SEED } from "./constants";
-import type { EscapeRule } from "./constants";
+import {
+  ATOM_RADIUS,
+  ESCAPE_RULES,
+  N_ATOMS,
+  TC_EXPONENT_CUP,
+  TC_EXPONENT_SEED,
+  type EscapeRule,
+} from "./engine";
 import { cupCapacity } from "./capacity";
 
 export const FORMAT_VERSION = 1;
