@@ -17,7 +17,7 @@ import {
 } from "./constants";
 import { CLASSIC_ROOM, checkRoom, type Room } from "./room";
 import { bad } from "./state";
-import { checkStart } from "./validation";
+import { checkStart, perAtomWithin } from "./validation";
 import {
   CURVATURE as CURVATURE_RANGE,
   GRAVITY as GRAVITY_RANGE,
@@ -27,7 +27,6 @@ import {
   SEED as SEED_RANGE,
   TC_EXPONENT as TC_EXPONENT_RANGE,
   TRAP_HEIGHT as TRAP_HEIGHT_RANGE,
-  pyFloat,
   type Range,
 } from "../limits";
 
@@ -174,16 +173,8 @@ function perAtom(
   const arr = v as ArrayLike<number>;
   if (typeof arr !== "object" || arr === null || arr.length !== n)
     throw bad(name, `${range.allowed()}, or ${n} such numbers`, v);
-  const out = new Float64Array(n);
-  for (let i = 0; i < n; i++) {
-    const e = arr[i];
-    if (typeof e !== "number" || !range.contains(e))
-      throw new RangeError(
-        `${name} must be ${range.allowed()} (atom ${i} has ${typeof e === "number" ? pyFloat(e) : String(e)})`,
-      );
-    out[i] = e;
-  }
-  return out;
+  perAtomWithin(name, arr, range);
+  return Float64Array.from(arr);
 }
 
 function pointCount(v: Points): number {

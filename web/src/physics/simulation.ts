@@ -30,8 +30,8 @@ import {
   type StateInput,
 } from "./state";
 import { STORED, WasmEngine, loadCup, type EngineAtoms } from "./wasm";
-import { checkWorld } from "./validation";
-import { TRAP_HEIGHT as TRAP_HEIGHT_RANGE } from "../limits";
+import { checkWorld, flownToNow } from "./validation";
+import { CONTACT_TOLERANCE, TRAP_HEIGHT as TRAP_HEIGHT_RANGE } from "../limits";
 
 /** One processed event: kind, atoms (j = -1 for solo events) and time in frames. */
 export interface PhysicsEvent {
@@ -55,9 +55,6 @@ export interface AtomSnapshot {
   /** 1/2 m v^2 + m g y. */
   energy: Float64Array;
 }
-
-/** Mid-run states may have atoms touching or on the wall up to round-off: this much, relative. */
-const STATE_TOLERANCE = 1e-9;
 
 /** Interleaved points [x0, y0, ...] of the loader as two columns. */
 function columns(xy: Float64Array, n: number): [Float64Array, Float64Array] {
@@ -207,28 +204,29 @@ export class Simulation {
     const p = parseState(state);
     const recordEvents = options.recordEvents ?? false;
     if (typeof recordEvents !== "boolean") throw bad("recordEvents", "true or false", recordEvents);
-    const n = p.x.length;
     // Trapped atoms where they are now: inside the cup, not overlapping (up to round-off).
-    const halfG = 0.5 * p.gravity;
-    const xn = new Float64Array(n);
-    const yn = new Float64Array(n);
-    for (let i = 0; i < n; i++) {
-      const dt = p.time - p.t[i];
-      xn[i] = p.x[i] + p.vx[i] * dt;
-      yn[i] = p.y[i] + p.vy[i] * dt - halfG * dt * dt;
-    }
+    const now = flownToNow(p);
     const trapped = (i: number) => p.status[i] === TRAPPED;
     // The condensate's atoms no longer collide: after the win they may overlap.
-    checkPlacement("state.atoms", xn, yn, p.radius, trapped, p.curvature, STATE_TOLERANCE, !p.won);
-    checkWorld({ ...p, trapped });
+    checkPlacement(
+      "state.atoms",
+      now.x,
+      now.y,
+      p.radius,
+      trapped,
+      p.curvature,
+      CONTACT_TOLERANCE,
+      !p.won,
+    );
+    checkWorld(p, now, trapped);
     const sim = Object.create(Simulation.prototype) as Simulation;
     sim.init({ ...p, recordEvents }, p, null);
     if (p.energySum !== undefined) {
       const e = sim.engine;
       const sum = e.sequentialEnergySum();
       let scale = 0;
-      for (let i = 0; i < n; i++) if (trapped(i)) scale += Math.abs(e.atomEnergy(i));
-      if (!(Math.abs(p.energySum - sum) <= STATE_TOLERANCE * Math.max(1, scale)))
+      for (let i = 0; i < e.nAtoms; i++) if (trapped(i)) scale += Math.abs(e.atomEnergy(i));
+      if (!(Math.abs(p.energySum - sum) <= CONTACT_TOLERANCE * Math.max(1, scale)))
         throw bad("state.energy_sum", `the trapped atoms' energy sum, ${sum}`, p.energySum);
     }
     return sim;
