@@ -10,7 +10,7 @@ export { coreBytes, haveCore, provideCore } from "../physics/wasm";
 export { randomSeed, SEED_PORTABLE_MAX, START_GENERATOR } from "../physics/start";
 /** The room around the cup (the view places it on screen: view/screen.ts). */
 export { CLASSIC_ROOM, roomTop, type Room } from "../physics/room";
-export type { AtomSnapshot } from "../physics/index";
+export type { AtomSnapshot, Simulation } from "../physics/index";
 /** The physics' constants the game and the view use (SPEC section 1). */
 export {
   ATOM_RADIUS,
