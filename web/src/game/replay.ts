@@ -24,7 +24,6 @@ export const FORMAT_VERSION = 1;
 export const EDITION_VERSION: string = version;
 /** Longest game a recording may hold (frames): 20 minutes of play at 30 frames/s. */
 export const MAX_FRAMES = REPLAY_FRAMES_MAX;
-export const MAX_ATOMS = REPLAY_ATOMS.high;
 export const MAX_CODE_CHARS = 200_000;
 /** The longest a run [height,frames], comma, can be written: a height as JSON writes a float
  * (at most 24 characters, "1.2345678901234567e-100"), frames of at most 5 digits. */

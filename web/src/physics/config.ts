@@ -17,7 +17,7 @@ import {
 } from "./constants";
 import { CLASSIC_ROOM, checkRoom, type Room } from "./room";
 import { bad } from "./state";
-import { checkStart, perAtomWithin } from "./validation";
+import { checkStart, perAtomWithin, type Motion } from "./validation";
 import {
   CURVATURE as CURVATURE_RANGE,
   GRAVITY as GRAVITY_RANGE,
@@ -98,12 +98,7 @@ export interface SimulationConfig {
   readonly win: boolean;
   readonly recordEvents: boolean;
   /** Given starting centres and velocities (trap coordinates), or null for the cup's loading. */
-  readonly start: {
-    x: Float64Array;
-    y: Float64Array;
-    vx: Float64Array;
-    vy: Float64Array;
-  } | null;
+  readonly start: Motion | null;
 }
 
 /** Each option checked once, before anything is allocated per atom; RangeError naming it. */
