@@ -258,12 +258,8 @@ export class WasmEngine {
   private readonly core: Core;
   /** The core's memory as doubles (a new view if the memory grew). */
   private mem: Float64Array;
-  // The event log, copied out of the core's buffer (world indices).
-  private logKind = new Uint8Array(0);
-  private logI = new Int32Array(0);
-  private logJ = new Int32Array(0);
-  private logT = new Float64Array(0);
-  nLog = 0;
+  /** The event log, copied out of the core's buffer: [kind, i, j, time], world indices. */
+  private readonly log: Array<[number, number, number, number]> = [];
 
   constructor(
     readonly setup: EngineSetup,
@@ -397,37 +393,24 @@ export class WasmEngine {
 
   /** Event k of the log: [kind, i, j, time] with world indices. */
   logEntry(k: number): [number, number, number, number] {
-    return [this.logKind[k], this.logI[k], this.logJ[k], this.logT[k]];
+    return this.log[k];
+  }
+
+  /** Events recorded so far. */
+  get nLog(): number {
+    return this.log.length;
   }
 
   /** Copy the core's log lines into the log here and empty its buffer. */
   private drainLog(): void {
     const lines = this.c.core_n_log(this.core);
     if (lines === 0) return;
-    const need = this.nLog + lines;
-    if (need > this.logT.length) {
-      const cap = Math.max(1024, 2 * need);
-      const grow = <A extends Uint8Array | Int32Array | Float64Array>(old: A, fresh: A): A => {
-        fresh.set(old);
-        return fresh;
-      };
-      this.logKind = grow(this.logKind, new Uint8Array(cap));
-      this.logI = grow(this.logI, new Int32Array(cap));
-      this.logJ = grow(this.logJ, new Int32Array(cap));
-      this.logT = grow(this.logT, new Float64Array(cap));
-    }
     const buffer = this.c.memory.buffer;
     const base = this.c.core_log_address(this.core);
     const ints = new Int32Array(buffer, base, (lines * LOG_LINE_BYTES) >> 2);
     const times = new Float64Array(buffer, base, (lines * LOG_LINE_BYTES) >> 3);
-    for (let k = 0; k < lines; k++) {
-      const q = this.nLog + k;
-      this.logKind[q] = ints[6 * k];
-      this.logI[q] = ints[6 * k + 1];
-      this.logJ[q] = ints[6 * k + 2];
-      this.logT[q] = times[3 * k + 2];
-    }
-    this.nLog = need;
+    for (let k = 0; k < lines; k++)
+      this.log.push([ints[6 * k], ints[6 * k + 1], ints[6 * k + 2], times[3 * k + 2]]);
     this.c.core_log_clear(this.core);
   }
 }
