@@ -17,7 +17,7 @@ import {
   type EventName,
 } from "./constants";
 import { checkedConfig, type SimulationConfig, type SimulationOptions } from "./config";
-import { escapeBox, roomTop, type Room } from "./room";
+import { roomTop, type Room } from "./room";
 import { randomSeed } from "./start";
 import {
   STATE_FORMAT,
@@ -29,7 +29,7 @@ import {
   type SimulationState,
   type StateInput,
 } from "./state";
-import { STORED, WasmEngine, loadCup, type EngineAtoms } from "./wasm";
+import { STORED, WasmEngine, loadCup, type EngineAtoms, type EngineRules } from "./wasm";
 import { checkWorld, flownToNow } from "./validation";
 import { CONTACT_TOLERANCE, TRAP_HEIGHT as TRAP_HEIGHT_RANGE } from "../limits";
 
@@ -98,16 +98,9 @@ function interleaved(a: Float64Array, b: Float64Array, n: number): Float64Array 
   return out;
 }
 
-/** The rules and the room an engine is built with: a checked config's, or a parsed state's. */
-type Rules = Pick<
-  SimulationConfig,
-  "room" | "curvature" | "gravity" | "tcExponent" | "escape" | "win" | "trapHeight" | "recordEvents"
->;
-
 /** Hard disks in a parabolic cup under gravity, advanced event by event, exactly. */
 export class Simulation {
   private engine!: WasmEngine;
-  private roomAround!: Room;
   private seedUsed!: number | null;
   private scratch!: Float64Array;
 
@@ -148,27 +141,10 @@ export class Simulation {
     this.init(c, atoms, seed);
   }
 
-  private init(rules: Rules, atoms: EngineAtoms, seed: number | null): void {
-    // The trap origin lies the first atom's radius above the wall's lowest point.
-    const [xLeft, xRight, yBottom] = escapeBox(rules.room, atoms.radius[0]);
+  private init(rules: EngineRules, atoms: EngineAtoms, seed: number | null): void {
     this.scratch = new Float64Array(4);
-    this.roomAround = rules.room;
     this.seedUsed = seed;
-    this.engine = new WasmEngine(
-      {
-        curvature: rules.curvature,
-        gravity: rules.gravity,
-        trapHeight: rules.trapHeight,
-        xLeft,
-        xRight,
-        yBottom,
-        tcExponent: rules.tcExponent,
-        knife: rules.escape === "knife",
-        winRule: rules.win,
-        recordEvents: rules.recordEvents,
-      },
-      atoms,
-    );
+    this.engine = new WasmEngine(rules, atoms);
     this.engine.setTrapHeight(rules.trapHeight);
   }
 
@@ -229,7 +205,7 @@ export class Simulation {
       trap_height: Number.isFinite(this.trapHeight) ? this.trapHeight : "inf",
       curvature: this.curvature,
       gravity: this.gravity,
-      window: windowOfRoom(this.roomAround),
+      window: windowOfRoom(this.room),
       escape: this.escape,
       tc_exponent: this.tcExponent,
       win: this.winRule,
@@ -285,21 +261,21 @@ export class Simulation {
   }
 
   get curvature(): number {
-    return this.engine.setup.curvature;
+    return this.engine.rules.curvature;
   }
 
   get gravity(): number {
-    return this.engine.setup.gravity;
+    return this.engine.rules.gravity;
   }
 
   /** "rim" (fly over the rim) or "knife" (energy above m g H removed at once). */
   get escape(): EscapeRule {
-    return this.engine.setup.knife ? "knife" : "rim";
+    return this.engine.rules.escape;
   }
 
   /** The room around the cup: where escaped atoms are gone (physics/room.ts). */
   get room(): Room {
-    return this.roomAround;
+    return this.engine.rules.room;
   }
 
   /** The trap origin's height above the cup wall's lowest point: the first atom's radius. */
@@ -427,7 +403,7 @@ export class Simulation {
   }
 
   get tcExponent(): number {
-    return this.engine.setup.tcExponent;
+    return this.engine.rules.tcExponent;
   }
 
   /** True once T < Tc(N) (latched): the gas has condensed. Never with win: false. */
@@ -437,7 +413,7 @@ export class Simulation {
 
   /** False if the game's win rule is off (win: false). */
   get winRule(): boolean {
-    return this.engine.setup.winRule;
+    return this.engine.rules.win;
   }
 
   /** Declare the gas condensed now (demonstrations and tests). */

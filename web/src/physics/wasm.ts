@@ -11,21 +11,14 @@
 import packedCore from "virtual:evapcool-wasm";
 import { ParameterError, pyG } from "../limits";
 import { SEED_PORTABLE_MAX } from "./start";
+import { escapeBox } from "./room";
+import type { SimulationConfig } from "./config";
 
-/** Everything an engine needs besides the atoms. */
-export interface EngineSetup {
-  curvature: number;
-  gravity: number;
-  trapHeight: number;
-  /** Window edges in trap coordinates (an escaped atom is gone beyond them). */
-  xLeft: number;
-  xRight: number;
-  yBottom: number;
-  tcExponent: number;
-  knife: boolean;
-  winRule: boolean;
-  recordEvents: boolean;
-}
+/** Everything an engine needs besides the atoms: a checked config's rules, or a state's. */
+export type EngineRules = Pick<
+  SimulationConfig,
+  "room" | "curvature" | "gravity" | "tcExponent" | "escape" | "win" | "trapHeight" | "recordEvents"
+>;
 
 /** Atoms and the clock; for a fresh start t = 0, status trapped and the sums are computed. */
 export interface EngineAtoms {
@@ -261,10 +254,12 @@ export class WasmEngine {
   /** The event log, copied out of the core's buffer: [kind, i, j, time], world indices. */
   private readonly log: Array<[number, number, number, number]> = [];
 
-  constructor(
-    readonly setup: EngineSetup,
-    atoms: EngineAtoms,
-  ) {
+  /** The rules it runs, kept apart from whatever else the caller's object holds. */
+  readonly rules: EngineRules;
+
+  constructor(given: EngineRules, atoms: EngineAtoms) {
+    const { room, curvature, gravity, tcExponent, escape, win, trapHeight, recordEvents } = given;
+    this.rules = { room, curvature, gravity, tcExponent, escape, win, trapHeight, recordEvents };
     const n = atoms.x.length;
     this.nAtoms = n;
     const c = instance();
@@ -272,21 +267,24 @@ export class WasmEngine {
     const core = c.core_new();
     if (core === 0) throw new RangeError(OUT_OF_MEMORY(n));
     this.core = core;
-    const logCapacity = setup.recordEvents ? Math.max(LOG_BUFFER, n + 8) : 0;
+    const logCapacity = recordEvents ? Math.max(LOG_BUFFER, n + 8) : 0;
     const inputs = c.core_allocate(core, n, logCapacity);
     if (inputs === 0) throw new RangeError(OUT_OF_MEMORY(n));
     writeInputs(c.memory.buffer, inputs, atoms);
+    // Escaped atoms are gone beyond the room's edges; the trap origin lies the first atom's
+    // radius above the wall's lowest point.
+    const [xLeft, xRight, yBottom] = escapeBox(room, atoms.radius[0]);
     c.core_load(
       core,
       inputs,
-      setup.gravity,
-      setup.curvature,
-      setup.xLeft,
-      setup.xRight,
-      setup.yBottom,
-      setup.knife ? 1 : 0,
-      setup.winRule ? 1 : 0,
-      setup.recordEvents ? 1 : 0,
+      gravity,
+      curvature,
+      xLeft,
+      xRight,
+      yBottom,
+      escape === "knife" ? 1 : 0,
+      win ? 1 : 0,
+      recordEvents ? 1 : 0,
       atoms.time,
       atoms.won ? 1 : 0,
       atoms.pairCount,
@@ -297,8 +295,8 @@ export class WasmEngine {
     this.initialTemperature = atoms.initialTemperature ?? (nTrapped > 0 ? energySum / nTrapped : 0);
     // seed Eq. (46): Tc0 is 3/4 of the starting temperature; the core reads Tc(N) from a table.
     this.tc0 = 0.75 * this.initialTemperature;
-    c.core_fill_tc_table(core, this.tc0, setup.tcExponent);
-    if (!c.core_start(core, energySum, setup.trapHeight)) throw new RangeError(OUT_OF_MEMORY(n));
+    c.core_fill_tc_table(core, this.tc0, tcExponent);
+    if (!c.core_start(core, energySum, trapHeight)) throw new RangeError(OUT_OF_MEMORY(n));
     this.gridColumns = c.core_nx(core);
     this.gridRows = c.core_ny(core);
     this.cellSize = c.core_cell(core);
@@ -352,7 +350,7 @@ export class WasmEngine {
 
   /** Tc(N) = Tc0 (N / N0)^p, seed Eq. (46) with exponent p. */
   criticalTemperatureOf(nTrapped: number): number {
-    return this.tc0 * this.c.core_power(nTrapped / this.nAtoms, this.setup.tcExponent);
+    return this.tc0 * this.c.core_power(nTrapped / this.nAtoms, this.rules.tcExponent);
   }
 
   /** Sum of trapped energies added in world index order (the engines continue it). */
