@@ -1,9 +1,8 @@
 /**
  * SimulationConfig (issue 26.2), twin of src/evapcool/physics/config.py: every parameter of a
- * new Simulation checked once, at the boundary. `new Simulation(options)` builds one from its
- * options; a caller that holds one passes it down with `Simulation.fromConfig`, and nothing
- * below checks it again. Ranges come from limits.py's table (limits.json); errors are
- * RangeErrors naming the parameter.
+ * new Simulation checked once, at the boundary: `new Simulation(options)` builds one from its
+ * options, and nothing below checks it again. Ranges come from limits.py's table
+ * (limits.json); errors are RangeErrors naming the parameter.
  */
 import {
   ATOM_RADIUS,

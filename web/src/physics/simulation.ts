@@ -16,7 +16,7 @@ import {
   type EscapeRule,
   type EventName,
 } from "./constants";
-import { checkedConfig, type SimulationConfig, type SimulationOptions } from "./config";
+import { checkedConfig, type SimulationOptions } from "./config";
 import { roomTop, type Room } from "./room";
 import { randomSeed } from "./start";
 import {
@@ -104,19 +104,10 @@ export class Simulation {
   private seedUsed!: number | null;
   private scratch!: Float64Array;
 
+  /** A simulation of options checked once, here (checkedConfig); nothing below checks them
+   * again but whether the atoms fit the cup (the loader's). */
   constructor(options: SimulationOptions = {}) {
-    this.build(checkedConfig(options));
-  }
-
-  /** A simulation of a config checked once at the boundary (checkedConfig); nothing is
-   * checked again here but whether the atoms fit the cup (the loader's). */
-  static fromConfig(config: SimulationConfig): Simulation {
-    const sim = Object.create(Simulation.prototype) as Simulation;
-    sim.build(config);
-    return sim;
-  }
-
-  private build(c: SimulationConfig): void {
+    const c = checkedConfig(options);
     const n = c.nAtoms;
     let start = c.start;
     let seed: number | null = null;
