@@ -31,7 +31,7 @@ import {
 } from "./state";
 import { STORED, WasmEngine, loadCup, type EngineAtoms, type EngineRules } from "./wasm";
 import { checkWorld, flownToNow } from "./validation";
-import { CONTACT_TOLERANCE, TRAP_HEIGHT as TRAP_HEIGHT_RANGE } from "../limits";
+import { CONTACT_TOLERANCE, DT, TRAP_HEIGHT as TRAP_HEIGHT_RANGE } from "../limits";
 
 /** One processed event: kind, atoms (j = -1 for solo events) and time in frames. */
 export interface PhysicsEvent {
@@ -226,9 +226,7 @@ export class Simulation {
   // -- time ------------------------------------------------------------------------------
   /** Advance by dt frames, processing every event exactly. */
   advance(dt: number): void {
-    if (typeof dt !== "number" || !Number.isFinite(dt) || dt < 0)
-      throw bad("dt", "a finite number of frames >= 0", dt);
-    this.engine.advanceTo(this.time + dt);
+    this.engine.advanceTo(this.time + DT.check("dt", dt));
   }
 
   /** Simulation time in frames. */
