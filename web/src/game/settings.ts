@@ -13,7 +13,7 @@ import {
   type EscapeRule,
 } from "./engine";
 import { cupCapacity } from "./capacity";
-import { APPLET_ATOMS, APPLET_RADIUS } from "../limits";
+import { APPLET_ATOMS, APPLET_RADIUS, pyG } from "../limits";
 
 export const FORMAT_VERSION = 1;
 export const TC_LAWS = { seed: TC_EXPONENT_SEED, cup: TC_EXPONENT_CUP } as const;
@@ -76,11 +76,6 @@ export function pyRepr(value: unknown): string {
   return String(value);
 }
 
-/** A number as Python's `:g` formats it (enough for radii and limits). */
-export function fmtG(v: number): string {
-  return String(Number(v.toPrecision(6)));
-}
-
 /** Largest allowed atom count for this radius. */
 export function maxAtoms(radius: number): number {
   return Math.min(ATOMS_MAX, cupCapacity(radius));
@@ -98,7 +93,7 @@ export function checkRadius(value: unknown, ranged = true): number {
 export function checkNAtoms(value: unknown, radius: number, ranged = true): number {
   const top = ranged ? maxAtoms(radius) : null;
   const msg = ranged
-    ? `n_atoms must be a whole number from 1 to ${top} for radius ${fmtG(radius)}`
+    ? `n_atoms must be a whole number from 1 to ${top} for radius ${pyG(radius)}`
     : "n_atoms must be a whole number >= 1";
   const ok = typeof value === "number" && Number.isInteger(value) && value >= 1;
   if (!ok || (top !== null && value > top)) throw new RangeError(`${msg} (got ${pyRepr(value)})`);
@@ -215,5 +210,5 @@ export function sameSettings(a: Settings, b: Settings): boolean {
 
 /** A short name for a settings combination: high scores are kept per settings. */
 export function settingsKey(s: Settings): string {
-  return `${s.nAtoms}-r${fmtG(s.radius)}-${s.tcLaw}-${s.escape}`;
+  return `${s.nAtoms}-r${pyG(s.radius)}-${s.tcLaw}-${s.escape}`;
 }
