@@ -126,10 +126,6 @@ export class Game {
     if (Number.isInteger(this.sim.time)) this.applyPending();
   }
 
-  get playingBack(): boolean {
-    return this.script !== null;
-  }
-
   /** The script's height for the frame starting now. */
   private scripted(): void {
     if (!this.script) return;

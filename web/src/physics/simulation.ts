@@ -218,11 +218,6 @@ export class Simulation {
     };
   }
 
-  /** JSON.stringify(sim) writes the state. */
-  toJSON(): SimulationState {
-    return this.toState();
-  }
-
   // -- time ------------------------------------------------------------------------------
   /** Advance by dt frames, processing every event exactly. */
   advance(dt: number): void {
