@@ -4,7 +4,7 @@
  * runs in slow motion (it never takes bigger steps, see MAX_WALL_STEP); the page says so.
  */
 import { formatFixed, t } from "../i18n";
-import { FPS } from "../game/constants";
+import { FPS } from "../game/engine";
 
 /** The note while the pace is below real time (pace as "0.87"). */
 export const SLOW_NOTE = (pace: string) => t("page.slow_motion", { pace });

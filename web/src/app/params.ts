@@ -8,7 +8,7 @@
 import { RADIUS, SEED } from "../limits";
 import { availableLocales, bestMatch, t } from "../i18n";
 import { SPEED_MAX, SPEED_MIN } from "../game/rules";
-import { ESCAPE_RULES } from "../game/constants";
+import { ESCAPE_RULES } from "../game/engine";
 import { TC_LAWS, maxAtoms, RADIUS_MAX, RADIUS_MIN, type Settings } from "../game/settings";
 
 export interface PageParams {

@@ -5,7 +5,7 @@
  * frames' wall time (the applet's own clock for notices and animations, and its pace).
  */
 import { ParameterError } from "../limits";
-import { FPS } from "../game/constants";
+import { FPS } from "../game/engine";
 import { Autopilot } from "../game/autopilot";
 import { forceWin, randomSeed, replayGolden } from "../game/engine";
 import { heightsOf } from "../game/moves";

@@ -4,7 +4,7 @@
  * (pause, speed, the trap height asked for) answered at once on the page and sent to the
  * worker in order, and the physics' state read from the newest frame buffer it posted.
  */
-import { FPS } from "../game/constants";
+import { FPS } from "../game/engine";
 import {
   checkSpeed,
   Game,

@@ -4,7 +4,7 @@
  * trap each frame from what the player sees, until the player touches the trap.
  */
 import { strategy as demoStrategy } from "../../../src/evapcool/data/demo_strategy.json";
-import { HEIGHT_MAX, HEIGHT_MIN } from "./rules";
+import { clampHeight } from "./rules";
 import type { SimLike } from "./sim";
 
 /** kT of the cup's equilibrium gas is 2/5 of the mean energy per atom (SPEC 4). */
@@ -33,12 +33,6 @@ export function readSim(sim: SimLike, mass = 1): Reading {
     gravity: sim.gravity,
     mass,
   };
-}
-
-/** The slider's range; NaN (a broken rule) leaves the trap where it starts. */
-export function clampHeight(h: number): number {
-  if (Number.isNaN(h)) return HEIGHT_MAX;
-  return Math.min(HEIGHT_MAX, Math.max(HEIGHT_MIN, h));
 }
 
 /** H(t) through points (frame, H), linear between them, held outside (Python's Ramp). */

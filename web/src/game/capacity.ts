@@ -3,8 +3,7 @@
  * disk below the starting rim: the core's count (core/start.c), the desktop's
  * `loading.capacity`, so the settings screen offers the same "1 to N".
  */
-import { CURVATURE } from "./constants";
-import { CLASSIC_ROOM, roomTop, startCapacity } from "./engine";
+import { CLASSIC_ROOM, CURVATURE, roomTop, startCapacity } from "./engine";
 
 /** The rim at the start, px: no atom of the start may sit above it (or under the border). */
 const START_HEIGHT = 400;

@@ -234,11 +234,6 @@ export class HighScoreTable {
     return this.write(false);
   }
 
-  /** Write the table (merged with the stored one); false and a notice on failure. */
-  save(): boolean {
-    return this.write(true);
-  }
-
   private write(merge: boolean): boolean {
     if (merge) {
       const stored = this.read();

@@ -13,6 +13,11 @@ export class MoveRecorder {
   }
 }
 
+/** The frames of run-length coded moves. */
+export function framesOf(runs: ReadonlyArray<readonly [number, number]>): number {
+  return runs.reduce((sum, [, n]) => sum + n, 0);
+}
+
 /** The height of every frame of run-length coded moves, in order. */
 export function heightsOf(runs: Array<[number, number]>): number[] {
   return runs.flatMap(([h, n]) => Array<number>(n).fill(h));

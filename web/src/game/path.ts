@@ -4,9 +4,9 @@
  * frame played, at most MAX_POINTS points, T to T_DIGITS significant digits. The class
  * server keeps each verified game's path so; a page computes the same points for its game.
  */
-import type { Recording } from "./replay";
-import { configOf } from "./replay";
-import { Game, HEIGHT_MAX, HEIGHT_MIN, type SimFactory } from "./rules";
+import { startOf, type Recording } from "./replay";
+import { clampHeight, type SimFactory } from "./rules";
+import { framesOf } from "./moves";
 
 export const MAX_POINTS = 240;
 export const T_DIGITS = 5;
@@ -33,15 +33,13 @@ export function roundT(t: number): number {
   return Number(t.toExponential(T_DIGITS - 1));
 }
 
-const clamp = (h: number) => Math.min(HEIGHT_MAX, Math.max(HEIGHT_MIN, h));
-
 /** The path of a recording's game, replayed up to the win or the end of its moves (or
  * `frames` whole frames, when known). */
 export function gamePath(rec: Recording, factory: SimFactory, frames?: number): GamePath {
-  const all = rec.moves.reduce((sum, [, n]) => sum + n, 0);
+  const all = framesOf(rec.moves);
   const total = frames === undefined ? all : Math.min(frames, all);
   const stride = strideOf(total);
-  const sim = new Game(factory, configOf(rec.settings, rec.seed)).sim;
+  const sim = startOf(rec, factory);
   const out: GamePath = { k: [], n: [], t: [], h: [], frames: 0, won: false, score: 0, t0: 0 };
   const keep = (k: number, h: number) => {
     const n = sim.nTrapped;
@@ -53,10 +51,10 @@ export function gamePath(rec: Recording, factory: SimFactory, frames?: number): 
     out.h.push(h);
   };
   out.t0 = sim.temperature;
-  keep(0, rec.moves.length ? clamp(rec.moves[0][0]) : clamp(sim.trapHeight));
+  keep(0, clampHeight(rec.moves.length ? rec.moves[0][0] : sim.trapHeight));
   let k = 0;
   for (const [height, run] of rec.moves) {
-    const h = clamp(height);
+    const h = clampHeight(height);
     for (let i = 0; i < run && k < total && sim.score === null; i++) {
       sim.frame(h);
       k += 1;

@@ -5,9 +5,17 @@
  * `EC1.<base64url(zlib(json))>.<crc32 hex>`, read and written by both editions.
  */
 import { version } from "../../package.json";
-import { SEED_PORTABLE_MAX, START_GENERATOR } from "./engine";
-import { Game, HEIGHT_MAX, HEIGHT_MIN, type GameConfig, type SimFactory } from "./rules";
-import type { EscapeRule } from "./constants";
+import { SEED_PORTABLE_MAX, START_GENERATOR, type EscapeRule } from "./engine";
+import {
+  Game,
+  HEIGHT_MAX,
+  HEIGHT_MIN,
+  clampHeight,
+  type GameConfig,
+  type SimFactory,
+} from "./rules";
+import type { GameSim } from "./sim";
+import { framesOf } from "./moves";
 import { REPLAY_ATOMS, REPLAY_FRAMES_MAX, REPLAY_RADIUS } from "../limits";
 export { MoveRecorder } from "./moves";
 
@@ -16,7 +24,6 @@ export const FORMAT_VERSION = 1;
 export const EDITION_VERSION: string = version;
 /** Longest game a recording may hold (frames): 20 minutes of play at 30 frames/s. */
 export const MAX_FRAMES = REPLAY_FRAMES_MAX;
-export const MAX_ATOMS = REPLAY_ATOMS.high;
 export const MAX_CODE_CHARS = 200_000;
 /** The longest a run [height,frames], comma, can be written: a height as JSON writes a float
  * (at most 24 characters, "1.2345678901234567e-100"), frames of at most 5 digits. */
@@ -90,7 +97,7 @@ export function recordingOf(
     moves,
     won,
     score: won ? (score ?? 0) : 0,
-    frames: moves.reduce((sum, [, n]) => sum + n, 0),
+    frames: framesOf(moves),
     edition: "web",
     version: EDITION_VERSION,
     start_generator: START_GENERATOR,
@@ -108,16 +115,17 @@ export interface Verdict {
 /** Play the recording headless with the game's rules: hold each frame's height for one whole
  * frame; stop at the win or at the end of the moves (the core's replay, core/game.c). */
 export function replay(rec: Recording, factory: SimFactory): Verdict {
-  const game = new Game(factory, configOf(rec.settings, rec.seed));
-  game.paused = false;
+  const sim = startOf(rec, factory);
   // The slider's clamp, as Game.setTrapHeight applies it.
-  const runs = rec.moves.map(
-    ([h, n]) => [Math.min(HEIGHT_MAX, Math.max(HEIGHT_MIN, h)), n] as const,
-  );
-  const all = rec.moves.reduce((sum, [, n]) => sum + n, 0);
-  const frames = game.sim.replay(runs, Math.min(all, 2 ** 31 - 1));
-  const score = game.sim.score;
+  const runs = rec.moves.map(([h, n]) => [clampHeight(h), n] as const);
+  const frames = sim.replay(runs, Math.min(framesOf(rec.moves), 2 ** 31 - 1));
+  const score = sim.score;
   return { won: score !== null, score: score ?? 0, frames };
+}
+
+/** The start of a recording's game, as a (re)start of the game makes it (trap at 400). */
+export function startOf(rec: Recording, factory: SimFactory): GameSim {
+  return new Game(factory, configOf(rec.settings, rec.seed)).sim;
 }
 
 /** The replayed result if it is the one claimed, else ReplayError(WRONG_SCORE). */
@@ -140,7 +148,7 @@ export function checkClaim(rec: Recording, got: Verdict): Verdict {
 /** ReplayError(EDITED) naming the first field out of its limits or inconsistent. */
 export function checkRecording(rec: Recording, maxFrames = MAX_FRAMES): void {
   const s = rec.settings;
-  const total = rec.moves.reduce((sum, [, n]) => sum + n, 0);
+  const total = framesOf(rec.moves);
   const problems: Array<[boolean, string]> = [
     [
       !(s.n_atoms >= REPLAY_ATOMS.low && s.n_atoms <= REPLAY_ATOMS.high),

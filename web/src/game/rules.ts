@@ -10,14 +10,15 @@
  * C as the desktop's: GameSim).
  */
 import { MoveRecorder } from "./moves";
-import { FPS, N_ATOMS, ATOM_RADIUS, TC_EXPONENT_SEED, type EscapeRule } from "./constants";
+import { FPS, N_ATOMS, ATOM_RADIUS, TC_EXPONENT_SEED, type EscapeRule } from "./engine";
 import type { GameSim } from "./sim";
+import { APPLET_SPEED } from "../limits";
 
 export const HEIGHT_MIN = 25;
 export const HEIGHT_MAX = 450;
 export const HEIGHT_START = 400;
-export const SPEED_MIN = 0.25;
-export const SPEED_MAX = 4;
+export const SPEED_MIN = APPLET_SPEED.low;
+export const SPEED_MAX = APPLET_SPEED.high;
 /**
  * One drawn frame never advances more than this much play (s): when frames fall behind (a
  * slow device, thousands of atoms) the game slows down instead of taking ever larger steps,
@@ -48,12 +49,13 @@ export type SimFactory = (config: GameConfig) => GameSim;
 
 /** The speed as a number, or RangeError naming the allowed range. */
 export function checkSpeed(speed: unknown): number {
-  if (typeof speed === "number" && Number.isFinite(speed)) {
-    if (speed >= SPEED_MIN && speed <= SPEED_MAX) return speed;
-  }
-  throw new RangeError(
-    `speed must be a number from ${SPEED_MIN} to ${SPEED_MAX} (got ${String(speed)})`,
-  );
+  if (typeof speed === "number" && APPLET_SPEED.contains(speed)) return speed;
+  throw new RangeError(`speed must be ${APPLET_SPEED.allowed()} (got ${String(speed)})`);
+}
+
+/** A height within the slider's range; NaN (a broken rule) gives the top of the range. */
+export function clampHeight(h: number): number {
+  return Number.isNaN(h) ? HEIGHT_MAX : Math.min(HEIGHT_MAX, Math.max(HEIGHT_MIN, h));
 }
 
 export class Game {
@@ -124,16 +126,12 @@ export class Game {
     if (Number.isInteger(this.sim.time)) this.applyPending();
   }
 
-  get playingBack(): boolean {
-    return this.script !== null;
-  }
-
   /** The script's height for the frame starting now. */
   private scripted(): void {
     if (!this.script) return;
     const h = this.script[this.moves.frames];
     if (h === undefined) this.script = null;
-    else this.pendingHeight = Math.min(HEIGHT_MAX, Math.max(HEIGHT_MIN, h));
+    else this.pendingHeight = clampHeight(h);
   }
 
   togglePause(): void {
@@ -156,7 +154,7 @@ export class Game {
   /** Ask for a rim height (clamped to the slider's range); frozen once the gas condensed. */
   setTrapHeight(height: number): boolean {
     if (this.won || this.script || !Number.isFinite(height)) return false;
-    const h = Math.min(HEIGHT_MAX, Math.max(HEIGHT_MIN, height));
+    const h = clampHeight(height);
     if (h === this.trapHeight) return false;
     this.pendingHeight = h;
     // Paused, or at a frame boundary: nothing is in flight, apply now.

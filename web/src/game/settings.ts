@@ -4,19 +4,26 @@
  * bad falls back to its default with a notice. No DOM here: `store.ts` persists them.
  */
 import { t } from "../i18n";
-import { ATOM_RADIUS, ESCAPE_RULES, N_ATOMS, TC_EXPONENT_CUP, TC_EXPONENT_SEED } from "./constants";
-import type { EscapeRule } from "./constants";
+import {
+  ATOM_RADIUS,
+  ESCAPE_RULES,
+  N_ATOMS,
+  TC_EXPONENT_CUP,
+  TC_EXPONENT_SEED,
+  type EscapeRule,
+} from "./engine";
 import { cupCapacity } from "./capacity";
+import { APPLET_ATOMS, APPLET_RADIUS, pyG } from "../limits";
 
 export const FORMAT_VERSION = 1;
 export const TC_LAWS = { seed: TC_EXPONENT_SEED, cup: TC_EXPONENT_CUP } as const;
 export type TcLaw = keyof typeof TC_LAWS;
 const TC_LAW_NAMES = Object.keys(TC_LAWS) as TcLaw[];
-/** The applet's ranges (the desktop's limits.APPLET_RADIUS and APPLET_ATOMS). */
-export const RADIUS_MIN = 1;
-export const RADIUS_MAX = 20;
+/** The applet's ranges (the limits table's APPLET_RADIUS and APPLET_ATOMS). */
+export const RADIUS_MIN = APPLET_RADIUS.low;
+export const RADIUS_MAX = APPLET_RADIUS.high;
 /** Hard cap whatever the radius; maxAtoms also caps by what fits in the cup. */
-export const ATOMS_MAX = 20_000;
+export const ATOMS_MAX = APPLET_ATOMS.high;
 
 export interface Settings {
   nAtoms: number;
@@ -69,24 +76,16 @@ export function pyRepr(value: unknown): string {
   return String(value);
 }
 
-/** A number as Python's `:g` formats it (enough for radii and limits). */
-export function fmtG(v: number): string {
-  return String(Number(v.toPrecision(6)));
-}
-
 /** Largest allowed atom count for this radius. */
 export function maxAtoms(radius: number): number {
   return Math.min(ATOMS_MAX, cupCapacity(radius));
 }
 
 export function checkRadius(value: unknown, ranged = true): number {
-  const allowed = ranged
-    ? `a number from ${fmtG(RADIUS_MIN)} to ${fmtG(RADIUS_MAX)} px`
-    : "a positive number";
-  if (typeof value !== "number" || !Number.isFinite(value)) {
-    throw new RangeError(`radius must be ${allowed} (got ${pyRepr(value)})`);
-  }
-  const ok = ranged ? value >= RADIUS_MIN && value <= RADIUS_MAX : value > 0;
+  const ok =
+    typeof value === "number" &&
+    (ranged ? APPLET_RADIUS.contains(value) : Number.isFinite(value) && value > 0);
+  const allowed = ranged ? APPLET_RADIUS.allowed() : "a positive number";
   if (!ok) throw new RangeError(`radius must be ${allowed} (got ${pyRepr(value)})`);
   return value;
 }
@@ -94,14 +93,10 @@ export function checkRadius(value: unknown, ranged = true): number {
 export function checkNAtoms(value: unknown, radius: number, ranged = true): number {
   const top = ranged ? maxAtoms(radius) : null;
   const msg = ranged
-    ? `n_atoms must be a whole number from 1 to ${top} for radius ${fmtG(radius)}`
+    ? `n_atoms must be a whole number from 1 to ${top} for radius ${pyG(radius)}`
     : "n_atoms must be a whole number >= 1";
-  if (typeof value !== "number" || !Number.isInteger(value)) {
-    throw new RangeError(`${msg} (got ${pyRepr(value)})`);
-  }
-  if (value < 1 || (top !== null && value > top)) {
-    throw new RangeError(`${msg} (got ${pyRepr(value)})`);
-  }
+  const ok = typeof value === "number" && Number.isInteger(value) && value >= 1;
+  if (!ok || (top !== null && value > top)) throw new RangeError(`${msg} (got ${pyRepr(value)})`);
   return value;
 }
 
@@ -215,5 +210,5 @@ export function sameSettings(a: Settings, b: Settings): boolean {
 
 /** A short name for a settings combination: high scores are kept per settings. */
 export function settingsKey(s: Settings): string {
-  return `${s.nAtoms}-r${fmtG(s.radius)}-${s.tcLaw}-${s.escape}`;
+  return `${s.nAtoms}-r${pyG(s.radius)}-${s.tcLaw}-${s.escape}`;
 }

@@ -10,16 +10,9 @@ export function loadSettings(kv: KeyValue): [Settings, string[]] {
   const notices: string[] = [];
   const text = readKey(kv, SETTINGS_KEY, notices);
   if (text === null) return [{ ...DEFAULTS }, notices];
-  let data: unknown;
-  try {
-    data = JSON.parse(text);
-  } catch {
-    return [{ ...DEFAULTS }, [...notices, damaged(kv, text, "not valid JSON")]];
-  }
-  if (typeof data !== "object" || data === null || Array.isArray(data)) {
-    return [{ ...DEFAULTS }, [...notices, damaged(kv, text, "not a JSON object")]];
-  }
-  const [settings, problems] = fromMapping(data as Record<string, unknown>);
+  const data = storedObject(text);
+  if (typeof data === "string") return [{ ...DEFAULTS }, [...notices, damaged(kv, text, data)]];
+  const [settings, problems] = fromMapping(data);
   if (problems.length) {
     // Keep what was stored before its bad values are overwritten by the next save.
     const moved = setAside(kv, SETTINGS_KEY, text);
@@ -27,6 +20,18 @@ export function loadSettings(kv: KeyValue): [Settings, string[]] {
     writeKey(kv, SETTINGS_KEY, JSON.stringify(toMapping(settings)), "settings", problems);
   }
   return [settings, [...notices, ...problems]];
+}
+
+/** The stored text's JSON object, or why it is none. */
+function storedObject(text: string): Record<string, unknown> | string {
+  let data: unknown;
+  try {
+    data = JSON.parse(text);
+  } catch {
+    return "not valid JSON";
+  }
+  if (typeof data !== "object" || data === null || Array.isArray(data)) return "not a JSON object";
+  return data as Record<string, unknown>;
 }
 
 function damaged(kv: KeyValue, text: string, why: string): string {
@@ -62,15 +67,9 @@ function merged(kv: KeyValue, mine: Settings, base: Settings): Settings {
   } catch {
     return mine;
   }
-  if (text === null) return mine;
-  let data: unknown;
-  try {
-    data = JSON.parse(text);
-  } catch {
-    return mine;
-  }
-  if (typeof data !== "object" || data === null || Array.isArray(data)) return mine;
-  const [theirs] = fromMapping(data as Record<string, unknown>);
+  const data = text === null ? "absent" : storedObject(text);
+  if (typeof data === "string") return mine;
+  const [theirs] = fromMapping(data);
   const out: Settings = {
     nAtoms: mine.nAtoms !== base.nAtoms ? mine.nAtoms : theirs.nAtoms,
     radius: mine.radius !== base.radius ? mine.radius : theirs.radius,

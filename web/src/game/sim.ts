@@ -1,9 +1,9 @@
 /**
  * What the game and the view read from the physics: the camelCase shape of Python's
- * `Simulation` (SPEC section 3). `engine.ts` adapts the engine in `../physics` to it, so
- * nothing else imports the physics directly.
+ * `Simulation` (SPEC section 3). `engine.ts` opens the physics to the game, so nothing else
+ * imports the physics directly.
  */
-import type { AtomSnapshot, Room } from "./engine";
+import type { AtomSnapshot, Simulation } from "./engine";
 
 /**
  * Per-atom columns in trap coordinates (x right, y up, px; velocities px / frame), `count`
@@ -12,30 +12,31 @@ import type { AtomSnapshot, Room } from "./engine";
  */
 export type AtomArrays = Pick<AtomSnapshot, "count" | "x" | "y" | "vx" | "vy" | "radius" | "mass">;
 
-export interface SimLike {
-  /** Simulation time in frames (1/30 s). */
-  readonly time: number;
-  readonly nAtoms: number;
-  readonly nTrapped: number;
-  readonly nEscaped: number;
-  /** Rim height H, px above the lowest centre position. */
-  trapHeight: number;
-  readonly rimHalfWidth: number;
-  readonly curvature: number;
-  readonly gravity: number;
-  readonly temperature: number;
-  readonly initialTemperature: number;
-  readonly criticalTemperature: number;
-  readonly tcExponent: number;
-  readonly won: boolean;
-  /** False if the game's win rule is off (the gas stays a gas below Tc). */
-  readonly winRule: boolean;
-  readonly collisionCount: number;
-  /** The room around the cup (the view places it: view/screen.ts). */
-  readonly room: Room;
-  /** The trap origin's height above the cup wall's lowest point (the first atom's radius). */
-  readonly originLift: number;
-  advance(dt: number): void;
+/**
+ * What the game and the view read of a simulation: the physics' Simulation's own members
+ * (SPEC section 3, in camelCase), so a mirror of one in the page (app/remote.ts) has its shape.
+ */
+export interface SimLike extends Pick<
+  Simulation,
+  | "time"
+  | "nAtoms"
+  | "nTrapped"
+  | "nEscaped"
+  | "trapHeight"
+  | "rimHalfWidth"
+  | "curvature"
+  | "gravity"
+  | "temperature"
+  | "initialTemperature"
+  | "criticalTemperature"
+  | "tcExponent"
+  | "won"
+  | "winRule"
+  | "collisionCount"
+  | "room"
+  | "originLift"
+  | "advance"
+> {
   /** The trapped atoms now (a snapshot reused by the next call). */
   trapped(): AtomArrays;
   /** The escaped atoms still falling inside the window (reused likewise). */
@@ -46,18 +47,8 @@ export interface SimLike {
  * A simulation the game plays: the frame step, its win and score and the replay are the
  * core's (core/game.c, the same C in both editions), so every edition scores a game alike.
  */
-export interface GameSim extends SimLike {
-  /** One whole frame from a whole frame, the trap at `height` during it (from its start, not
-   * after the win), then its end: the win seen, the score fixed. */
-  frame(height: number): void;
-  /** The end of a whole frame reached by advance: the win seen, the score fixed. */
-  frameEnd(): void;
-  /** Atoms trapped at the end of the whole frame the win was seen in; null before. */
-  readonly score: number | null;
-  /** [height, frames] runs from a whole frame, up to the win or `limit` frames: the frames
-   * played. */
-  replay(runs: ReadonlyArray<readonly [number, number]>, limit: number): number;
-}
+export interface GameSim
+  extends SimLike, Pick<Simulation, "frame" | "frameEnd" | "score" | "replay"> {}
 
 export function emptyAtoms(): AtomArrays {
   const z = () => new Float64Array(0);

@@ -1,9 +1,8 @@
 /**
  * SimulationConfig (issue 26.2), twin of src/evapcool/physics/config.py: every parameter of a
- * new Simulation checked once, at the boundary. `new Simulation(options)` builds one from its
- * options; a caller that holds one passes it down with `Simulation.fromConfig`, and nothing
- * below checks it again. Ranges come from limits.py's table (limits.json); errors are
- * RangeErrors naming the parameter.
+ * new Simulation checked once, at the boundary: `new Simulation(options)` builds one from its
+ * options, and nothing below checks it again. Ranges come from limits.py's table
+ * (limits.json); errors are RangeErrors naming the parameter.
  */
 import {
   ATOM_RADIUS,
@@ -17,7 +16,7 @@ import {
 } from "./constants";
 import { CLASSIC_ROOM, checkRoom, type Room } from "./room";
 import { bad } from "./state";
-import { checkStart } from "./validation";
+import { checkStart, perAtomWithin, type Motion } from "./validation";
 import {
   CURVATURE as CURVATURE_RANGE,
   GRAVITY as GRAVITY_RANGE,
@@ -27,7 +26,6 @@ import {
   SEED as SEED_RANGE,
   TC_EXPONENT as TC_EXPONENT_RANGE,
   TRAP_HEIGHT as TRAP_HEIGHT_RANGE,
-  pyFloat,
   type Range,
 } from "../limits";
 
@@ -99,12 +97,7 @@ export interface SimulationConfig {
   readonly win: boolean;
   readonly recordEvents: boolean;
   /** Given starting centres and velocities (trap coordinates), or null for the cup's loading. */
-  readonly start: {
-    x: Float64Array;
-    y: Float64Array;
-    vx: Float64Array;
-    vy: Float64Array;
-  } | null;
+  readonly start: Motion | null;
 }
 
 /** Each option checked once, before anything is allocated per atom; RangeError naming it. */
@@ -174,16 +167,8 @@ function perAtom(
   const arr = v as ArrayLike<number>;
   if (typeof arr !== "object" || arr === null || arr.length !== n)
     throw bad(name, `${range.allowed()}, or ${n} such numbers`, v);
-  const out = new Float64Array(n);
-  for (let i = 0; i < n; i++) {
-    const e = arr[i];
-    if (typeof e !== "number" || !range.contains(e))
-      throw new RangeError(
-        `${name} must be ${range.allowed()} (atom ${i} has ${typeof e === "number" ? pyFloat(e) : String(e)})`,
-      );
-    out[i] = e;
-  }
-  return out;
+  perAtomWithin(name, arr, range);
+  return Float64Array.from(arr);
 }
 
 function pointCount(v: Points): number {

@@ -8,21 +8,16 @@
  */
 import {
   ATOM_RADIUS,
-  CURVATURE,
-  ESCAPE_RULES,
   ESCAPED,
   EVENT_NAMES,
-  GRAVITY,
   N_ATOMS,
   STATUS_NAMES,
-  TC_EXPONENT_SEED,
-  TRAP_HEIGHT,
   TRAPPED,
   type EscapeRule,
   type EventName,
 } from "./constants";
-import { checkedConfig, type SimulationConfig, type SimulationOptions } from "./config";
-import { escapeBox, roomTop, type Room } from "./room";
+import { checkedConfig, type SimulationOptions } from "./config";
+import { roomTop, type Room } from "./room";
 import { randomSeed } from "./start";
 import {
   STATE_FORMAT,
@@ -34,19 +29,9 @@ import {
   type SimulationState,
   type StateInput,
 } from "./state";
-import { STORED, WasmEngine, loadCup, type EngineAtoms, type EngineCore } from "./wasm";
-import { checkStart, checkWorld } from "./validation";
-import {
-  CURVATURE as CURVATURE_RANGE,
-  GRAVITY as GRAVITY_RANGE,
-  MASS as MASS_RANGE,
-  N_ATOMS as N_ATOMS_RANGE,
-  RADIUS as RADIUS_RANGE,
-  TC_EXPONENT as TC_EXPONENT_RANGE,
-  TRAP_HEIGHT as TRAP_HEIGHT_RANGE,
-  pyFloat,
-  type Range,
-} from "../limits";
+import { STORED, WasmEngine, loadCup, type EngineAtoms, type EngineRules } from "./wasm";
+import { checkWorld, flownToNow } from "./validation";
+import { CONTACT_TOLERANCE, DT, TRAP_HEIGHT as TRAP_HEIGHT_RANGE } from "../limits";
 
 /** One processed event: kind, atoms (j = -1 for solo events) and time in frames. */
 export interface PhysicsEvent {
@@ -71,9 +56,6 @@ export interface AtomSnapshot {
   energy: Float64Array;
 }
 
-/** Mid-run states may have atoms touching or on the wall up to round-off: this much, relative. */
-const STATE_TOLERANCE = 1e-9;
-
 /** Interleaved points [x0, y0, ...] of the loader as two columns. */
 function columns(xy: Float64Array, n: number): [Float64Array, Float64Array] {
   const xs = new Float64Array(n);
@@ -93,27 +75,11 @@ export function pairwiseSum(a: Float64Array, start: number, n: number): number {
     return res;
   }
   if (n <= 128) {
-    let r0 = a[start];
-    let r1 = a[start + 1];
-    let r2 = a[start + 2];
-    let r3 = a[start + 3];
-    let r4 = a[start + 4];
-    let r5 = a[start + 5];
-    let r6 = a[start + 6];
-    let r7 = a[start + 7];
+    // Eight running sums, element j into sum j mod 8, added up pairwise: NumPy's order.
+    const r = a.slice(start, start + 8);
     let i = 8;
-    for (; i < n - (n % 8); i += 8) {
-      const b = start + i;
-      r0 += a[b];
-      r1 += a[b + 1];
-      r2 += a[b + 2];
-      r3 += a[b + 3];
-      r4 += a[b + 4];
-      r5 += a[b + 5];
-      r6 += a[b + 6];
-      r7 += a[b + 7];
-    }
-    let res = r0 + r1 + (r2 + r3) + (r4 + r5 + (r6 + r7));
+    for (; i < n - (n % 8); i += 8) for (let j = 0; j < 8; j++) r[j] += a[start + i + j];
+    let res = r[0] + r[1] + (r[2] + r[3]) + (r[4] + r[5] + (r[6] + r[7]));
     for (; i < n; i++) res += a[start + i];
     return res;
   }
@@ -122,102 +88,54 @@ export function pairwiseSum(a: Float64Array, start: number, n: number): number {
   return pairwiseSum(a, start, n2) + pairwiseSum(a, start + n2, n - n2);
 }
 
+/** Two snapshot columns interleaved, [a0, b0, a1, b1, ...], of their first n rows. */
+function interleaved(a: Float64Array, b: Float64Array, n: number): Float64Array {
+  const out = new Float64Array(2 * n);
+  for (let k = 0; k < n; k++) {
+    out[2 * k] = a[k];
+    out[2 * k + 1] = b[k];
+  }
+  return out;
+}
+
 /** Hard disks in a parabolic cup under gravity, advanced event by event, exactly. */
 export class Simulation {
-  private engine!: EngineCore;
-  private roomAround!: Room;
+  private engine!: WasmEngine;
   private seedUsed!: number | null;
   private scratch!: Float64Array;
 
+  /** A simulation of options checked once, here (checkedConfig); nothing below checks them
+   * again but whether the atoms fit the cup (the loader's). */
   constructor(options: SimulationOptions = {}) {
-    this.build(checkedConfig(options));
-  }
-
-  /** A simulation of a config checked once at the boundary (checkedConfig); nothing is
-   * checked again here but whether the atoms fit the cup (the loader's). */
-  static fromConfig(config: SimulationConfig): Simulation {
-    const sim = Object.create(Simulation.prototype) as Simulation;
-    sim.build(config);
-    return sim;
-  }
-
-  private build(c: SimulationConfig): void {
+    const c = checkedConfig(options);
     const n = c.nAtoms;
-    const radius = c.radius;
-    let xs: Float64Array;
-    let ys: Float64Array;
-    let vxs: Float64Array;
-    let vys: Float64Array;
-    this.seedUsed = null;
-    if (c.start === null) {
-      const s = c.seed ?? randomSeed();
-      this.seedUsed = s;
-      const start = loadCup(n, radius[0], c.curvature, roomTop(c.room, radius[0]), s);
-      [xs, ys] = columns(start.positions, n);
-      [vxs, vys] = columns(start.velocities, n);
-    } else {
-      ({ x: xs, y: ys, vx: vxs, vy: vys } = c.start);
+    let start = c.start;
+    let seed: number | null = null;
+    if (start === null) {
+      seed = c.seed ?? randomSeed();
+      const cup = loadCup(n, c.radius[0], c.curvature, roomTop(c.room, c.radius[0]), seed);
+      const [x, y] = columns(cup.positions, n);
+      const [vx, vy] = columns(cup.velocities, n);
+      start = { x, y, vx, vy };
     }
-    this.init(
-      c.room,
-      {
-        curvature: c.curvature,
-        gravity: c.gravity,
-        tcExponent: c.tcExponent,
-        escape: c.escape,
-        win: c.win,
-        trapHeight: c.trapHeight,
-        recordEvents: c.recordEvents,
-      },
-      {
-        x: xs,
-        y: ys,
-        vx: vxs,
-        vy: vys,
-        t: new Float64Array(n),
-        radius,
-        mass: c.mass,
-        status: new Int8Array(n),
-        time: 0,
-        won: false,
-        pairCount: 0,
-        wallCount: 0,
-      },
-    );
+    const atoms: EngineAtoms = {
+      ...start,
+      t: new Float64Array(n),
+      radius: c.radius,
+      mass: c.mass,
+      status: new Int8Array(n),
+      time: 0,
+      won: false,
+      pairCount: 0,
+      wallCount: 0,
+    };
+    this.init(c, atoms, seed);
   }
 
-  private init(
-    room: Room,
-    rules: {
-      curvature: number;
-      gravity: number;
-      tcExponent: number;
-      escape: EscapeRule;
-      win: boolean;
-      trapHeight: number;
-      recordEvents: boolean;
-    },
-    atoms: EngineAtoms,
-  ): void {
-    // The trap origin lies the first atom's radius above the wall's lowest point.
-    const [xLeft, xRight, yBottom] = escapeBox(room, atoms.radius[0]);
+  private init(rules: EngineRules, atoms: EngineAtoms, seed: number | null): void {
     this.scratch = new Float64Array(4);
-    this.roomAround = room;
-    this.engine = new WasmEngine(
-      {
-        curvature: rules.curvature,
-        gravity: rules.gravity,
-        trapHeight: rules.trapHeight,
-        xLeft,
-        xRight,
-        yBottom,
-        tcExponent: rules.tcExponent,
-        knife: rules.escape === "knife",
-        winRule: rules.win,
-        recordEvents: rules.recordEvents,
-      },
-      atoms,
-    );
+    this.seedUsed = seed;
+    this.engine = new WasmEngine(rules, atoms);
     this.engine.setTrapHeight(rules.trapHeight);
   }
 
@@ -235,65 +153,31 @@ export class Simulation {
     options: { recordEvents?: boolean } = {},
   ): Simulation {
     const p = parseState(state);
-    const record = options.recordEvents ?? false;
-    if (typeof record !== "boolean") throw bad("recordEvents", "true or false", record);
-    const n = p.x.length;
+    const recordEvents = options.recordEvents ?? false;
+    if (typeof recordEvents !== "boolean") throw bad("recordEvents", "true or false", recordEvents);
     // Trapped atoms where they are now: inside the cup, not overlapping (up to round-off).
-    const halfG = 0.5 * p.gravity;
-    const xn = new Float64Array(n);
-    const yn = new Float64Array(n);
-    for (let i = 0; i < n; i++) {
-      const dt = p.time - p.t[i];
-      xn[i] = p.x[i] + p.vx[i] * dt;
-      yn[i] = p.y[i] + p.vy[i] * dt - halfG * dt * dt;
-    }
+    const now = flownToNow(p);
+    const trapped = (i: number) => p.status[i] === TRAPPED;
+    // The condensate's atoms no longer collide: after the win they may overlap.
     checkPlacement(
       "state.atoms",
-      xn,
-      yn,
+      now.x,
+      now.y,
       p.radius,
-      (i) => p.status[i] === TRAPPED,
+      trapped,
       p.curvature,
-      STATE_TOLERANCE,
-      !p.won, // the condensate's atoms no longer collide: they may overlap
+      CONTACT_TOLERANCE,
+      !p.won,
     );
-    checkWorld({ ...p, trapped: (i) => p.status[i] === TRAPPED });
+    checkWorld(p, now, trapped);
     const sim = Object.create(Simulation.prototype) as Simulation;
-    sim.seedUsed = null;
-    sim.init(
-      p.room,
-      {
-        curvature: p.curvature,
-        gravity: p.gravity,
-        tcExponent: p.tcExponent,
-        escape: p.escape,
-        win: p.win,
-        trapHeight: p.trapHeight,
-        recordEvents: record,
-      },
-      {
-        x: p.x,
-        y: p.y,
-        vx: p.vx,
-        vy: p.vy,
-        t: p.t,
-        radius: p.radius,
-        mass: p.mass,
-        status: p.status,
-        time: p.time,
-        energySum: p.energySum,
-        initialTemperature: p.initialTemperature,
-        won: p.won,
-        pairCount: p.pairCount,
-        wallCount: p.wallCount,
-      },
-    );
+    sim.init({ ...p, recordEvents }, p, null);
     if (p.energySum !== undefined) {
       const e = sim.engine;
       const sum = e.sequentialEnergySum();
       let scale = 0;
-      for (let i = 0; i < n; i++) if (p.status[i] === TRAPPED) scale += Math.abs(e.atomEnergy(i));
-      if (!(Math.abs(p.energySum - sum) <= STATE_TOLERANCE * Math.max(1, scale)))
+      for (let i = 0; i < e.nAtoms; i++) if (trapped(i)) scale += Math.abs(e.atomEnergy(i));
+      if (!(Math.abs(p.energySum - sum) <= CONTACT_TOLERANCE * Math.max(1, scale)))
         throw bad("state.energy_sum", `the trapped atoms' energy sum, ${sum}`, p.energySum);
     }
     return sim;
@@ -303,29 +187,24 @@ export class Simulation {
   toState(): SimulationState {
     const e = this.engine;
     const n = e.nAtoms;
-    const col = (k: number): number[] => {
-      const out = new Array<number>(n);
-      for (let i = 0; i < n; i++) out[i] = e.storedOf(i, k);
-      return out;
-    };
-    const status = new Array<(typeof STATUS_NAMES)[number]>(n);
-    for (let i = 0; i < n; i++) status[i] = STATUS_NAMES[e.statusOf(i)];
+    const col = (k: number): number[] => Array.from({ length: n }, (_, i) => e.storedOf(i, k));
+    const status = Array.from({ length: n }, (_, i) => STATUS_NAMES[e.statusOf(i)]);
     return {
       format: STATE_FORMAT,
       version: STATE_VERSION,
-      time: e.time,
-      trap_height: Number.isFinite(e.trapHeight) ? e.trapHeight : "inf",
-      curvature: e.curvature,
-      gravity: e.gravity,
-      window: windowOfRoom(this.roomAround),
-      escape: e.knife ? "knife" : "rim",
-      tc_exponent: e.tcExponent,
-      win: e.winRule,
-      won: e.won,
+      time: this.time,
+      trap_height: Number.isFinite(this.trapHeight) ? this.trapHeight : "inf",
+      curvature: this.curvature,
+      gravity: this.gravity,
+      window: windowOfRoom(this.room),
+      escape: this.escape,
+      tc_exponent: this.tcExponent,
+      win: this.winRule,
+      won: this.won,
       initial_temperature: e.initialTemperature,
-      energy_sum: e.energySum,
-      pair_collisions: e.pairCount,
-      wall_collisions: e.wallCount,
+      energy_sum: e.read("core_energy_sum"),
+      pair_collisions: this.pairCollisionCount,
+      wall_collisions: this.wallCollisionCount,
       atoms: {
         x: col(STORED.x),
         y: col(STORED.y),
@@ -339,28 +218,21 @@ export class Simulation {
     };
   }
 
-  /** JSON.stringify(sim) writes the state. */
-  toJSON(): SimulationState {
-    return this.toState();
-  }
-
   // -- time ------------------------------------------------------------------------------
   /** Advance by dt frames, processing every event exactly. */
   advance(dt: number): void {
-    if (typeof dt !== "number" || !Number.isFinite(dt) || dt < 0)
-      throw bad("dt", "a finite number of frames >= 0", dt);
-    this.engine.advanceTo(this.engine.time + dt);
+    this.engine.advanceTo(this.time + DT.check("dt", dt));
   }
 
   /** Simulation time in frames. */
   get time(): number {
-    return this.engine.time;
+    return this.engine.read("core_time");
   }
 
   // -- the trap --------------------------------------------------------------------------
   /** Rim height H in px above the lowest centre position. */
   get trapHeight(): number {
-    return this.engine.trapHeight;
+    return this.engine.read("core_trap_height");
   }
 
   set trapHeight(value: number) {
@@ -369,30 +241,25 @@ export class Simulation {
 
   /** x_rim = sqrt(H / a): the wall ends at |x| = x_rim. */
   get rimHalfWidth(): number {
-    return this.engine.xRim;
+    return this.engine.read("core_x_rim");
   }
 
   get curvature(): number {
-    return this.engine.curvature;
+    return this.engine.rules.curvature;
   }
 
   get gravity(): number {
-    return this.engine.gravity;
+    return this.engine.rules.gravity;
   }
 
   /** "rim" (fly over the rim) or "knife" (energy above m g H removed at once). */
   get escape(): EscapeRule {
-    return this.engine.knife ? "knife" : "rim";
-  }
-
-  /** Python's name for `escape`. */
-  get escapeRule(): EscapeRule {
-    return this.escape;
+    return this.engine.rules.escape;
   }
 
   /** The room around the cup: where escaped atoms are gone (physics/room.ts). */
   get room(): Room {
-    return this.roomAround;
+    return this.engine.rules.room;
   }
 
   /** The trap origin's height above the cup wall's lowest point: the first atom's radius. */
@@ -412,7 +279,7 @@ export class Simulation {
   }
 
   get nTrapped(): number {
-    return this.engine.nTrapped;
+    return this.engine.read("core_n_trapped");
   }
 
   /** Atoms that left the trap and are still falling inside the window. */
@@ -423,72 +290,27 @@ export class Simulation {
     return k;
   }
 
-  private indices(status: number): Int32Array {
-    const e = this.engine;
-    let k = 0;
-    for (let i = 0; i < e.nAtoms; i++) if (e.statusOf(i) === status) k++;
-    const out = new Int32Array(k);
-    k = 0;
-    for (let i = 0; i < e.nAtoms; i++) if (e.statusOf(i) === status) out[k++] = i;
-    return out;
-  }
-
-  get trappedIndices(): Int32Array {
-    return this.indices(TRAPPED);
-  }
-
-  get escapedIndices(): Int32Array {
-    return this.indices(ESCAPED);
-  }
-
-  private column(status: number, what: "pos" | "vel" | "radius" | "mass"): Float64Array {
-    const idx = this.indices(status);
-    const e = this.engine;
-    const s = this.scratch;
-    const wide = what === "pos" || what === "vel";
-    const out = new Float64Array(wide ? 2 * idx.length : idx.length);
-    for (let k = 0; k < idx.length; k++) {
-      const i = idx[k];
-      if (what === "radius") out[k] = e.storedOf(i, STORED.radius);
-      else if (what === "mass") out[k] = e.storedOf(i, STORED.mass);
-      else {
-        e.stateAt(i, e.time, s);
-        out[2 * k] = what === "pos" ? s[0] : s[2];
-        out[2 * k + 1] = what === "pos" ? s[1] : s[3];
-      }
-    }
-    return out;
-  }
-
   /** Centres of the trapped atoms now, [x0, y0, x1, y1, ...], trap coordinates (y up), px. */
   get positions(): Float64Array {
-    return this.column(TRAPPED, "pos");
+    const s = this.atoms();
+    return interleaved(s.x, s.y, s.count);
   }
 
   /** Velocities of the trapped atoms now, [vx0, vy0, ...], px / frame. */
   get velocities(): Float64Array {
-    return this.column(TRAPPED, "vel");
+    const s = this.atoms();
+    return interleaved(s.vx, s.vy, s.count);
   }
 
   get radii(): Float64Array {
-    return this.column(TRAPPED, "radius");
-  }
-
-  get masses(): Float64Array {
-    return this.column(TRAPPED, "mass");
+    const s = this.atoms();
+    return s.radius.slice(0, s.count);
   }
 
   /** Centres of the atoms falling out of the window, [x0, y0, ...]. */
   get escapedPositions(): Float64Array {
-    return this.column(ESCAPED, "pos");
-  }
-
-  get escapedVelocities(): Float64Array {
-    return this.column(ESCAPED, "vel");
-  }
-
-  get escapedRadii(): Float64Array {
-    return this.column(ESCAPED, "radius");
+    const s = this.atoms("escaped");
+    return interleaved(s.x, s.y, s.count);
   }
 
   /**
@@ -518,7 +340,7 @@ export class Simulation {
     let k = 0;
     for (let i = 0; i < e.nAtoms; i++) {
       if (e.statusOf(i) !== status) continue;
-      e.stateAt(i, e.time, s);
+      e.stateAt(i, this.time, s);
       snap.index[k] = i;
       snap.x[k] = s[0];
       snap.y[k] = s[1];
@@ -536,7 +358,7 @@ export class Simulation {
   /** Energy 1/2 m v^2 + m g y of each trapped atom. */
   energies(): Float64Array {
     const e = this.engine;
-    const out = new Float64Array(e.nTrapped);
+    const out = new Float64Array(this.nTrapped);
     let k = 0;
     for (let i = 0; i < e.nAtoms; i++) if (e.statusOf(i) === TRAPPED) out[k++] = e.atomEnergy(i);
     return out;
@@ -551,7 +373,7 @@ export class Simulation {
   // -- thermodynamics (seed Eqs. 1 and 46) --------------------------------------------------
   /** Mean energy per trapped atom, seed Eq. (1); 0 for an empty cup. */
   get temperature(): number {
-    const n = this.engine.nTrapped;
+    const n = this.nTrapped;
     return n > 0 ? this.totalEnergy() / n : 0;
   }
 
@@ -561,21 +383,21 @@ export class Simulation {
 
   /** Tc(N) = Tc0 (N / N0)^p with Tc0 = 0.75 T(0), seed Eq. (46). */
   get criticalTemperature(): number {
-    return this.engine.criticalTemperatureOf(this.engine.nTrapped);
+    return this.engine.criticalTemperatureOf(this.nTrapped);
   }
 
   get tcExponent(): number {
-    return this.engine.tcExponent;
+    return this.engine.rules.tcExponent;
   }
 
   /** True once T < Tc(N) (latched): the gas has condensed. Never with win: false. */
   get won(): boolean {
-    return this.engine.won;
+    return this.engine.read("core_won") !== 0;
   }
 
   /** False if the game's win rule is off (win: false). */
   get winRule(): boolean {
-    return this.engine.winRule;
+    return this.engine.rules.win;
   }
 
   /** Declare the gas condensed now (demonstrations and tests). */
@@ -600,7 +422,8 @@ export class Simulation {
 
   /** Atoms trapped at the end of the whole frame the win was seen in; null before. */
   get score(): number | null {
-    return this.engine.score;
+    const score = this.engine.read("core_score");
+    return score < 0 ? null : score;
   }
 
   /** Hold each [height, frames] run's height for that many whole frames (frame), from a whole
@@ -611,15 +434,15 @@ export class Simulation {
 
   // -- counters --------------------------------------------------------------------------
   get pairCollisionCount(): number {
-    return this.engine.pairCount;
+    return this.engine.read("core_pairs");
   }
 
   get wallCollisionCount(): number {
-    return this.engine.wallCount;
+    return this.engine.read("core_walls");
   }
 
   get collisionCount(): number {
-    return this.engine.pairCount + this.engine.wallCount;
+    return this.pairCollisionCount + this.wallCollisionCount;
   }
 
   /** Events recorded so far (recordEvents), without building the log. */
@@ -637,13 +460,7 @@ export class Simulation {
 
   /** Every event so far if recordEvents was set, else []. */
   get eventLog(): PhysicsEvent[] {
-    const e = this.engine;
-    const out: PhysicsEvent[] = [];
-    for (let k = 0; k < e.nLog; k++) {
-      const [kind, i, j, time] = e.logEntry(k);
-      out.push({ kind: EVENT_NAMES[kind], i, j, time });
-    }
-    return out;
+    return Array.from({ length: this.engine.nLog }, (_, k) => this.eventAt(k));
   }
 
   /** Engine diagnostics: cell crossings and stale pair events processed, grid shape. */
@@ -656,8 +473,8 @@ export class Simulation {
   } {
     const e = this.engine;
     return {
-      crossings: e.crossingCount,
-      stale: e.staleCount,
+      crossings: e.read("core_crossings"),
+      stale: e.read("core_stale"),
       cells: [e.gridColumns, e.gridRows],
       cellSize: e.cellSize,
       gridErrors: e.gridErrors(),

@@ -18,6 +18,7 @@ import {
   type StatusName,
 } from "./constants";
 import type { Room } from "./room";
+import type { WorldLimitsInput } from "./validation";
 
 export const STATE_FORMAT = "evapcool-state";
 export const STATE_VERSION = 1;
@@ -88,28 +89,16 @@ export interface StateInput {
 }
 
 /** A validated state, every default filled in, per-atom columns as typed arrays. */
-export interface ParsedState {
-  time: number;
-  trapHeight: number;
-  curvature: number;
-  gravity: number;
+export interface ParsedState extends WorldLimitsInput {
   /** The room the state's window field names. */
   room: Room;
   escape: EscapeRule;
-  tcExponent: number;
   win: boolean;
   won: boolean;
   initialTemperature: number | undefined;
   energySum: number | undefined;
   pairCount: number;
   wallCount: number;
-  x: Float64Array;
-  y: Float64Array;
-  vx: Float64Array;
-  vy: Float64Array;
-  t: Float64Array;
-  radius: Float64Array;
-  mass: Float64Array;
   /** 0 trapped, 1 escaped, 2 gone. */
   status: Int8Array;
 }
@@ -312,8 +301,7 @@ export function parseState(input: unknown): ParsedState {
   const escape = s.escape === undefined ? "rim" : s.escape;
   if (!ESCAPE_RULES.includes(escape as EscapeRule))
     throw bad("state.escape", `one of ${ESCAPE_RULES.join(", ")}`, escape);
-  const win = flag("state.win", s.win, true);
-  const parsed: ParsedState = {
+  return {
     time,
     trapHeight,
     curvature: positive("state.curvature", s.curvature, CURVATURE),
@@ -321,7 +309,7 @@ export function parseState(input: unknown): ParsedState {
     room: roomOfWindow(s.window === undefined ? WINDOW : checkWindow("state.window", s.window)),
     escape: escape as EscapeRule,
     tcExponent: positive("state.tc_exponent", s.tc_exponent, TC_EXPONENT_SEED),
-    win,
+    win: flag("state.win", s.win, true),
     won: flag("state.won", s.won, false),
     initialTemperature:
       s.initial_temperature === undefined
@@ -339,7 +327,6 @@ export function parseState(input: unknown): ParsedState {
     mass,
     status,
   };
-  return parsed;
 }
 
 /**

@@ -6,7 +6,6 @@
  * Python's trace_text, floats as 17 significant digits (C's %.17g), so the text of a run
  * of this engine can be diffed against the Python engines' text of the same run.
  */
-import { EVENT_NAMES } from "./constants";
 import { Simulation } from "./simulation";
 import type { SimulationState, StateInput } from "./state";
 
@@ -19,17 +18,6 @@ export const MAX_FRAMES = 100_000;
 export type PackedStep = [number, number, number];
 export type TraceEvent = [string, number, number, number];
 
-export interface TraceSummary {
-  n_trapped: number;
-  n_escaped: number;
-  temperature: number;
-  total_energy: number;
-  critical_temperature: number;
-  won: boolean;
-  pair_collisions: number;
-  wall_collisions: number;
-}
-
 export interface Trace {
   format: typeof TRACE_FORMAT;
   version: typeof TRACE_VERSION;
@@ -40,7 +28,7 @@ export interface Trace {
   steps: PackedStep[];
   events: TraceEvent[];
   end: SimulationState;
-  summary: TraceSummary;
+  summary: ReturnType<typeof summaryOf>;
 }
 
 // -- text ----------------------------------------------------------------------------------
@@ -211,7 +199,8 @@ export function planSteps(
   return pack(steps);
 }
 
-export function summaryOf(sim: Simulation): TraceSummary {
+/** The run's figures at its end, as Python's trace summary names them. */
+export function summaryOf(sim: Simulation) {
   return {
     n_trapped: sim.nTrapped,
     n_escaped: sim.nEscaped,
@@ -224,8 +213,10 @@ export function summaryOf(sim: Simulation): TraceSummary {
   };
 }
 
-function eventsOf(sim: Simulation): TraceEvent[] {
-  return sim.eventLog.map((e) => [e.kind, e.i, e.j, e.time]);
+/** What a run of this engine gave: its events, its state at the end, its summary. */
+function outcome(sim: Simulation): Pick<Trace, "events" | "end" | "summary"> {
+  const events = sim.eventLog.map((e): TraceEvent => [e.kind, e.i, e.j, e.time]);
+  return { events, end: sim.toState(), summary: summaryOf(sim) };
 }
 
 /** The trace of this engine from state over the schedule that reaches nEvents. */
@@ -237,7 +228,6 @@ export function makeTrace(
   heightOfFrame?: (k: number) => number,
 ): Trace {
   const steps = planSteps(state, nEvents, heightOfFrame);
-  const sim = runSteps(state, steps);
   return {
     format: TRACE_FORMAT,
     version: TRACE_VERSION,
@@ -246,16 +236,13 @@ export function makeTrace(
     events_requested: nEvents,
     start: state,
     steps,
-    events: eventsOf(sim),
-    end: sim.toState(),
-    summary: summaryOf(sim),
+    ...outcome(runSteps(state, steps)),
   };
 }
 
 /** The trace this engine produces from trace's start and steps (the same, if it agrees). */
 export function replayTrace(trace: Trace): Trace {
-  const sim = runSteps(trace.start, trace.steps);
-  return { ...trace, events: eventsOf(sim), end: sim.toState(), summary: summaryOf(sim) };
+  return { ...trace, ...outcome(runSteps(trace.start, trace.steps)) };
 }
 
 /** Parse a trace's text; numbers read back to the same bits (JSON.parse keeps -0). */
@@ -265,5 +252,3 @@ export function readTrace(text: string): Trace {
     throw new RangeError(`trace must be a JSON object with format "${TRACE_FORMAT}"`);
   return t;
 }
-
-export { EVENT_NAMES };

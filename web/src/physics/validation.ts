@@ -19,72 +19,93 @@ import {
 } from "../limits";
 import { firstOverlap } from "./state";
 
+/** Per-atom positions and velocities as columns, trap coordinates. */
+export interface Motion {
+  x: Float64Array;
+  y: Float64Array;
+  vx: Float64Array;
+  vy: Float64Array;
+}
+
 /** What `checkWorld` reads of a parsed state. */
-export interface WorldLimitsInput {
+export interface WorldLimitsInput extends Motion {
   time: number;
   curvature: number;
   gravity: number;
   trapHeight: number;
   tcExponent: number;
-  x: Float64Array;
-  y: Float64Array;
-  vx: Float64Array;
-  vy: Float64Array;
   t: Float64Array;
   radius: Float64Array;
   mass: Float64Array;
-  trapped: (i: number) => boolean;
 }
 
-/** RangeError naming the first parameter or atom out of its range, in Python's order. */
-export function checkWorld(w: WorldLimitsInput): void {
+/** Every atom carried from its own time t to the clock in free flight, seed Eqs. (3) and (4),
+ * as Python's World.state_at carries it. */
+export function flownToNow(w: WorldLimitsInput): Motion {
+  const n = w.x.length;
+  const halfG = 0.5 * w.gravity;
+  const now: Motion = {
+    x: new Float64Array(n),
+    y: new Float64Array(n),
+    vx: new Float64Array(n),
+    vy: new Float64Array(n),
+  };
+  for (let i = 0; i < n; i++) {
+    const dt = w.time - w.t[i];
+    now.x[i] = w.x[i] + w.vx[i] * dt;
+    now.y[i] = w.y[i] + w.vy[i] * dt - halfG * dt * dt;
+    now.vx[i] = w.vx[i];
+    now.vy[i] = w.vy[i] - w.gravity * dt;
+  }
+  return now;
+}
+
+/** RangeError naming the first parameter or atom out of its range, in Python's order; `now`:
+ * the atoms carried to the clock (flownToNow), of which the trapped ones are checked. */
+export function checkWorld(
+  w: WorldLimitsInput,
+  now: Motion,
+  trapped: (i: number) => boolean,
+): void {
   N_ATOMS.check("n_atoms", w.radius.length);
   CURVATURE.check("curvature", w.curvature);
   GRAVITY.check("gravity", w.gravity);
   TRAP_HEIGHT.check("trap_height", w.trapHeight);
   TC_EXPONENT.check("tc_exponent", w.tcExponent);
-  perAtom("radius", w.radius, RADIUS);
-  perAtom("mass", w.mass, MASS);
-  const n = w.radius.length;
-  const halfG = 0.5 * w.gravity;
-  const ids: number[] = [];
-  const pos: number[] = [];
-  const vel: number[] = [];
-  for (let i = 0; i < n; i++) {
-    if (!w.trapped(i)) continue;
-    const dt = w.time - w.t[i];
-    ids.push(i);
-    // free flight to now, seed Eqs. (3) and (4), as Python's World.state_at carries them
-    pos.push(w.x[i] + w.vx[i] * dt, w.y[i] + w.vy[i] * dt - halfG * dt * dt);
-    vel.push(w.vx[i], w.vy[i] - w.gravity * dt);
-  }
-  if (!pos.every(Number.isFinite) || !vel.every(Number.isFinite))
+  perAtomWithin("radius", w.radius, RADIUS);
+  perAtomWithin("mass", w.mass, MASS);
+  const ids = Array.from(w.radius.keys()).filter(trapped);
+  const columns = [now.x, now.y, now.vx, now.vy];
+  if (!ids.every((i) => columns.every((c) => Number.isFinite(c[i]))))
     throw new RangeError("positions and velocities must be finite");
-  checkBounds(ids, pos, vel);
+  checkBounds(ids, now);
 }
 
-function perAtom(name: string, values: Float64Array, range: Range): void {
-  for (let i = 0; i < values.length; i++)
-    if (!(values[i] >= range.low && values[i] <= range.high))
+/** RangeError "<name> must be <allowed> (atom i has <value>)" for the first value out of range. */
+export function perAtomWithin(name: string, values: ArrayLike<unknown>, range: Range): void {
+  for (let i = 0; i < values.length; i++) {
+    const v = values[i];
+    if (typeof v !== "number" || !range.contains(v))
       throw new RangeError(
-        `${name} must be ${range.allowed()} (atom ${i} has ${pyFloat(values[i])})`,
+        `${name} must be ${range.allowed()} (atom ${i} has ${typeof v === "number" ? pyFloat(v) : String(v)})`,
       );
+  }
 }
 
 /** Python's `check_bounds`: the first atom too far from the vertex, then the first too fast. */
-export function checkBounds(ids: number[], pos: number[], vel: number[]): void {
-  for (let k = 0; k < ids.length; k++) {
-    if (Math.max(Math.abs(pos[2 * k]), Math.abs(pos[2 * k + 1])) > POSITION_MAX)
+function checkBounds(ids: number[], m: Motion): void {
+  for (const i of ids) {
+    if (Math.max(Math.abs(m.x[i]), Math.abs(m.y[i])) > POSITION_MAX)
       throw new RangeError(
         `positions must be within ${pyG(POSITION_MAX)} px of the cup's lowest point ` +
-          `(atom ${ids[k]} is at (${pyG(pos[2 * k])}, ${pyG(pos[2 * k + 1])}))`,
+          `(atom ${i} is at (${pyG(m.x[i])}, ${pyG(m.y[i])}))`,
       );
   }
-  for (let k = 0; k < ids.length; k++) {
-    if (Math.hypot(vel[2 * k], vel[2 * k + 1]) > VELOCITY_MAX)
+  for (const i of ids) {
+    if (Math.hypot(m.vx[i], m.vy[i]) > VELOCITY_MAX)
       throw new RangeError(
         `velocities must be at most ${pyG(VELOCITY_MAX)} px/frame in speed ` +
-          `(atom ${ids[k]} has (${pyG(vel[2 * k])}, ${pyG(vel[2 * k + 1])}))`,
+          `(atom ${i} has (${pyG(m.vx[i])}, ${pyG(m.vy[i])}))`,
       );
   }
 }
@@ -101,12 +122,8 @@ export function checkStart(
   radius: Float64Array,
   curvature: number,
 ): void {
-  const n = x.length;
-  const ids = Array.from({ length: n }, (_, i) => i);
-  const interleave = (a: Float64Array, b: Float64Array): number[] =>
-    Array.from({ length: 2 * n }, (_, k) => (k % 2 === 0 ? a[k >> 1] : b[k >> 1]));
-  checkBounds(ids, interleave(x, y), interleave(vx, vy));
-  for (let i = 0; i < n; i++) {
+  checkBounds(Array.from(x.keys()), { x, y, vx, vy });
+  for (let i = 0; i < x.length; i++) {
     const wall = curvature * x[i] * x[i];
     if (y[i] - wall < 0)
       throw new RangeError(

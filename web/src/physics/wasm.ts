@@ -11,21 +11,14 @@
 import packedCore from "virtual:evapcool-wasm";
 import { ParameterError, pyG } from "../limits";
 import { SEED_PORTABLE_MAX } from "./start";
+import { escapeBox } from "./room";
+import type { SimulationConfig } from "./config";
 
-/** Everything an engine needs besides the atoms. */
-export interface EngineSetup {
-  curvature: number;
-  gravity: number;
-  trapHeight: number;
-  /** Window edges in trap coordinates (an escaped atom is gone beyond them). */
-  xLeft: number;
-  xRight: number;
-  yBottom: number;
-  tcExponent: number;
-  knife: boolean;
-  winRule: boolean;
-  recordEvents: boolean;
-}
+/** Everything an engine needs besides the atoms: a checked config's rules, or a state's. */
+export type EngineRules = Pick<
+  SimulationConfig,
+  "room" | "curvature" | "gravity" | "tcExponent" | "escape" | "win" | "trapHeight" | "recordEvents"
+>;
 
 /** Atoms and the clock; for a fresh start t = 0, status trapped and the sums are computed. */
 export interface EngineAtoms {
@@ -49,66 +42,6 @@ export interface EngineAtoms {
 
 /** What storedOf(i, k) returns for each k: the core's State fields in order, then the mass. */
 export const STORED = { x: 0, y: 1, vx: 2, vy: 3, t: 4, radius: 5, mass: 6 } as const;
-
-/** What Simulation uses of an engine. */
-export interface EngineCore {
-  // fixed for the engine's life
-  /** Atoms at the start (N0), gone ones included. */
-  readonly nAtoms: number;
-  readonly gravity: number;
-  readonly curvature: number;
-  readonly knife: boolean;
-  readonly winRule: boolean;
-  readonly tcExponent: number;
-  readonly initialTemperature: number;
-  /** The cell grid's columns, rows and cell edge. */
-  readonly gridColumns: number;
-  readonly gridRows: number;
-  readonly cellSize: number;
-  // the running state
-  readonly time: number;
-  readonly trapHeight: number;
-  readonly xRim: number;
-  readonly won: boolean;
-  readonly nTrapped: number;
-  readonly pairCount: number;
-  readonly wallCount: number;
-  readonly energySum: number;
-  readonly nLog: number;
-  readonly crossingCount: number;
-  readonly staleCount: number;
-  /** Process every event with time <= tEnd in time order, then set the clock. */
-  advanceTo(tEnd: number): void;
-  /** New rim height, at once; with the knife rule, atoms above m g H go now, in index order. */
-  setTrapHeight(height: number): void;
-  /** Declare the gas condensed now (demonstrations and tests). */
-  forceWin(): void;
-  /** Tc(N) = Tc0 (N / N0)^p, seed Eq. (46) with exponent p. */
-  criticalTemperatureOf(nTrapped: number): number;
-  /** Sum of trapped energies added in world index order (the engines continue it). */
-  sequentialEnergySum(): number;
-  statusOf(i: number): number;
-  /** Stored value k (STORED) of world atom i. */
-  storedOf(i: number, k: number): number;
-  /** World atom i's energy 1/2 m v^2 + m g y from its stored state (conserved in flight). */
-  atomEnergy(i: number): number;
-  /** Position and velocity of world atom i carried to time t into out = [x, y, vx, vy]. */
-  stateAt(i: number, t: number, out: Float64Array): void;
-  /** Trapped atoms filed more than one cell away from their cell now (0 if sound). */
-  gridErrors(): number;
-  /** Event k of the log: [kind, i, j, time] with world indices. */
-  logEntry(k: number): [number, number, number, number];
-  /** One whole frame from a whole frame, the trap at `height` during it (from its start,
-   * not after the win), then its end: the win seen, the score fixed (core/game.c). */
-  frame(height: number): void;
-  /** The end of a whole frame reached by advanceTo: the win seen, the score fixed. */
-  frameEnd(): void;
-  /** Atoms trapped at the end of the whole frame the win was seen in; null before. */
-  readonly score: number | null;
-  /** [height, frames] runs from a whole frame, up to the win or `limit` frames: the frames
-   * played (no event log is kept). */
-  replay(runs: ReadonlyArray<readonly [number, number]>, limit: number): number;
-}
 
 /** A Core's address in the instance's memory (core/tables.h). */
 type Core = number;
@@ -180,6 +113,11 @@ interface CoreExports {
   ): number;
   core_cup_capacity(radius: number, curvature: number, yTop: number): number;
 }
+
+/** Entry points called with a Core alone that answer a number: its scalars (core/tables.c) among them. */
+type Reader = {
+  [K in keyof CoreExports]: CoreExports[K] extends (core: Core) => number ? K : never;
+}[keyof CoreExports];
 
 /** core_advance_to's answer (CORE_LOG_FULL) when the log must be emptied before it goes on. */
 const LOG_FULL = 1;
@@ -296,16 +234,14 @@ function writeInputs(buffer: ArrayBuffer, at: number, atoms: EngineAtoms): void 
   for (let i = 0; i < n; i++) status[i] = atoms.status[i];
 }
 
-export class WasmEngine implements EngineCore {
+/** One engine: a Core in an instance of its own, loaded with the atoms and started. */
+export class WasmEngine {
+  /** Atoms at the start (N0), gone ones included. */
   readonly nAtoms: number;
-  readonly gravity: number;
-  readonly curvature: number;
-  readonly knife: boolean;
-  readonly winRule: boolean;
-  readonly tcExponent: number;
-  readonly recordEvents: boolean;
+  /** T at the start (Tc0 = 0.75 of it). */
   readonly initialTemperature: number;
   readonly tc0: number;
+  /** The cell grid's columns, rows and cell edge. */
   readonly gridColumns: number;
   readonly gridRows: number;
   readonly cellSize: number;
@@ -315,42 +251,40 @@ export class WasmEngine implements EngineCore {
   private readonly core: Core;
   /** The core's memory as doubles (a new view if the memory grew). */
   private mem: Float64Array;
-  // The event log, copied out of the core's buffer (world indices).
-  private logKind = new Uint8Array(0);
-  private logI = new Int32Array(0);
-  private logJ = new Int32Array(0);
-  private logT = new Float64Array(0);
-  nLog = 0;
+  /** The event log, copied out of the core's buffer: [kind, i, j, time], world indices. */
+  private readonly log: Array<[number, number, number, number]> = [];
 
-  constructor(setup: EngineSetup, atoms: EngineAtoms) {
+  /** The rules it runs, kept apart from whatever else the caller's object holds. */
+  readonly rules: EngineRules;
+
+  constructor(given: EngineRules, atoms: EngineAtoms) {
+    const { room, curvature, gravity, tcExponent, escape, win, trapHeight, recordEvents } = given;
+    this.rules = { room, curvature, gravity, tcExponent, escape, win, trapHeight, recordEvents };
     const n = atoms.x.length;
     this.nAtoms = n;
-    this.gravity = setup.gravity;
-    this.curvature = setup.curvature;
-    this.knife = setup.knife;
-    this.winRule = setup.winRule;
-    this.tcExponent = setup.tcExponent;
-    this.recordEvents = setup.recordEvents;
     const c = instance();
     this.c = c;
     const core = c.core_new();
     if (core === 0) throw new RangeError(OUT_OF_MEMORY(n));
     this.core = core;
-    const logCapacity = setup.recordEvents ? Math.max(LOG_BUFFER, n + 8) : 0;
+    const logCapacity = recordEvents ? Math.max(LOG_BUFFER, n + 8) : 0;
     const inputs = c.core_allocate(core, n, logCapacity);
     if (inputs === 0) throw new RangeError(OUT_OF_MEMORY(n));
     writeInputs(c.memory.buffer, inputs, atoms);
+    // Escaped atoms are gone beyond the room's edges; the trap origin lies the first atom's
+    // radius above the wall's lowest point.
+    const [xLeft, xRight, yBottom] = escapeBox(room, atoms.radius[0]);
     c.core_load(
       core,
       inputs,
-      setup.gravity,
-      setup.curvature,
-      setup.xLeft,
-      setup.xRight,
-      setup.yBottom,
-      setup.knife ? 1 : 0,
-      setup.winRule ? 1 : 0,
-      setup.recordEvents ? 1 : 0,
+      gravity,
+      curvature,
+      xLeft,
+      xRight,
+      yBottom,
+      escape === "knife" ? 1 : 0,
+      win ? 1 : 0,
+      recordEvents ? 1 : 0,
       atoms.time,
       atoms.won ? 1 : 0,
       atoms.pairCount,
@@ -361,77 +295,51 @@ export class WasmEngine implements EngineCore {
     this.initialTemperature = atoms.initialTemperature ?? (nTrapped > 0 ? energySum / nTrapped : 0);
     // seed Eq. (46): Tc0 is 3/4 of the starting temperature; the core reads Tc(N) from a table.
     this.tc0 = 0.75 * this.initialTemperature;
-    c.core_fill_tc_table(core, this.tc0, this.tcExponent);
-    if (!c.core_start(core, energySum, setup.trapHeight)) throw new RangeError(OUT_OF_MEMORY(n));
+    c.core_fill_tc_table(core, this.tc0, tcExponent);
+    if (!c.core_start(core, energySum, trapHeight)) throw new RangeError(OUT_OF_MEMORY(n));
     this.gridColumns = c.core_nx(core);
     this.gridRows = c.core_ny(core);
     this.cellSize = c.core_cell(core);
     this.mem = new Float64Array(c.memory.buffer);
   }
 
-  get time(): number {
-    return this.c.core_time(this.core);
-  }
-  get trapHeight(): number {
-    return this.c.core_trap_height(this.core);
-  }
-  get xRim(): number {
-    return this.c.core_x_rim(this.core);
-  }
-  get won(): boolean {
-    return this.c.core_won(this.core) !== 0;
-  }
-  get nTrapped(): number {
-    return this.c.core_n_trapped(this.core);
-  }
-  get pairCount(): number {
-    return this.c.core_pairs(this.core);
-  }
-  get wallCount(): number {
-    return this.c.core_walls(this.core);
-  }
-  get energySum(): number {
-    return this.c.core_energy_sum(this.core);
-  }
-  get crossingCount(): number {
-    return this.c.core_crossings(this.core);
-  }
-  get staleCount(): number {
-    return this.c.core_stale(this.core);
-  }
-  get renumberCount(): number {
-    return this.c.core_renumbered(this.core);
+  /** What entry point `name` answers now: a scalar such as the clock, the trap, a count. */
+  read(name: Reader): number {
+    return this.c[name](this.core);
   }
 
+  /** Process every event with time <= tEnd in time order, then set the clock. */
   advanceTo(tEnd: number): void {
     while (this.c.core_advance_to(this.core, tEnd) === LOG_FULL) this.drainLog();
     this.drainLog();
   }
 
+  /** New rim height, at once; with the knife rule, atoms above m g H go now, in index order. */
   setTrapHeight(height: number): void {
     this.drainLog(); // the knife may log every atom: the buffer holds n + 8 lines
     this.c.core_set_trap_height(this.core, height);
     this.drainLog();
   }
 
+  /** Declare the gas condensed now (demonstrations and tests). */
   forceWin(): void {
     this.c.core_force_win(this.core);
   }
 
+  /** One whole frame from a whole frame, the trap at `height` during it (from its start,
+   * not after the win), then its end: the win seen, the score fixed (core/game.c). */
   frame(height: number): void {
     while (this.c.core_frame(this.core, height) === LOG_FULL) this.drainLog();
     this.drainLog();
   }
 
+  /** The end of a whole frame reached by advanceTo: the win seen, the score fixed. */
   frameEnd(): void {
     this.c.core_frame_end(this.core);
   }
 
-  get score(): number | null {
-    const score = this.c.core_score(this.core);
-    return score < 0 ? null : score;
-  }
-
+  /** [height, frames] runs from a whole frame, up to the win or `limit` frames: the frames
+   * played (no event log is kept). */
   replay(runs: ReadonlyArray<readonly [number, number]>, limit: number): number {
     const at = this.c.core_buffer(this.core, 2 * runs.length);
     if (at === 0 && runs.length > 0) throw new RangeError(OUT_OF_MEMORY(this.nAtoms));
@@ -440,10 +348,12 @@ export class WasmEngine implements EngineCore {
     return this.c.core_replay(this.core, at, runs.length, limit);
   }
 
+  /** Tc(N) = Tc0 (N / N0)^p, seed Eq. (46) with exponent p. */
   criticalTemperatureOf(nTrapped: number): number {
-    return this.tc0 * this.c.core_power(nTrapped / this.nAtoms, this.tcExponent);
+    return this.tc0 * this.c.core_power(nTrapped / this.nAtoms, this.rules.tcExponent);
   }
 
+  /** Sum of trapped energies added in world index order (the engines continue it). */
   sequentialEnergySum(): number {
     return this.c.core_sequential_energy_sum(this.core);
   }
@@ -452,14 +362,17 @@ export class WasmEngine implements EngineCore {
     return this.c.core_status_of(this.core, i);
   }
 
+  /** Stored value k (STORED) of world atom i. */
   storedOf(i: number, k: number): number {
     return this.c.core_stored_of(this.core, i, k);
   }
 
+  /** World atom i's energy 1/2 m v^2 + m g y from its stored state (conserved in flight). */
   atomEnergy(i: number): number {
     return this.c.core_atom_energy(this.core, i);
   }
 
+  /** Position and velocity of world atom i carried to time t into out = [x, y, vx, vy]. */
   stateAt(i: number, t: number, out: Float64Array): void {
     const at = this.c.core_state_at(this.core, i, t) >> 3;
     let mem = this.mem;
@@ -471,42 +384,31 @@ export class WasmEngine implements EngineCore {
     out[3] = mem[at + 3];
   }
 
+  /** Trapped atoms filed more than one cell away from their cell now (0 if sound). */
   gridErrors(): number {
     return this.c.core_grid_errors(this.core);
   }
 
+  /** Event k of the log: [kind, i, j, time] with world indices. */
   logEntry(k: number): [number, number, number, number] {
-    return [this.logKind[k], this.logI[k], this.logJ[k], this.logT[k]];
+    return this.log[k];
+  }
+
+  /** Events recorded so far. */
+  get nLog(): number {
+    return this.log.length;
   }
 
   /** Copy the core's log lines into the log here and empty its buffer. */
   private drainLog(): void {
     const lines = this.c.core_n_log(this.core);
     if (lines === 0) return;
-    const need = this.nLog + lines;
-    if (need > this.logT.length) {
-      const cap = Math.max(1024, 2 * need);
-      const grow = <A extends Uint8Array | Int32Array | Float64Array>(old: A, fresh: A): A => {
-        fresh.set(old);
-        return fresh;
-      };
-      this.logKind = grow(this.logKind, new Uint8Array(cap));
-      this.logI = grow(this.logI, new Int32Array(cap));
-      this.logJ = grow(this.logJ, new Int32Array(cap));
-      this.logT = grow(this.logT, new Float64Array(cap));
-    }
     const buffer = this.c.memory.buffer;
     const base = this.c.core_log_address(this.core);
     const ints = new Int32Array(buffer, base, (lines * LOG_LINE_BYTES) >> 2);
     const times = new Float64Array(buffer, base, (lines * LOG_LINE_BYTES) >> 3);
-    for (let k = 0; k < lines; k++) {
-      const q = this.nLog + k;
-      this.logKind[q] = ints[6 * k];
-      this.logI[q] = ints[6 * k + 1];
-      this.logJ[q] = ints[6 * k + 2];
-      this.logT[q] = times[3 * k + 2];
-    }
-    this.nLog = need;
+    for (let k = 0; k < lines; k++)
+      this.log.push([ints[6 * k], ints[6 * k + 1], ints[6 * k + 2], times[3 * k + 2]]);
     this.c.core_log_clear(this.core);
   }
 }
