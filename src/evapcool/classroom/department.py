@@ -23,12 +23,12 @@ from evapcool.classroom.rooms import DEFAULT_ROOM, normal_code
 from evapcool.classroom.server import (
     ADMIN_SECRET,
     Hub,
-    _bearer,
-    _same,
+    bearer_token,
     challenge_info,
     digest,
     guard,
     join_url_of,
+    matches_digest,
     room_projector_key,
 )
 from evapcool.i18n import Catalog
@@ -73,7 +73,7 @@ def clean_title(value: object, field: str) -> str:
 async def _admin(request: Request, token: str) -> Hub:
     """The Hub if `token` is the administrator's, else 403."""
     hub = guard(request)
-    if not _same(token, await hub.db(hub.store.secret, ADMIN_SECRET)):
+    if not matches_digest(token, await hub.db(hub.store.secret, ADMIN_SECRET)):
         raise RefusedError(403, "token", "class.error.admin")
     return hub
 
@@ -117,7 +117,7 @@ def class_doc(request: Request, room: dict[str, Any]) -> dict[str, Any]:
 
 async def admin_lecturers(request: Request) -> Response:
     """GET: the lecturers; POST {name}: a new lecturer and their token (shown once)."""
-    hub = await _admin(request, _bearer(request))
+    hub = await _admin(request, bearer_token(request))
     if request.method == "GET":
         return JSONResponse({"lecturers": await hub.db(hub.store.lecturers)})
     doc = await read_json(request, hub.limits.body_bytes)
@@ -129,7 +129,7 @@ async def admin_lecturers(request: Request) -> Response:
 
 async def admin_classes(request: Request) -> Response:
     """GET: every class; POST {name, lecturer}: a new class for a lecturer."""
-    hub = await _admin(request, _bearer(request))
+    hub = await _admin(request, bearer_token(request))
     if request.method == "GET":
         rooms = await listed_rooms(hub)
         return JSONResponse({"classes": [class_doc(request, r) for r in rooms]})
@@ -148,7 +148,7 @@ async def admin_classes(request: Request) -> Response:
 
 async def my_classes(request: Request) -> Response:
     """GET: the lecturer's classes; POST {name}: a new class of theirs."""
-    hub, who = await _lecturer_of(request, _bearer(request))
+    hub, who = await _lecturer_of(request, bearer_token(request))
     if request.method == "POST":
         doc = await read_json(request, hub.limits.body_bytes)
         room = await hub.db(hub.store.add_room, clean_title(doc.get("name"), "name"), who["id"])

@@ -136,7 +136,7 @@ def new_lecturer_token(store: ClassStore) -> str:
     return token
 
 
-def _same(given: str, wanted: str | None) -> bool:
+def matches_digest(given: str, wanted: str | None) -> bool:
     """Whether a secret given matches a stored digest (in constant time)."""
     return wanted is not None and secrets.compare_digest(digest(given), wanted)
 
@@ -295,7 +295,7 @@ def hub_of(request: Request) -> Hub:
     return hub
 
 
-def _bearer(request: Request) -> str:
+def bearer_token(request: Request) -> str:
     """The Bearer token of a request ('' if none)."""
     auth = request.headers.get("authorization", "")
     return auth[7:].strip() if auth.lower().startswith("bearer ") else ""
@@ -342,14 +342,14 @@ async def lecturer(request: Request, query: bool = False) -> tuple[Hub, dict[str
     403 (another lecturer's token too)."""
     hub = guard(request)
     room = await room_of(request, hub)
-    if not _same(_lecturer_token(request, query), await _lecturer_digest(hub, room)):
+    if not matches_digest(_lecturer_token(request, query), await _lecturer_digest(hub, room)):
         raise RefusedError(403, "token", "class.error.lecturer")
     return hub, room
 
 
 def _lecturer_token(request: Request, query: bool) -> str:
     """The token a request gives: as Bearer, or (query=True, the pages) in ?token=."""
-    return _bearer(request) or (request.query_params.get("token", "") if query else "")
+    return bearer_token(request) or (request.query_params.get("token", "") if query else "")
 
 
 async def keyed(request: Request, hub: Hub, room: dict[str, Any]) -> bool:
@@ -358,7 +358,7 @@ async def keyed(request: Request, hub: Hub, room: dict[str, Any]) -> bool:
     if given is None:
         return False
     if room["lecturer"] is None:
-        ok = _same(given, await hub.db(hub.store.secret, PROJECTOR_SECRET))
+        ok = matches_digest(given, await hub.db(hub.store.secret, PROJECTOR_SECRET))
     else:
         ok = secrets.compare_digest(given, room_projector_key(room["digest"], room["code"]))
     if not ok:
@@ -527,7 +527,7 @@ async def join(request: Request) -> Response:
 async def _student(request: Request, hub: Hub, room: int) -> str:
     """The student token of a request (401 if none known in this class), within its
     submission rate."""
-    token = _bearer(request)
+    token = bearer_token(request)
     if not token or len(token) > 64 or await hub.db(hub.store.player_name, token, room) is None:
         raise RefusedError(401, "token", "class.error.token")
     wait = await hub.db(hub.store.take, "submit", token, hub.limits.submit)
@@ -555,7 +555,7 @@ async def me(request: Request) -> Response:
     limit, best score and place (the student's page shows them before each game)."""
     hub = guard(request)
     room = await room_of(request, hub)
-    token = _bearer(request)
+    token = bearer_token(request)
     name = await hub.db(hub.store.player_name, token, room["id"]) if 0 < len(token) <= 64 else None
     if name is None:
         raise RefusedError(401, "token", "class.error.token")
@@ -757,7 +757,7 @@ async def _debrief_challenge(
     open, unless the lecturer asks (their early look; the projector and students wait for
     the close)."""
     room = await room_of(request, hub)
-    is_lecturer = _same(_bearer(request), await _lecturer_digest(hub, room))
+    is_lecturer = matches_digest(bearer_token(request), await _lecturer_digest(hub, room))
     row = await hub.db(hub.store.latest, room["id"])
     if row is None:
         raise RefusedError(404, "challenge", "class.error.no_challenge")
@@ -782,7 +782,7 @@ async def debrief(request: Request) -> Response:
     room, row, is_lecturer = await _debrief_challenge(request, hub)
     games = await hub.db(hub.store.best_games, row["id"])
     law = await _law(hub, row)
-    viewer = None if is_lecturer else _bearer(request) or None
+    viewer = None if is_lecturer else bearer_token(request) or None
     state = await debrief_state(hub, room["id"])
     doc = debrief_doc(row, games, law, state.anonymous and not is_lecturer, viewer)
     doc["showing"] = state.to_json()
