@@ -27,7 +27,7 @@ from pathlib import Path
 from typing import Any
 
 from evapcool.fileio import atomic_write_text, read_user_text
-from evapcool.game.rules import HEIGHT_MAX, HEIGHT_MIN, Game
+from evapcool.game.rules import HEIGHT_MAX, Game, clamp_height
 from evapcool.i18n import t
 from evapcool.limits import USER_FILE_MAX_BYTES
 from evapcool.physics.simulation import (
@@ -98,13 +98,6 @@ def read(sim: Simulation, mass: float | None = None) -> Reading:
         gravity=sim.gravity,
         mass=mass,
     )
-
-
-def clamp_height(h: float) -> float:
-    """The slider's range, 25 to 450 px; NaN (a broken rule) leaves the trap where it starts."""
-    if h != h:
-        return HEIGHT_MAX
-    return min(HEIGHT_MAX, max(HEIGHT_MIN, h))
 
 
 #: A controller: one game's stateful rule, reading -> trap height (px, clamped).
