@@ -145,18 +145,23 @@ class Simulation:
 
     def _build(self, c: SimulationConfig) -> None:
         r_ref = float(c.radii[0])  # the trap origin lies this far above the wall's lowest point
-        self.room = c.room
-        self.seed = c.seed
+        seed = c.seed
         if c.positions is None or c.velocities is None:
-            if self.seed is None:
-                self.seed = random_seed()  # drawn here so that every start can be replayed
-            pos, vel = load_cup(c.n_atoms, r_ref, c.curvature, c.room.top(r_ref), self.seed)
+            if seed is None:
+                seed = random_seed()  # drawn here so that every start can be replayed
+            pos, vel = load_cup(c.n_atoms, r_ref, c.curvature, c.room.top(r_ref), seed)
         else:
             pos, vel = c.positions.copy(), c.velocities.copy()
         atoms = (pos, vel, c.radii.copy(), c.masses.copy())
-        self._world = world_in(c.room, c, atoms, c.record_events)
-        self._engine = self._make_engine(c.engine, c.n_atoms)
-        self._engine.set_trap_height(c.trap_height)
+        self._start(world_in(c.room, c, atoms, c.record_events), c.room, seed, c.engine)
+
+    def _start(self, world: World, room: Room, seed: int | None, engine: str) -> None:
+        """Run world on engine, its trap at the world's height (the seed: the start's, if drawn)."""
+        self.room = room
+        self.seed = seed
+        self._world = world
+        self._engine = self._make_engine(engine, len(world.radius))
+        self._engine.set_trap_height(world.trap_height)
         self._score: int | None = None
 
     @classmethod
@@ -179,12 +184,7 @@ class Simulation:
         check_world(world, placement=False)
         check_engine_size(engine, len(world.radius))
         sim = cls.__new__(cls)
-        sim.room = room
-        sim.seed = None
-        sim._world = world
-        sim._engine = sim._make_engine(engine, len(world.radius))
-        sim._engine.set_trap_height(world.trap_height)
-        sim._score = None
+        sim._start(world, room, None, engine)
         return sim
 
     @classmethod
