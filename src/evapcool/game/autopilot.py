@@ -191,11 +191,11 @@ class Policy:
 
 @dataclass(frozen=True)
 class PolicySpec:
-    """A closed-loop family: its parameters with defaults, and the controller they build."""
+    """A closed-loop family: its parameters with defaults, and the controller they build
+    (the builder's docstring says what the rule does)."""
 
     defaults: Mapping[str, float]
     build: Callable[[Mapping[str, float]], Controller]
-    doc: str
 
 
 def _progress(frame: float, budget: float) -> float:
@@ -326,7 +326,6 @@ POLICIES: dict[str, PolicySpec] = {
     "feedback": PolicySpec(
         defaults={"eta0": 6.0, "eta1": 6.0, "beta": 0.0, "ratchet": 0.0, "budget": 1800.0},
         build=_feedback,
-        doc="H = eta kT/(m g), eta from eta0 to eta1 over the budget, + beta ln(T/Tc)",
     ),
     "creep": PolicySpec(
         defaults={
@@ -339,7 +338,6 @@ POLICIES: dict[str, PolicySpec] = {
             "budget": 1800.0,
         },
         build=_creep,
-        doc="lower at v0..v1 px/frame while no atom leaves; an escape: up by back kT/(m g), wait",
     ),
     "deadline": PolicySpec(
         defaults={
@@ -351,7 +349,6 @@ POLICIES: dict[str, PolicySpec] = {
             "budget": 1800.0,
         },
         build=_deadline,
-        doc="eta = eta_hi - gain ln(T/Tc) / (finish - t/budget), within [eta_lo, eta_hi]",
     ),
     "guarded": PolicySpec(
         defaults={
@@ -368,8 +365,6 @@ POLICIES: dict[str, PolicySpec] = {
             "budget": 1800.0,
         },
         build=_guarded,
-        doc="a linear ramp, cut lower (eta_cap - gain ln(T/Tc)/(1 - t/budget)) when late; "
-        "from rescue_from on, lowered at least rescue_rate px/frame until the win",
     ),
 }
 
@@ -446,22 +441,22 @@ def _from_document(doc: object, where: str) -> Strategy:
     return parse_strategy(doc.get("strategy"))
 
 
-def read_strategy_file(path: str | os.PathLike[str]) -> tuple[Strategy, dict[str, Any]]:
-    """A strategy file's strategy and its whole document; ValueError if it is not one."""
+def read_strategy_file(path: str | os.PathLike[str]) -> Strategy:
+    """A strategy file's strategy; ValueError if it is not one."""
     p = Path(path)
     try:  # never blocks (a FIFO is refused), and capped: issue 18
         text = read_user_text(p, USER_FILE_MAX_BYTES)
     except (OSError, ValueError) as exc:
         raise ValueError(f"cannot read strategy file {str(p)!r}: {exc}") from None
     if p.suffix.lower() != ".json":
-        return parse_strategy(text), {}
+        return parse_strategy(text)
     try:
         doc = json.loads(text)
     except json.JSONDecodeError as exc:
         raise ValueError(f"{str(p)!r} is not valid JSON: {exc}") from None
     except RecursionError:
         raise ValueError(f"{str(p)!r} is nested too deeply") from None
-    return _from_document(doc, repr(str(p))), doc
+    return _from_document(doc, repr(str(p)))
 
 
 def demo_document() -> dict[str, Any]:
@@ -482,14 +477,14 @@ def _is_file(text: str) -> bool:
 def load_strategy(spec: str | os.PathLike[str]) -> Strategy:
     """'demo', a strategy file (.json, or a text file holding one strategy) or strategy text."""
     if isinstance(spec, os.PathLike):
-        return read_strategy_file(spec)[0]
+        return read_strategy_file(spec)
     if not isinstance(spec, str):
         raise ValueError(f"strategy must be {STRATEGY_HELP} (got {spec!r})")
     s = spec.strip()
     if s.lower() == DEMO:
         return _from_document(demo_document(), "the demo strategy")
     if s.lower().endswith(".json") or (_is_file(s) and not _POLICY.match(s)):
-        return read_strategy_file(s)[0]
+        return read_strategy_file(s)
     return parse_strategy(s)
 
 

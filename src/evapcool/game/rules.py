@@ -208,10 +208,6 @@ class Game:
         if float(self.sim.time).is_integer():
             self._apply_pending()
 
-    @property
-    def playing_back(self) -> bool:
-        return self._script is not None
-
     def _scripted(self) -> None:
         """The script's height for the frame starting now."""
         if self._script is None:

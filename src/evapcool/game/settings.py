@@ -101,14 +101,10 @@ def max_atoms(radius: float) -> int:
 
 
 @lru_cache(maxsize=64)
-def window_capacity(radius: float) -> int:
-    """How many atoms of this radius the loading fits below the window's top (`Simulation`)."""
-    return capacity(radius, CURVATURE, CLASSIC_ROOM.top(radius))
-
-
 def command_line_max_atoms(radius: float) -> int:
-    """Largest --atoms for this radius: what the loading fits (some may start above the rim)."""
-    return min(ATOMS_MAX, window_capacity(float(radius)))
+    """Largest --atoms for this radius: what the loading fits below the window's top, as
+    `Simulation` loads it (some may start above the rim)."""
+    return min(ATOMS_MAX, capacity(radius, CURVATURE, CLASSIC_ROOM.top(radius)))
 
 
 # -- validation -------------------------------------------------------------------
