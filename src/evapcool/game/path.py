@@ -16,7 +16,7 @@ rule). T is kept to T_DIGITS significant digits (the drawing needs no more).
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import asdict, dataclass
 from typing import Any
 
 from evapcool.game.replay import Recording
@@ -43,17 +43,8 @@ class GamePath:
     t0: float
 
     def to_json(self) -> dict[str, Any]:
-        """The stored and served form (columns of numbers)."""
-        return {
-            "k": list(self.k),
-            "n": list(self.n),
-            "t": list(self.t),
-            "h": list(self.h),
-            "frames": self.frames,
-            "won": self.won,
-            "score": self.score,
-            "t0": self.t0,
-        }
+        """The stored and served form (columns of numbers as lists), fields in order."""
+        return {k: list(v) if isinstance(v, tuple) else v for k, v in asdict(self).items()}
 
 
 def stride_of(frames: int) -> int:
