@@ -226,10 +226,7 @@ def _feedback(p: Mapping[str, float]) -> Controller:
 
     def eta(r: Reading) -> float:
         tau = _progress(r.frame, p["budget"])
-        eta = p["eta0"] + (p["eta1"] - p["eta0"]) * tau
-        if r.critical_temperature > 0.0:
-            eta += p["beta"] * math.log(r.temperature / r.critical_temperature)
-        return eta
+        return p["eta0"] + (p["eta1"] - p["eta0"]) * tau + p["beta"] * _gap(r)
 
     return _eta_rule(eta, p["ratchet"] >= 0.5)
 
