@@ -168,12 +168,11 @@ def from_mapping(data: dict[str, object]) -> tuple[Settings, list[str]]:
     # The atom count is checked against the capacity of the radius actually used.
     fallback_n = min(DEFAULTS.n_atoms, max_atoms(radius))
     n_atoms = take("n_atoms", lambda v: _check_n_atoms(v, radius), fallback_n)
-    chosen = {
-        k: take(
-            k, lambda v, k=k, options=options: check_choice(k, v, options), getattr(DEFAULTS, k)
-        )
-        for k, options in choices().items()
-    }
+
+    def choice(name: str, options: tuple[str, ...]) -> Any:
+        return take(name, lambda v: check_choice(name, v, options), getattr(DEFAULTS, name))
+
+    chosen = {name: choice(name, options) for name, options in choices().items()}
     return Settings(n_atoms=n_atoms, radius=radius, **chosen), notices
 
 
