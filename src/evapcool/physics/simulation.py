@@ -77,7 +77,7 @@ def _say_the_core_is_missing() -> None:
     global _said_core_missing
     if not _said_core_missing:
         _said_core_missing = True
-        warnings.warn(missing_note(), CoreMissingWarning, stacklevel=5)
+        warnings.warn(missing_note(), CoreMissingWarning, stacklevel=6)
 
 
 class Simulation:
@@ -198,7 +198,7 @@ class Simulation:
             if engine == "reference":
                 _say_the_core_is_missing()
                 if n >= SLOW_REFERENCE_ATOMS:
-                    warnings.warn(slow_engine_message(n), SlowEngineWarning, stacklevel=4)
+                    warnings.warn(slow_engine_message(n), SlowEngineWarning, stacklevel=5)
         if engine == "fast":
             return CoreEngine(self._world)
         return ReferenceEngine(self._world)
