@@ -21,7 +21,7 @@ import math
 import os
 import re
 from collections.abc import Callable, Mapping
-from dataclasses import dataclass, field
+from dataclasses import asdict, dataclass, field
 from importlib import resources
 from pathlib import Path
 from typing import Any
@@ -505,7 +505,8 @@ class Outcome:
 
 @dataclass(frozen=True)
 class GameSetup:
-    """The game a strategy plays: the classic applet's gas by default, the fast engine."""
+    """The game a strategy plays (each field a keyword of `Simulation`): the classic applet's
+    gas by default, the fast engine."""
 
     n_atoms: int = N_ATOMS
     radius: float = ATOM_RADIUS
@@ -526,14 +527,7 @@ def play(
     The same order as the lab (`evapcool lab --schedule`): H for frame k is decided from the
     state at frame k. trace, if given, gets (frame, H, N, T) for each frame played.
     """
-    sim = Simulation(
-        n_atoms=setup.n_atoms,
-        radius=setup.radius,
-        seed=seed,
-        engine=setup.engine,
-        tc_exponent=setup.tc_exponent,
-        escape=setup.escape,
-    )
+    sim = Simulation(seed=seed, **asdict(setup))
     control = strategy.controller()
     closed = strategy.closed_loop or trace is not None
     frame = 0

@@ -60,14 +60,8 @@ class Settings:
     tc_exponent: float = 2.0 / 3.0
 
     def game_config(self, seed: int, engine: str = "auto") -> GameConfig:
-        return GameConfig(
-            n_atoms=self.n_atoms,
-            radius=self.radius,
-            seed=seed,
-            engine=engine,
-            tc_exponent=self.tc_exponent,
-            escape=self.escape,
-        )
+        """The game these settings, seed and engine play (each field is GameConfig's)."""
+        return GameConfig(seed=seed, engine=engine, **asdict(self))
 
 
 @dataclass(frozen=True)
