@@ -21,13 +21,13 @@ import math
 import os
 import re
 from collections.abc import Callable, Mapping
-from dataclasses import dataclass, field
+from dataclasses import asdict, dataclass, field
 from importlib import resources
 from pathlib import Path
 from typing import Any
 
 from evapcool.fileio import atomic_write_text, read_user_text
-from evapcool.game.rules import HEIGHT_MAX, HEIGHT_MIN, Game
+from evapcool.game.rules import HEIGHT_MAX, Game, clamp_height
 from evapcool.i18n import t
 from evapcool.limits import USER_FILE_MAX_BYTES
 from evapcool.physics.simulation import (
@@ -98,13 +98,6 @@ def read(sim: Simulation, mass: float | None = None) -> Reading:
         gravity=sim.gravity,
         mass=mass,
     )
-
-
-def clamp_height(h: float) -> float:
-    """The slider's range, 25 to 450 px; NaN (a broken rule) leaves the trap where it starts."""
-    if h != h:
-        return HEIGHT_MAX
-    return min(HEIGHT_MAX, max(HEIGHT_MIN, h))
 
 
 #: A controller: one game's stateful rule, reading -> trap height (px, clamped).
@@ -198,11 +191,11 @@ class Policy:
 
 @dataclass(frozen=True)
 class PolicySpec:
-    """A closed-loop family: its parameters with defaults, and the controller they build."""
+    """A closed-loop family: its parameters with defaults, and the controller they build
+    (the builder's docstring says what the rule does)."""
 
     defaults: Mapping[str, float]
     build: Callable[[Mapping[str, float]], Controller]
-    doc: str
 
 
 def _progress(frame: float, budget: float) -> float:
@@ -233,10 +226,7 @@ def _feedback(p: Mapping[str, float]) -> Controller:
 
     def eta(r: Reading) -> float:
         tau = _progress(r.frame, p["budget"])
-        eta = p["eta0"] + (p["eta1"] - p["eta0"]) * tau
-        if r.critical_temperature > 0.0:
-            eta += p["beta"] * math.log(r.temperature / r.critical_temperature)
-        return eta
+        return p["eta0"] + (p["eta1"] - p["eta0"]) * tau + p["beta"] * _gap(r)
 
     return _eta_rule(eta, p["ratchet"] >= 0.5)
 
@@ -333,7 +323,6 @@ POLICIES: dict[str, PolicySpec] = {
     "feedback": PolicySpec(
         defaults={"eta0": 6.0, "eta1": 6.0, "beta": 0.0, "ratchet": 0.0, "budget": 1800.0},
         build=_feedback,
-        doc="H = eta kT/(m g), eta from eta0 to eta1 over the budget, + beta ln(T/Tc)",
     ),
     "creep": PolicySpec(
         defaults={
@@ -346,7 +335,6 @@ POLICIES: dict[str, PolicySpec] = {
             "budget": 1800.0,
         },
         build=_creep,
-        doc="lower at v0..v1 px/frame while no atom leaves; an escape: up by back kT/(m g), wait",
     ),
     "deadline": PolicySpec(
         defaults={
@@ -358,7 +346,6 @@ POLICIES: dict[str, PolicySpec] = {
             "budget": 1800.0,
         },
         build=_deadline,
-        doc="eta = eta_hi - gain ln(T/Tc) / (finish - t/budget), within [eta_lo, eta_hi]",
     ),
     "guarded": PolicySpec(
         defaults={
@@ -375,8 +362,6 @@ POLICIES: dict[str, PolicySpec] = {
             "budget": 1800.0,
         },
         build=_guarded,
-        doc="a linear ramp, cut lower (eta_cap - gain ln(T/Tc)/(1 - t/budget)) when late; "
-        "from rescue_from on, lowered at least rescue_rate px/frame until the win",
     ),
 }
 
@@ -453,22 +438,22 @@ def _from_document(doc: object, where: str) -> Strategy:
     return parse_strategy(doc.get("strategy"))
 
 
-def read_strategy_file(path: str | os.PathLike[str]) -> tuple[Strategy, dict[str, Any]]:
-    """A strategy file's strategy and its whole document; ValueError if it is not one."""
+def read_strategy_file(path: str | os.PathLike[str]) -> Strategy:
+    """A strategy file's strategy; ValueError if it is not one."""
     p = Path(path)
     try:  # never blocks (a FIFO is refused), and capped: issue 18
         text = read_user_text(p, USER_FILE_MAX_BYTES)
     except (OSError, ValueError) as exc:
         raise ValueError(f"cannot read strategy file {str(p)!r}: {exc}") from None
     if p.suffix.lower() != ".json":
-        return parse_strategy(text), {}
+        return parse_strategy(text)
     try:
         doc = json.loads(text)
     except json.JSONDecodeError as exc:
         raise ValueError(f"{str(p)!r} is not valid JSON: {exc}") from None
     except RecursionError:
         raise ValueError(f"{str(p)!r} is nested too deeply") from None
-    return _from_document(doc, repr(str(p))), doc
+    return _from_document(doc, repr(str(p)))
 
 
 def demo_document() -> dict[str, Any]:
@@ -489,14 +474,14 @@ def _is_file(text: str) -> bool:
 def load_strategy(spec: str | os.PathLike[str]) -> Strategy:
     """'demo', a strategy file (.json, or a text file holding one strategy) or strategy text."""
     if isinstance(spec, os.PathLike):
-        return read_strategy_file(spec)[0]
+        return read_strategy_file(spec)
     if not isinstance(spec, str):
         raise ValueError(f"strategy must be {STRATEGY_HELP} (got {spec!r})")
     s = spec.strip()
     if s.lower() == DEMO:
         return _from_document(demo_document(), "the demo strategy")
     if s.lower().endswith(".json") or (_is_file(s) and not _POLICY.match(s)):
-        return read_strategy_file(s)[0]
+        return read_strategy_file(s)
     return parse_strategy(s)
 
 
@@ -520,7 +505,8 @@ class Outcome:
 
 @dataclass(frozen=True)
 class GameSetup:
-    """The game a strategy plays: the classic applet's gas by default, the fast engine."""
+    """The game a strategy plays (each field a keyword of `Simulation`): the classic applet's
+    gas by default, the fast engine."""
 
     n_atoms: int = N_ATOMS
     radius: float = ATOM_RADIUS
@@ -541,14 +527,7 @@ def play(
     The same order as the lab (`evapcool lab --schedule`): H for frame k is decided from the
     state at frame k. trace, if given, gets (frame, H, N, T) for each frame played.
     """
-    sim = Simulation(
-        n_atoms=setup.n_atoms,
-        radius=setup.radius,
-        seed=seed,
-        engine=setup.engine,
-        tc_exponent=setup.tc_exponent,
-        escape=setup.escape,
-    )
+    sim = Simulation(seed=seed, **asdict(setup))
     control = strategy.controller()
     closed = strategy.closed_loop or trace is not None
     frame = 0

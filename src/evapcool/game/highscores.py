@@ -220,10 +220,6 @@ class HighScoreTable:
         self._unsaved = []
         return self._write(merge=False)
 
-    def save(self) -> bool:
-        """Write the table (merged with the file's) atomically; False and a notice on failure."""
-        return self._write(merge=True)
-
     def _write(self, merge: bool) -> bool:
         try:
             self.path.parent.mkdir(parents=True, exist_ok=True)

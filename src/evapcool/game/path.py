@@ -16,11 +16,11 @@ rule). T is kept to T_DIGITS significant digits (the drawing needs no more).
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import asdict, dataclass
 from typing import Any
 
 from evapcool.game.replay import Recording
-from evapcool.game.rules import HEIGHT_MAX, HEIGHT_MIN, Game
+from evapcool.game.rules import Game, clamp_height
 
 #: Most points a path keeps (a few hundred: 300 games draw at once).
 MAX_POINTS = 240
@@ -43,17 +43,8 @@ class GamePath:
     t0: float
 
     def to_json(self) -> dict[str, Any]:
-        """The stored and served form (columns of numbers)."""
-        return {
-            "k": list(self.k),
-            "n": list(self.n),
-            "t": list(self.t),
-            "h": list(self.h),
-            "frames": self.frames,
-            "won": self.won,
-            "score": self.score,
-            "t0": self.t0,
-        }
+        """The stored and served form (columns of numbers as lists), fields in order."""
+        return {k: list(v) if isinstance(v, tuple) else v for k, v in asdict(self).items()}
 
 
 def stride_of(frames: int) -> int:
@@ -66,11 +57,6 @@ def round_t(t: float) -> float:
     return float(f"{t:.{T_DIGITS - 1}e}")
 
 
-def clamp(h: float) -> float:
-    """The slider's clamp (Game.set_trap_height's)."""
-    return min(HEIGHT_MAX, max(HEIGHT_MIN, float(h)))
-
-
 def game_path(
     rec: Recording, frames: int | None = None, engine: str = "auto", stride: int | None = None
 ) -> GamePath:
@@ -80,7 +66,7 @@ def game_path(
     total = rec.n_frames if frames is None else min(frames, rec.n_frames)
     stride = stride or stride_of(total)
     sim = Game(rec.settings.game_config(rec.seed, engine)).sim
-    heights = [clamp(h) for h, _ in rec.moves]
+    heights = [clamp_height(h) for h, _ in rec.moves]
     ks: list[int] = []
     ns: list[int] = []
     ts: list[float] = []
@@ -95,7 +81,7 @@ def game_path(
             hs.append(h)
 
     t0 = float(sim.temperature)
-    keep(0, heights[0] if heights else clamp(sim.trap_height))
+    keep(0, heights[0] if heights else clamp_height(sim.trap_height))
     k = 0
     for (_, run), h in zip(rec.moves, heights, strict=True):
         for _ in range(run):

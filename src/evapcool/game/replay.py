@@ -20,7 +20,7 @@ from dataclasses import asdict, dataclass, field
 from typing import Any
 
 from evapcool.about import __version__
-from evapcool.game.rules import HEIGHT_MAX, HEIGHT_MIN, Game, GameConfig
+from evapcool.game.rules import HEIGHT_MAX, HEIGHT_MIN, Game, GameConfig, clamp_height
 from evapcool.limits import REPLAY_ATOMS, REPLAY_FRAMES_MAX, REPLAY_RADIUS
 from evapcool.physics.start import SEED_PORTABLE_MAX, START_GENERATOR
 
@@ -60,14 +60,8 @@ class Settings:
     tc_exponent: float = 2.0 / 3.0
 
     def game_config(self, seed: int, engine: str = "auto") -> GameConfig:
-        return GameConfig(
-            n_atoms=self.n_atoms,
-            radius=self.radius,
-            seed=seed,
-            engine=engine,
-            tc_exponent=self.tc_exponent,
-            escape=self.escape,
-        )
+        """The game these settings, seed and engine play (each field is GameConfig's)."""
+        return GameConfig(seed=seed, engine=engine, **asdict(self))
 
 
 @dataclass(frozen=True)
@@ -262,8 +256,7 @@ def replay(rec: Recording, engine: str = "auto") -> Verdict:
     in one call to the compiled core where it is installed)."""
     game = Game(rec.settings.game_config(rec.seed, engine))
     game.toggle_pause()
-    # The slider's clamp, as Game.set_trap_height applies it.
-    moves = [(min(HEIGHT_MAX, max(HEIGHT_MIN, float(h))), n) for h, n in rec.moves]
+    moves = [(clamp_height(h), n) for h, n in rec.moves]  # as Game.set_trap_height clamps
     frames = game.sim.replay(moves, min(rec.n_frames, 2**31 - 1))
     score = game.sim.score
     return Verdict(score is not None, score or 0, frames)
@@ -291,7 +284,7 @@ def record_autopilot(
     strategy_spec: str, settings: Settings, seed: int, budget: int = 1800, engine: str = "auto"
 ) -> Recording:
     """A recording of an autopilot strategy playing one game headless (tests, benchmarks)."""
-    from evapcool.game.autopilot import clamp_height, load_strategy, read
+    from evapcool.game.autopilot import load_strategy, read
 
     control = load_strategy(strategy_spec).controller()
     game = Game(settings.game_config(seed, engine))

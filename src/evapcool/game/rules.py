@@ -16,7 +16,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable
-from dataclasses import dataclass, fields, replace
+from dataclasses import dataclass, fields
 from typing import Any
 
 from evapcool.i18n import t
@@ -66,6 +66,13 @@ class GameConfig:
     room: Room = CLASSIC_ROOM
 
 
+def clamp_height(h: float) -> float:
+    """The slider's range, 25 to 450 px; NaN (a broken rule) leaves the trap where it starts."""
+    if h != h:
+        return HEIGHT_MAX
+    return min(HEIGHT_MAX, max(HEIGHT_MIN, float(h)))
+
+
 def check_speed(speed: object) -> float:
     """The speed as a float, or ValueError naming the allowed range."""
     return APPLET_SPEED.check("speed", speed)
@@ -85,17 +92,11 @@ GAME_PHYSICS: dict[str, Any] = {
 def make_simulation(config: GameConfig) -> Simulation:
     """A fresh simulation for config; the reference engine if the compiled core is missing."""
 
-    # Checked once, here at the game's boundary; the fallback below is not checked again.
-    # The config's own fields that are the simulation's (all but speed), by their names.
+    # Checked once, here at the game's boundary. The config's own fields that are the
+    # simulation's (all but speed), by their names. engine="auto" plays on the reference
+    # engine where the core is missing (Simulation says so once).
     chosen = {f.name: getattr(config, f.name) for f in fields(config) if f.name in CHECKED_KEYWORDS}
-    checked = SimulationConfig.checked(**chosen, **GAME_PHYSICS)
-    try:
-        return Simulation.from_config(checked)
-    except ImportError:
-        # The compiled core missing (an sdist installed without a C compiler).
-        if config.engine == "fast":
-            raise
-        return Simulation.from_config(replace(checked, engine="reference"))
+    return Simulation.from_config(SimulationConfig.checked(**chosen, **GAME_PHYSICS))
 
 
 class Game:
@@ -188,7 +189,7 @@ class Game:
         if self.won or self._script is not None:
             return False  # the score is the atoms left: no evaporating after the win
         # The slider's range, inside limits.TRAP_HEIGHT: the one check and conversion.
-        h = min(HEIGHT_MAX, max(HEIGHT_MIN, float(height)))
+        h = clamp_height(height)
         if h == self.trap_height:
             return False
         self._pending_height = h
@@ -207,10 +208,6 @@ class Game:
         if float(self.sim.time).is_integer():
             self._apply_pending()
 
-    @property
-    def playing_back(self) -> bool:
-        return self._script is not None
-
     def _scripted(self) -> None:
         """The script's height for the frame starting now."""
         if self._script is None:
@@ -218,8 +215,7 @@ class Game:
         if self._frames_done >= len(self._script):
             self._script = None
             return
-        h = self._script[self._frames_done]
-        self._pending_height = min(HEIGHT_MAX, max(HEIGHT_MIN, float(h)))
+        self._pending_height = clamp_height(self._script[self._frames_done])
 
     def _apply_pending(self) -> None:
         if self._pending_height is not None:

@@ -16,7 +16,7 @@ from collections.abc import Callable
 from dataclasses import asdict, dataclass, fields, replace
 from functools import lru_cache
 from pathlib import Path
-from typing import Any, TypeVar
+from typing import Any
 
 from evapcool import limits
 from evapcool.about import APP_NAME
@@ -29,6 +29,7 @@ from evapcool.fileio import (
     warn,
 )
 from evapcool.i18n import PSEUDO, language_name, shipped_locales, t
+from evapcool.physics.config import check_choice
 from evapcool.physics.loading import capacity
 from evapcool.physics.room import CLASSIC_ROOM
 from evapcool.physics.simulation import (
@@ -81,7 +82,6 @@ class Settings:
 
 DEFAULTS = Settings()
 FIELD_NAMES = tuple(f.name for f in fields(Settings))
-_T = TypeVar("_T")
 
 
 @lru_cache(maxsize=64)
@@ -101,21 +101,13 @@ def max_atoms(radius: float) -> int:
 
 
 @lru_cache(maxsize=64)
-def window_capacity(radius: float) -> int:
-    """How many atoms of this radius the loading fits below the window's top (`Simulation`)."""
-    return capacity(radius, CURVATURE, CLASSIC_ROOM.top(radius))
-
-
 def command_line_max_atoms(radius: float) -> int:
-    """Largest --atoms for this radius: what the loading fits (some may start above the rim)."""
-    return min(ATOMS_MAX, window_capacity(float(radius)))
+    """Largest --atoms for this radius: what the loading fits below the window's top, as
+    `Simulation` loads it (some may start above the rim)."""
+    return min(ATOMS_MAX, capacity(radius, CURVATURE, CLASSIC_ROOM.top(radius)))
 
 
 # -- validation -------------------------------------------------------------------
-def _check_radius(value: object) -> float:
-    return limits.APPLET_RADIUS.check("radius", value)
-
-
 def _check_n_atoms(value: object, radius: float, cap: Callable[[float], int] = max_atoms) -> int:
     top = cap(radius)
     if isinstance(value, float) and value.is_integer():
@@ -134,15 +126,14 @@ def _check_n_atoms(value: object, radius: float, cap: Callable[[float], int] = m
     return int(value)
 
 
-def _check_choice(name: str, value: object, allowed: tuple[str, ...]) -> str:
-    if not isinstance(value, str) or value not in allowed:
-        raise limits.bad_value(name, "one of " + ", ".join(allowed), value)
-    return value
-
-
 def languages() -> tuple[str, ...]:
     """What the language setting may be: "auto", then every shipped catalog and en-XA."""
     return ("auto", *shipped_locales(), PSEUDO)
+
+
+def choices() -> dict[str, tuple[str, ...]]:
+    """The settings that are a choice among names, with their options in screen order."""
+    return {"tc_law": tuple(TC_LAWS), "escape": ESCAPE_RULES, "language": languages()}
 
 
 def validate(settings: Settings, cap: Callable[[float], int] = max_atoms) -> Settings:
@@ -151,14 +142,10 @@ def validate(settings: Settings, cap: Callable[[float], int] = max_atoms) -> Set
     cap(radius): the most atoms allowed, by default the settings screen's (all below the
     rim); the command line allows what the loading fits (command_line_max_atoms).
     """
-    radius = _check_radius(settings.radius)
-    return Settings(
-        n_atoms=_check_n_atoms(settings.n_atoms, radius, cap),
-        radius=radius,
-        tc_law=_check_choice("tc_law", settings.tc_law, tuple(TC_LAWS)),
-        escape=_check_choice("escape", settings.escape, ESCAPE_RULES),
-        language=_check_choice("language", settings.language, languages()),
-    )
+    radius = limits.APPLET_RADIUS.check("radius", settings.radius)
+    n_atoms = _check_n_atoms(settings.n_atoms, radius, cap)
+    chosen = {k: check_choice(k, getattr(settings, k), v) for k, v in choices().items()}
+    return Settings(n_atoms=n_atoms, radius=radius, **chosen)
 
 
 def from_mapping(data: dict[str, object]) -> tuple[Settings, list[str]]:
@@ -168,7 +155,7 @@ def from_mapping(data: dict[str, object]) -> tuple[Settings, list[str]]:
     if unknown:
         notices.append(t("notice.settings_unknown", names=", ".join(unknown)))
 
-    def take(name: str, check: Callable[[object], _T], default: _T) -> _T:
+    def take(name: str, check: Callable[[object], Any], default: Any) -> Any:
         if name not in data:
             return default
         try:
@@ -177,19 +164,16 @@ def from_mapping(data: dict[str, object]) -> tuple[Settings, list[str]]:
             notices.append(t("notice.settings_bad_value", problem=exc, default=repr(default)))
             return default
 
-    radius = take("radius", _check_radius, DEFAULTS.radius)
+    radius = take("radius", lambda v: limits.APPLET_RADIUS.check("radius", v), DEFAULTS.radius)
     # The atom count is checked against the capacity of the radius actually used.
     fallback_n = min(DEFAULTS.n_atoms, max_atoms(radius))
     n_atoms = take("n_atoms", lambda v: _check_n_atoms(v, radius), fallback_n)
-    tc_law = take("tc_law", lambda v: _check_choice("tc_law", v, tuple(TC_LAWS)), DEFAULTS.tc_law)
-    escape = take("escape", lambda v: _check_choice("escape", v, ESCAPE_RULES), DEFAULTS.escape)
-    language = take(
-        "language", lambda v: _check_choice("language", v, languages()), DEFAULTS.language
-    )
-    found = Settings(
-        n_atoms=n_atoms, radius=radius, tc_law=tc_law, escape=escape, language=language
-    )
-    return found, notices
+
+    def choice(name: str, options: tuple[str, ...]) -> Any:
+        return take(name, lambda v: check_choice(name, v, options), getattr(DEFAULTS, name))
+
+    chosen = {name: choice(name, options) for name, options in choices().items()}
+    return Settings(n_atoms=n_atoms, radius=radius, **chosen), notices
 
 
 def with_overrides(settings: Settings, **overrides: Any) -> Settings:
@@ -220,8 +204,8 @@ def step(settings: Settings, name: str, direction: int) -> Settings:
     if name == "radius":
         r = max(RADIUS_MIN, min(RADIUS_MAX, round(s.radius) + d))
         return replace(s, radius=float(r), n_atoms=min(s.n_atoms, max_atoms(r)))
-    if name in ("tc_law", "escape", "language"):
-        options = {"tc_law": tuple(TC_LAWS), "escape": ESCAPE_RULES, "language": languages()}[name]
+    if name in choices():
+        options = choices()[name]
         i = options.index(getattr(s, name))
         changed: dict[str, Any] = {name: options[(i + d) % len(options)]}
         return replace(s, **changed)

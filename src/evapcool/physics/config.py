@@ -16,6 +16,7 @@ from numpy.typing import ArrayLike
 
 from evapcool import limits
 from evapcool.limits import ParameterError, Range, bad_value
+from evapcool.physics.core import available
 from evapcool.physics.room import Room, check_room
 from evapcool.physics.validation import check_start
 from evapcool.physics.world import ESCAPE_RULES
@@ -114,13 +115,6 @@ class SimulationConfig:
 CHECKED_KEYWORDS = frozenset(inspect.signature(SimulationConfig.checked).parameters)
 
 
-def fast_available() -> bool:
-    """True if the compiled core (engine 'fast') is installed."""
-    from evapcool.physics.core import available
-
-    return available()
-
-
 def check_engine_size(engine: str, n: int) -> None:
     """The reference engine's N x N table must stay small (limits.REFERENCE_MAX_ATOMS)."""
     if n <= limits.REFERENCE_MAX_ATOMS:
@@ -131,7 +125,7 @@ def check_engine_size(engine: str, n: int) -> None:
             f"must be at most {limits.REFERENCE_MAX_ATOMS} with engine='reference' "
             f"(its pair table grows as N^2; got {n}); use engine='fast' or 'auto'",
         )
-    if engine == "auto" and not fast_available():
+    if engine == "auto" and not available():
         raise ParameterError(
             "n_atoms",
             f"must be at most {limits.REFERENCE_MAX_ATOMS} without the compiled core "

@@ -105,18 +105,10 @@ class CoreEngine:
         """The core's clock, sums and stored states into the World (one pass in C)."""
         w = self.w
         self.core.export(w.pos, w.vel, w.t_atom, w.status, w.counter)
-        time, energy_sum, won, n_trapped, pairs, walls, crossings, stale, height = (
-            self.core.scalars()
-        )
-        w.time = time
-        w.trap_height = height
-        w.energy_sum = energy_sum
-        w.won = won
-        w.n_trapped = n_trapped
-        w.pair_count = pairs
-        w.wall_count = walls
-        self._crossings = crossings
-        self._stale = stale
+        (
+            w.time, w.energy_sum, w.won, w.n_trapped, w.pair_count, w.wall_count,
+            self._crossings, self._stale, w.trap_height,
+        ) = self.core.scalars()  # fmt: skip
 
     def _take_log(self) -> None:
         if self.w.record_events:

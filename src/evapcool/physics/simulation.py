@@ -8,7 +8,7 @@ from __future__ import annotations
 import math
 import warnings
 from collections.abc import Sequence
-from typing import TYPE_CHECKING, Any
+from typing import Any
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -25,7 +25,6 @@ from evapcool.physics.config import (
     SimulationConfig,
     check_choice,
     check_engine_size,
-    fast_available,
 )
 from evapcool.physics.constants import (
     ATOM_RADIUS,
@@ -38,9 +37,12 @@ from evapcool.physics.constants import (
     TC_LAWS,
     TRAP_HEIGHT,
 )
+from evapcool.physics.core import CoreEngine, available, missing_note
 from evapcool.physics.loading import load_cup
+from evapcool.physics.reference import ReferenceEngine
 from evapcool.physics.room import CLASSIC_ROOM, Room, check_room
 from evapcool.physics.start import random_seed
+from evapcool.physics.state import to_state, world_from_state
 from evapcool.physics.validation import check_world
 from evapcool.physics.world import (
     ESCAPED,
@@ -50,15 +52,10 @@ from evapcool.physics.world import (
     world_in,
 )
 
-if TYPE_CHECKING:
-    from evapcool.physics.core import CoreEngine
-    from evapcool.physics.reference import ReferenceEngine
-
 #: Public names; the applet's constants are defined in physics/constants.py (below
 #: physics/state.py too) and re-exported here, where callers have always found them.
 __all__ = [
     "ATOM_RADIUS",
-    "AUTO_FAST_MIN_ATOMS",
     "CURVATURE",
     "ENGINES",
     "FPS",
@@ -70,10 +67,6 @@ __all__ = [
     "TRAP_HEIGHT",
     "Simulation",
 ]
-#: engine="auto" uses the compiled core ("fast") from this many atoms on: from the first,
-#: as it has no start-up cost and is faster than the NumPy engine at any size
-#: (docs/benchmarks.md).
-AUTO_FAST_MIN_ATOMS = 1
 
 
 _said_core_missing = False
@@ -84,9 +77,7 @@ def _say_the_core_is_missing() -> None:
     global _said_core_missing
     if not _said_core_missing:
         _said_core_missing = True
-        from evapcool.physics.core import missing_note
-
-        warnings.warn(missing_note(), CoreMissingWarning, stacklevel=5)
+        warnings.warn(missing_note(), CoreMissingWarning, stacklevel=6)
 
 
 class Simulation:
@@ -145,18 +136,23 @@ class Simulation:
 
     def _build(self, c: SimulationConfig) -> None:
         r_ref = float(c.radii[0])  # the trap origin lies this far above the wall's lowest point
-        self.room = c.room
-        self.seed = c.seed
+        seed = c.seed
         if c.positions is None or c.velocities is None:
-            if self.seed is None:
-                self.seed = random_seed()  # drawn here so that every start can be replayed
-            pos, vel = load_cup(c.n_atoms, r_ref, c.curvature, c.room.top(r_ref), self.seed)
+            if seed is None:
+                seed = random_seed()  # drawn here so that every start can be replayed
+            pos, vel = load_cup(c.n_atoms, r_ref, c.curvature, c.room.top(r_ref), seed)
         else:
             pos, vel = c.positions.copy(), c.velocities.copy()
         atoms = (pos, vel, c.radii.copy(), c.masses.copy())
-        self._world = world_in(c.room, c, atoms, c.record_events)
-        self._engine = self._make_engine(c.engine, c.n_atoms)
-        self._engine.set_trap_height(c.trap_height)
+        self._start(world_in(c.room, c, atoms, c.record_events), c.room, seed, c.engine)
+
+    def _start(self, world: World, room: Room, seed: int | None, engine: str) -> None:
+        """Run world on engine, its trap at the world's height (the seed: the start's, if drawn)."""
+        self.room = room
+        self.seed = seed
+        self._world = world
+        self._engine = self._make_engine(engine, len(world.radius))
+        self._engine.set_trap_height(world.trap_height)
         self._score: int | None = None
 
     @classmethod
@@ -179,12 +175,7 @@ class Simulation:
         check_world(world, placement=False)
         check_engine_size(engine, len(world.radius))
         sim = cls.__new__(cls)
-        sim.room = room
-        sim.seed = None
-        sim._world = world
-        sim._engine = sim._make_engine(engine, len(world.radius))
-        sim._engine.set_trap_height(world.trap_height)
-        sim._score = None
+        sim._start(world, room, None, engine)
         return sim
 
     @classmethod
@@ -192,30 +183,24 @@ class Simulation:
         cls, state: dict[str, Any] | str, engine: str = "auto", **kw: bool
     ) -> Simulation:
         """Go on exactly from a state (dict or JSON text, docs/state.md); see physics.state."""
-        from evapcool.physics.state import world_from_state
-
         world, room = world_from_state(state, **kw)
         return cls.from_world(world, room, engine)
 
     def to_state(self) -> dict[str, Any]:
         """The state as a JSON-ready dict (docs/state.md), resumable with from_state."""
-        from evapcool.physics.state import to_state
-
         return to_state(self)
 
     def _make_engine(self, engine: str, n: int) -> ReferenceEngine | CoreEngine:
         if engine == "auto":
-            engine = "fast" if n >= AUTO_FAST_MIN_ATOMS and fast_available() else "reference"
-            if engine == "reference" and not fast_available():
+            # The compiled core wherever it is installed: it has no start-up cost and is
+            # faster than the NumPy engine at any size (docs/benchmarks.md).
+            engine = "fast" if available() else "reference"
+            if engine == "reference":
                 _say_the_core_is_missing()
-            if engine == "reference" and n >= SLOW_REFERENCE_ATOMS:
-                warnings.warn(slow_engine_message(n), SlowEngineWarning, stacklevel=4)
+                if n >= SLOW_REFERENCE_ATOMS:
+                    warnings.warn(slow_engine_message(n), SlowEngineWarning, stacklevel=5)
         if engine == "fast":
-            from evapcool.physics.core import CoreEngine
-
             return CoreEngine(self._world)
-        from evapcool.physics.reference import ReferenceEngine
-
         return ReferenceEngine(self._world)
 
     def __repr__(self) -> str:

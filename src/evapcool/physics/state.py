@@ -146,19 +146,12 @@ def _real(v: object) -> TypeGuard[numbers.Real]:
     return isinstance(v, numbers.Real) and not isinstance(v, bool)
 
 
-def _finite(name: str, v: object, default: float) -> float:
+def _finite(name: str, v: object, default: float, positive: bool = False) -> float:
+    """v as a float (default if absent): finite, and > 0 if positive."""
     if v is None:
         return default
-    if not _real(v) or not math.isfinite(float(v)):
-        raise _bad(name, "a finite number", v)
-    return float(v)
-
-
-def _positive(name: str, v: object, default: float) -> float:
-    if v is None:
-        return default
-    if not _real(v) or not math.isfinite(float(v)) or float(v) <= 0.0:
-        raise _bad(name, "a positive finite number", v)
+    if not _real(v) or not math.isfinite(float(v)) or (positive and float(v) <= 0.0):
+        raise _bad(name, "a positive finite number" if positive else "a finite number", v)
     return float(v)
 
 
@@ -190,7 +183,7 @@ def _column(name: str, v: object, n: int | None) -> np.ndarray:
 
 def _per_atom(name: str, v: object, n: int, default: float) -> np.ndarray:
     if v is None or _real(v):
-        return np.full(n, _positive(name, v, default))
+        return np.full(n, _finite(name, v, default, positive=True))
     out = _column(name, v, n)
     bad = np.flatnonzero(out <= 0.0)
     if bad.size:
@@ -252,8 +245,8 @@ def parse_state(state: object) -> ParsedState:
             if name not in STATUS_NAMES:
                 raise _bad(f"state.atoms.status[{i}]", '"trapped", "escaped" or "gone"', name)
             status[i] = STATUS_NAMES.index(name)
-    height = s("trap_height")
-    height = math.inf if height == "inf" else _positive("state.trap_height", height, TRAP_HEIGHT)
+    h = s("trap_height")
+    height = math.inf if h == "inf" else _finite("state.trap_height", h, TRAP_HEIGHT, positive=True)
     escape = "rim" if s("escape") is None else s("escape")
     if escape not in ESCAPE_RULES:
         raise _bad("state.escape", "one of " + ", ".join(ESCAPE_RULES), escape)
@@ -262,11 +255,11 @@ def parse_state(state: object) -> ParsedState:
     return ParsedState(
         time=time,
         trap_height=height,
-        curvature=_positive("state.curvature", s("curvature"), CURVATURE),
-        gravity=_positive("state.gravity", s("gravity"), GRAVITY),
+        curvature=_finite("state.curvature", s("curvature"), CURVATURE, positive=True),
+        gravity=_finite("state.gravity", s("gravity"), GRAVITY, positive=True),
         window=WINDOW if s("window") is None else _window("state.window", s("window")),
         escape=escape,
-        tc_exponent=_positive("state.tc_exponent", s("tc_exponent"), TC_EXPONENT_SEED),
+        tc_exponent=_finite("state.tc_exponent", s("tc_exponent"), TC_EXPONENT_SEED, positive=True),
         win=_flag("state.win", s("win"), True),
         won=_flag("state.won", s("won"), False),
         initial_temperature=None if t0 is None else _finite("state.initial_temperature", t0, 0),
@@ -311,9 +304,8 @@ def check_placement(
         return
     # A grid, linear in N (validation.first_overlap); a sweep along x was O(N^2) for a column.
     pair = first_overlap(np.column_stack((x[idx], y[idx])), radius[idx], tol)
-    best: tuple[int, int] | None = None if pair is None else (int(idx[pair[0]]), int(idx[pair[1]]))
-    if best is not None:
-        a, b = best
+    if pair is not None:
+        a, b = int(idx[pair[0]]), int(idx[pair[1]])
         d = math.hypot(x[b] - x[a], y[b] - y[a])
         reach = float(radius[a] + radius[b])
         raise ValueError(

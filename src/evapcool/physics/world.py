@@ -89,10 +89,6 @@ class World:
 
     # -- derived quantities -------------------------------------------------
     @property
-    def half_gravity(self) -> float:
-        return 0.5 * self.gravity
-
-    @property
     def rim_half_width(self) -> float:
         """x_rim = sqrt(H / a); the wall ends there."""
         return math.sqrt(self.trap_height / self.curvature)
@@ -133,7 +129,7 @@ class World:
         out_p = np.empty_like(p)
         out_v = v.copy()
         out_p[:, 0] = flight_x(p[:, 0], v[:, 0], dt)
-        out_p[:, 1] = flight_y(p[:, 1], v[:, 1], self.half_gravity, dt)
+        out_p[:, 1] = flight_y(p[:, 1], v[:, 1], 0.5 * self.gravity, dt)
         out_v[:, 1] = flight_vy(v[:, 1], self.gravity, dt)
         return out_p, out_v
 
