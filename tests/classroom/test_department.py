@@ -16,7 +16,7 @@ import pytest
 from classhelp import SEED, SETTINGS, Server, code, start_server
 
 from evapcool.classroom import rooms
-from evapcool.classroom.server import open_store
+from evapcool.classroom.server import digest, new_lecturer_token, open_store
 
 
 @pytest.fixture
@@ -229,3 +229,60 @@ def test_join_by_code_admin_page_and_class_pages(department: Server) -> None:
     assert bad_key.status_code == 403
     refused = httpx.post(department.base + "/api/classes", json={"name": ""}, headers=bearer(cy))
     assert refused.status_code == 400 and refused.json()["error"]["field"] == "name"
+
+
+def _back_link(page: str) -> str | None:
+    """The href of a class's lecturer page's link back to the list of classes, or None."""
+    found = re.search(r'<a id="classes" href="([^"]*)">([^<]*)</a>', page)
+    if found is None:
+        assert 'id="classes"' not in page, page
+        return None
+    assert found.group(2) == "Back to my classes"
+    return found.group(1)
+
+
+def test_a_class_page_links_back_to_its_lecturers_classes(store_at: Path | str) -> None:
+    store = open_store(store_at, 2)
+    try:  # the single class's lecturer, as `evapcool class` without --department made one
+        single = new_lecturer_token(store)
+        single_code = store.room(rooms.DEFAULT_ROOM)["code"]  # type: ignore[index]
+    finally:
+        store.close()
+    running = start_server(store_at, extra=("--department",))
+    try:
+        ada = new_lecturer(running, "Ada")
+        made = new_class(running, ada, "Optics")
+        page = httpx.get(running.base + made["lecturer_page"], params={"token": ada})
+        assert page.status_code == 200
+        href = _back_link(page.text)
+        assert href == f"/lecturer?token={ada}"  # where the list's own links carry it
+        listed = httpx.get(running.base + href)
+        assert listed.status_code == 200 and made["code"] in listed.text
+        # a token given as Bearer only is not written into the page
+        bearer_only = httpx.get(running.base + made["lecturer_page"], headers=bearer(ada))
+        assert bearer_only.status_code == 200 and _back_link(bearer_only.text) is None
+        assert ada not in bearer_only.text
+        # the single class's token is no department lecturer's: no list to go back to
+        old = httpx.get(running.base + f"/c/{single_code}/lecturer", params={"token": single})
+        assert old.status_code == 200 and _back_link(old.text) is None
+        assert httpx.get(running.base + "/lecturer", params={"token": single}).status_code == 403
+    finally:
+        running.stop()
+
+
+def test_a_single_class_server_has_no_list_to_link_to(store_at: Path | str) -> None:
+    store = open_store(store_at, 2)
+    try:  # a department's class in the store, served without --department
+        ada = "a" * 32
+        made = store.add_room("Optics", store.add_lecturer("Ada", digest(ada)))
+    finally:
+        store.close()
+    running = start_server(store_at)
+    try:
+        page = httpx.get(running.base + "/lecturer", params={"token": running.token})
+        assert page.status_code == 200 and 'id="projector"' in page.text
+        assert _back_link(page.text) is None
+        theirs = httpx.get(running.base + f"/c/{made['code']}/lecturer", params={"token": ada})
+        assert theirs.status_code == 200 and _back_link(theirs.text) is None
+    finally:
+        running.stop()

@@ -91,6 +91,7 @@ def create_app(
     handlers = {RefusedError: _refused, 404: _no_route, 405: _no_route}
     app = Starlette(routes=routes(department), lifespan=lifespan, exception_handlers=handlers)
     app.state.join_url = join_url
+    app.state.department = department  # the class pages link to /lecturer's list
     app.add_middleware(_SafeHeaders)
     return app
 

@@ -124,7 +124,7 @@ $loopback<div id="qr">$qr</div><p id="join">$join</p>
 <iframe id="replay-frame" title="$replay" hidden></iframe></div></div></div>""")
 
 LECTURER_BODY = Template("""<h1>$title</h1>
-<p><a id="projector" href="$base/projector?key=$key" target="_blank">$projector</a> ·
+<p>$classes<a id="projector" href="$base/projector?key=$key" target="_blank">$projector</a> ·
 <a id="export" download>$export</a></p>
 <p id="current"></p><p id="current-settings"></p>
 <p><button id="close">$close</button> <button id="stop">$stop</button></p>
@@ -302,15 +302,27 @@ GAME_LABELS = {
 
 
 def lecturer_page(
-    raw: Callable[[str], str], lang: str, direction: str, key: str, base: str = ""
+    raw: Callable[[str], str],
+    lang: str,
+    direction: str,
+    key: str,
+    base: str = "",
+    classes: str = "",
 ) -> str:
     """The lecturer's page: open and close a challenge, the entries, hide, rename, replay,
     export, and the projector's link with its key (base: the class's path, "" for the
-    single class)."""
+    single class; classes: the address of the department lecturer's list of classes, ""
+    for none)."""
     words = {k: raw(v) for k, v in PAGE_WORDS.items()}
     labels = {k: html.escape(raw(f"class.lecturer.{k}")) for k in LECTURER_LABELS}
     shared = {k: html.escape(raw(f"settings.{v}")) for k, v in GAME_LABELS.items()}
-    body = LECTURER_BODY.substitute(labels, **shared, key=html.escape(key), base=html.escape(base))
+    back = ""
+    if classes:
+        said = html.escape(raw("class.lecturer.classes"))
+        back = f'<a id="classes" href="{html.escape(classes)}">{said}</a> ·\n'
+    body = LECTURER_BODY.substitute(
+        labels, **shared, key=html.escape(key), base=html.escape(base), classes=back
+    )
     return page(
         lang,
         direction,

@@ -25,6 +25,7 @@ from concurrent.futures import ProcessPoolExecutor, ThreadPoolExecutor
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any, TypeVar
+from urllib.parse import quote
 
 from starlette.exceptions import HTTPException
 from starlette.requests import Request
@@ -418,10 +419,28 @@ async def lecturer_page(request: Request) -> Response:
     else:
         key = room_projector_key(room["digest"], room["code"])
     text = pages.lecturer_page(
-        lambda k: raw(words, k), words.locale, words.meta["direction"], key, _base(room)
+        lambda k: raw(words, k),
+        words.locale,
+        words.meta["direction"],
+        key,
+        _base(room),
+        _classes_link(request, room),
     )
     headers = {"Content-Security-Policy": pages.LECTURER_POLICY, "Cache-Control": "no-store"}
     return HTMLResponse(text, headers=headers)
+
+
+def _classes_link(request: Request, room: dict[str, Any]) -> str:
+    """The department lecturer's list of classes (/lecturer?token=, as that list links
+    here), or "": a single-class server has no list, the single class's token (its room has
+    no lecturer) is no department lecturer's, and a token given only as Bearer stays out of
+    the page."""
+    if not request.app.state.department or room["lecturer"] is None:
+        return ""
+    token = request.query_params.get("token", "")
+    if not matches_digest(token, str(room["digest"])):
+        return ""
+    return "/lecturer?token=" + quote(token)
 
 
 def _qr_svg(url: str) -> str:

@@ -2,7 +2,8 @@
 // --department` on 127.0.0.1; the administrator's call makes a lecturer and the lecturer
 // a class; a phone types the join code at the server's root and lands in the class's game
 // page, which talks to the class's API; the class's lecturer page opens a challenge and
-// its projector (at the class's path) follows it; the phone's verified game reaches both.
+// its projector (at the class's path) follows it; the phone's verified game reaches both;
+// the lecturer page's link goes back to the lecturer's list of classes.
 // No page may log a script error or a blocked resource.
 import assert from "node:assert/strict";
 import { existsSync } from "node:fs";
@@ -128,9 +129,11 @@ test(
     const admin = watch(await browser.newPage());
     await admin.goto(`${server.base}/admin?token=${server.token}`);
     assert.ok((await admin.textContent("body")).includes(room.code));
-    const mine = watch(await browser.newPage());
-    await mine.goto(`${server.base}/lecturer?token=${lecturerToken}`);
-    assert.ok((await mine.textContent("body")).includes(room.code));
+    // The class's page links back to its lecturer's list of classes (same token, ?token=).
+    await lecturer.getByRole("link", { name: "Back to my classes" }).click();
+    await lecturer.waitForURL(`${server.base}/lecturer?token=${lecturerToken}`);
+    assert.ok((await lecturer.textContent("h1")).includes("Ada"));
+    assert.ok((await lecturer.textContent("body")).includes(room.code));
     assert.deepEqual(errors, []);
   },
 );

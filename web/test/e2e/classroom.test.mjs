@@ -131,6 +131,7 @@ test(
     watch(lecturer);
     await lecturer.goto(`${server.base}/lecturer?token=${server.token}`);
     const link = await lecturer.getAttribute("#projector", "href");
+    assert.equal(await lecturer.locator("#classes").count(), 0, "one class: no list to go to");
     const big = await browser.newPage({ viewport: { width: 1920, height: 1080 } });
     const small = await browser.newPage({ viewport: { width: 1280, height: 720 } });
     for (const p of [big, small]) {
