@@ -4,8 +4,10 @@ every page by the server itself, a student's attempts and standing, the projecto
 from __future__ import annotations
 
 import asyncio
+import http.client
 import json
 import time
+from urllib.parse import urlsplit
 
 import httpx
 import pytest
@@ -140,3 +142,19 @@ def test_the_projector_warns_of_a_loopback_join_address(server: Server) -> None:
 )
 def test_loopback_addresses_are_the_ones_phones_cannot_reach(url: str, unreachable: bool) -> None:
     assert loopback(url) is unreachable
+
+
+def test_an_idle_connection_outlives_uvicorns_default_keep_alive(server: Server) -> None:
+    """A connection idle past uvicorn's default 5 s still carries the next request: the server
+    does not close it under a client that may be sending (class_cli.KEEP_ALIVE_SECONDS)."""
+    address = urlsplit(server.base)
+    conn = http.client.HTTPConnection(address.hostname or "", address.port, timeout=30)
+    try:
+        for wait in (0.0, 6.5):
+            time.sleep(wait)
+            conn.request("GET", "/api/leaderboard")
+            answer = conn.getresponse()
+            answer.read()
+            assert answer.status == 200
+    finally:
+        conn.close()

@@ -21,6 +21,10 @@ DEFAULT_PORT = 8765
 DEFAULT_STUDENTS = 2000
 MAX_STUDENTS = 100_000
 FILE_NAME = "class.sqlite"
+#: Seconds an idle connection stays open: longer than clients' and proxies' own idle limits
+#: (httpx 5 s, nginx's upstream 60 s), so the client closes it, never the server as a request
+#: arrives on it (a reset connection, seen under load with uvicorn's 5 s).
+KEEP_ALIVE_SECONDS = 75
 #: The line printed when the class extra is not installed.
 NEEDS_EXTRA = "evapcool class needs the class extra: pip install 'evapcool[class]'"
 EXTRA_MODULES = ("starlette", "uvicorn", "segno", "confusables")
@@ -263,6 +267,8 @@ def serve(
 
     limits = Limits(students=max_students)
     app = create_app(data, pool_workers, limits, join_url=f"{base}/", department=department)
-    config = uvicorn.Config(app, log_level="warning", timeout_graceful_shutdown=2)
+    config = uvicorn.Config(
+        app, log_level="warning", timeout_graceful_shutdown=2, timeout_keep_alive=KEEP_ALIVE_SECONDS
+    )
     Announcing(config).run(sockets=[sock])
     return 0
