@@ -4,6 +4,13 @@
  */
 #include "tables.h"
 
+/* (lower, higher) World index of rows i and j: a pair's key parts. */
+static inline void pair_key(const Core *core, int32_t i, int32_t j, int64_t *lo, int64_t *hi) {
+  int64_t a = core->state[i].atom, b = core->state[j].atom;
+  *lo = a < b ? a : b;
+  *hi = a < b ? b : a;
+}
+
 /*
  * Pairs of trapped row i with the rows of cells [x0, x1] x [y0, y1] (seed Eqs. 15-19). An
  * earlier pair replaces i's real event; on a tie the solo event stays and pairs go in
@@ -12,39 +19,43 @@
 void scan(Core *core, int32_t i, int32_t x0, int32_t x1, int32_t y0, int32_t y1) {
   const State *s = &core->state[i];
   const double ri = s->radius, g = core->run.gravity;
-  const int64_t ii = s->atom;
   const int32_t nx = core->run.nx, nc = core->run.n_cells;
   Plan *p = &core->plan[i];
   double bt = core->queued[i].real_t;
-  int pair = p->real_rank == RANK_PAIR;
-  int64_t ba = p->real_a, bb = p->real_b;
-  int32_t best = -1;
-  for (int32_t cy = y0; cy <= y1; cy++) {
-    const int32_t row_start = cy * nx;
+  const int was_pair = p->real_rank == RANK_PAIR;
+  int32_t best = -1; /* the partner found here, -1 while the real event stands */
+  /* The heads of the cells that hold atoms (a scan covers at most 3 x 3 cells), gathered
+   * without a branch: about two cells in three are empty, at random. */
+  int32_t heads[9], n_heads = 0;
+  for (int32_t cy = y0; cy <= y1; cy++)
     for (int32_t cx = x0; cx <= x1; cx++) {
-      for (int32_t j = core->cells[row_start + cx]; j >= 0; j = core->cells[nc + j]) {
-        if (j == i) continue;
-        const State *q = &core->state[j];
-        double t = pair_contact_time(s, q, ri + q->radius, g);
-        if (t <= bt) {
-          int64_t jj = q->atom; /* rare: only now the partner's World index */
-          int64_t lo = ii < jj ? ii : jj, hi = ii < jj ? jj : ii;
-          if (t < bt || (pair && (lo < ba || (lo == ba && hi < bb)))) {
-            bt = t;
-            pair = 1;
-            ba = lo;
-            bb = hi;
-            best = j;
-          }
-        }
-      }
+      int32_t h = core->cells[cy * nx + cx];
+      heads[n_heads] = h;
+      n_heads += h >= 0;
     }
-  }
+  for (int32_t k = 0; k < n_heads; k++)
+    for (int32_t j = heads[k]; j >= 0; j = core->cells[nc + j]) {
+      if (j == i) continue;
+      const State *q = &core->state[j];
+      double t = pair_contact_time(s, q, ri + q->radius, g, bt);
+      if (t == bt) { /* rare: a tie, decided by the keys */
+        int64_t lo, hi, ba = p->real_a, bb = p->real_b;
+        pair_key(core, i, j, &lo, &hi);
+        if (best >= 0) pair_key(core, i, best, &ba, &bb);
+        if ((best >= 0 || was_pair) && (lo < ba || (lo == ba && hi < bb))) best = j;
+      }
+      /* an earlier pair, taken without a branch (which way it goes is a coin toss) */
+      const int earlier = t < bt;
+      best = earlier ? j : best;
+      bt = earlier ? t : bt;
+    }
   if (best >= 0) {
+    int64_t lo, hi;
+    pair_key(core, i, best, &lo, &hi);
     core->queued[i].real_t = bt;
     p->real_rank = RANK_PAIR;
-    p->real_a = (int32_t)ba;
-    p->real_b = (int32_t)bb;
+    p->real_a = (int32_t)lo;
+    p->real_b = (int32_t)hi;
     p->real_kind = KIND_PAIR;
     p->partner = best;
     p->partner_count = (int32_t)core->state[best].count;
@@ -117,6 +128,21 @@ static double crossing_y(Core *core, const State *s, int32_t cy, double taken, i
 }
 
 /*
+ * 0 if row i's arc surely reaches neither y edge of cell row cy before time `by`: it rises
+ * at most vy dt and falls at most -vy dt + g dt^2 / 2 in dt (with room for round-off many
+ * times over, so that crossing_y would find no crossing before `by` either).
+ */
+static int y_edge_within(const Core *core, const State *s, int32_t cy, double by) {
+  const double g = core->run.gravity, cs = core->run.cell, vy = s->vy;
+  double dt = (by - s->t) * (1.0 + 1e-9) + (__builtin_fabs(by) + __builtin_fabs(s->t)) * 1e-12;
+  if (!(dt > 0.0 && dt < INF)) return 1; /* (inf: 0 * inf would read as no reach) */
+  double rise = (vy > 0.0 ? vy : 0.0) * dt, fall = (vy < 0.0 ? -vy : 0.0) * dt + 0.5 * g * dt * dt;
+  double top = cy < core->run.ny - 1 ? core->run.grid_y0 + (cy + 1) * cs - s->y : INF;
+  double bottom = cy > 0 ? s->y - (core->run.grid_y0 + cy * cs) : INF;
+  return rise * (1.0 + 1e-9) + 1e-9 * cs >= top || fall * (1.0 + 1e-9) + 1e-9 * cs >= bottom;
+}
+
+/*
  * Row i's next cell crossing (none unless trapped and the game is on). x: straight to the
  * next edge along vx. y: up through the top edge (first root, if the arc passes it), else
  * down through the bottom edge; roots at or before the arc's last y crossing are ones
@@ -140,8 +166,11 @@ void predict_crossing(Core *core, int32_t i) {
       bk = KIND_CROSS_X;
       barg = cx - 1;
     }
+    /* A y crossing matters only before the x crossing and the real event (after a real
+     * event every prediction is made anew; scans only bring it earlier). */
+    double by = bt < core->queued[i].real_t ? bt : core->queued[i].real_t;
     int32_t to = 0;
-    double tc = crossing_y(core, s, cy, core->queued[i].arc_cross_t, &to);
+    double tc = y_edge_within(core, s, cy, by) ? crossing_y(core, s, cy, core->queued[i].arc_cross_t, &to) : INF;
     if (tc < bt) {
       bt = tc;
       bk = KIND_CROSS_Y;

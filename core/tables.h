@@ -148,7 +148,7 @@ double flight_x(double x, double vx, double dt);
 double flight_y(double y, double vy, double half_g, double dt);
 double flight_vy(double vy, double g, double dt);
 double atom_energy_of(double m, double y, double vx, double vy, double g);
-double pair_contact_time(const State *p, const State *q, double sigma, double g);
+double pair_contact_time(const State *p, const State *q, double sigma, double g, double beat);
 double wall_contact_time(const State *s, double a, double g);
 double exit_time(const State *s, double x_left, double x_right, double y_bottom, double g);
 void collide_pair(double rx, double ry, State *p, double m1, State *q, double m2);

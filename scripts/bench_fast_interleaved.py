@@ -81,7 +81,10 @@ def _tree(spec: str, repo: Path, tmp: Path, label: str) -> tuple[Path, str]:
 
 def _run(tree: Path, cache: Path, n: int, frames: int) -> dict[str, float]:
     """One run of RUN (or of CLASSIC for n = 49) in a fresh process."""
-    env = dict(os.environ, PYTHONPATH=str(tree / "src"), NUMBA_CACHE_DIR=str(cache))
+    # OPENBLAS_NUM_THREADS=1: neither engine uses BLAS, but numpy's BLAS threads spin for a
+    # while after import, and that CPU time landed in whichever side started timing sooner.
+    env = dict(os.environ, PYTHONPATH=str(tree / "src"), NUMBA_CACHE_DIR=str(cache),
+               OPENBLAS_NUM_THREADS="1")  # fmt: skip
     args = [CLASSIC, str(frames)] if n == 49 else [RUN, str(n), str(frames)]
     out = subprocess.run([sys.executable, "-c", *args], env=env,
                          capture_output=True, text=True, check=True).stdout  # fmt: skip
