@@ -53,8 +53,14 @@ static void sift(Core *core, int32_t p) {
     int32_t c = 4 * p + 1;
     if (c >= n) break;
     int32_t end = c + 4 <= n ? c + 4 : n;
-    for (int32_t d = c + 1; d < end; d++)
-      if (comes_before(core, core->heap[d].t, core->heap[d].row, core->heap[c].t, core->heap[c].row)) c = d;
+    for (int32_t d = c + 1; d < end; d++) {
+      double td = core->heap[d].t, tc = core->heap[c].t;
+      if (td == tc) { /* rare: the rest of the keys decide */
+        if (comes_before(core, td, core->heap[d].row, tc, core->heap[c].row)) c = d;
+      } else {
+        c = td < tc ? d : c; /* the least of the children, without a branch */
+      }
+    }
     if (!comes_before(core, core->heap[c].t, core->heap[c].row, e.t, e.row)) break;
     core->heap[p] = core->heap[c];
     core->filing[core->heap[p].row].heap_pos = p;
