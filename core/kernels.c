@@ -44,16 +44,20 @@ double pair_contact_time(const State *p, const State *q, double sigma, double g,
   double c = rx * rx + ry * ry - sigma * sigma;
   double vv = vx * vx + vy * vy;
   double disc = b * b - vv * c;
-  /* The root is tr + c / (sqrt(disc) - b) > tr + c / (-2 b): a pair for which that bound
-   * is past `beat` (with room for round-off many times over) cannot be the earlier. */
+  /* The root is tr + c / (sqrt(disc) - b) > tr + c / (-2 b + 1e-161), as sqrt(disc) <=
+   * |b| (b * b below 1e-308 keeps few digits: 1e-161 > sqrt(2^-1074) covers them): a pair
+   * for which that bound is past `beat` (with room for round-off many times over) cannot
+   * be the earlier. An overlapping pair (c <= 0) meets now if it approaches, whatever disc
+   * (b * b may underflow): it passes the two tests below. */
   double room = (beat - tr) * (1.0 + 1e-9) + __builtin_fabs(beat) * 1e-12 + 1e-290;
-  double in_time = c > 0.0 ? -2.0 * b * room - c : 1.0;
+  const int apart = c > 0.0;
+  double meets = apart ? disc : 1.0, in_time = apart ? (1e-161 - 2.0 * b) * room - c : 1.0;
   /* One test for the three ways to miss (receding, passing by, too late), as most pairs
    * do: a branch taken either way at random costs more than the arithmetic it skips. */
-  double nb = -b, least = nb < disc ? nb : disc;
-  least = least < in_time ? least : in_time; /* > 0 iff b < 0, disc > 0 and in time */
+  double nb = -b, least = nb < meets ? nb : meets;
+  least = least < in_time ? least : in_time; /* > 0 iff b < 0, it meets, and in time */
   if (!(least > 0.0)) return INF;
-  if (c <= 0.0) return tr; /* overlapping and approaching (then disc > 0 too) */
+  if (!apart) return tr; /* overlapping and approaching */
   return tr + c / (__builtin_sqrt(disc) - b);
 }
 

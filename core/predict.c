@@ -170,7 +170,8 @@ void predict_crossing(Core *core, int32_t i) {
      * event every prediction is made anew; scans only bring it earlier). */
     double by = bt < core->queued[i].real_t ? bt : core->queued[i].real_t;
     int32_t to = 0;
-    double tc = y_edge_within(core, s, cy, by) ? crossing_y(core, s, cy, core->queued[i].arc_cross_t, &to) : INF;
+    double tc = INF;
+    if (y_edge_within(core, s, cy, by)) tc = crossing_y(core, s, cy, core->queued[i].arc_cross_t, &to);
     if (tc < bt) {
       bt = tc;
       bk = KIND_CROSS_Y;

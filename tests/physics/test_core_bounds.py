@@ -16,7 +16,7 @@ import subprocess
 from pathlib import Path
 
 import pytest
-from hypothesis import given, settings
+from hypothesis import example, given, settings
 from hypothesis import strategies as st
 
 from evapcool.physics import kernels as k
@@ -99,6 +99,12 @@ def test_a_pair_is_skipped_only_when_it_comes_too_late(
 @settings(max_examples=1500, deadline=None)
 @given(coord, coord, speed, speed, stamp, st.floats(0, 2 * math.pi), speed, speed,
        st.sampled_from(GAPS), st.floats(0.5, 15), offset)  # fmt: skip
+# found by this test: touching, approaching at 1e-169 px/frame (b * b underflows to 0), and
+# at 1e-161 (b * b keeps 4 digits: the bound was too tight)
+@example(0.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, -1.0665467813888665e-169, 0.0, 1.0, "on")
+@example(
+    4.0, 0.0, 0.0, 0.0, 0.0, 0.5383971056360455, 0.0, -1.4379284358935283e-161, 0.0, 15.0, "on"
+)
 def test_a_touching_pair_is_never_skipped_in_time(
     contact_time, x1, y1, vx1, vy1, t1, angle, vx2, vy2, gap, sigma, how
 ) -> None:
