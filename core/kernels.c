@@ -2,9 +2,11 @@
  * Scalar event kernels: free flight, contact times and collision rules.
  *
  * Each performs the floating-point operations of its namesake in
- * src/evapcool/physics/kernels.py in the same order. Compiled with -ffp-contract=off (no
- * fused multiply-add; wasm32 has none anyway) and __builtin_sqrt (correctly rounded), so
- * the reference engine and both builds of the core compute the same bits.
+ * src/evapcool/physics/kernels.py in the same order (pair_contact_time also tells, before
+ * solving, the pairs that cannot come first: a time it returns is the same). Compiled with
+ * -ffp-contract=off (no fused multiply-add; wasm32 has none anyway) and __builtin_sqrt
+ * (correctly rounded), so the reference engine and both builds of the core compute the same
+ * bits.
  */
 #include "tables.h"
 
