@@ -128,7 +128,7 @@ static double crossing_y(Core *core, const State *s, int32_t cy, double taken, i
 }
 
 /*
- * 0 if row i's arc surely reaches neither y edge of cell row cy before time `by`: it rises
+ * 0 if the arc of state s surely reaches neither y edge of cell row cy before time `by`: it rises
  * at most vy dt and falls at most -vy dt + g dt^2 / 2 in dt (with room for round-off many
  * times over, so that crossing_y would find no crossing before `by` either).
  */
