@@ -11,6 +11,7 @@ from contextlib import contextmanager
 from typing import Any
 
 import psycopg
+from psycopg.conninfo import conninfo_to_dict
 from psycopg_pool import ConnectionPool
 
 from evapcool.classroom.ratelimit import Rate
@@ -20,6 +21,8 @@ from evapcool.classroom.store import Query, SqlStore
 CHANNEL = "evapcool_board"
 #: The advisory lock held while the schema is made or migrated (two processes starting).
 SCHEMA_LOCK = 4_235_001
+#: Seconds the first connection may take when the URL names no connect_timeout.
+CONNECT_SECONDS = 10
 #: Rate buckets idle this long are forgotten (a full bucket again).
 BUCKET_IDLE = 3600.0
 #: Schema versions in order: each one's statements, run once, in one transaction.
@@ -65,6 +68,19 @@ SCHEMA_VERSION = MIGRATIONS[-1][0]
 NOW = "extract(epoch from clock_timestamp())::float8"
 
 
+def _reach(url: str) -> None:
+    """One connection first: a database that cannot be reached is one line at once (the pool
+    would retry quietly until its timeout, then name only that)."""
+    timeout = (
+        {} if "connect_timeout" in conninfo_to_dict(url) else {"connect_timeout": CONNECT_SECONDS}
+    )
+    try:
+        psycopg.connect(url, **timeout).close()
+    except psycopg.OperationalError as exc:
+        lines = [line.strip() for line in str(exc).splitlines() if line.strip()]
+        raise ConnectionError(" ".join(lines) or type(exc).__name__) from None
+
+
 class PostgresStore(SqlStore):
     """A PostgreSQL database through a pool of connections; safe for several threads and
     several processes (row locks where SQLite holds the file's)."""
@@ -74,6 +90,7 @@ class PostgresStore(SqlStore):
 
     def __init__(self, url: str, connections: int = 8) -> None:
         self.url = url
+        _reach(url)
         self.pool = ConnectionPool(
             url, min_size=1, max_size=connections, kwargs={"autocommit": True}, open=False
         )
