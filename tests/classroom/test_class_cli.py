@@ -10,6 +10,7 @@ from classhelp import free_port
 
 from evapcool.classroom import class_cli
 from evapcool.cli import main
+from evapcool.i18n import Catalog
 
 
 @pytest.mark.parametrize(
@@ -18,6 +19,11 @@ from evapcool.cli import main
         (["--port", "0"], "--port"),
         (["--port", "http"], "--port"),
         (["--workers", "0"], "--workers"),
+        (["--public-url", "class.example.edu"], "--public-url"),
+        (["--public-url", "ftp://class.example.edu"], "--public-url"),
+        (["--public-url", "https://class.example.edu:99999"], "--public-url"),
+        (["--public-url", "https://class.example.edu/?a=1"], "--public-url"),
+        (["--public-url", "https://"], "--public-url"),
     ],
 )
 def test_bad_option_is_one_line_naming_it(
@@ -55,3 +61,11 @@ def test_missing_extra_is_named(
     assert capsys.readouterr().err.strip() == (
         "evapcool class needs the class extra: pip install 'evapcool[class]'"
     )
+
+
+@pytest.mark.parametrize("given", ["https://class.example.edu", "https://class.example.edu/"])
+def test_the_links_printed_show_the_public_address(given: str) -> None:
+    args = class_cli.build_parser().parse_args(["--public-url", given])
+    lines = class_cli.links(Catalog("en"), args.public_url, "TOKEN", "c.sqlite")
+    assert "https://class.example.edu/lecturer?token=TOKEN" in lines[0]
+    assert "https://class.example.edu/" in lines[1] and "//" not in lines[1].split("edu", 1)[1]

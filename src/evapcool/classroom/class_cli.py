@@ -8,6 +8,7 @@ import argparse
 import os
 import socket
 import sys
+import urllib.parse
 from pathlib import Path
 
 from evapcool.about import APP_NAME, error_line
@@ -53,6 +54,28 @@ def workers(text: str) -> int:
     return int(text)
 
 
+def public_url(text: str) -> str:
+    """The students' address behind a reverse proxy: http:// or https://, a host, perhaps a
+    port and a path; no query or fragment. Returned without a trailing /."""
+    try:
+        parts = urllib.parse.urlsplit(text)
+        parts.port  # noqa: B018 (a bad port raises here)
+    except ValueError:
+        parts = None
+    if (
+        parts is None
+        or parts.scheme not in ("http", "https")
+        or not parts.hostname
+        or parts.query
+        or parts.fragment
+        or any(c.isspace() for c in text)
+    ):
+        raise argparse.ArgumentTypeError(
+            f"must be an http:// or https:// address, e.g. https://class.example.edu (got {text!r})"
+        )
+    return text.rstrip("/")
+
+
 def default_data() -> Path:
     """The class file in $EVAPCOOL_DATA_DIR, else the per-user data folder (platformdirs),
     as evapcool's other files."""
@@ -84,6 +107,14 @@ def build_parser() -> OneLineParser:
     parser.add_argument("--port", type=port, default=DEFAULT_PORT, help="TCP port (8765)")
     parser.add_argument(
         "--lan", action="store_true", help="listen on all addresses and print the network address"
+    )
+    parser.add_argument(
+        "--public-url",
+        type=public_url,
+        default=None,
+        metavar="URL",
+        help="the address students open, behind a reverse proxy (https://...): shown on the "
+        "projector and in the links",
     )
     parser.add_argument(
         "--data",
@@ -176,8 +207,8 @@ def main(argv: list[str] | None = None) -> int:
         sock.close()
         print(error_line("class", f"argument {option}: {data}: {exc}"), file=sys.stderr)
         return EXIT_USAGE
-    shown = lan_address() if args.lan else host
-    return serve(sock, data, args.workers, shown, token, args.max_students, args.department)
+    base = args.public_url or f"http://{lan_address() if args.lan else host}:{args.port}"
+    return serve(sock, data, args.workers, base, token, args.max_students, args.department)
 
 
 def first_token(data: Path | str, new: bool, department: bool = False) -> str | None:
@@ -243,18 +274,18 @@ def serve(
     sock: socket.socket,
     data: Path | str,
     pool_workers: int,
-    shown_host: str,
+    base: str,
     token: str | None,
     max_students: int = DEFAULT_STUDENTS,
     department: bool = False,
 ) -> int:
-    """Run the server on a bound socket; print the links once it answers."""
+    """Run the server on a bound socket; print the links (on `base`, the students' address
+    without the trailing /) once it answers."""
     import uvicorn
 
     from evapcool.classroom.app import create_app
     from evapcool.classroom.server import Limits
 
-    base = f"http://{shown_host}:{sock.getsockname()[1]}"
     lines = links(Catalog(choose_locale()), base, token, data, department)
 
     class Announcing(uvicorn.Server):

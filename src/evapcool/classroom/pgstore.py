@@ -71,11 +71,9 @@ NOW = "extract(epoch from clock_timestamp())::float8"
 def _reach(url: str) -> None:
     """One connection first: a database that cannot be reached is one line at once (the pool
     would retry quietly until its timeout, then name only that)."""
-    timeout = (
-        {} if "connect_timeout" in conninfo_to_dict(url) else {"connect_timeout": CONNECT_SECONDS}
-    )
+    timeout = conninfo_to_dict(url).get("connect_timeout") or CONNECT_SECONDS
     try:
-        psycopg.connect(url, **timeout).close()
+        psycopg.connect(url, connect_timeout=str(timeout)).close()
     except psycopg.OperationalError as exc:
         lines = [line.strip() for line in str(exc).splitlines() if line.strip()]
         raise ConnectionError(" ".join(lines) or type(exc).__name__) from None
