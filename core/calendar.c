@@ -114,9 +114,10 @@ void file_atom(Core *core, int32_t r) {
     sift(core, p);
     return;
   }
-  int32_t nb = core->run.n_bins;
+  int32_t nb = core->run.n_bins; /* a power of two */
+  /* (here q >= bin + 1 > 0, so truncation is floor) */
   int32_t l = t == INF                      ? nb + 1
-              : q < (double)(core->run.bin + nb) ? (int32_t)((int64_t)__builtin_floor(q) % nb)
+              : q < (double)(core->run.bin + nb) ? (int32_t)((int64_t)q & (nb - 1))
                                            : nb;
   if (p < 0) {
     int32_t was = u->bin;

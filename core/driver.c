@@ -9,7 +9,7 @@
 #include "tables.h"
 
 /* Rows are put in cell order, and the calendar's bins fitted, every this many events per atom. */
-#define RENUMBER_EVENTS_PER_ATOM 8
+#define RENUMBER_EVENTS_PER_ATOM 32
 /* The most log lines one event writes (a pair and two knives), with room to spare. */
 #define LOG_ROOM 4
 
@@ -118,7 +118,7 @@ static int32_t cell_order(Core *core) {
   const int32_t n = core->run.n_atoms, nc = core->run.n_cells;
   int32_t k = 0;
   for (int32_t c = 0; c < nc; c++)
-    for (int32_t j = core->cells[c]; j >= 0; j = core->cells[nc + j]) core->order[k++] = j;
+    for (int32_t j = core->cells[c]; j >= 0; j = core->state[j].next) core->order[k++] = j;
   int32_t linked = k;
   for (int32_t r = 0; r < n; r++) core->row_of[core->plan[r].atom] = -1;
   for (int32_t q = 0; q < linked; q++) core->row_of[core->plan[core->order[q]].atom] = q;
@@ -155,7 +155,8 @@ void renumber(Core *core) {
   core->queued2 = u;
   core->plan2 = p;
   /* Cell lists: linking in descending row order leaves each list ascending. */
-  for (int32_t c = 0; c < core->run.n_cells + n; c++) core->cells[c] = -1;
+  for (int32_t c = 0; c < core->run.n_cells; c++) core->cells[c] = -1;
+  for (int32_t q = 0; q < n; q++) core->state[q].next = -1;
   for (int32_t q = linked - 1; q >= 0; q--) cell_link(core, q, core->plan[q].cell_x, core->plan[q].cell_y);
   for (int32_t q = 0; q < n; q++) load_key(core, q);
   calendar_rebuild(core, core->run.time);
@@ -227,6 +228,7 @@ EXPORT(core_load) void core_load(Core *core, const double *in, double gravity, d
     s->t = in[4 * n + i];
     s->radius = in[5 * n + i];
     s->atom = i;
+    s->next = -1;
     core->queued[i].mass = in[6 * n + i];
     core->queued[i].arc_cross_t = -INF;
     core->plan[i].status = status[i];
@@ -245,9 +247,9 @@ EXPORT(core_start) int32_t core_start(Core *core, double energy_sum, double trap
   core->run.x_rim = __builtin_sqrt(trap_height / core->run.curvature);
   core->run.maintain_every = RENUMBER_EVENTS_PER_ATOM * core->run.n_atoms;
   int32_t nc = grid_shape(core);
-  core->cells = core_take(core, sizeof(int32_t) * (nc + core->run.n_atoms));
+  core->cells = core_take(core, sizeof(int32_t) * nc);
   if (core->out_of_memory) return 0;
-  for (int32_t c = 0; c < nc + core->run.n_atoms; c++) core->cells[c] = -1;
+  for (int32_t c = 0; c < nc; c++) core->cells[c] = -1;
   setup(core);
   return 1;
 }

@@ -1,12 +1,19 @@
 /*
- * The cell grid: trapped atoms in cells 1.1 contact distances wide, the
- * edge cells reaching to infinity. `cells` holds the first row of every cell (row-major),
- * then the next row in the same cell for every row; plan.cell_prev links back.
+ * The cell grid: trapped atoms in cells 1.12 contact distances wide, the edge cells
+ * reaching to infinity. An atom is refiled into the next cell only once it is a skin past
+ * its cell's edge, so one that wanders to and fro over an edge is not refiled each time.
+ * `cells` holds the first row of every cell (row-major), state[].next the next row in the
+ * same cell; plan.cell_prev links back.
  */
 #include "tables.h"
 
-/* Cell edge in contact distances; > 1 leaves room for round-off in crossing times. */
-#define CELL_FACTOR 1.1
+/* The skin on each side of a cell, in contact distances. */
+#define SKIN 0.05
+/* Cell edge in contact distances: a contact distance, both skins, and 0.01 a side for
+ * round-off in crossing times (2e-4 px at the smallest radius: 1.3e4 times a position's
+ * round-off at POSITION_MAX, 130 times the way 100 px/frame goes in the clock's round-off
+ * at FRAMES_MAX). */
+#define CELL_FACTOR (1.02 + 2 * SKIN)
 /* At most this many cells per atom (bounds memory for tiny, sparse atoms). */
 #define MAX_CELLS_PER_ATOM 8
 
@@ -25,7 +32,7 @@ void cell_link(Core *core, int32_t i, int32_t cx, int32_t cy) {
   p->cell_y = cy;
   int32_t c = cy * core->run.nx + cx;
   int32_t q = core->cells[c];
-  core->cells[core->run.n_cells + i] = q;
+  core->state[i].next = q;
   p->cell_prev = -1;
   if (q >= 0) core->plan[q].cell_prev = i;
   core->cells[c] = i;
@@ -35,19 +42,19 @@ void cell_link(Core *core, int32_t i, int32_t cx, int32_t cy) {
 void cell_unlink(Core *core, int32_t i) {
   Plan *pl = &core->plan[i];
   int32_t p = pl->cell_prev;
-  int32_t q = core->cells[core->run.n_cells + i];
+  int32_t q = core->state[i].next;
   int32_t c = pl->cell_y * core->run.nx + pl->cell_x;
   if (p >= 0)
-    core->cells[core->run.n_cells + p] = q;
+    core->state[p].next = q;
   else if (core->cells[c] == i)
     core->cells[c] = q;
   if (q >= 0) core->plan[q].cell_prev = p;
-  core->cells[core->run.n_cells + i] = -1;
+  core->state[i].next = -1;
   pl->cell_prev = -1;
 }
 
 /*
- * Cells: 1.1 of the largest contact distance, over the region the trapped atoms can reach
+ * Cells: CELL_FACTOR of the largest contact distance, over the region the trapped atoms can reach
  * (below the height of the most energetic one, y <= E / (m g)), as long as that takes at
  * most 8 cells per atom (plus 64); beyond it atoms sit in the edge cells, which reach to
  * infinity.
@@ -81,6 +88,7 @@ int32_t grid_shape(Core *core) {
       cs *= 1.25;
   }
   core->run.cell = cs;
+  core->run.skin = cs * (SKIN / CELL_FACTOR);
   core->run.nx = (int32_t)nx;
   core->run.ny = (int32_t)ny;
   core->run.grid_x0 = -0.5 * nx * cs;
@@ -89,18 +97,25 @@ int32_t grid_shape(Core *core) {
   return core->run.n_cells;
 }
 
-/* Trapped atoms filed more than one cell away from their cell now (0 if sound). */
+/* 1 if u lies beyond cell c's edges (of n from u0) widened by `room` (edge cells: one edge). */
+static int beyond(double u, double u0, int32_t c, int32_t n, double cs, double room) {
+  return (c > 0 && u < u0 + c * cs - room) || (c < n - 1 && u > u0 + (c + 1) * cs + room);
+}
+
+/* Trapped atoms now beyond their cell, its skin and its round-off room (0 if sound:
+ * every pair within reach is then in neighbouring cells). */
 EXPORT(core_grid_errors) int32_t core_grid_errors(Core *core) {
   if (core->run.won) return 0;
+  const double cs = core->run.cell, room = core->run.skin + cs * (0.01 / CELL_FACTOR);
   int32_t bad = 0;
   for (int32_t r = 0; r < core->run.n_atoms; r++) {
     if (core->plan[r].status != TRAPPED) continue;
     const State *s = &core->state[r];
     double dt = core->run.time - s->t;
-    int32_t cx = cell_of(core, flight_x(s->x, s->vx, dt), core->run.grid_x0, core->run.nx);
-    int32_t cy = cell_of(core, flight_y(s->y, s->vy, 0.5 * core->run.gravity, dt), core->run.grid_y0, core->run.ny);
-    int32_t ex = cx - core->plan[r].cell_x, ey = cy - core->plan[r].cell_y;
-    if (ex > 1 || ex < -1 || ey > 1 || ey < -1) bad++;
+    double x = flight_x(s->x, s->vx, dt), y = flight_y(s->y, s->vy, 0.5 * core->run.gravity, dt);
+    const Plan *p = &core->plan[r];
+    bad += beyond(x, core->run.grid_x0, p->cell_x, core->run.nx, cs, room) ||
+           beyond(y, core->run.grid_y0, p->cell_y, core->run.ny, cs, room);
   }
   return bad;
 }

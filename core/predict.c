@@ -19,7 +19,7 @@ static inline void pair_key(const Core *core, int32_t i, int32_t j, int64_t *lo,
 void scan(Core *core, int32_t i, int32_t x0, int32_t x1, int32_t y0, int32_t y1) {
   const State *s = &core->state[i];
   const double ri = s->radius, g = core->run.gravity;
-  const int32_t nx = core->run.nx, nc = core->run.n_cells;
+  const int32_t nx = core->run.nx;
   Plan *p = &core->plan[i];
   double bt = core->queued[i].real_t;
   const int was_pair = p->real_rank == RANK_PAIR;
@@ -34,7 +34,7 @@ void scan(Core *core, int32_t i, int32_t x0, int32_t x1, int32_t y0, int32_t y1)
       n_heads += h >= 0;
     }
   for (int32_t k = 0; k < n_heads; k++)
-    for (int32_t j = heads[k]; j >= 0; j = core->cells[nc + j]) {
+    for (int32_t j = heads[k]; j >= 0; j = core->state[j].next) {
       if (j == i) continue;
       const State *q = &core->state[j];
       double t = pair_contact_time(s, q, ri + q->radius, g, bt);
@@ -89,13 +89,21 @@ void predict_real(Core *core, int32_t i) {
   }
 }
 
+/* Where an atom filed in cell c (from u0) is refiled: its upper and lower edge, a skin out. */
+static inline double edge_above(const Core *core, double u0, int32_t c) {
+  return u0 + (c + 1) * core->run.cell + core->run.skin;
+}
+static inline double edge_below(const Core *core, double u0, int32_t c) {
+  return u0 + c * core->run.cell - core->run.skin;
+}
+
 /* Time of the next y crossing of row i's arc and the row it enters (inf if none). */
 static double crossing_y(Core *core, const State *s, int32_t cy, double taken, int32_t *to) {
-  const double g = core->run.gravity, cs = core->run.cell;
+  const double g = core->run.gravity;
   double y = s->y, vy = s->vy, t0 = s->t;
   double tc = INF;
   if (vy > 0.0 && cy < core->run.ny - 1) {
-    double d = core->run.grid_y0 + (cy + 1) * cs - y;
+    double d = edge_above(core, core->run.grid_y0, cy) - y;
     double disc = vy * vy - 2.0 * g * d;
     if (disc > 0.0) {
       double sq = __builtin_sqrt(disc);
@@ -108,7 +116,7 @@ static double crossing_y(Core *core, const State *s, int32_t cy, double taken, i
     }
   }
   if (tc == INF && cy > 0) {
-    double h = y - (core->run.grid_y0 + cy * cs);
+    double h = y - edge_below(core, core->run.grid_y0, cy);
     double disc = vy * vy + 2.0 * g * h;
     if (disc < 0.0) disc = 0.0;
     double sq = __builtin_sqrt(disc);
@@ -137,8 +145,8 @@ static int y_edge_within(const Core *core, const State *s, int32_t cy, double by
   double dt = (by - s->t) * (1.0 + 1e-9) + (__builtin_fabs(by) + __builtin_fabs(s->t)) * 1e-12;
   if (!(dt > 0.0 && dt < INF)) return 1; /* (inf: 0 * inf would read as no reach) */
   double rise = (vy > 0.0 ? vy : 0.0) * dt, fall = (vy < 0.0 ? -vy : 0.0) * dt + 0.5 * g * dt * dt;
-  double top = cy < core->run.ny - 1 ? core->run.grid_y0 + (cy + 1) * cs - s->y : INF;
-  double bottom = cy > 0 ? s->y - (core->run.grid_y0 + cy * cs) : INF;
+  double top = cy < core->run.ny - 1 ? edge_above(core, core->run.grid_y0, cy) - s->y : INF;
+  double bottom = cy > 0 ? s->y - edge_below(core, core->run.grid_y0, cy) : INF;
   return rise * (1.0 + 1e-9) + 1e-9 * cs >= top || fall * (1.0 + 1e-9) + 1e-9 * cs >= bottom;
 }
 
@@ -154,15 +162,14 @@ void predict_crossing(Core *core, int32_t i) {
   int32_t bk = KIND_NONE, barg = 0;
   if (p->status == TRAPPED && !core->run.won) {
     const State *s = &core->state[i];
-    const double cs = core->run.cell;
     double x = s->x, vx = s->vx, t0 = s->t;
     int32_t cx = p->cell_x, cy = p->cell_y;
     if (vx > 0.0 && cx < core->run.nx - 1) {
-      bt = t0 + (core->run.grid_x0 + (cx + 1) * cs - x) / vx;
+      bt = t0 + (edge_above(core, core->run.grid_x0, cx) - x) / vx;
       bk = KIND_CROSS_X;
       barg = cx + 1;
     } else if (vx < 0.0 && cx > 0) {
-      bt = t0 + (core->run.grid_x0 + cx * cs - x) / vx;
+      bt = t0 + (edge_below(core, core->run.grid_x0, cx) - x) / vx;
       bk = KIND_CROSS_X;
       barg = cx - 1;
     }

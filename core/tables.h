@@ -33,7 +33,8 @@ typedef struct {
   double t;            /* ... at this time (frames): the atom's own clock */
   double radius;
   int64_t count; /* events so far: a partner's pair event is stale once it moved on */
-  int64_t atom;  /* World index */
+  int32_t atom;  /* World index */
+  int32_t next;  /* the next row in the same cell (-1: the last), read by the scan's walk */
 } State;
 
 /* What the event calendar reads: the key time and the times it is chosen from. */
@@ -87,6 +88,7 @@ typedef struct {
   /* fixed for the engine's life */
   double gravity, curvature;
   double grid_x0, grid_y0, cell; /* cell column 0's left edge, row 0's bottom, cell edge */
+  double skin;                   /* an atom is refiled this far past its cell's edge */
   double x_left, x_right, y_bottom; /* window edges (exit bounds before the radius) */
   int32_t nx, ny, n_cells, n_atoms;
   int32_t knife, record, win_rule;
@@ -126,7 +128,7 @@ typedef struct Core {
   HeapEntry *heap;
   Filing *filing;     /* by row, reset whenever the calendar is rebuilt (not renumbered) */
   int32_t *bins;      /* first row of each list: n_bins ring lists, overflow, no event */
-  int32_t *cells;     /* first row of each cell (row-major), then the next row in cell */
+  int32_t *cells;     /* first row of each cell (row-major); state[].next goes on */
   int32_t *row_of;    /* row of every World atom */
   double *tc_table;   /* critical temperature for every atom count, seed Eq. (46) */
   LogLine *event_log;

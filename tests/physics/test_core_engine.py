@@ -200,7 +200,7 @@ def test_hot_atoms_do_not_widen_the_cells() -> None:
         n_atoms=2000, radius=2.0, positions=cold._world.pos, velocities=vel,
         trap_height=450.0, engine="fast",
     )  # fmt: skip
-    assert hot._engine.grid_shape[2] == cold._engine.grid_shape[2] == pytest.approx(1.1 * 2 * 2.0)
+    assert hot._engine.grid_shape[2] == cold._engine.grid_shape[2] == pytest.approx(1.12 * 2 * 2.0)
     hot.advance(5.0)
     assert hot._engine.grid_errors() == 0  # every atom filed where it is
 
@@ -217,7 +217,7 @@ def test_grid_memory_is_bounded(n, radius, speed) -> None:
     vel = start._world.vel * (1.0 + speed)  # hotter: the grid must not grow with the energy
     sim = Simulation(n_atoms=n, radius=radius, positions=start._world.pos, velocities=vel,
                      engine="fast", trap_height=450.0)  # fmt: skip
-    nx, ny, cell = sim._engine.grid_shape
+    nx, ny, cell, _ = sim._engine.grid_shape
     assert nx * ny <= 8 * n + 64
     assert cell >= 2.0 * radius
 
@@ -265,18 +265,20 @@ def test_ten_thousand_atoms_sound() -> None:
 # -- cell crossings cannot stall (issue 17) ----------------------------------------------
 A = 0.01
 G = 10.0 / 30.0
-CELL = 1.1 * 2 * 12.0
+CELL = 1.12 * 2 * 12.0
 
 
-def _on_core_edges(x: float, lift: float) -> tuple[float, float]:
+def _on_core_edges(x: float, lift: float, side: int = 0) -> tuple[float, float]:
     """A point near (x, a x^2 + lift) on a column edge and a row edge of the core's grid for
-    one atom resting there (the core sizes its grid from the atom's height: settle it)."""
+    one atom resting there (the core sizes its grid from the atom's height: settle it).
+    side -1 or 1: a skin to the left or right of the column edge and above the row edge,
+    where an atom moving across them is refiled."""
     y = A * x * x + lift
     for _ in range(4):
-        nx, _, cell = _one_atom("fast", x, y, 0.0, 0.0)._engine.grid_shape
+        nx, _, cell, skin = _one_atom("fast", x, y, 0.0, 0.0)._engine.grid_shape
         x0, y0 = -0.5 * nx * cell, -0.5 * cell
-        x = x0 + round((x - x0) / cell) * cell
-        y = y0 + math.ceil((A * x * x + lift - y0) / cell) * cell
+        x = x0 + round((x - x0) / cell) * cell + side * skin
+        y = y0 + math.ceil((A * x * x + lift - y0) / cell) * cell + abs(side) * skin
     return x, y
 
 
@@ -319,8 +321,9 @@ def _bound(sim: Simulation) -> float:
         (20.0, 0.0, 1e-9, 0.0),  # hopping on the wall across a row edge
     ],
 )
-def test_atom_on_cell_edges_advances_with_bounded_events(x, lift, vx, vy) -> None:
-    x, y = _on_core_edges(x, lift)
+@pytest.mark.parametrize("side", [-1, 0, 1])
+def test_atom_on_cell_edges_advances_with_bounded_events(x, lift, vx, vy, side) -> None:
+    x, y = _on_core_edges(x, lift, side)
     ref = _one_atom("reference", x, y, vx, vy)
     fast = _one_atom("fast", x, y, vx, vy)
     counts = _events_per_frame(fast, 30)
@@ -335,9 +338,10 @@ def test_atom_on_cell_edges_advances_with_bounded_events(x, lift, vx, vy) -> Non
     lift=st.sampled_from([0.0, 1e-300, 1e-12, 1e-6, 5.0]),
     speed=st.one_of(st.just(0.0), st.floats(0.0, 1e-3), st.floats(0.0, 6.0)),
     angle=st.sampled_from([0.0, 0.5 * math.pi, math.pi, 1.5 * math.pi, 0.3]),
+    side=st.sampled_from([-1, 0, 1]),
 )
-def test_any_state_on_cell_edges_advances_with_bounded_events(x, lift, speed, angle) -> None:
-    x, y = _on_core_edges(x, lift)
+def test_any_state_on_cell_edges_advances_with_bounded_events(x, lift, speed, angle, side) -> None:
+    x, y = _on_core_edges(x, lift, side)
     sim = _one_atom("fast", x, y, speed * math.cos(angle), speed * math.sin(angle))
     counts = _events_per_frame(sim, 3)
     assert max(counts) <= _bound(sim)

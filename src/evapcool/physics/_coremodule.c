@@ -176,11 +176,11 @@ static PyObject *core_py_force_win(CoreObject *self, PyObject *Py_UNUSED(ignored
   Py_RETURN_NONE;
 }
 
-/* grid() -> (columns, rows, cell edge px). */
+/* grid() -> (columns, rows, cell edge px, skin px). */
 static PyObject *core_py_grid(CoreObject *self, PyObject *Py_UNUSED(ignored)) {
   Core *core = ready(self);
   if (!core) return NULL;
-  return Py_BuildValue("(iid)", core->run.nx, core->run.ny, core->run.cell);
+  return Py_BuildValue("(iidd)", core->run.nx, core->run.ny, core->run.cell, core->run.skin);
 }
 
 static PyObject *core_py_grid_errors(CoreObject *self, PyObject *Py_UNUSED(ignored)) {
@@ -253,8 +253,8 @@ static PyMethodDef core_methods[] = {
     {"export", (PyCFunction)core_py_export, METH_VARARGS, "Stored states into the World's arrays."},
     {"scalars", (PyCFunction)core_py_scalars, METH_NOARGS, "The clock, sums and counts."},
     {"force_win", (PyCFunction)core_py_force_win, METH_NOARGS, "Latch the win."},
-    {"grid", (PyCFunction)core_py_grid, METH_NOARGS, "(columns, rows, cell edge)."},
-    {"grid_errors", (PyCFunction)core_py_grid_errors, METH_NOARGS, "Atoms filed in a far cell."},
+    {"grid", (PyCFunction)core_py_grid, METH_NOARGS, "(columns, rows, cell edge, skin)."},
+    {"grid_errors", (PyCFunction)core_py_grid_errors, METH_NOARGS, "Atoms beyond their cell's skin."},
     {"fill_tc_table", (PyCFunction)core_py_fill_tc_table, METH_VARARGS, "Tc(N) for N = 0..n."},
     {"frame", (PyCFunction)core_py_frame, METH_O, "One whole frame, the height held: 0 done, 1 log full."},
     {"frame_end", (PyCFunction)core_py_frame_end, METH_NOARGS, "A whole frame's end: True if the win is seen."},

@@ -178,11 +178,12 @@ class CoreEngine:
         return self._stale
 
     @property
-    def grid_shape(self) -> tuple[int, int, float]:
-        """(columns, rows, cell edge in px) of the cell grid."""
-        nx, ny, cell = self.core.grid()
-        return int(nx), int(ny), float(cell)
+    def grid_shape(self) -> tuple[int, int, float, float]:
+        """(columns, rows, cell edge in px, skin in px) of the cell grid: an atom is refiled
+        into the next cell a skin past its cell's edge."""
+        nx, ny, cell, skin = self.core.grid()
+        return int(nx), int(ny), float(cell), float(skin)
 
     def grid_errors(self) -> int:
-        """Trapped atoms filed more than one cell away from where they are now (0 if sound)."""
+        """Trapped atoms beyond their cell and its skin (0 if sound)."""
         return int(self.core.grid_errors())
