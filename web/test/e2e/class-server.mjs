@@ -2,6 +2,7 @@
  * A real `evapcool class` for the Chromium tests of the class pages: started on a free port
  * of 127.0.0.1 with a fresh data file, answered once its link is printed and it serves.
  */
+import assert from "node:assert/strict";
 import { spawn } from "node:child_process";
 import { mkdtempSync, rmSync } from "node:fs";
 import { createServer } from "node:net";
@@ -62,4 +63,45 @@ export async function stopClassServer(server) {
     /* all gone */
   }
   rmSync(server.dir, { recursive: true, force: true });
+}
+
+/** POST `body` as JSON to the server with a bearer token; the answer's JSON (200 asserted). */
+export async function postJson(server, path, token, body) {
+  const r = await fetch(server.base + path, {
+    method: "POST",
+    headers: { Authorization: `Bearer ${token}`, "Content-Type": "application/json" },
+    body: JSON.stringify(body),
+  });
+  assert.equal(r.status, 200, await r.clone().text());
+  return r.json();
+}
+
+/** Play one game with a ramp down to `floor`; its state at the win (or after the budget). */
+export async function play(page, floor) {
+  await page.keyboard.press("r");
+  let s = await page.evaluate(() => window.evapcool.state());
+  for (let k = 0; k < 300 && s.wonAt === null; k++) {
+    if (s.trapHeight > floor) await page.keyboard.press("ArrowDown");
+    await page.evaluate(() => window.evapcool.runFrames(25));
+    s = await page.evaluate(() => window.evapcool.state());
+  }
+  return s;
+}
+
+/** A function that has a page report its script and console errors into `errors`. */
+export function watchErrors(errors) {
+  return (page) => {
+    page.on("pageerror", (e) => errors.push(e.message));
+    page.on("console", (m) => m.type() === "error" && errors.push(m.text()));
+    return page;
+  };
+}
+
+/** A department's new lecturer (Ada) and class (Optics), made by the administrator's calls. */
+export async function departmentClass(server) {
+  const lecturerToken = (
+    await postJson(server, "/api/admin/lecturers", server.token, { name: "Ada" })
+  ).token;
+  const room = await postJson(server, "/api/classes", lecturerToken, { name: "Optics" });
+  return { lecturerToken, room, base: `/c/${room.code}` };
 }

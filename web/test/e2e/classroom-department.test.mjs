@@ -11,7 +11,13 @@ import { resolve } from "node:path";
 import { after, before, test } from "node:test";
 import { chromium } from "playwright-core";
 import { CHROMIUM } from "./browser.mjs";
-import { startClassServer, stopClassServer } from "./class-server.mjs";
+import {
+  departmentClass,
+  play,
+  startClassServer,
+  stopClassServer,
+  watchErrors,
+} from "./class-server.mjs";
 
 const PYTHON =
   process.env.EVAPCOOL_PYTHON ?? resolve(import.meta.dirname, "../../../.venv/bin/python");
@@ -42,41 +48,13 @@ after(async () => {
   await stopClassServer(server);
 });
 
-async function post(path, token, body) {
-  const r = await fetch(server.base + path, {
-    method: "POST",
-    headers: { Authorization: `Bearer ${token}`, "Content-Type": "application/json" },
-    body: JSON.stringify(body),
-  });
-  assert.equal(r.status, 200, await r.clone().text());
-  return r.json();
-}
-
-/** Play one game with a ramp down to `floor`; its state at the win (or after the budget). */
-async function play(page, floor) {
-  await page.keyboard.press("r");
-  let s = await page.evaluate(() => window.evapcool.state());
-  for (let k = 0; k < 300 && s.wonAt === null; k++) {
-    if (s.trapHeight > floor) await page.keyboard.press("ArrowDown");
-    await page.evaluate(() => window.evapcool.runFrames(25));
-    s = await page.evaluate(() => window.evapcool.state());
-  }
-  return s;
-}
-
 test(
   "a class of a department: join by code, its lecturer's page and projector",
   { skip: SKIP },
   async () => {
     const errors = [];
-    const watch = (page) => {
-      page.on("pageerror", (e) => errors.push(e.message));
-      page.on("console", (m) => m.type() === "error" && errors.push(m.text()));
-      return page;
-    };
-    const lecturerToken = (await post("/api/admin/lecturers", server.token, { name: "Ada" })).token;
-    const room = await post("/api/classes", lecturerToken, { name: "Optics" });
-    const base = `/c/${room.code}`;
+    const watch = watchErrors(errors);
+    const { lecturerToken, room, base } = await departmentClass(server);
 
     const lecturer = watch(await browser.newPage({ viewport: { width: 1280, height: 900 } }));
     await lecturer.goto(`${server.base}${base}/lecturer?token=${lecturerToken}`);

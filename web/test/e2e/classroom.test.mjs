@@ -12,7 +12,7 @@ import { join, resolve } from "node:path";
 import { after, before, test } from "node:test";
 import { chromium } from "playwright-core";
 import { CHROMIUM } from "./browser.mjs";
-import { startClassServer, stopClassServer } from "./class-server.mjs";
+import { play, startClassServer, stopClassServer } from "./class-server.mjs";
 
 const PYTHON =
   process.env.EVAPCOOL_PYTHON ?? resolve(import.meta.dirname, "../../../.venv/bin/python");
@@ -77,18 +77,6 @@ async function phone(name) {
 }
 
 const bar = (page) => page.textContent("#classbar");
-
-/** Play one game with a ramp down to `floor`; its state at the win (or after the budget). */
-async function play(page, floor) {
-  await page.keyboard.press("r");
-  let s = await page.evaluate(() => window.evapcool.state());
-  for (let k = 0; k < 300 && s.wonAt === null; k++) {
-    if (s.trapHeight > floor) await page.keyboard.press("ArrowDown");
-    await page.evaluate(() => window.evapcool.runFrames(25));
-    s = await page.evaluate(() => window.evapcool.state());
-  }
-  return s;
-}
 
 /** Wait until every page's check holds; the ms it took from `since`. */
 async function allSee(pages, check, since) {
