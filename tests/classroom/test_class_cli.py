@@ -24,6 +24,7 @@ from evapcool.i18n import Catalog
         (["--public-url", "https://class.example.edu:99999"], "--public-url"),
         (["--public-url", "https://class.example.edu/?a=1"], "--public-url"),
         (["--public-url", "https://"], "--public-url"),
+        (["--public-url", "https://example.edu/physics"], "--public-url"),
     ],
 )
 def test_bad_option_is_one_line_naming_it(

@@ -139,15 +139,16 @@ def _nginx(folder: Path, port: int, upstreams: tuple[int, int]) -> tuple[list[st
 
 
 def _caddy(folder: Path, port: int, upstreams: tuple[int, int]) -> tuple[list[str], Path]:
-    """Caddy's command and authority: the guide's site block, the site on the test's port,
-    certificates from Caddy's local authority kept in `folder`."""
+    """Caddy's command and authority: the guide's site block, the site on the test's port
+    (on 127.0.0.1 only), certificates from Caddy's local authority kept in `folder`."""
     site = guide_block("Caddy (`/etc/caddy/Caddyfile`)")
     site = put(site, f"{HOST} {{", f"{HOST}:{port} {{")
     site = put(
         site, "127.0.0.1:8765 127.0.0.1:8766", f"127.0.0.1:{upstreams[0]} 127.0.0.1:{upstreams[1]}"
     )
     options = (
-        f"{{\n  admin off\n  local_certs\n  skip_install_trust\n  http_port {free_port()}\n"
+        f"{{\n  admin off\n  default_bind 127.0.0.1\n  local_certs\n  skip_install_trust\n"
+        f"  http_port {free_port()}\n"
         "  grace_period 2s\n"
         f"  storage file_system {folder}/data\n}}\n"
     )

@@ -56,7 +56,8 @@ def workers(text: str) -> int:
 
 def public_url(text: str) -> str:
     """The students' address behind a reverse proxy: http:// or https://, a host, perhaps a
-    port and a path; no query or fragment. Returned without a trailing /."""
+    port; no path (the pages' own links start at the root), query or fragment. Returned
+    without a trailing /."""
     try:
         parts = urllib.parse.urlsplit(text)
         parts.port  # noqa: B018 (a bad port raises here)
@@ -66,12 +67,14 @@ def public_url(text: str) -> str:
         parts is None
         or parts.scheme not in ("http", "https")
         or not parts.hostname
+        or parts.path not in ("", "/")
         or parts.query
         or parts.fragment
         or any(c.isspace() for c in text)
     ):
         raise argparse.ArgumentTypeError(
-            f"must be an http:// or https:// address, e.g. https://class.example.edu (got {text!r})"
+            "must be an http:// or https:// address with no path, e.g. https://class.example.edu "
+            f"(got {text!r})"
         )
     return text.rstrip("/")
 

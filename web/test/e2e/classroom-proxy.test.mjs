@@ -70,6 +70,7 @@ before(async () => {
   const options = [
     "{",
     "  admin off",
+    "  default_bind 127.0.0.1",
     "  local_certs",
     "  skip_install_trust",
     `  http_port ${await freePort()}`,
