@@ -152,18 +152,20 @@ def start_server(
     port: int | None = None,
     token: str | None = None,
     extra: tuple[str, ...] = (),
+    wrap: tuple[str, ...] = (),
 ) -> Server:
     """`evapcool class` on a free port with `data`; returns once it answers.
 
     data: a SQLite file, or a PostgreSQL database's URL (--db). token: the lecturer's
     token of a store served before (it prints none then; a new one with
-    extra=("--new-link",)).
+    extra=("--new-link",)). wrap: a command the server's is run by (a sandbox).
     """
     import httpx
 
     port = port or free_port()
     env = {**os.environ, "PYTHONPATH": str(SRC), "LANG": "C.UTF-8", "LANGUAGE": "en"}
     cmd = [
+        *wrap,
         sys.executable,
         "-m",
         "evapcool",
