@@ -8,8 +8,10 @@ emulated: the user (the test's Python lives in root's home, which no other user 
 from __future__ import annotations
 
 import os
+import shlex
 import shutil
 import subprocess
+import sys
 from pathlib import Path
 
 import httpx
@@ -19,11 +21,21 @@ from pghelp import Postgres
 from test_proxies import guide_block, unit_options
 
 UNIT = "evapcool-class@.service"
+#: The program's own folders (the checkout and its environment), read-only like /opt under
+#: the unit even where they lie below /tmp (a CI clone).
+PROGRAM = sorted({str(Path(__file__).resolve().parents[2]), sys.prefix})
 #: What the unit's settings amount to for the server, run as root in a mount namespace of
-#: its own: the root mount read-only, /tmp writable, no new privileges, no home.
+#: its own: the root mount read-only, /tmp writable but the program's folders, no new
+#: privileges, no home.
 SANDBOX = (
     "unshare", "--mount", "--propagation", "private", "sh", "-c",
-    "mount --bind /tmp /tmp && mount -o remount,bind,ro / && exec setpriv --no-new-privs"
+    "mount --bind /tmp /tmp && mount -o remount,bind,ro / && "
+    + "".join(
+        f"mount --bind {shlex.quote(p)} {shlex.quote(p)}"
+        f" && mount -o remount,bind,ro {shlex.quote(p)} && "
+        for p in PROGRAM
+    )
+    + "exec setpriv --no-new-privs"
     " env -u XDG_DATA_HOME -u XDG_CONFIG_HOME -u XDG_CACHE_HOME -u XDG_STATE_HOME"
     ' HOME=/nonexistent "$@"',
     "sandbox",
