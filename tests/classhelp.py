@@ -158,7 +158,7 @@ def start_server(
 
     data: a SQLite file, or a PostgreSQL database's URL (--db). token: the lecturer's
     token of a store served before (it prints none then; a new one with
-    extra=("--new-link",)). wrap: a command the server's is run by (a sandbox).
+    extra=("--new-link",)). wrap: a command to run the server's command line in (a sandbox).
     """
     import httpx
 
