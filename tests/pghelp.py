@@ -54,6 +54,13 @@ class Postgres:
         cmd = [str(self.bin / "pg_ctl"), "-D", str(self.folder / "data"), "-m", "fast", "-w"]
         subprocess.run(_as_owner([*cmd, "stop"]), capture_output=True, check=False, timeout=60)
 
+    def start(self) -> None:
+        """Start it (again): on its socket only, no TCP; returns once it takes connections."""
+        options = f"-k {self.folder} -c listen_addresses='' -c max_connections=200"
+        data, log = str(self.folder / "data"), str(self.folder / "log")
+        cmd = [str(self.bin / "pg_ctl"), "-D", data, "-l", log, "-o", options, "-w", "start"]
+        subprocess.run(_as_owner(cmd), capture_output=True, check=True, timeout=120)
+
 
 def start_postgres(folder: Path) -> Postgres:
     """initdb and start PostgreSQL in `folder` (trust on its socket only; no TCP). Run by
@@ -69,7 +76,6 @@ def start_postgres(folder: Path) -> Postgres:
     subprocess.run(
         _as_owner([str(binaries / "initdb"), "-D", str(data), "-A", "trust", "-U", user]), **run
     )
-    options = f"-k {folder} -c listen_addresses='' -c max_connections=200"
-    cmd = [str(binaries / "pg_ctl"), "-D", str(data), "-l", str(folder / "log"), "-o", options]
-    subprocess.run(_as_owner([*cmd, "-w", "start"]), **run)
-    return Postgres(folder, binaries, user)
+    running = Postgres(folder, binaries, user)
+    running.start()
+    return running

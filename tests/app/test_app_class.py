@@ -4,15 +4,18 @@ the game goes on after one notice."""
 
 from __future__ import annotations
 
+import threading
 import time
 from collections.abc import Iterator
+from http.server import BaseHTTPRequestHandler, ThreadingHTTPServer
 from pathlib import Path
+from typing import ClassVar
 
 import httpx
 import pygame
 import pytest
 from apphelp import frames, key, play_ramp
-from classhelp import SEED, SETTINGS, Server, free_port, open_challenge, start_server
+from classhelp import SEED, SETTINGS, Server, code, free_port, open_challenge, start_server
 
 from evapcool.app import cli
 from evapcool.app.applet import App
@@ -95,6 +98,69 @@ def test_a_refusal_is_shown_in_the_servers_words(server, class_app, tmp_path):
     app = join_app(class_app, tmp_path, server.base)  # no challenge open yet
     frames_until(app, lambda: any("not accepted" in n for n in app.visible_notices))
     assert app.challenge is None and "challenge" in app.visible_notices[-1].lower()
+
+
+class _AwayOnce(BaseHTTPRequestHandler):
+    """Passes requests on to the class server, but answers the first game sent with 503 (a
+    department's database away for a moment), Retry-After 1."""
+
+    upstream = ""
+    submits: ClassVar[list[int]] = []
+
+    def do_GET(self) -> None:
+        self._pass(httpx.get(self.upstream + self.path, headers=self._headers()))
+
+    def do_POST(self) -> None:
+        body = self.rfile.read(int(self.headers["Content-Length"]))
+        if self.path.endswith("/api/submit"):
+            self.submits.append(len(self.submits))
+            if len(self.submits) == 1:
+                self.send_response(503)
+                self.send_header("Retry-After", "1")
+                self.send_header("Content-Type", "application/json")
+                self.end_headers()
+                self.wfile.write(b'{"error": {"field": "store", "message": "away"}}')
+                return
+        url = self.upstream + self.path
+        self._pass(httpx.post(url, content=body, headers=self._headers(), timeout=60))
+
+    def _headers(self) -> dict[str, str]:
+        return {k: v for k, v in self.headers.items() if k.lower() != "host"}
+
+    def _pass(self, answer: httpx.Response) -> None:
+        self.send_response(answer.status_code)
+        self.send_header("Content-Type", answer.headers.get("content-type", "text/plain"))
+        self.end_headers()
+        self.wfile.write(answer.content)
+
+    def log_message(self, *args: object) -> None:
+        pass
+
+
+def test_a_game_answered_503_is_sent_again(server):
+    challenge = open_challenge(server)
+    _AwayOnce.upstream, _AwayOnce.submits = server.base, []
+    proxy = ThreadingHTTPServer(("127.0.0.1", 0), _AwayOnce)
+    threading.Thread(target=proxy.serve_forever, daemon=True).start()
+    try:
+        link = ClassLink(f"http://127.0.0.1:{proxy.server_address[1]}/", "Ro", timeout=10)
+        link.start()
+        seen = []
+        deadline = time.monotonic() + 60
+        while not any(e.kind == "joined" for e in seen):
+            assert time.monotonic() < deadline and not any(e.kind != "joined" for e in seen), seen
+            seen += link.poll()
+            time.sleep(0.05)
+        link.submit(code(SEED, 1))
+        while not any(e.kind == "result" for e in seen):
+            assert time.monotonic() < deadline, seen
+            seen += link.poll()
+            time.sleep(0.05)
+    finally:
+        proxy.shutdown()
+    assert _AwayOnce.submits == [0, 1]  # refused once, then taken
+    result = next(e for e in seen if e.kind == "result")
+    assert result.value["challenge"] == challenge["id"] and result.value["rank"] == 1
 
 
 def test_no_server_is_one_notice_and_the_game_goes_on(class_app, tmp_path):

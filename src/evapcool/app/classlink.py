@@ -10,10 +10,12 @@ takes each name once).
 
 from __future__ import annotations
 
+import itertools
 import json
 import queue
 import socket
 import threading
+import time
 import urllib.error
 import urllib.request
 from collections.abc import Callable
@@ -27,6 +29,9 @@ from evapcool.game.replay import Settings
 
 #: Seconds a request may take before the player is told the server did not answer.
 TIMEOUT = 20.0
+#: Times a request is sent again while the server answers 503 (a department's database
+#: away for a moment): about two minutes at the server's Retry-After of 5 s.
+STORE_AWAY_RESENDS = 24
 #: The file in the data folder keeping the student token per server: {base url: token}.
 TOKENS_FILE = "class-tokens.json"
 TOKENS_MAX_BYTES = 1_000_000
@@ -174,14 +179,27 @@ class ClassLink:
         if self.token is not None:
             headers["Authorization"] = f"Bearer {self.token}"
         request = urllib.request.Request(self.base + path, data, headers, method=method)
-        try:
-            with urllib.request.urlopen(request, timeout=self.timeout) as answer:
-                doc = json.loads(answer.read(1_000_000))
-        except urllib.error.HTTPError as exc:
-            raise RefusedError(_refusal(exc)) from None
+        for resend in itertools.count():
+            try:
+                with urllib.request.urlopen(request, timeout=self.timeout) as answer:
+                    doc = json.loads(answer.read(1_000_000))
+                break
+            except urllib.error.HTTPError as exc:
+                if exc.code != 503 or resend >= STORE_AWAY_RESENDS:
+                    raise RefusedError(_refusal(exc)) from None
+                time.sleep(_wait_asked(exc.headers.get("Retry-After")))
         if not isinstance(doc, dict):
             raise ValueError("not an answer of a class server")
         return doc
+
+
+def _wait_asked(header: str | None) -> float:
+    """Seconds to wait before sending again, from a Retry-After header (1 to 30; 5 if none)."""
+    try:
+        asked = float(header or "")
+    except ValueError:
+        return 5.0
+    return min(float(round(asked)), 30.0) if 1.0 <= asked < 1e9 else 5.0
 
 
 def _refusal(exc: urllib.error.HTTPError) -> str:

@@ -28,9 +28,11 @@ from evapcool.classroom.server import (
     _ready,
     _refused,
     _SafeHeaders,
+    _store_away,
     _to_class,
     open_store,
 )
+from evapcool.classroom.store import StoreAwayError
 
 
 def routes(for_department: bool = False) -> list[Route]:
@@ -88,7 +90,12 @@ def create_app(
             hub.db_thread.submit(hub.store.close).result()
             hub.db_thread.shutdown()
 
-    handlers = {RefusedError: _refused, 404: _no_route, 405: _no_route}
+    handlers = {
+        RefusedError: _refused,
+        StoreAwayError: _store_away,
+        404: _no_route,
+        405: _no_route,
+    }
     app = Starlette(routes=routes(department), lifespan=lifespan, exception_handlers=handlers)
     app.state.join_url = join_url
     app.state.department = department  # the class pages link to /lecturer's list

@@ -4,18 +4,21 @@ processes by LISTEN/NOTIFY; rate buckets live in the database."""
 
 from __future__ import annotations
 
+import logging
 import threading
 import time
 from collections.abc import Callable, Iterator, Sequence
 from contextlib import contextmanager
-from typing import Any
+from typing import Any, NoReturn
 
 import psycopg
 from psycopg.conninfo import conninfo_to_dict
-from psycopg_pool import ConnectionPool
+from psycopg_pool import ConnectionPool, PoolTimeout
 
 from evapcool.classroom.ratelimit import Rate
-from evapcool.classroom.store import Query, SqlStore
+from evapcool.classroom.store import Query, SqlStore, StoreAwayError
+from evapcool.fileio import warn
+from evapcool.i18n import t
 
 #: The channel a process announces a changed board on (the payload: the room's id).
 CHANNEL = "evapcool_board"
@@ -23,6 +26,17 @@ CHANNEL = "evapcool_board"
 SCHEMA_LOCK = 4_235_001
 #: Seconds the first connection may take when the URL names no connect_timeout.
 CONNECT_SECONDS = 10
+#: Seconds a call waits for a connection: every store thread has one of its own, so only
+#: a database that does not answer makes it wait (and the pool gives up its tries as often).
+CONNECTION_WAIT = 3.0
+#: Seconds after the database was found away during which calls fail at once (each would
+#: wait CONNECTION_WAIT in turn on the store's threads otherwise).
+AWAY_SECONDS = 2.0
+#: SQLSTATEs of a lost server: connection exceptions (class 08) and its shutting down.
+LOST = ("08", "57P01", "57P02", "57P03")
+#: The pool's own warnings (each failed connection, each discarded one) are left unsaid:
+#: the server says once that the database went and once that it came back.
+logging.getLogger("psycopg.pool").setLevel(logging.ERROR)
 #: Rate buckets idle this long are forgotten (a full bucket again).
 BUCKET_IDLE = 3600.0
 #: Schema versions in order: each one's statements, run once, in one transaction.
@@ -90,8 +104,17 @@ class PostgresStore(SqlStore):
         self.url = url
         _reach(url)
         self.pool = ConnectionPool(
-            url, min_size=1, max_size=connections, kwargs={"autocommit": True}, open=False
+            url,
+            min_size=1,
+            max_size=connections,
+            kwargs={"autocommit": True},
+            open=False,
+            timeout=CONNECTION_WAIT,
+            reconnect_timeout=CONNECTION_WAIT,
         )
+        self.away_until = 0.0  # monotonic time until which calls fail at once
+        self.away = False
+        self.away_lock = threading.Lock()
         self.pool.open(wait=True, timeout=30)
         try:
             self._migrate()
@@ -119,13 +142,43 @@ class PostgresStore(SqlStore):
     def close(self) -> None:
         self.pool.close()
 
+    @contextmanager
+    def _connection(self) -> Iterator[psycopg.Connection[Any]]:
+        """A pooled connection, or StoreAwayError: the database lost (a restart: the pool's
+        other idle connections are tested at once), or none to be had within CONNECTION_WAIT
+        (then calls fail at once for AWAY_SECONDS). One line when it goes and comes."""
+        if time.monotonic() < self.away_until:
+            raise StoreAwayError
+        try:
+            with self.pool.connection() as conn:
+                yield conn
+        except PoolTimeout as exc:
+            self.away_until = time.monotonic() + AWAY_SECONDS
+            self._went(exc)
+        except psycopg.OperationalError as exc:
+            if exc.sqlstate is not None and not exc.sqlstate.startswith(LOST):
+                raise  # a deadlock or a cancelled query: the database itself answers
+            self.pool.check()  # the other connections a restart broke, replaced now
+            self._went(exc)
+        with self.away_lock:
+            came, self.away = self.away, False
+        if came:
+            warn(t("class.store.back"))
+
+    def _went(self, exc: Exception) -> NoReturn:
+        with self.away_lock:
+            went, self.away = not self.away, True
+        if went:
+            warn(t("class.store.away", reason=" ".join(str(exc).split())))
+        raise StoreAwayError from exc
+
     def _rows(self, sql: str, params: Sequence[Any] = ()) -> list[Any]:
-        with self.pool.connection() as conn:
+        with self._connection() as conn:
             return conn.execute(sql.replace("?", "%s"), params).fetchall()
 
     @contextmanager
     def _tx(self) -> Iterator[Query]:
-        with self.pool.connection() as conn, conn.transaction():
+        with self._connection() as conn, conn.transaction():
 
             def q(sql: str, params: Sequence[Any] = ()) -> Any:
                 return conn.execute(sql.replace("?", "%s"), params)
@@ -161,7 +214,7 @@ class PostgresStore(SqlStore):
         self._write(f"DELETE FROM bucket WHERE last < {NOW} - ?", (BUCKET_IDLE,))
 
     def notify(self, room: int) -> None:
-        with self.pool.connection() as conn:
+        with self._connection() as conn:
             conn.execute("SELECT pg_notify(%s, %s)", (CHANNEL, str(room)))
 
     def listen(self, changed: Callable[[int | None], None], stop: threading.Event) -> None:

@@ -14,6 +14,7 @@ processes serve one department: a changed board is announced through the databas
 from __future__ import annotations
 
 import asyncio
+import contextlib
 import hashlib
 import hmac
 import json
@@ -50,6 +51,7 @@ from evapcool.classroom.store import (
     ClassStore,
     NameTakenError,
     Store,
+    StoreAwayError,
     is_url,
 )
 from evapcool.classroom.verifier import check_submission, code_chars_ok, reference_frames, warm
@@ -77,6 +79,8 @@ PROJECTOR_SECRET = "projector"
 ADMIN_SECRET = "admin"
 #: Seconds between forgetting idle rate buckets held in the database.
 BUCKET_SWEEP = 60.0
+#: Seconds a client is told to wait (Retry-After) while the database does not answer.
+STORE_RETRY = 5
 #: Threads (and pooled connections) for a store shared by several processes.
 SHARED_DB_THREADS = 8
 
@@ -191,7 +195,10 @@ class Hub:
         """A room's board changed: tell every process sharing the store, or (one process)
         send it to this one's streams now."""
         if self.store.shared:
-            await self.db(self.store.notify, room)
+            # if the database is away, every process sends all its boards anew once it hears
+            # from the database again
+            with contextlib.suppress(StoreAwayError):
+                await self.db(self.store.notify, room)
         else:
             await self.send(room)
 
@@ -220,7 +227,13 @@ class Hub:
             self.wake.clear()
             rooms, self.pending = self.pending, set()
             for room in rooms:
-                await self.send(room)
+                try:
+                    await self.send(room)
+                except StoreAwayError:
+                    self.pending.add(room)  # sent once the database answers again
+            if self.pending:
+                await asyncio.sleep(STORE_RETRY)
+                self.wake.set()
 
 
 def _replay_seen(store: ClassStore, room: int, keyed: bool) -> Any:
@@ -1035,6 +1048,12 @@ async def _refused(request: Request, exc: Exception) -> Response:
     return refused_response(exc, hub_of(request).words.of(request))
 
 
+async def _store_away(request: Request, exc: Exception) -> Response:
+    """503 while the database does not answer (a department's PostgreSQL away)."""
+    refusal = RefusedError(503, "store", "class.error.store_away", retry_after=STORE_RETRY)
+    return refused_response(refusal, hub_of(request).words.of(request))
+
+
 async def _no_route(request: Request, exc: Exception) -> Response:
     """The JSON answer of an unknown path (404) or method (405), as any refusal."""
     assert isinstance(exc, HTTPException)
@@ -1069,12 +1088,15 @@ async def _close_on_time(hub: Hub) -> None:
     process that closed it announces it."""
     swept = time.monotonic()
     while True:
-        for room, challenge in await hub.db(hub.store.due, time.time()):
-            if await hub.db(hub.store.close_challenge, challenge):
-                await hub.publish(room)
-        if time.monotonic() - swept > BUCKET_SWEEP:
-            swept = time.monotonic()
-            await hub.db(hub.store.forget_buckets)
+        try:
+            for room, challenge in await hub.db(hub.store.due, time.time()):
+                if await hub.db(hub.store.close_challenge, challenge):
+                    await hub.publish(room)
+            if time.monotonic() - swept > BUCKET_SWEEP:
+                swept = time.monotonic()
+                await hub.db(hub.store.forget_buckets)
+        except StoreAwayError:
+            await asyncio.sleep(STORE_RETRY)  # closed late, once the database is back
         await asyncio.sleep(WINDOW_CHECK)
 
 

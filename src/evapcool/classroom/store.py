@@ -30,9 +30,15 @@ __all__ = [
     "ClassStore",
     "SqlStore",
     "Store",
+    "StoreAwayError",
     "clean_name",
     "csv_cell",
 ]
+
+
+class StoreAwayError(Exception):
+    """The database does not answer (a shared store's server away): try again shortly."""
+
 
 #: A CSV cell starting with one of these is a formula in spreadsheets.
 FORMULA_START = ("=", "+", "-", "@", "\t", "\r")

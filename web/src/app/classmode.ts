@@ -87,6 +87,16 @@ function marker(doc: Document): { api: string; nameMax: number } | null {
   }
 }
 
+/** Times a game is sent again while the server answers 503 (its database away): about two
+ * minutes at the server's 5 s. */
+const STORE_AWAY_RESENDS = 24;
+
+/** Seconds to wait before sending again, from a Retry-After header (1 to 30; 5 if none). */
+function waitAsked(header: string | null): number {
+  const asked = Number(header);
+  return Number.isFinite(asked) && asked >= 1 ? Math.min(Math.round(asked), 30) : 5;
+}
+
 /** A refusal's message from the server's JSON error, or the HTTP status. */
 async function refusal(res: Response): Promise<string> {
   try {
@@ -456,15 +466,23 @@ export class ClassMode {
     if (this.attemptsLeft === 0) return this.tell(t("page.class_not_sent_attempts"), "bad");
     this.tell(t("page.class_sending"), "");
     try {
-      const res = await fetch(`${this.api}/submit`, {
-        method: "POST",
-        headers: {
-          ...speaking(),
-          "content-type": "application/json",
-          authorization: `Bearer ${p.token}`,
-        },
-        body: JSON.stringify({ challenge: c.id, code }),
-      });
+      let res: Response;
+      for (let resends = 0; ; resends++) {
+        res = await fetch(`${this.api}/submit`, {
+          method: "POST",
+          headers: {
+            ...speaking(),
+            "content-type": "application/json",
+            authorization: `Bearer ${p.token}`,
+          },
+          body: JSON.stringify({ challenge: c.id, code }),
+        });
+        if (res.status !== 503 || resends >= STORE_AWAY_RESENDS) break;
+        // the class's database is away for a moment (a department's server): send it again
+        const wait = waitAsked(res.headers.get("retry-after"));
+        this.tell(t("page.class_resending", { n: wait }), "");
+        await new Promise((done) => setTimeout(done, wait * 1000));
+      }
       if (!res.ok) {
         const problem = await refusal(res);
         this.tell(t("page.class_refused", { problem }), "bad");

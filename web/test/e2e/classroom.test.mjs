@@ -2,7 +2,8 @@
 // started on 127.0.0.1 (so the projector warns that phones cannot reach it); the lecturer's
 // page opens a challenge from its form, two projectors (1920 x 1080 and 1280 x 720) and
 // three phones (touch, 390 x 844) follow it; the phones join, play scripted games, see
-// their attempts counted and their verified score and place; the lecturer puts a replay on
+// their attempts counted and their verified score and place (one game answered 503 first,
+// as while a department's database is away, and sent again by itself); the lecturer puts a replay on
 // the projectors, where it plays in the space the board leaves; closing and a window's end
 // reach every page within 2 s. EVAPCOOL_SHOTS=DIR saves the projector's states and a phone
 // there (`npm run screenshots:class`: into docs/).
@@ -163,9 +164,30 @@ test(
     for (const p of phones) assert.match(await bar(p), /2 attempts left/);
     const floors = [100, 150, 80];
     const scores = [];
+    let refusedOnce = false;
     for (const [k, p] of phones.entries()) {
+      if (k === 1) {
+        // A department's database away for a moment: the first sending is answered 503.
+        await p.route("**/api/submit", (route) => {
+          if (refusedOnce) return route.continue();
+          refusedOnce = true;
+          return route.fulfill({
+            status: 503,
+            headers: { "retry-after": "2", "content-type": "application/json" },
+            body: JSON.stringify({ error: { field: "store", message: "away" } }),
+          });
+        });
+      }
       const s = await play(p, floors[k]);
       assert.equal(s.won, true, `${names[k]} won`);
+      if (k === 1) {
+        await p.waitForFunction(
+          () => /sending again in 2 s/.test(document.getElementById("classbar").textContent),
+          null,
+          { timeout: 30_000 },
+        );
+        assert.ok(refusedOnce, "the first sending was answered 503");
+      }
       await p.waitForFunction(
         () => /Verified/.test(document.getElementById("classbar").textContent),
         null,
