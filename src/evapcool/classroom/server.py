@@ -226,13 +226,15 @@ class Hub:
             await self.wake.wait()
             self.wake.clear()
             rooms, self.pending = self.pending, set()
+            unsent = set()
             for room in rooms:
                 try:
                     await self.send(room)
                 except StoreAwayError:
-                    self.pending.add(room)  # sent once the database answers again
-            if self.pending:
+                    unsent.add(room)
+            if unsent:  # sent once the database answers again
                 await asyncio.sleep(STORE_RETRY)
+                self.pending |= unsent
                 self.wake.set()
 
 
