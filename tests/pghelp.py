@@ -8,6 +8,9 @@ import itertools
 import os
 import shutil
 import subprocess
+import tempfile
+from collections.abc import Iterator
+from contextlib import contextmanager
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -79,3 +82,21 @@ def start_postgres(folder: Path) -> Postgres:
     running = Postgres(folder, binaries, user)
     running.start()
     return running
+
+
+@contextmanager
+def running_postgres(prefix: str) -> Iterator[Postgres]:
+    """A PostgreSQL in a new temporary folder, stopped afterwards; the test is skipped where
+    PostgreSQL or psycopg is not installed."""
+    import pytest
+
+    if pg_bin() is None:
+        pytest.skip(MISSING)
+    extra = "the department extra: pip install 'evapcool[department]'"
+    pytest.importorskip("psycopg", reason=extra)
+    with tempfile.TemporaryDirectory(prefix=prefix) as folder:
+        running = start_postgres(Path(folder))
+        try:
+            yield running
+        finally:
+            running.stop()

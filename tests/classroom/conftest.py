@@ -3,13 +3,12 @@ database of a real PostgreSQL (started once per session in a temporary folder)."
 
 from __future__ import annotations
 
-import tempfile
 from collections.abc import Iterator
 from pathlib import Path
 
 import pytest
 from classhelp import Server, start_server
-from pghelp import MISSING, Postgres, pg_bin, start_postgres
+from pghelp import Postgres, running_postgres
 
 STORES = ["sqlite", "postgresql"]
 
@@ -17,17 +16,8 @@ STORES = ["sqlite", "postgresql"]
 @pytest.fixture(scope="session")
 def postgres() -> Iterator[Postgres]:
     """A PostgreSQL for the session, stopped afterwards (skipped if not installed)."""
-    if pg_bin() is None:
-        pytest.skip(MISSING)
-    pytest.importorskip(
-        "psycopg", reason="the department extra: pip install 'evapcool[department]'"
-    )
-    with tempfile.TemporaryDirectory(prefix="evapcool-pg-") as folder:
-        running = start_postgres(Path(folder))
-        try:
-            yield running
-        finally:
-            running.stop()
+    with running_postgres("evapcool-pg-") as running:
+        yield running
 
 
 @pytest.fixture(params=STORES)

@@ -8,16 +8,14 @@ from __future__ import annotations
 
 import asyncio
 import json
-import tempfile
 import time
 from collections.abc import Iterator
-from pathlib import Path
 from typing import Any
 
 import httpx
 import pytest
 from classhelp import SEED, SETTINGS, Server, code, start_server
-from pghelp import MISSING, Postgres, pg_bin, start_postgres
+from pghelp import Postgres, running_postgres
 
 pytestmark = pytest.mark.slow
 #: A generous bound for the database to be found back and a board to arrive (no speed
@@ -29,16 +27,8 @@ AWAY = "No answer from the database"
 @pytest.fixture
 def postgres_of_its_own() -> Iterator[Postgres]:
     """A PostgreSQL this test may stop (the session's is shared)."""
-    if pg_bin() is None:
-        pytest.skip(MISSING)
-    extra = "the department extra: pip install 'evapcool[department]'"
-    pytest.importorskip("psycopg", reason=extra)
-    with tempfile.TemporaryDirectory(prefix="evapcool-pg-away-") as folder:
-        running = start_postgres(Path(folder))
-        try:
-            yield running
-        finally:
-            running.stop()
+    with running_postgres("evapcool-pg-away-") as running:
+        yield running
 
 
 def _class(server: Server) -> tuple[str, dict[str, str]]:
