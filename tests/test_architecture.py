@@ -265,3 +265,119 @@ def test_layer_imports_point_one_way() -> None:
 
 def test_no_import_circles_between_modules() -> None:
     assert cycles(_package_edges(graph(SRC, PACKAGE))) == []
+
+
+# -- the class server's rooms (issue 45) --------------------------------------------------
+
+#: The longest file the class server's package may hold.
+CLASSROOM_LINES = 400
+#: The store layer of the class server, and what it may import of the package besides
+#: itself: the views and the server's state sit above it, never below.
+STORE_LAYER = ("classroom.store", "classroom.storage", "classroom.pgstore")
+STORE_MAY_IMPORT = ("classroom.names", "classroom.ratelimit", "classroom.rooms")
+#: The modules that route to the views (above them: a view importing one is a circle).
+ROUTERS = ("classroom.app", "classroom.server")
+
+
+def _under(module: str, package: str, prefixes: tuple[str, ...]) -> bool:
+    """Whether a module is one of `prefixes` (dotted, below the package) or inside one."""
+    name = module.removeprefix(package + ".")
+    return any(name == p or name.startswith(p + ".") for p in prefixes)
+
+
+def long_classroom_files(root: Path, package: str, limit: int = CLASSROOM_LINES) -> list[str]:
+    """The files of the package's classroom/ over `limit` lines, with their lengths."""
+    out = []
+    for path in sorted((root / package / "classroom").rglob("*.py")):
+        lines = len(path.read_text(encoding="utf-8").splitlines())
+        if lines > limit:
+            out.append(f"{path.relative_to(root).as_posix()}: {lines} lines")
+    return out
+
+
+def room_violations(root: Path, package: str) -> list[str]:
+    """Imports against the class server's rooms: the store layer importing anything of the
+    classroom above it, a view importing a router, and circles between the views."""
+    edges = graph(root, package)
+    bad = []
+    for module, targets in sorted(edges.items()):
+        for target in sorted(targets):
+            if _part(target) != "classroom":
+                continue
+            if _under(module, package, STORE_LAYER) and not _under(
+                target, package, STORE_LAYER + STORE_MAY_IMPORT
+            ):
+                bad.append(f"{module} imports {target}")
+            if _under(module, package, ("classroom.views",)) and _under(target, package, ROUTERS):
+                bad.append(f"{module} imports {target}")
+    views = {
+        m: {t for t in ts if _under(t, package, ("classroom.views",))}
+        for m, ts in _package_edges(edges).items()
+        if _under(m, package, ("classroom.views",))
+    }
+    bad += [" <-> ".join(group) for group in cycles(views)]
+    return bad
+
+
+def _room_tree(tmp_path: Path, extra: dict[str, str]) -> Path:
+    files = {
+        "pkg/__init__.py": "",
+        "pkg/classroom/__init__.py": "",
+        "pkg/classroom/names.py": "",
+        "pkg/classroom/store.py": "from pkg.classroom.storage import base\n",
+        "pkg/classroom/storage/__init__.py": "",
+        "pkg/classroom/storage/base.py": "from pkg.classroom import names\n",
+        "pkg/classroom/app.py": "from pkg.classroom.views import play\n",
+        "pkg/classroom/views/__init__.py": "",
+        "pkg/classroom/views/common.py": "from pkg.classroom import store\n",
+        "pkg/classroom/views/play.py": "from pkg.classroom.views import common\n",
+        "pkg/classroom/views/board.py": "from pkg.classroom.views.common import x\n",
+    }
+    return _tree(tmp_path, {**files, **extra})
+
+
+def test_a_long_classroom_file_is_found(tmp_path: Path) -> None:
+    root = _room_tree(
+        tmp_path,
+        {
+            "pkg/classroom/views/board.py": "x = 1\n" * (CLASSROOM_LINES + 1),
+            "pkg/classroom/views/play.py": "x = 1\n" * CLASSROOM_LINES,
+        },
+    )
+    assert long_classroom_files(root, "pkg") == [
+        f"pkg/classroom/views/board.py: {CLASSROOM_LINES + 1} lines"
+    ]
+
+
+@pytest.mark.parametrize(
+    ("where", "text", "found"),
+    [
+        ("pkg/classroom/storage/base.py", "from pkg.classroom.views import common\n", "base"),
+        ("pkg/classroom/store.py", "def f():\n    from pkg.classroom import app\n", "store"),
+        ("pkg/classroom/views/common.py", "from pkg.classroom.app import x\n", "common"),
+        ("pkg/classroom/views/common.py", "from pkg.classroom.views import play\n", "<->"),
+    ],
+)
+def test_a_room_import_against_the_layers_is_found(
+    tmp_path: Path, where: str, text: str, found: str
+) -> None:
+    assert room_violations(_room_tree(tmp_path, {}), "pkg") == []
+    bad = room_violations(_room_tree(tmp_path, {where: text}), "pkg")
+    assert len(bad) == 1 and found in bad[0], bad
+
+
+def test_no_classroom_file_is_over_400_lines() -> None:
+    assert long_classroom_files(SRC, PACKAGE) == []
+
+
+def test_the_class_server_rooms_point_one_way() -> None:
+    assert room_violations(SRC, PACKAGE) == []
+
+
+def test_the_architecture_names_every_room_of_the_class_server() -> None:
+    text = (SRC.parent / "docs" / "architecture.md").read_text(encoding="utf-8")
+    start = text.index("classroom/ class competitions")
+    paragraph = text[start : text.index("\nview/ ", start)]
+    rooms = sorted((SRC / PACKAGE / "classroom").rglob("*.py"))
+    missing = [p.name for p in rooms if p.name != "__init__.py" and p.name not in paragraph]
+    assert missing == []

@@ -84,7 +84,7 @@ def test_join_codes_are_easy_to_read_and_unique(
     store = open_store(store_at, 2)
     try:
         codes = iter(["ACEFGH", "ACEFGH", "ACEFGH", "KMNPRT"])
-        monkeypatch.setattr("evapcool.classroom.store.new_code", lambda: next(codes))
+        monkeypatch.setattr("evapcool.classroom.storage.classes.new_code", lambda: next(codes))
         first = store.add_room("Physics 1", None)
         second = store.add_room("Physics 2", None)  # the same code twice refused by the store
         assert (first["code"], second["code"]) == ("ACEFGH", "KMNPRT")

@@ -7,32 +7,75 @@ from __future__ import annotations
 
 import asyncio
 import threading
-from collections.abc import AsyncIterator
+from collections.abc import AsyncIterator, Callable
 from concurrent.futures import ThreadPoolExecutor
 from contextlib import asynccontextmanager
 from pathlib import Path
+from typing import Any
 
 from starlette.applications import Starlette
+from starlette.requests import Request
 from starlette.routing import Route
 
-from evapcool.classroom import department, pages
+from evapcool.classroom import pages
 from evapcool.classroom.errors import RefusedError
-from evapcool.classroom.server import (
-    CLASS_ROUTES,
+from evapcool.classroom.hub import (
     SHARED_DB_THREADS,
     Hub,
     Limits,
     _close_on_time,
-    _no_route,
     _pool,
     _ready,
+    open_store,
+)
+from evapcool.classroom.store import StoreAwayError
+from evapcool.classroom.views import department
+from evapcool.classroom.views.answers import (
+    _no_route,
     _refused,
     _SafeHeaders,
     _store_away,
     _to_class,
-    open_store,
 )
-from evapcool.classroom.store import StoreAwayError
+from evapcool.classroom.views.board import leaderboard, projector, stream
+from evapcool.classroom.views.debrief import debrief, debrief_pair, set_debrief
+from evapcool.classroom.views.exports import export_csv
+from evapcool.classroom.views.lecturer import (
+    challenges,
+    close_challenge,
+    entries,
+    hide,
+    lecturer_page,
+    open_challenge,
+    rename,
+    show,
+)
+from evapcool.classroom.views.play import game, get_challenge, join, me, submit
+
+#: A class's pages and API: at these paths for the single class, under /c/{code} for each
+#: class of a department's server.
+CLASS_ROUTES: list[tuple[str, Callable[[Request], Any], list[str] | None]] = [
+    ("/", game, None),
+    ("/projector", projector, None),
+    ("/lecturer", lecturer_page, None),
+    ("/api/challenge", get_challenge, ["GET"]),
+    ("/api/challenge", open_challenge, ["POST"]),
+    ("/api/challenge/close", close_challenge, ["POST"]),
+    ("/api/challenges", challenges, None),
+    ("/api/join", join, ["POST"]),
+    ("/api/submit", submit, ["POST"]),
+    ("/api/me", me, None),
+    ("/api/hide", hide, ["POST"]),
+    ("/api/rename", rename, ["POST"]),
+    ("/api/show", show, ["POST"]),
+    ("/api/entries", entries, None),
+    ("/api/leaderboard", leaderboard, None),
+    ("/api/debrief", debrief, ["GET"]),
+    ("/api/debrief", set_debrief, ["POST"]),
+    ("/api/debrief/pair", debrief_pair, None),
+    ("/api/stream", stream, None),
+    ("/api/export.csv", export_csv, None),
+]
 
 
 def routes(for_department: bool = False) -> list[Route]:

@@ -18,7 +18,7 @@ COMMAND = "class admin"
 
 def title(text: str) -> str:
     """A lecturer's or class's name: 1..80 visible characters."""
-    from evapcool.classroom.department import TITLE_MAX
+    from evapcool.classroom.views.department import TITLE_MAX
 
     cleaned = " ".join(text.split())
     if not cleaned or len(cleaned) > TITLE_MAX or not cleaned.isprintable():
@@ -82,7 +82,7 @@ def main(argv: list[str]) -> int:
     if not is_url(args.db) and Path(args.db).is_dir():
         print(error_line(COMMAND, f"argument --db: {args.db} is a folder"), file=sys.stderr)
         return EXIT_USAGE
-    from evapcool.classroom.server import open_store
+    from evapcool.classroom.hub import open_store
 
     try:
         store = open_store(args.db, connections=1)
@@ -97,8 +97,8 @@ def main(argv: list[str]) -> int:
 
 def run(store: Any, args: argparse.Namespace, words: Catalog) -> int:
     """One command on an open store; prints its lines."""
-    from evapcool.classroom.department import new_admin_token, new_token
-    from evapcool.classroom.server import digest
+    from evapcool.classroom.tokens import digest
+    from evapcool.classroom.views.department import new_admin_token, new_token
 
     if args.command == "token":
         print(words.t("class.cli.admin", url=f"{args.url}/admin?token={new_admin_token(store)}"))

@@ -217,13 +217,9 @@ def main(argv: list[str] | None = None) -> int:
 def first_token(data: Path | str, new: bool, department: bool = False) -> str | None:
     """A new lecturer's (department: administrator's) token if asked for or the store has
     none yet, else None (the one made before still works: only its digest is kept)."""
-    from evapcool.classroom.department import new_admin_token
-    from evapcool.classroom.server import (
-        ADMIN_SECRET,
-        LECTURER_SECRET,
-        new_lecturer_token,
-        open_store,
-    )
+    from evapcool.classroom.hub import open_store
+    from evapcool.classroom.tokens import ADMIN_SECRET, LECTURER_SECRET, new_lecturer_token
+    from evapcool.classroom.views.department import new_admin_token
 
     store = open_store(data, connections=1)
     name, make = (
@@ -287,7 +283,7 @@ def serve(
     import uvicorn
 
     from evapcool.classroom.app import create_app
-    from evapcool.classroom.server import Limits
+    from evapcool.classroom.hub import Limits
 
     lines = links(Catalog(choose_locale()), base, token, data, department)
 

@@ -1,0 +1,194 @@
+"""The class server's state (Hub): the store and its threads, the verifying workers, the
+request limits, this process's event streams and the boards sent to them; the watcher
+closing challenges as their time windows end."""
+
+from __future__ import annotations
+
+import asyncio
+import contextlib
+import json
+import multiprocessing
+import time
+from collections.abc import Callable
+from concurrent.futures import ProcessPoolExecutor, ThreadPoolExecutor
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any, TypeVar
+
+from evapcool.classroom.boards import _board
+from evapcool.classroom.debrief import Law
+from evapcool.classroom.fairqueue import FairQueue
+from evapcool.classroom.ratelimit import Rate, RateLimiter
+from evapcool.classroom.rooms import DEFAULT_ROOM
+from evapcool.classroom.store import ClassStore, Store, StoreAwayError, is_url
+from evapcool.classroom.verifier import warm
+from evapcool.classroom.words import Words
+
+T = TypeVar("T")
+#: Seconds between looks at the open challenge's time window: when it ends, the server
+#: closes the challenge and tells every page (within this, well inside the pages' 2 s).
+WINDOW_CHECK = 0.25
+#: Seconds between forgetting idle rate buckets held in the database.
+BUCKET_SWEEP = 60.0
+#: Seconds a client is told to wait (Retry-After) while the database does not answer.
+STORE_RETRY = 5
+#: Threads (and pooled connections) for a store shared by several processes.
+SHARED_DB_THREADS = 8
+#: API requests per client address (a class behind one NAT address shares it).
+CLIENT_RATE = Rate(burst=600, per_second=100)
+#: Submissions per student token.
+SUBMIT_RATE = Rate(burst=5, per_second=0.5)
+#: Joins per class and client address: a lecture hall behind one address joins at once, then
+#: one more every 10 s (a flood of joins adds at most 360 players an hour).
+JOIN_RATE = Rate(burst=320, per_second=0.1)
+
+
+@dataclass(frozen=True)
+class Limits:
+    """Request limits: body size, request rates, verifications, players, event streams."""
+
+    body_bytes: int = 256 * 1024
+    client: Rate = CLIENT_RATE
+    submit: Rate = SUBMIT_RATE
+    join: Rate = JOIN_RATE
+    #: Verifications in flight or waiting, per student token and per client address.
+    student_jobs: int = 2
+    address_jobs: int = 64
+    #: Players a class file holds (`evapcool class --max-students`).
+    students: int = 2000
+    #: Open event streams: in all, and per client address; the projector's and the
+    #: lecturer's (with the projector key) have their own bound and never wait for these.
+    listeners: int = 1000
+    address_listeners: int = 20
+    keyed_listeners: int = 16
+
+
+@dataclass
+class Listener:
+    """One open event stream: its queue, its address, its class, whether it holds the key."""
+
+    queue: asyncio.Queue[str]
+    address: str
+    keyed: bool
+    room: int = DEFAULT_ROOM
+
+
+@dataclass
+class Hub:
+    """The server's state: store, pools, limiters, this process's streams."""
+
+    store: ClassStore
+    limits: Limits
+    pool: ProcessPoolExecutor
+    workers: int
+    db_thread: ThreadPoolExecutor = field(default_factory=lambda: ThreadPoolExecutor(1))
+    words: Words = field(default_factory=Words)
+    listeners: list[Listener] = field(default_factory=list)
+    #: Rooms whose board another process (or this one) announced changed, to send.
+    pending: set[int] = field(default_factory=set)
+    #: The challenges' critical lines and the pair's paths (issue 36's debrief), computed
+    #: once per process (the same in every process: they follow from the games).
+    laws: dict[int, Law] = field(default_factory=dict)
+    pair_paths: dict[int, dict[str, Any]] = field(default_factory=dict)
+
+    def __post_init__(self) -> None:
+        # Requests per address are one process's flood guard; submissions and joins are
+        # counted in the store (across processes when it is shared).
+        self.per_client = RateLimiter(self.limits.client)
+        self.queue = FairQueue(self.workers, self.limits.student_jobs, self.limits.address_jobs)
+        self.wake = asyncio.Event()
+
+    async def db(self, fn: Callable[..., T], *args: Any) -> T:
+        """Run a store call on the store's threads (off the event loop)."""
+        return await asyncio.get_running_loop().run_in_executor(self.db_thread, fn, *args)
+
+    async def board(self, room: int, keyed: bool = False) -> dict[str, Any]:
+        """The leaderboard of a room's current (open, else last) challenge; the replay's
+        code only for the key's holders while that game's challenge is open; the debrief's
+        state (no names in its anonymous mode)."""
+        return await self.db(_board, self.store, room, keyed)
+
+    async def publish(self, room: int) -> None:
+        """A room's board changed: tell every process sharing the store, or (one process)
+        send it to this one's streams now."""
+        if self.store.shared:
+            # if the database is away, every process sends all its boards anew once it hears
+            # from the database again
+            with contextlib.suppress(StoreAwayError):
+                await self.db(self.store.notify, room)
+        else:
+            await self.send(room)
+
+    async def send(self, room: int) -> None:
+        """Send a room's leaderboard to this process's streams of it; a slow one keeps only
+        the newest."""
+        here = [s for s in self.listeners if s.room == room]
+        texts = {}
+        for keyed in {s.keyed for s in here}:
+            texts[keyed] = json.dumps(await self.board(room, keyed))
+        for listener in here:
+            if listener.queue.full():
+                listener.queue.get_nowait()
+            listener.queue.put_nowait(texts[listener.keyed])
+
+    def changed(self, room: int | None) -> None:
+        """A notice from the store (on the event loop): a room's board changed (None: any
+        may have, after the connection was lost)."""
+        self.pending.update([room] if room is not None else {s.room for s in self.listeners})
+        self.wake.set()
+
+    async def forward(self) -> None:
+        """Send the boards of the rooms announced changed (several notices, one board)."""
+        while True:
+            await self.wake.wait()
+            self.wake.clear()
+            rooms, self.pending = self.pending, set()
+            unsent = set()
+            for room in rooms:
+                try:
+                    await self.send(room)
+                except StoreAwayError:
+                    unsent.add(room)
+            if unsent:  # sent once the database answers again
+                await asyncio.sleep(STORE_RETRY)
+                self.pending |= unsent
+                self.wake.set()
+
+
+def _pool(workers: int) -> ProcessPoolExecutor:
+    """Worker processes (spawned, not forked from the running server), each warmed once."""
+    context = multiprocessing.get_context("spawn")
+    return ProcessPoolExecutor(workers, mp_context=context, initializer=warm)
+
+
+def open_store(where: Path | str, connections: int = SHARED_DB_THREADS) -> ClassStore:
+    """The store at a SQLite file, or a PostgreSQL database's URL (postgresql://...)."""
+    text = str(where)
+    if is_url(text):
+        from evapcool.classroom.pgstore import PostgresStore
+
+        return PostgresStore(text, connections)
+    return Store(Path(where))
+
+
+async def _close_on_time(hub: Hub) -> None:
+    """Close each open challenge as its time window ends and tell every page at once (not
+    only refuse games later). Every process looks; the store closes each once, and the
+    process that closed it announces it."""
+    swept = time.monotonic()
+    while True:
+        try:
+            for room, challenge in await hub.db(hub.store.due, time.time()):
+                if await hub.db(hub.store.close_challenge, challenge):
+                    await hub.publish(room)
+            if time.monotonic() - swept > BUCKET_SWEEP:
+                swept = time.monotonic()
+                await hub.db(hub.store.forget_buckets)
+        except StoreAwayError:
+            await asyncio.sleep(STORE_RETRY)  # closed late, once the database is back
+        await asyncio.sleep(WINDOW_CHECK)
+
+
+def _ready() -> bool:
+    """A no-op run in each worker at start (its initializer has warmed the engine)."""
+    return True

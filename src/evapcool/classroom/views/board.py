@@ -1,0 +1,108 @@
+"""The board and its event stream: the projector's page (QR code of the join address), the
+leaderboard, and its Server-Sent Events."""
+
+from __future__ import annotations
+
+import asyncio
+import json
+from collections.abc import AsyncIterator
+
+from starlette.requests import Request
+from starlette.responses import HTMLResponse, JSONResponse, Response, StreamingResponse
+
+from evapcool.classroom import pages
+from evapcool.classroom.errors import RefusedError
+from evapcool.classroom.hub import Hub, Listener
+from evapcool.classroom.views.common import _base, address, guard, join_url_of, keyed, room_of
+from evapcool.classroom.words import raw
+
+#: Seconds between keep-alive comments on an idle event stream.
+KEEP_ALIVE = 15.0
+
+
+async def projector(request: Request) -> Response:
+    """The projector page: QR code of the join address, the live leaderboard (with the
+    projector's key in ?key=, the replays' codes too)."""
+    hub = guard(request)
+    room = await room_of(request, hub)
+    await keyed(request, hub, room)
+    words = hub.words.of(request)
+    join_url = join_url_of(request, room)
+    svg = _qr_svg(join_url)
+    text = pages.projector_page(
+        lambda k: raw(words, k), words.locale, words.meta["direction"], join_url, svg, _base(room)
+    )
+    headers = {"Content-Security-Policy": pages.PROJECTOR_POLICY, "Cache-Control": "no-store"}
+    return HTMLResponse(text, headers=headers)
+
+
+def _qr_svg(url: str) -> str:
+    """The QR code of a URL as inline SVG (dark modules on white)."""
+    import segno
+
+    # No fixed size (a viewBox instead): the projector's style scales it to the screen.
+    svg: str = segno.make(url, error="m").svg_inline(
+        omitsize=True, border=2, dark="#000", light="#fff"
+    )
+    return svg
+
+
+async def leaderboard(request: Request) -> Response:
+    """The current challenge's leaderboard (the replay's code as for the stream)."""
+    hub = guard(request)
+    room = await room_of(request, hub)
+    return JSONResponse(await hub.board(room["id"], await keyed(request, hub, room)))
+
+
+def _stream_refusal(hub: Hub, request: Request, with_key: bool, room: int) -> RefusedError | None:
+    """Why one more stream is refused: too many in all or from this address (429); the
+    key's holders are counted apart (per class), so students' streams never crowd the
+    projector out."""
+    limits = hub.limits
+    if with_key:
+        if sum(1 for s in hub.listeners if s.keyed and s.room == room) >= limits.keyed_listeners:
+            return RefusedError(
+                429, "key", "class.error.streams", retry_after=30, n=limits.keyed_listeners
+            )
+        return None
+    public = [s for s in hub.listeners if not s.keyed]
+    if sum(1 for s in public if s.address == address(request)) >= limits.address_listeners:
+        return RefusedError(
+            429, "client", "class.error.streams", retry_after=30, n=limits.address_listeners
+        )
+    if len(public) >= limits.listeners:
+        return RefusedError(429, "client", "class.error.slow_down", retry_after=30, n=30)
+    return None
+
+
+async def stream(request: Request) -> Response:
+    """Server-Sent Events: the leaderboard at connect and after every change."""
+    hub = guard(request)
+    room = await room_of(request, hub)
+    with_key = await keyed(request, hub, room)
+    refused = _stream_refusal(hub, request, with_key, room["id"])
+    if refused:
+        raise refused
+    listener = Listener(asyncio.Queue(maxsize=4), address(request), with_key, room["id"])
+    hub.listeners.append(listener)
+    first = json.dumps(await hub.board(room["id"], with_key))
+    return StreamingResponse(
+        _events(hub, listener, first),
+        media_type="text/event-stream",
+        headers={"Cache-Control": "no-cache", "X-Accel-Buffering": "no"},
+    )
+
+
+async def _events(hub: Hub, listener: Listener, first: str) -> AsyncIterator[str]:
+    """The event stream of one listener; a comment every KEEP_ALIVE seconds when idle."""
+    try:
+        yield f"data: {first}\n\n"
+        while True:
+            try:
+                text = await asyncio.wait_for(listener.queue.get(), KEEP_ALIVE)
+            except asyncio.TimeoutError:
+                yield ": keep-alive\n\n"
+                continue
+            yield f"data: {text}\n\n"
+    finally:
+        hub.listeners.remove(listener)
