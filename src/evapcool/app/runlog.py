@@ -8,20 +8,45 @@ columns of `evapcool lab` (lab/io.py): `evapcool lab`'s plot and `load_result` r
 
 from __future__ import annotations
 
+import json
 import math
 import time
 from dataclasses import dataclass, field
 from pathlib import Path
 
-import numpy as np
-
 from evapcool.about import __version__
 from evapcool.game.replay import encode
 from evapcool.game.rules import Game
-from evapcool.lab.io import COLUMNS, as_arrays, to_csv_text
 from evapcool.limits import RECORDS_MAX
 
 RUNS_FOLDER = "runs"
+#: The lab's CSV (lab/io.py, which the app may not import: it sits beside the lab): its
+#: first line and its columns, in order (a test keeps them equal to the lab's).
+CSV_MAGIC = "# evapcool lab results"
+COLUMNS = (
+    "frame",
+    "n_trapped",
+    "temperature",
+    "critical_temperature",
+    "trap_height",
+    "total_energy",
+    "pair_collisions",
+    "wall_collisions",
+    "escaped",
+    "evaporated",
+    "evaporated_energy",
+    "excess_energy",
+    "spilled",
+    "spilled_energy",
+    "phase_space_density",
+    "won",
+)
+INT_COLUMNS = frozenset(
+    {"frame", "n_trapped", "pair_collisions", "wall_collisions", "escaped", "evaporated"}
+    | {"spilled", "won"}
+)
+PROGRAM = "evapcool"  # the file's 'program' line (data, as the lab's)
+SCHEDULE = "by hand"  # the lab's schedule column: a person moved the trap
 #: One row a second: the game's 30 physics frames.
 FRAMES_PER_SECOND = 30
 
@@ -111,16 +136,14 @@ class RunLog:
         if sim.won and self.won_frame is None:
             self.won_frame = len(self.rows) - 1
 
-    def columns(self, every: int) -> dict[str, np.ndarray]:
-        """The lab's columns, a row every `every` frames and the last one."""
+    def picked(self, every: int) -> list[tuple[float, ...]]:
+        """A row every `every` frames and the last one; phase-space density over its first."""
         picked = self.rows[::every]
         if self.rows and (len(self.rows) - 1) % every:
             picked.append(self.rows[-1])
-        cols = {c: [row[k] for row in picked] for k, c in enumerate(COLUMNS)}
-        psd = cols["phase_space_density"]
-        first = psd[0] if psd and psd[0] > 0 else 0.0
-        cols["phase_space_density"] = [p / first if first else 0.0 for p in psd]
-        return as_arrays(cols)
+        k = COLUMNS.index("phase_space_density")
+        first = picked[0][k] if picked and picked[0][k] > 0 else 0.0
+        return [(*row[:k], row[k] / first if first else 0.0, *row[k + 1 :]) for row in picked]
 
     def csv_text(self, game: Game, code: str | None, every: int) -> str:
         """The CSV: the settings and the replay code as '#' lines, then the rows."""
@@ -131,7 +154,7 @@ class RunLog:
             "seed": sim.seed,
             "escape": config.escape,
             "tc_law": "seed" if config.tc_exponent > 0.5 else "cup",
-            "schedule": "played by hand",
+            "schedule": SCHEDULE,
             "gravity": sim.gravity,
             "curvature": sim.curvature,
             "frames": len(self.rows) - 1,
@@ -140,7 +163,7 @@ class RunLog:
             "speed": game.speed,
         }
         metadata = {
-            "program": "evapcool (desktop: Save this run)",
+            "program": PROGRAM,
             "version": __version__,
             "parameters": parameters,
             "mass": 1.0,
@@ -152,7 +175,18 @@ class RunLog:
             "replay_code": code,
             "saved": time.strftime("%Y-%m-%dT%H:%M:%S"),
         }
-        return to_csv_text(metadata, self.columns(every), sim.energies())
+        lines = [CSV_MAGIC]
+        lines += [f"# {key}: {json.dumps(value)}" for key, value in metadata.items()]
+        lines.append(f"# final_energies: {json.dumps([float(e) for e in sim.energies()])}")
+        lines.append(",".join(COLUMNS))
+        for row in self.picked(every):
+            lines.append(",".join(_cell(c, v) for c, v in zip(COLUMNS, row, strict=True)))
+        return "\n".join(lines) + "\n"
+
+
+def _cell(name: str, value: float) -> str:
+    """As the lab writes it: whole numbers plain, floats as their shortest exact repr."""
+    return str(int(value)) if name in INT_COLUMNS else repr(float(value))
 
 
 def replay_code(game: Game, recorder_code: str | None, recorder) -> str | None:
