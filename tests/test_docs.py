@@ -262,3 +262,45 @@ def test_teach_commands_are_the_answer_keys_runs():
         "--escape knife --schedule 400@0,60@900 --frames 1800",
     ):
         assert f"evapcool lab --atoms 49 --seed 3 {command}" in text
+
+
+def test_teach_activities_print_as_pdfs_in_chromium(tmp_path):
+    """Each activity of docs/teach.md printed alone by headless Chromium (web/scripts/
+    teach-pdf.mjs, as CI does on the built site), with the docs' print style."""
+    import json
+    import shutil
+
+    import markdown
+
+    node, chromium = shutil.which("node"), Path("/usr/bin/chromium")
+    assert node and chromium.exists(), "node and Debian's chromium are needed (web/README)"
+    body = markdown.markdown(TEACH.read_text(encoding="utf-8"), extensions=["tables"])
+    css = (ROOT / "docs" / "stylesheets" / "print.css").read_text(encoding="utf-8")
+    page = tmp_path / "teach.html"
+    page.write_text(
+        f'<!doctype html><meta charset="utf-8"><style>{css}</style>'
+        f'<article class="md-content__inner md-typeset">{body}</article>',
+        encoding="utf-8",
+    )
+    proc = subprocess.run(
+        [node, str(ROOT / "web" / "scripts" / "teach-pdf.mjs"), str(page), str(tmp_path)],
+        capture_output=True,
+        text=True,
+        timeout=300,
+    )
+    assert proc.returncode == 0, proc.stderr
+    made = json.loads((tmp_path / "activities.json").read_text(encoding="utf-8"))
+    titles = [m["title"] for m in made]
+    assert titles == [
+        "1. Why evaporation cools",
+        "2. Fast or slow ramp",
+        "3. The knife against the rim",
+    ]
+    for k, m in enumerate(made):
+        pdf = (tmp_path / m["file"]).read_bytes()
+        assert pdf.startswith(b"%PDF-") and b"/Type /Page" in pdf
+        text = m["text"]  # what was on the page as it printed: this activity alone
+        assert text.startswith(m["title"]) and "Answer key." in text and "Setup link." in text
+        others = [t for j, t in enumerate(titles) if j != k]
+        assert not any(t in text for t in others)
+        assert "What the model is" not in text
