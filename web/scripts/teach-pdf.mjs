@@ -34,7 +34,9 @@ try {
     const text = await tab.evaluate((wanted) => {
       const body = document.querySelector("article.md-typeset");
       const kids = [...body.children];
-      const start = kids.findIndex((el) => el.tagName === "H3" && el.textContent.trim() === wanted);
+      const start = kids.findIndex(
+        (el) => el.tagName === "H3" && el.textContent.replace("¶", "").trim() === wanted,
+      );
       let keep = true;
       kids.forEach((el, i) => {
         if (i === start) keep = true;
