@@ -24,7 +24,7 @@ try {
   await tab.goto(pathToFileURL(resolve(page)).href);
   await tab.emulateMedia({ media: "print" });
   const titles = await tab.$$eval("article.md-typeset h3", (hs) =>
-    hs.map((h) => h.textContent.trim()),
+    hs.map((h) => h.textContent.replace("¶", "").trim()),
   );
   const activities = titles.filter((title) => /^\d+\./.test(title));
   if (activities.length === 0) throw new Error(`no activity (### 1. ...) in ${page}`);
