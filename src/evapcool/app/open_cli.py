@@ -2,27 +2,36 @@
 
 from __future__ import annotations
 
+import argparse
 import sys
 
-from evapcool.about import error_line
+from evapcool.about import APP_NAME
+from evapcool.argtypes import OneLineParser
 
-USAGE = "usage: evapcool open LINK [applet options]"
+PROG = f"{APP_NAME} open"
+
+
+def build_parser() -> argparse.ArgumentParser:
+    p = OneLineParser(
+        "open",
+        prog=PROG,
+        description="Play a setup's link on the desktop: the page's address with its options "
+        "(atoms, radius, seed, speed, tc-law, escape, replay, lang, trap, lock, hide, theme, "
+        "sound), as `evapcool --print-link` writes it. The same as `evapcool --link LINK`.",
+    )
+    p.add_argument("link", metavar="LINK", help="the address, or just its options: 'a=1&b=2'")
+    p.add_argument(
+        "options",
+        nargs=argparse.REMAINDER,
+        metavar="...",
+        help="any option of the applet (evapcool --help); given here, it beats the link's",
+    )
+    return p
 
 
 def main(argv: list[str] | None = None) -> int:
-    """`evapcool --link LINK` under another name: the link first, then any applet option."""
-    args = sys.argv[1:] if argv is None else list(argv)
-    if args[:1] in (["-h"], ["--help"]):
-        print(USAGE)
-        print(
-            "  LINK: the page's address with its options, e.g. 'evapcool.html?atoms=100&trap=300'"
-        )
-        return 0
-    if not args or args[0].startswith("-"):
-        print(
-            error_line("open", "needs a LINK: the page's address with its options"), file=sys.stderr
-        )
-        return 2
+    """`evapcool --link LINK [options]` under another name."""
+    args = build_parser().parse_args(sys.argv[1:] if argv is None else argv)
     from evapcool.app.cli import main as app_main
 
-    return app_main(["--link", args[0], *args[1:]])
+    return app_main(["--link", args.link, *args.options])

@@ -47,14 +47,15 @@ SAVE_RUN_RECT = pygame.Rect(6, 604, 40, 40)
 SLIDER_RECT = pygame.Rect(240, 611, 272, 8)
 KNOB_RADIUS = 10
 
-BACKGROUND = (159, 159, 159)
-BORDER = (79, 79, 79)
-CUP_COLOR = (0, 0, 0)
-CUP_WIDTH = 6
-TEXT = (255, 255, 255)
-SHADOW = (30, 30, 30)
-MERCURY = (220, 20, 20)
-GLASS = (255, 255, 255)
+# The original's colours (SPEC 1): the dark theme's (view/theme.py holds both themes).
+BACKGROUND = DARK.background
+BORDER = DARK.border
+CUP_COLOR = DARK.cup
+CUP_WIDTH = DARK.cup_width
+TEXT = DARK.text
+SHADOW = DARK.shadow
+MERCURY = DARK.mercury
+GLASS = DARK.glass
 ACCENT = (250, 215, 40)
 OVERLAY_SHADE = (10, 10, 30, 225)
 #: The high-score table hides the cup under it: the rows must not compete with the gas (issue 25).
