@@ -151,3 +151,13 @@ def test_the_projector_theme_has_thicker_lines_and_larger_numbers():
     assert PROJECTOR.cup_width > DARK.cup_width
     assert PROJECTOR.text_scale > DARK.text_scale
     assert sum(PROJECTOR.background) > 3 * 240 and sum(DARK.background) < 3 * 200
+
+
+def test_the_charts_lines_and_letters_at_seven_to_one():
+    """The energy and path charts are light in both themes: their ink on the plot's white."""
+    from evapcool.view import panels
+
+    for name in ("INK", "CURVE", "CUT", "TC_LINE", "PATH"):
+        color = getattr(panels, name)
+        assert contrast(color, panels.PLOT_BG) >= TEXT_RATIO, name
+        assert contrast(color, panels.BG) >= TEXT_RATIO or name != "INK", name
