@@ -154,3 +154,23 @@ def test_m_mutes_and_unmutes_and_class_mode_starts_muted(make_app):
     assert not sound.audible and app.visible_notices[-1].startswith("Sound muted")
     key(app, pygame.K_m)
     assert sound.audible
+
+
+@pytest.mark.usefixtures("own_folders")
+def test_the_win_sounds_a_chord_and_a_lost_game_a_falling_tone(make_app):
+    from apphelp import frames
+
+    won = make_app()
+    won.game.paused = False
+    won.game.sim.force_win()
+    frames(won, 2)
+    assert [name for name, _ in won.teaching.sound.log].count("chord") == 1
+    lost = make_app(escape="knife")
+    lost.game.paused = False
+    frames(lost, 1)
+    lost.game.set_trap_height(25.0)  # the knife takes nearly every atom: no condensing now
+    frames(lost, 5)
+    assert lost.game.too_few_atoms is not None
+    names = [name for name, _ in lost.teaching.sound.log]
+    assert names.count("falling") == 1 and "chord" not in names
+    assert names.count("tick") >= 1

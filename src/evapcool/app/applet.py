@@ -303,6 +303,7 @@ class App:
         MAX_WALL_STEP); None advances exactly one physics frame x speed (headless runs).
         """
         t0 = time.perf_counter()
+        self.teaching.observe(self.game)  # who is in the cup before a key lowers the trap
         self.handle_events(pygame.event.get())
         if not self.running:
             return
