@@ -23,6 +23,8 @@ APPROACH_FROM = 2.0
 APPROACH_EVERY = 30  # frames
 #: Ticks heard in one frame at most (a knife lowered at once drops hundreds).
 TICKS_PER_FRAME = 3
+#: Closing waits at most this many 10 ms steps for the sounds playing to end.
+CLOSE_WAIT_STEPS = 150
 
 
 def _envelope(n: int, attack: int, release: float) -> np.ndarray:
@@ -150,7 +152,13 @@ class Sound:
         self._play("falling", 0.0, falling_wave)
 
     def close(self) -> None:
+        """Let what is playing end (a chord at the win, the ticks of a headless run), then
+        stop the mixer."""
         if self.available:
+            for _ in range(CLOSE_WAIT_STEPS):
+                if not pygame.mixer.get_busy():
+                    break
+                pygame.time.wait(10)
             pygame.mixer.quit()
             self.available = False
 
