@@ -161,3 +161,19 @@ def test_the_charts_lines_and_letters_at_seven_to_one():
         color = getattr(panels, name)
         assert contrast(color, panels.PLOT_BG) >= TEXT_RATIO, name
         assert contrast(color, panels.BG) >= TEXT_RATIO or name != "INK", name
+
+
+@pytest.mark.parametrize("theme", sorted(THEMES))
+def test_the_command_line_chooses_the_theme(theme, tmp_path, monkeypatch):
+    """`evapcool --theme projector` (and the settings' Theme row it overrides for the run)."""
+    from evapcool.app import cli
+
+    monkeypatch.setenv("EVAPCOOL_DATA_DIR", str(tmp_path / "data"))
+    monkeypatch.setenv("EVAPCOOL_CONFIG_DIR", str(tmp_path / "config"))
+    shot = tmp_path / "shot.png"
+    assert cli.main(["--theme", theme, "--frames", "1", "--screenshot", str(shot)]) == 0
+    image = pygame.image.load(str(shot))
+    w, h = image.get_size()
+    scale = min(w / SCENE_SIZE[0], h / SCENE_SIZE[1])
+    at = (round((PLAY_RECT.left + 6) * scale), round((PLAY_RECT.top + 6) * scale))
+    assert tuple(image.get_at(at))[:3] == THEMES[theme].background
