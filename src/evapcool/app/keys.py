@@ -142,7 +142,7 @@ def _all_bindings() -> list[Binding]:
         Binding(
             (pygame.K_w,),
             "W",
-            "help.save_run",
+            "help.saverun",
             _do(lambda app: app.save_run(_shifted())),
             more=("help.save_run_more",),
         ),

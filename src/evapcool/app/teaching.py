@@ -105,32 +105,33 @@ class Teaching:
             self.notices.news(t("desk.sound.no_device"))
             return
         heard = self.sound.toggle_mute()
-        self.notices.news(t("desk.sound.on") if heard else t("desk.sound.muted"))
+        self.notices.news(t("sound.unmuted") if heard else t("sound.muted"))
 
     # -- the scene in a sentence ----------------------------------------------------------
     def describe(self, game: Game) -> str:
         """The scene in one sentence: atoms, T and Tc, the trap, what is happening."""
         sim = game.sim
         n, temp, tc = sim.n_trapped, sim.temperature, sim.critical_temperature
+        leaving = sim.n_escaped > 0 or sim.time - self._left_at < LEAVING_FRAMES
+        close = tc > 0 and temp < CLOSE_TO_TC * tc
         if sim.won:
             state = "condensed"
         elif game.too_few_atoms is not None:
             state = "too_few"
         elif game.paused:
             state = "paused"
-        elif sim.n_escaped or sim.time - self._left_at < LEAVING_FRAMES:
-            state = "leaving"
-        elif tc > 0 and temp < CLOSE_TO_TC * tc:
-            state = "close"
+        elif leaving:
+            state = "leaving_close" if close else "leaving"
         else:
-            state = "cooling"
+            state = "close" if close else "waiting"
+        # The page's sentence (i48web's describe.*), word for word: one scene, one sentence.
         return t(
-            "desk.describe",
+            "describe.scene",
             n=n,
-            t=i18n.number(round(temp, 1)),
+            temp=i18n.number(round(temp, 1)),
             tc=i18n.number(round(tc, 1)),
-            height=round(game.trap_height),
-            state=t(f"desk.describe.{state}"),
+            h=round(game.trap_height),
+            what=t(f"describe.{state}"),
         )
 
     def say(self, game: Game) -> None:

@@ -257,9 +257,9 @@ def describe(settings: Settings) -> list[tuple[str, str]]:
             t("settings.language"),
             t("settings.language_auto") if auto else language_name(s.language),
         ),
-        (t("settings.theme"), t(f"settings.theme_{s.theme}")),
-        (t("settings.sound"), t(f"settings.sound_{s.sound}")),
-        (t("settings.volume"), t("settings.volume_value", volume=s.volume)),
+        (t("theme.row"), t(f"theme.{s.theme}")),
+        (t("sound.row"), t(f"sound.{s.sound}")),
+        (t("sound.volume"), t("sound.volume_value", percent=s.volume)),
     ]
 
 
