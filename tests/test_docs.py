@@ -85,7 +85,12 @@ def headless(argv: list[str]) -> list[str]:
         rest = argv[1:]
     else:
         return argv
-    if (rest and not rest[0].startswith("-")) or "--frames" in rest or "--help" in rest:
+    opens = rest[:1] == ["open"]  # `evapcool open LINK` plays the link in the window
+    if (
+        (rest and not rest[0].startswith("-") and not opens)
+        or "--frames" in rest
+        or "--help" in rest
+    ):
         return argv  # a subcommand (lab, bench, web...), or a run that ends by itself
     return [*argv, "--frames", FRAMES]
 
@@ -165,3 +170,137 @@ def test_the_screenshot_script_makes_the_readmes_pictures(tmp_path):
     assert made <= set(shown)  # (the browser edition's picture comes from web/)
     for name in shown:
         assert (ROOT / "docs" / name).exists()
+
+
+# -- docs/teach.md (issue 48) ---------------------------------------------------------------------
+TEACH = ROOT / "docs" / "teach.md"
+
+
+def _teach_table():
+    import importlib.util
+
+    spec = importlib.util.spec_from_file_location(
+        "teach_table", ROOT / "scripts" / "teach_table.py"
+    )
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module
+
+
+def test_teach_table_is_the_option_lists():
+    """The link options' table is made from web/src/link-options.json: a new option, value or
+    word there fails here until `python scripts/teach_table.py --write` is run."""
+    tt = _teach_table()
+    made = tt.table()
+    assert tt.page_table(TEACH.read_text(encoding="utf-8")) == made
+    options = __import__("json").loads(tt.OPTIONS.read_text("utf-8"))["options"]
+    for option in options:  # every option and every value it allows is in the table
+        row = next(r for r in made.splitlines() if r.startswith(f"| `{option['name']}` |"))
+        assert all(f"`{v}`" in row for v in option.get("values", []))
+
+
+def test_teach_table_notices_a_changed_option(tmp_path, monkeypatch):
+    tt = _teach_table()
+    changed = __import__("json").loads(tt.OPTIONS.read_text("utf-8"))
+    changed["options"][0]["high"] = 12
+    fake = tmp_path / "link-options.json"
+    fake.write_text(__import__("json").dumps(changed), "utf-8")
+    monkeypatch.setattr(tt, "OPTIONS", fake)
+    assert tt.table() != tt.page_table(TEACH.read_text(encoding="utf-8"))
+
+
+def test_teach_is_in_the_sites_menu():
+    assert "teach.md" in (ROOT / "mkdocs.yml").read_text(encoding="utf-8")
+
+
+def _lab(**params):
+    from evapcool.lab import run_experiment
+
+    return run_experiment(n_atoms=49, seed=3, **params)
+
+
+def test_teach_answer_key_numbers_are_the_labs():
+    """Every number of the three answer keys, from the lab commands the page gives."""
+    text = " ".join(TEACH.read_text(encoding="utf-8").split())
+    cool = _lab(escape="knife", schedule="300@0", win=False, frames=900, every=300)
+    n = [int(v) for v in cool.n_trapped]
+    t = [f"{v:.1f}" for v in cool.temperature]
+    tc = [f"{v:.1f}" for v in cool.critical_temperature]
+    per_atom = cool.evaporated_energy[-1] / cool.evaporated[-1]
+    expected = [
+        f"{int(cool.spilled[-1])} of the 49 leave at the first frame, {n[0]} stay",
+        f"{n[0]} at the start, {n[1]} after 10 s, {n[2]} after 20 s, {n[3]} after 30 s",
+        f"T falls from {t[0]} to {t[1]} after 10 s and {t[2]} after 20 s",
+        f"took {per_atom:.1f} each on average",
+        f"from {tc[0]} to {tc[3]}",
+        f"({t[2]} against {tc[2]})",
+    ]
+    for name, schedule in (("fast", "400@0,60@150"), ("slow", "400@0,60@1500")):
+        r = _lab(schedule=schedule, frames=1800, every=30)
+        won = r.metadata["won_frame"]
+        expected.append(
+            f"condenses at frame {won} ({won / 30:.1f} s) with {int(r.n_trapped[-1])} atoms"
+            if name == "fast"
+            else f"at frame {won} ({won / 30:.1f} s) with {int(r.n_trapped[-1])} atoms"
+        )
+    for escape in ("knife", "rim"):
+        r = _lab(escape=escape, schedule="400@0,60@900", frames=1800, every=30)
+        won = r.metadata["won_frame"]
+        expected.append(f"at frame {won} ({won / 30:.1f} s) with {int(r.n_trapped[-1])} atoms")
+    missing = [phrase for phrase in expected if phrase not in text]
+    assert missing == []
+
+
+def test_teach_commands_are_the_answer_keys_runs():
+    """The page's lab commands are the runs the answer keys were computed from."""
+    text = TEACH.read_text(encoding="utf-8")
+    for command in (
+        "--escape knife --schedule 300@0 --no-win --frames 900 --every 300",
+        "--schedule 400@0,60@150 --frames 1800",
+        "--schedule 400@0,60@1500 --frames 1800",
+        "--escape rim --schedule 400@0,60@900 --frames 1800",
+        "--escape knife --schedule 400@0,60@900 --frames 1800",
+    ):
+        assert f"evapcool lab --atoms 49 --seed 3 {command}" in text
+
+
+def test_teach_activities_print_as_pdfs_in_chromium(tmp_path):
+    """Each activity of docs/teach.md printed alone by headless Chromium (web/scripts/
+    teach-pdf.mjs, as CI does on the built site), with the docs' print style."""
+    import json
+    import shutil
+
+    import markdown
+
+    node, chromium = shutil.which("node"), Path("/usr/bin/chromium")
+    assert node and chromium.exists(), "node and Debian's chromium are needed (web/README)"
+    body = markdown.markdown(TEACH.read_text(encoding="utf-8"), extensions=["tables"])
+    css = (ROOT / "docs" / "stylesheets" / "print.css").read_text(encoding="utf-8")
+    page = tmp_path / "teach.html"
+    page.write_text(
+        f'<!doctype html><meta charset="utf-8"><style>{css}</style>'
+        f'<article class="md-content__inner md-typeset">{body}</article>',
+        encoding="utf-8",
+    )
+    proc = subprocess.run(
+        [node, str(ROOT / "web" / "scripts" / "teach-pdf.mjs"), str(page), str(tmp_path)],
+        capture_output=True,
+        text=True,
+        timeout=300,
+    )
+    assert proc.returncode == 0, proc.stderr
+    made = json.loads((tmp_path / "activities.json").read_text(encoding="utf-8"))
+    titles = [m["title"] for m in made]
+    assert titles == [
+        "1. Why evaporation cools",
+        "2. Fast or slow ramp",
+        "3. The knife against the rim",
+    ]
+    for k, m in enumerate(made):
+        pdf = (tmp_path / m["file"]).read_bytes()
+        assert pdf.startswith(b"%PDF-") and b"/Type /Page" in pdf
+        text = m["text"]  # what was on the page as it printed: this activity alone
+        assert text.startswith(m["title"]) and "Answer key." in text and "Setup link." in text
+        others = [t for j, t in enumerate(titles) if j != k]
+        assert not any(t in text for t in others)
+        assert "What the model is" not in text

@@ -29,6 +29,7 @@ SUBCOMMANDS = {
         "verify replay codes by replay, rank them by score",
     ),
     "class": ("evapcool.classroom.class_cli", "run the class competition server"),
+    "open": ("evapcool.app.open_cli", "play a setup's link (the page's address) on the desktop"),
 }
 EXIT_USAGE = 2
 

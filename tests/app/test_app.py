@@ -277,6 +277,23 @@ def _copy_replay(app, k):
     assert pygame.scrap.get_text() == "EC1.test.00000000"
 
 
+def _save_run(app, k):
+    key(app, k)
+    assert app.teaching.saved is not None and app.teaching.saved.suffix == ".csv"
+    assert app.visible_notices[-1].startswith("Run saved: ")
+
+
+def _describe(app, k):
+    key(app, k)
+    assert app.visible_notices[-1].startswith("Atoms in the cup: 49;")
+
+
+def _mute(app, k):
+    heard = app.teaching.sound.audible
+    key(app, k)
+    assert app.teaching.sound.audible is not heard or not app.teaching.sound.available
+
+
 def _autopilot(app, k):
     key(app, k)  # the demo takes the trap...
     assert app.autopilot.engaged and app.autopilot.name == "demo"
@@ -311,6 +328,9 @@ KEY_CHECKS = {
     pygame.K_o: _settings,
     pygame.K_a: _autopilot,
     pygame.K_c: _copy_replay,
+    pygame.K_w: _save_run,
+    pygame.K_d: _describe,
+    pygame.K_m: _mute,
 }
 
 
@@ -327,7 +347,7 @@ def test_every_bound_key_is_checked_and_listed_in_the_help(app):
         assert any(what == i18n.t(b.help, **HELP_ARGS) for _, what in rows), b.help
     labels = " ".join(label for label, _ in rows)
     names = ("Space", "R", "Left", "Right", "Up", "Down", "S", "+", "-", "F11", "H", "F1")
-    for name in (*names, "E", "G", "T", "O", "Delete", "X", "Enter", "A", "C"):
+    for name in (*names, "E", "G", "T", "O", "Delete", "X", "Enter", "A", "C", "W", "D", "M"):
         assert name in labels
     assert "Esc" in labels and "Mouse" in labels
     # The reset confirmation and the settings keys are spelled out too.

@@ -188,7 +188,9 @@ def test_step_clamps_and_cycles() -> None:
     assert step(step(s, "escape", +1), "escape", +1).escape == "rim"
     with pytest.raises(ValueError):
         step(s, "colour", +1)
-    assert len(describe(s)) == 5  # atoms, radius, Tc law, escape rule, language
+    assert (
+        len(describe(s)) == 8
+    )  # atoms, radius, Tc law, escape rule, language, theme, sound, volume
     assert step(s, "language", +1).language == "ar"  # after "auto", the shipped tags
     assert step(s, "language", -1).language == "en-XA"
 
@@ -236,3 +238,17 @@ def test_valid_settings_round_trip_exactly(s: Settings) -> None:
         path = Path(d) / "settings.json"
         assert save_settings(s, path) == []
         assert load_settings(path) == (s, [])
+
+
+def test_theme_sound_and_volume_step_and_load() -> None:
+    """Issue 48's settings: the theme and sound cycle, the volume moves by 10 and clamps; a bad
+    saved value falls back with a notice."""
+    s = Settings()
+    assert (s.theme, s.sound, s.volume) == ("dark", "on", 60)
+    assert step(s, "theme", +1).theme == "projector" and step(s, "sound", +1).sound == "off"
+    assert step(s, "volume", +1).volume == 70 and step(s, "volume", -1).volume == 50
+    assert step(Settings(volume=100), "volume", +1).volume == 100
+    assert step(Settings(volume=0), "volume", -1).volume == 0
+    loaded, notices = from_mapping({"theme": "projector", "volume": 500})
+    assert loaded.theme == "projector" and loaded.volume == 60
+    assert len(notices) == 1 and "volume" in notices[0]

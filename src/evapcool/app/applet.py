@@ -47,8 +47,10 @@ from evapcool.app.pilot import PilotSeat
 from evapcool.app.replays import REPLAY_FOLDER, ReplayKeeper
 from evapcool.app.rounds import Rounds
 from evapcool.app.scoring import Scoreboard
+from evapcool.app.sound import Sound
 from evapcool.app.stats import FrameStats
 from evapcool.app.storage import scores_path, settings_path
+from evapcool.app.teaching import LOCKED_FIELDS, Teaching
 from evapcool.app.window import Window
 from evapcool.app.winscreen import WinScreen
 from evapcool.app.words import t
@@ -59,6 +61,7 @@ from evapcool.game.settings import Settings
 from evapcool.view.icons import window_icon
 from evapcool.view.pen import Pen
 from evapcool.view.scene import PLAY_RECT, REPLAY_RECT, SCENE_SIZE, Scene
+from evapcool.view.theme import theme_named
 from evapcool.view.widgets import Pointer
 
 TITLE = "app.title"  # the window's title, in the chosen language
@@ -66,6 +69,8 @@ TITLE = "app.title"  # the window's title, in the chosen language
 TARGET_FPS = 60
 #: A folder argument that names no folder (the command line's --data-dir says the same).
 BAD_FOLDER = "{name} must name a folder (got {value!r})"
+#: SDL's video drivers that show no window.
+HEADLESS = ("dummy", "offscreen")
 #: Modes that take every key and click: the scene's buttons do not light up under them.
 _MODAL = (Mode.NAME, Mode.SETTINGS, Mode.CONFIRM_CLEAR)
 
@@ -88,6 +93,8 @@ class App:
         autopilot: Autopilot | None = None,
         classroom: ClassLink | None = None,
         replay: Recording | None = None,
+        lock: Sequence[str] = (),
+        hide: Sequence[str] = (),
     ) -> None:
         """game: what to play, or the config to make it from. data_dir / config_dir: where scores
         and settings live (default $EVAPCOOL_DATA_DIR / $EVAPCOOL_CONFIG_DIR, else the
@@ -98,6 +105,7 @@ class App:
         autopilot: a strategy that plays by itself (`evapcool --autopilot FILE`; key A).
         classroom: a class server to join (`evapcool --class URL`): its challenge is
         played, and each win is sent to it. replay: a recording to watch (`--replay`).
+        lock: controls shown but not changeable, hide: parts left out (a setup's link).
         """
         for name, value in (("data_dir", data_dir), ("config_dir", config_dir)):
             _check_folder(name, value)
@@ -114,7 +122,17 @@ class App:
         if classroom is not None:  # a restarted applet rejoins as the same student
             classroom.remember_in(scores_path(data_dir).parent)
         self.classroom = ClassMode(classroom, self.notices)
-        self.scene = Scene()
+        looks = self.options.looks()
+        self.scene = Scene(theme_named(looks.theme))
+        # A headless run (--frames, tests) has no ears unless an audio driver is named.
+        device = pygame.display.get_driver() not in HEADLESS or "SDL_AUDIODRIVER" in os.environ
+        sound = Sound(looks.sound == "on", looks.volume / 100, classroom is not None, device)
+        self.teaching = Teaching(
+            sound, self.notices, self.replays, scores_path(data_dir).parent, lock, hide
+        )
+        self.options.locked = frozenset(
+            LOCKED_FIELDS[name] for name in lock if name in LOCKED_FIELDS
+        )
         self.time = GameClock()
         window = Window(t(TITLE), SCENE_SIZE, window_icon(64), screen)
         self.framing = Framing(window)
@@ -142,10 +160,17 @@ class App:
             watching=replay,
         )
         rounds = self.rounds
-        self.controls = SceneControls(lambda: rounds.game.trap_height)
+        self.teaching.attach(game)
+        self.controls = SceneControls(
+            lambda: rounds.game.trap_height, hide=self.teaching.hide, locked=self.teaching.lock
+        )
         self.slider = self.controls.slider
-        self.commands = Commands(rounds, self.framing, self.pilot, self.win_screen, self.controls)
-        self.input = InputMachine(self.commands, self.scores, self.options, default_bindings())
+        self.commands = Commands(
+            rounds, self.framing, self.pilot, self.win_screen, self.controls, self.teaching
+        )
+        self.input = InputMachine(
+            self.commands, self.scores, self.options, default_bindings(self.teaching.hide)
+        )
         self.overlays = Overlays(
             self.scene, self.input, self.scores, self.options, self.time.stats, HELP_ARGS
         )
@@ -278,6 +303,7 @@ class App:
         MAX_WALL_STEP); None advances exactly one physics frame x speed (headless runs).
         """
         t0 = time.perf_counter()
+        self.teaching.observe(self.game)  # who is in the cup before a key lowers the trap
         self.handle_events(pygame.event.get())
         if not self.running:
             return
@@ -303,6 +329,7 @@ class App:
         if self.scores.name_box is not None:
             self.scores.name_box.update(dt)
         self.charts.observe(self.game.sim)
+        self.teaching.observe(self.game)
         return played
 
     def draw(self) -> None:
@@ -312,6 +339,11 @@ class App:
         lay = self.layout
         surface = self.window.surface
         surface.fill((0, 0, 0))
+        looks = self.options.looks()
+        if looks.theme != self.scene.theme.name:  # chosen on the settings screen
+            self.scene.theme = theme_named(looks.theme)
+        self.teaching.sound.enabled = looks.sound == "on"
+        self.teaching.sound.volume = looks.volume / 100
         pen = Pen(surface, lay.scale, lay.scene.topleft)
         game = self.game
         self.scene.draw(pen, game, self.time.anim_time)
@@ -339,6 +371,7 @@ class App:
         return Pointer(lay.to_scene(pointer) if pointer else None, self.input.button_down)
 
     def _draw_widgets(self, pen: Pen, lay: Layout) -> None:
+        self.controls.theme(self.scene.theme)
         self.controls.draw(pen, self._pointer(lay), self.game)
 
     def _hovering(self, target: str) -> bool:
@@ -375,6 +408,7 @@ class App:
         self.window.screenshot(path)
 
     def close(self) -> None:
+        self.teaching.sound.close()
         self.window.close()
         pygame.display.quit()
 

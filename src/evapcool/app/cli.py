@@ -12,14 +12,18 @@ from pathlib import Path
 from evapcool import i18n, limits
 from evapcool.about import APP_NAME, error_line
 from evapcool.app.classlink import ClassLink
+from evapcool.app.links import HIDEABLE, LOCKABLE, Setup, make_link, parse_link
 from evapcool.app.storage import settings_path
 from evapcool.app.words import choose
 from evapcool.argtypes import OneLineParser, folder, output_file, ranged
 from evapcool.fileio import read_user_text
 from evapcool.game.replay import Recording, ReplayError, decode
-from evapcool.game.rules import GameConfig
+from evapcool.game.rules import HEIGHT_MAX, HEIGHT_MIN, HEIGHT_START, GameConfig
 from evapcool.game.settings import (
+    SOUNDS,
     TC_LAWS,
+    THEMES,
+    Settings,
     load_settings,
     max_atoms,
     with_overrides,
@@ -39,6 +43,9 @@ _OPTION_OF = {
     "tc_law": "--tc-law",
     "escape": "--escape",
 }
+
+#: The same, as a link names them (the page's ADDRESS_NAMES).
+_LINK_NAMES = {"n_atoms": "atoms", "radius": "radius"}
 
 
 def _languages() -> list[str]:
@@ -101,9 +108,55 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument(
         "--speed",
         type=ranged(limits.APPLET_SPEED),
-        default=1.0,
+        default=None,
         metavar="X",
         help=f"simulation speed, {limits.APPLET_SPEED.span()} (default 1)",
+    )
+    p.add_argument(
+        "--trap",
+        type=ranged(limits.Range(HEIGHT_MIN, HEIGHT_MAX, "px")),
+        default=None,
+        metavar="H",
+        help=f"the rim's height at each start, {HEIGHT_MIN:g} to {HEIGHT_MAX:g} px (default 400)",
+    )
+    p.add_argument(
+        "--lock",
+        type=_names_of("lock", LOCKABLE),
+        default=None,
+        metavar="LIST",
+        help="controls shown but not changeable, a comma-separated list of " + ", ".join(LOCKABLE),
+    )
+    p.add_argument(
+        "--hide",
+        type=_names_of("hide", HIDEABLE),
+        default=None,
+        metavar="LIST",
+        help="panels and buttons left out, a comma-separated list of " + ", ".join(HIDEABLE),
+    )
+    p.add_argument(
+        "--theme",
+        choices=THEMES,
+        default=None,
+        help="colours: dark (the original's) or projector (light, high contrast) "
+        "(saved setting; dark)",
+    )
+    p.add_argument(
+        "--sound",
+        choices=SOUNDS,
+        default=None,
+        help="sound on or off from the start (saved setting; on; key M switches it)",
+    )
+    p.add_argument(
+        "--link",
+        default=None,
+        metavar="LINK",
+        help="play a setup's link (the page's address with its options, as "
+        "'evapcool --print-link' writes); options given here beat the link's",
+    )
+    p.add_argument(
+        "--print-link",
+        action="store_true",
+        help="print the page's address for these options (a setup to hand out) and exit",
     )
     p.add_argument("--fullscreen", action="store_true", help="start in full screen")
     p.add_argument(
@@ -172,6 +225,71 @@ def build_parser() -> argparse.ArgumentParser:
         help="folder for the settings (default $EVAPCOOL_CONFIG_DIR, else the user config folder)",
     )
     return p
+
+
+def _names_of(option: str, allowed: tuple[str, ...]):
+    """A --lock or --hide value: names from allowed, comma-separated; one line otherwise."""
+
+    def parse(value: str) -> tuple[str, ...]:
+        items = tuple(dict.fromkeys(p.strip() for p in value.split(",") if p.strip()))
+        bad = [item for item in items if item not in allowed]
+        if bad:
+            raise argparse.ArgumentTypeError(
+                f"must be a comma-separated list of {', '.join(allowed)} (got {bad[0]!r})"
+            )
+        return items
+
+    parse.__name__ = option
+    return parse
+
+
+def _with_link(args: argparse.Namespace) -> list[str]:
+    """Fill the options not given on the command line from --link; the link's notices."""
+    if args.link is None:
+        return []
+    setup = parse_link(args.link, _languages())
+    taken = {
+        "atoms": setup.atoms,
+        "radius": setup.radius,
+        "seed": setup.seed,
+        "speed": setup.speed,
+        "tc_law": setup.tc_law,
+        "escape": setup.escape,
+        "replay": setup.replay,
+        "lang": _language(setup.lang) if setup.lang else None,
+        "trap": setup.trap,
+        "theme": setup.theme,
+        "sound": setup.sound,
+        "lock": setup.lock or None,
+        "hide": setup.hide or None,
+    }
+    args.from_link = set()
+    for name, value in taken.items():
+        if getattr(args, name) is None and value is not None:
+            setattr(args, name, value)
+            args.from_link.add(name)
+    return setup.notices
+
+
+def _print_link(args: argparse.Namespace, run: Settings) -> int:
+    """`--print-link`: the page's address for this run's options."""
+    setup = Setup(
+        atoms=run.n_atoms,
+        radius=run.radius,
+        seed=args.seed,
+        speed=args.speed,
+        tc_law=run.tc_law,
+        escape=run.escape,
+        replay=args.replay,
+        lang=args.lang,
+        trap=args.trap,
+        theme=args.theme,
+        sound=args.sound,
+        lock=tuple(args.lock or ()),
+        hide=tuple(args.hide or ()),
+    )
+    print(make_link(setup))
+    return 0
 
 
 def _user_message(exc: ValueError) -> str:
@@ -245,6 +363,7 @@ def _no_display() -> str | None:
 def main(argv: list[str] | None = None) -> int:
     """Play the applet (or, with --frames, run it headless); returns the exit status."""
     args = build_parser().parse_args(argv)
+    link_notices = _with_link(args)
     if args.screenshot is not None and args.frames is None:
         print(
             error_line(None, "--screenshot needs --frames N (frames to run first)"), file=sys.stderr
@@ -256,30 +375,44 @@ def main(argv: list[str] | None = None) -> int:
         print(error_line(None, problem), file=sys.stderr)
         return 2
     saved, notices = load_settings(settings_path(args.config_dir))
+    notices = [*link_notices, *notices]
     choose(args.lang, saved.language)
     overrides = {
         "n_atoms": args.atoms,
         "radius": args.radius,
         "tc_law": args.tc_law,
         "escape": args.escape,
+        "theme": args.theme,
+        "sound": args.sound,
     }
     if args.atoms is None and args.radius is not None:
         # Bigger atoms than saved: the saved count may not fit; take what does.
         overrides["n_atoms"] = min(saved.n_atoms, max_atoms(args.radius))
+    if getattr(args, "from_link", set()) & {"atoms", "radius"}:
+        try:  # the page's own rule: a count that does not fit plays the saved settings
+            with_overrides(saved, **overrides)
+        except ValueError as exc:
+            named = exc.render(_LINK_NAMES) if isinstance(exc, ParameterError) else str(exc)
+            link_problem = i18n.t("page.address_saved_settings", problem=named)
+            notices.insert(len(link_notices), link_problem)
+            overrides["n_atoms"] = overrides["radius"] = None
     try:
         run = with_overrides(saved, **overrides)
+        if args.print_link:
+            return _print_link(args, run)
         config = GameConfig(
             n_atoms=run.n_atoms,
             radius=run.radius,
             seed=args.seed,
-            speed=args.speed,
+            speed=1.0 if args.speed is None else args.speed,
             tc_exponent=run.tc_exponent,
             escape=run.escape,
             room=window_room(SCENE_SIZE),  # the room the scene shows
+            start_height=HEIGHT_START if args.trap is None else args.trap,
         )
         if watched is not None:  # the recording's own settings and seed
             config = replace(
-                watched.settings.game_config(watched.seed), speed=args.speed, room=config.room
+                watched.settings.game_config(watched.seed), speed=config.speed, room=config.room
             )
     except ValueError as exc:
         print(error_line(None, _user_message(exc)), file=sys.stderr)
@@ -324,6 +457,8 @@ def main(argv: list[str] | None = None) -> int:
             autopilot=pilot,
             classroom=link,
             replay=watched,
+            lock=tuple(args.lock or ()),
+            hide=tuple(args.hide or ()),
         )
     except ValueError as exc:
         print(error_line(None, _user_message(exc)), file=sys.stderr)

@@ -11,6 +11,7 @@ from evapcool.app.controls import SceneControls
 from evapcool.app.framing import Framing
 from evapcool.app.pilot import PilotSeat
 from evapcool.app.rounds import Rounds
+from evapcool.app.teaching import Teaching
 from evapcool.app.winscreen import WinScreen
 from evapcool.game.rules import Game
 from evapcool.view.scene import REPLAY_RECT
@@ -28,12 +29,14 @@ class Commands:
         pilot: PilotSeat,
         win_screen: WinScreen,
         controls: SceneControls,
+        teaching: Teaching,
     ) -> None:
         self.rounds = rounds
         self.framing = framing
         self.pilot = pilot
         self.win_screen = win_screen
         self.controls = controls
+        self.teaching = teaching
         self.running = True
 
     @property
@@ -52,11 +55,35 @@ class Commands:
 
     def nudge(self, delta: float) -> None:
         """An arrow key: the trap a step lower or higher (the player takes it)."""
+        if not self.teaching.allows("trap"):
+            return
         self.pilot.take_over()
         self.game.nudge_height(delta)
 
     def toggle_autopilot(self) -> None:
-        self.pilot.toggle(self.game)
+        if self.teaching.allows("trap"):
+            self.pilot.toggle(self.game)
+
+    def faster(self) -> None:
+        if self.teaching.allows("speed"):
+            self.game.faster()
+
+    def slower(self) -> None:
+        if self.teaching.allows("speed"):
+            self.game.slower()
+
+    # -- for the class (issue 48) ---------------------------------------------------------------
+    def save_run(self, every_frame: bool = False) -> None:
+        """Key W (Shift+W: a row every frame) or the button: the run as a lab CSV."""
+        self.teaching.save_run(self.game, every_frame)
+
+    def describe(self) -> None:
+        """Key D: the scene in one sentence."""
+        self.teaching.say(self.game)
+
+    def toggle_mute(self) -> None:
+        """Key M."""
+        self.teaching.toggle_mute()
 
     def copy_replay(self) -> None:
         """Key C or the win screen's strip: the won game's code to the clipboard."""
@@ -96,6 +123,8 @@ class Commands:
     def slider_press(self, pos: Point) -> bool:
         slider = self.controls.slider
         slider.enabled = not self.game.won
+        if not slider.hit(self.framing.layout.to_scene(pos)) or not self.teaching.allows("trap"):
+            return False
         if not slider.press(self.framing.layout.to_scene(pos)):
             return False
         self.pilot.take_over()

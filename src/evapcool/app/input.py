@@ -54,6 +54,7 @@ class Controls(Protocol):
     def restart(self) -> None: ...
     def toggle_chart(self, name: str) -> None: ...
     def copy_replay(self) -> None: ...
+    def save_run(self, every_frame: bool = False) -> None: ...
     def leave(self) -> None:
         """Esc with nothing open: leave full screen, else quit."""
 
@@ -208,6 +209,8 @@ class InputMachine:
             self.controls.toggle_chart("energy")
         elif target == "replay":
             self.controls.copy_replay()
+        elif target == "save":
+            self.controls.save_run()
         elif target and target.startswith("close:"):
             self.controls.toggle_chart(target.split(":", 1)[1])
 

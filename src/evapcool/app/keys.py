@@ -35,8 +35,35 @@ def _do(action: Callable[[Commands], object]) -> Callable[[Controls], object]:
     return cast(Callable[[Controls], object], action)
 
 
-def default_bindings() -> list[Binding]:
-    """The applet's keyboard controls (the help overlay lists exactly these)."""
+#: The keys each part a setup's link can hide (`hide=`) leaves out with it.
+HIDDEN_KEYS = {
+    "pause": (pygame.K_SPACE,),
+    "restart": (pygame.K_r,),
+    "step": (pygame.K_s,),
+    "slower": (pygame.K_MINUS,),
+    "faster": (pygame.K_PLUS,),
+    "autopilot": (pygame.K_a,),
+    "chart": (pygame.K_e,),
+    "path": (pygame.K_g,),
+    "help": (pygame.K_h,),
+    "table": (pygame.K_t, pygame.K_x),
+    "settings": (pygame.K_o,),
+    "fullscreen": (pygame.K_F11,),
+}
+
+
+def _shifted() -> bool:
+    return bool(pygame.key.get_mods() & pygame.KMOD_SHIFT)
+
+
+def default_bindings(hide: frozenset[str] | tuple[str, ...] = ()) -> list[Binding]:
+    """The applet's keyboard controls (the help overlay lists exactly these), less those of
+    the parts a setup's link hides."""
+    gone = {key for part in hide for key in HIDDEN_KEYS.get(part, ())}
+    return [b for b in _all_bindings() if not set(b.keys) & gone]
+
+
+def _all_bindings() -> list[Binding]:
     return [
         Binding(
             (pygame.K_SPACE,), "help.key.space", "help.space", _do(lambda app: app.toggle_pause())
@@ -73,13 +100,13 @@ def default_bindings() -> list[Binding]:
             (pygame.K_PLUS, pygame.K_EQUALS, pygame.K_KP_PLUS),
             "+",
             "help.faster",
-            _do(lambda app: app.game.faster()),
+            _do(lambda app: app.faster()),
         ),
         Binding(
             (pygame.K_MINUS, pygame.K_KP_MINUS),
             "-",
             "help.slower",
-            _do(lambda app: app.game.slower()),
+            _do(lambda app: app.slower()),
         ),
         Binding((pygame.K_e,), "E", "help.energy", _do(lambda app: app.toggle_chart("energy"))),
         Binding(
@@ -112,6 +139,15 @@ def default_bindings() -> list[Binding]:
             mode=Mode.SETTINGS,
             more=("help.choose_change_save",),
         ),
+        Binding(
+            (pygame.K_w,),
+            "W",
+            "help.saverun",
+            _do(lambda app: app.save_run(_shifted())),
+            more=("help.save_run_more",),
+        ),
+        Binding((pygame.K_d,), "D", "help.describe", _do(lambda app: app.describe())),
+        Binding((pygame.K_m,), "M", "help.mute", _do(lambda app: app.toggle_mute())),
         Binding(
             (pygame.K_F11,), "F11", "help.fullscreen", _do(lambda app: app.toggle_fullscreen())
         ),

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 from collections.abc import Mapping
 from pathlib import Path
+from typing import NamedTuple
 
 import pygame
 
@@ -11,6 +12,14 @@ from evapcool.app.notices import Notices
 from evapcool.app.words import choose, t
 from evapcool.game import settings as settings_mod
 from evapcool.game.settings import Settings, describe, load_settings, max_atoms, save_settings
+
+
+class Looks(NamedTuple):
+    """What the window looks and sounds like now (no restart needed)."""
+
+    theme: str
+    sound: str
+    volume: int
 
 
 class SettingsEditor:
@@ -32,6 +41,13 @@ class SettingsEditor:
         self.overrides = {k: v for k, v in (overrides or {}).items() if v is not None}
         self.draft = settings
         self.row = 0
+        #: Fields a setup's link fixed (its `lock`): shown, not changeable; always this run's.
+        self.locked: frozenset[str] = frozenset()
+
+    def looks(self) -> Looks:
+        """The theme, sound and volume in use: this run's override, else the saved one."""
+        s, o = self.settings, self.overrides
+        return Looks(str(o.get("theme", s.theme)), str(o.get("sound", s.sound)), int(s.volume))
 
     def for_run(self) -> Settings:
         """What a restart applies: the saved settings with this run's overrides on top."""
@@ -54,6 +70,9 @@ class SettingsEditor:
         elif key == pygame.K_DOWN:
             self.row = (self.row + 1) % len(names)
         elif key in (pygame.K_LEFT, pygame.K_RIGHT):
+            if names[self.row] in self.locked:
+                self.notices.news(t("desk.link.locked_setting"))
+                return
             d = 1 if key == pygame.K_RIGHT else -1
             self.draft = settings_mod.step(self.draft, names[self.row], d)
 
@@ -62,7 +81,8 @@ class SettingsEditor:
         if not save or draft == self.settings:
             return
         previous, self.settings = self.settings, draft
-        self.overrides = {}  # a choice made here beats the command line for the rest of the run
+        # A choice made here beats the command line for the rest of the run; a link's locks stay.
+        self.overrides = {k: v for k, v in self.overrides.items() if k in self.locked}
         # Only the fields changed here go over the file: another window's choices stay.
         if draft.language != previous.language:  # shown at once, no restart needed
             choose(None, draft.language)

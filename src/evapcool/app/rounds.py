@@ -21,7 +21,7 @@ from evapcool.app.scoring import Scoreboard
 from evapcool.app.words import t
 from evapcool.game.replay import Recording
 from evapcool.game.replay import Settings as RecordedSettings
-from evapcool.game.rules import Game, GameConfig
+from evapcool.game.rules import HEIGHT_START, Game, GameConfig
 from evapcool.game.settings import Settings
 from evapcool.physics.simulation import Simulation
 
@@ -76,9 +76,9 @@ class Rounds:
             escape=s.escape,
         )
         if challenge is not None:  # everyone in the class plays the same atoms
-            config = replace(config, seed=challenge.seed)
+            config = replace(config, seed=challenge.seed, start_height=HEIGHT_START)
         if watching is not None:
-            config = replace(config, seed=watching.seed)
+            config = replace(config, seed=watching.seed, start_height=HEIGHT_START)
         return config
 
     def restart(self) -> None:

@@ -64,6 +64,8 @@ class GameConfig:
     escape: str = "rim"
     #: Where escaped atoms are gone: the view gives the room its window shows (view/screen.py).
     room: Room = CLASSIC_ROOM
+    #: The rim's height at each (re)start (a setup's link: `trap`), inside the slider's range.
+    start_height: float = TRAP_HEIGHT
 
 
 def clamp_height(h: float) -> float:
@@ -128,7 +130,7 @@ class Game:
         if config is not None:
             self.config = config
         self.sim = sim
-        self.sim.set_checked_trap_height(HEIGHT_START)
+        self.sim.set_checked_trap_height(clamp_height(self.config.start_height))
         #: A height asked for since the last whole frame, applied at the next one.
         self._pending_height: float | None = None
         #: Heights to hold frame by frame (a recording played back), or None: the player's.

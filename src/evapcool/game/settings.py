@@ -65,6 +65,11 @@ class Settings:
     escape: str = "rim"
     #: The applet's language: a shipped catalog's tag, or "auto" (the system's).
     language: str = "auto"
+    #: The colours: "dark" (the original's) or "projector" (light, high contrast; issue 48).
+    theme: str = "dark"
+    #: Sound on or off (key M mutes this run only), and its volume in percent.
+    sound: str = "on"
+    volume: int = 60
 
     @property
     def tc_exponent(self) -> float:
@@ -82,6 +87,11 @@ class Settings:
 
 DEFAULTS = Settings()
 FIELD_NAMES = tuple(f.name for f in fields(Settings))
+THEMES = ("dark", "projector")
+SOUNDS = ("on", "off")
+#: The volume's range and the settings screen's step, percent.
+VOLUME_MAX = 100
+VOLUME_STEP = 10
 
 
 @lru_cache(maxsize=64)
@@ -133,7 +143,23 @@ def languages() -> tuple[str, ...]:
 
 def choices() -> dict[str, tuple[str, ...]]:
     """The settings that are a choice among names, with their options in screen order."""
-    return {"tc_law": tuple(TC_LAWS), "escape": ESCAPE_RULES, "language": languages()}
+    return {
+        "tc_law": tuple(TC_LAWS),
+        "escape": ESCAPE_RULES,
+        "language": languages(),
+        "theme": THEMES,
+        "sound": SOUNDS,
+    }
+
+
+def _check_volume(value: object) -> int:
+    if isinstance(value, float) and value.is_integer():
+        value = int(value)
+    if isinstance(value, bool) or not isinstance(value, int) or not 0 <= value <= VOLUME_MAX:
+        raise limits.ParameterError(
+            "volume", f"must be a whole number from 0 to {VOLUME_MAX} (got {limits.shown(value)})"
+        )
+    return value
 
 
 def validate(settings: Settings, cap: Callable[[float], int] = max_atoms) -> Settings:
@@ -145,7 +171,8 @@ def validate(settings: Settings, cap: Callable[[float], int] = max_atoms) -> Set
     radius = limits.APPLET_RADIUS.check("radius", settings.radius)
     n_atoms = _check_n_atoms(settings.n_atoms, radius, cap)
     chosen = {k: check_choice(k, getattr(settings, k), v) for k, v in choices().items()}
-    return Settings(n_atoms=n_atoms, radius=radius, **chosen)
+    volume = _check_volume(settings.volume)
+    return Settings(n_atoms=n_atoms, radius=radius, volume=volume, **chosen)
 
 
 def from_mapping(data: dict[str, object]) -> tuple[Settings, list[str]]:
@@ -173,7 +200,8 @@ def from_mapping(data: dict[str, object]) -> tuple[Settings, list[str]]:
         return take(name, lambda v: check_choice(name, v, options), getattr(DEFAULTS, name))
 
     chosen = {name: choice(name, options) for name, options in choices().items()}
-    return Settings(n_atoms=n_atoms, radius=radius, **chosen), notices
+    volume = take("volume", _check_volume, DEFAULTS.volume)
+    return Settings(n_atoms=n_atoms, radius=radius, volume=volume, **chosen), notices
 
 
 def with_overrides(settings: Settings, **overrides: Any) -> Settings:
@@ -204,6 +232,8 @@ def step(settings: Settings, name: str, direction: int) -> Settings:
     if name == "radius":
         r = max(RADIUS_MIN, min(RADIUS_MAX, round(s.radius) + d))
         return replace(s, radius=float(r), n_atoms=min(s.n_atoms, max_atoms(r)))
+    if name == "volume":
+        return replace(s, volume=max(0, min(VOLUME_MAX, s.volume + d * VOLUME_STEP)))
     if name in choices():
         options = choices()[name]
         i = options.index(getattr(s, name))
@@ -227,6 +257,9 @@ def describe(settings: Settings) -> list[tuple[str, str]]:
             t("settings.language"),
             t("settings.language_auto") if auto else language_name(s.language),
         ),
+        (t("theme.row"), t(f"theme.{s.theme}")),
+        (t("sound.row"), t(f"sound.{s.sound}")),
+        (t("sound.volume"), t("sound.volume_value", percent=s.volume)),
     ]
 
 

@@ -73,7 +73,33 @@ def _restart(big: pygame.Surface, s: float, c: tuple[float, float]) -> None:
     pygame.draw.polygon(big, BLACK, [base_l, tip, base_r])
 
 
-SYMBOLS: dict[str, Painter] = {"play": _play, "pause": _pause, "restart": _restart}
+def _save(big: pygame.Surface, s: float, c: tuple[float, float]) -> None:
+    """An arrow down into a tray: the run saved to a file."""
+    cx, cy = c
+    w = 0.09 * s
+    pygame.draw.rect(
+        big, BLACK, pygame.Rect(round(cx - w / 2), round(cy - 0.26 * s), round(w), round(0.22 * s))
+    )
+    pygame.draw.polygon(
+        big,
+        BLACK,
+        [(cx - 0.16 * s, cy - 0.06 * s), (cx + 0.16 * s, cy - 0.06 * s), (cx, cy + 0.12 * s)],
+    )
+    tray = [
+        (cx - 0.26 * s, cy + 0.06 * s),
+        (cx - 0.26 * s, cy + 0.24 * s),
+        (cx + 0.26 * s, cy + 0.24 * s),
+        (cx + 0.26 * s, cy + 0.06 * s),
+    ]
+    pygame.draw.lines(big, BLACK, False, tray, round(0.07 * s))
+
+
+SYMBOLS: dict[str, Painter] = {"play": _play, "pause": _pause, "restart": _restart, "save": _save}
+
+
+def save_button_looks(size: int) -> tuple[pygame.Surface, ...]:
+    """(idle, hover, down) of the "Save this run" button."""
+    return button_looks("save", size)
 
 
 def button_icon(symbol: str, look: str = "idle", size: int = 64) -> pygame.Surface:

@@ -33,11 +33,12 @@ PLOT_BG = (255, 255, 255)
 INK = (25, 25, 30)
 BAR = (60, 150, 200)
 CURVE = (20, 20, 20)
-CUT = (205, 25, 25)
+#: The chart's lines and the path at 7:1 or more on the white plot (issue 48: projectors).
+CUT = (180, 0, 0)
 ESCAPE_TINT = (252, 226, 226)
 CONDENSATE = (188, 214, 246)
 TC_LINE = (25, 60, 150)
-PATH = (215, 95, 10)
+PATH = (160, 40, 0)
 #: Room kept free in a panel's top-right corner (logical px), for the app's close button.
 CORNER_RESERVE = 40
 KT_FRACTION = 0.4  # kT = 2/5 of the mean energy per atom in this cup (SPEC 4)

@@ -31,6 +31,7 @@ from evapcool.view.screen import (
 )
 from evapcool.view.sprites import draw_atoms
 from evapcool.view.text_input import TextInput
+from evapcool.view.theme import DARK, Theme
 
 SCENE_SIZE = WINDOW
 PLAY_RECT = pygame.Rect(
@@ -41,17 +42,20 @@ PLAY_RECT = pygame.Rect(
 )
 PAUSE_RECT = pygame.Rect(64, 592, 64, 64)
 RESTART_RECT = pygame.Rect(144, 592, 64, 64)
+#: "Save this run" (issue 48): a small button in the bottom border's left corner.
+SAVE_RUN_RECT = pygame.Rect(6, 604, 40, 40)
 SLIDER_RECT = pygame.Rect(240, 611, 272, 8)
 KNOB_RADIUS = 10
 
-BACKGROUND = (159, 159, 159)
-BORDER = (79, 79, 79)
-CUP_COLOR = (0, 0, 0)
-CUP_WIDTH = 6
-TEXT = (255, 255, 255)
-SHADOW = (30, 30, 30)
-MERCURY = (220, 20, 20)
-GLASS = (255, 255, 255)
+# The original's colours (SPEC 1): the dark theme's (view/theme.py holds both themes).
+BACKGROUND = DARK.background
+BORDER = DARK.border
+CUP_COLOR = DARK.cup
+CUP_WIDTH = DARK.cup_width
+TEXT = DARK.text
+SHADOW = DARK.shadow
+MERCURY = DARK.mercury
+GLASS = DARK.glass
 ACCENT = (250, 215, 40)
 OVERLAY_SHADE = (10, 10, 30, 225)
 #: The high-score table hides the cup under it: the rows must not compete with the gas (issue 25).
@@ -117,10 +121,20 @@ def fit_size(text: str, size: int, width: float, bold: bool = False, least: int 
     return size
 
 
-def _shadowed(pen: Pen, text: str, size: int, center: tuple[float, float]) -> pygame.Rect:
+def _shadowed(
+    pen: Pen, text: str, size: int, center: tuple[float, float], theme: Theme = DARK
+) -> pygame.Rect:
     size = fit_size(text, size, PLAY_RECT.width - 16, True, size // 2)
-    pen.text(text, size, SHADOW, True, center=(center[0] + 3, center[1] + 3))
-    return pen.text(text, size, TEXT, True, center=center)
+    w, h = text_size(text, size, True)
+    _band(pen, (center[0] - w / 2 - 8, center[1] - h / 2 - 2, w + 16, h + 4), theme)
+    pen.text(text, size, theme.shadow, True, center=(center[0] + 3, center[1] + 3))
+    return pen.text(text, size, theme.text, True, center=center)
+
+
+def _band(pen: Pen, rect: tuple[float, float, float, float], theme: Theme) -> None:
+    """The theme's band behind a message over the play area: the gas never sits behind its
+    letters (7:1 against the band)."""
+    _shade(pen, pygame.Rect(*(round(v) for v in rect)), theme.message_band)
 
 
 def _shade(pen: Pen, rect: pygame.Rect, color: tuple[int, int, int, int]) -> pygame.Rect:
@@ -140,7 +154,9 @@ def to_pixels(pen: Pen, sim_to_screen, xy: np.ndarray) -> np.ndarray:
 class Scene:
     """Draws the game in the 640 x 672 logical scene through a Pen."""
 
-    def __init__(self) -> None:
+    def __init__(self, theme: Theme = DARK) -> None:
+        #: The colours drawn with (settings, --theme): changed between frames at will.
+        self.theme = theme
         self._cup_key: tuple[float, ...] | None = None
         self._cup_inner: list[tuple[float, float]] = []
         self._cup_outer: list[tuple[float, float]] = []
@@ -156,7 +172,7 @@ class Scene:
 
         t: animation clock in seconds (drives the condensate's fade and pulse).
         """
-        pen.fill(BACKGROUND, PLAY_RECT)
+        pen.fill(self.theme.background, PLAY_RECT)
         with pen.clip(PLAY_RECT):  # escaping atoms slide under the borders
             self.draw_cup(pen, game)
             self.draw_atoms(pen, game, t)
@@ -172,43 +188,47 @@ class Scene:
             (0, 0, BORDER_LEFT, h),
             (w - BORDER_RIGHT, 0, BORDER_RIGHT, h),
         ):
-            pen.fill(BORDER, rect)
+            pen.fill(self.theme.border, rect)
         shown = i18n.t("app.title") if title is None else title
         size = fit_size(shown, 40, TITLE_WIDTH, least=20)
-        pen.text(shown, size, TEXT, center=(w // 2, BORDER_TOP // 2 + 1))
+        pen.text(shown, size, self.theme.text, center=(w // 2, BORDER_TOP // 2 + 1))
 
     def _cup_points(self, game: Game) -> tuple[list, list]:
         sim = game.sim
         screen = ScreenMap.of(sim)
         radius = screen.origin_lift
-        key = (sim.trap_height, sim.curvature, screen)
+        width = self.theme.cup_width
+        key = (sim.trap_height, sim.curvature, screen, width)
         if key != self._cup_key:
             x_rim = sim.rim_half_width
             inner = screen.to_screen(cup_outline(sim.curvature, x_rim, radius))
-            outer = screen.to_screen(cup_outline(sim.curvature, x_rim, radius + CUP_WIDTH))
+            outer = screen.to_screen(cup_outline(sim.curvature, x_rim, radius + width))
             self._cup_inner = [tuple(p) for p in inner.tolist()]
             self._cup_outer = [tuple(p) for p in outer.tolist()]
             self._cup_key = key
         return self._cup_inner, self._cup_outer
 
     def draw_cup(self, pen: Pen, game: Game) -> None:
-        """A 6 px black band whose inner edge is where atom edges touch the wall."""
+        """A black band (6 px, the projector's 10) whose inner edge is where atom edges touch
+        the wall."""
         inner, outer = self._cup_points(game)
-        pen.polygon(CUP_COLOR, inner + outer[::-1])
-        pen.aalines(CUP_COLOR, False, inner)
-        pen.aalines(CUP_COLOR, False, outer)
+        color = self.theme.cup
+        pen.polygon(color, inner + outer[::-1])
+        pen.aalines(color, False, inner)
+        pen.aalines(color, False, outer)
 
     def draw_atoms(self, pen: Pen, game: Game, t: float = 0.0) -> None:
         """Atoms; after the win the trapped ones fade out under the condensate."""
         sim = game.sim
         s = pen.scale
         to_screen = ScreenMap.of(sim).to_screen
+        look = {"color": self.theme.atom, "rim": self.theme.atom_rim}
         if sim.n_escaped:
             xy = to_pixels(pen, to_screen, sim.escaped_positions)
-            draw_atoms(pen.surface, xy, sim.escaped_radii * s)
+            draw_atoms(pen.surface, xy, sim.escaped_radii * s, **look)
         fade = self.fade = self.condensate.update(sim, t)
         if sim.n_trapped and fade <= 0.0:
-            draw_atoms(pen.surface, to_pixels(pen, to_screen, sim.positions), sim.radii * s)
+            draw_atoms(pen.surface, to_pixels(pen, to_screen, sim.positions), sim.radii * s, **look)
         elif sim.n_trapped and fade < 1.0:
             # Sprites carry per-pixel alpha, so dim them as one layer with a surface alpha.
             play = pen.rect(PLAY_RECT)
@@ -217,65 +237,82 @@ class Scene:
             layer = self._atom_layer
             layer.fill((0, 0, 0, 0))
             xy = to_pixels(pen, to_screen, sim.positions) - np.array(play.topleft)
-            draw_atoms(layer, xy, sim.radii * s)
+            draw_atoms(layer, xy, sim.radii * s, **look)
             layer.set_alpha(round(255 * (1.0 - fade)))
             pen.surface.blit(layer, play)
         if fade > 0.0:
             draw_condensate(pen.surface, sim, lambda xy: to_pixels(pen, to_screen, xy), t, fade)
 
     def draw_thermometer(self, pen: Pen, game: Game) -> None:
-        sim = game.sim
+        sim, theme = game.sim, self.theme
+        thick = 2.0 if theme.glass_edge is not None else 1.0  # the projector's lines
         tube = pygame.Rect(0, 0, TUBE_WIDTH, BULB_CENTER[1] - TUBE_TOP)
         tube.midtop = (THERMO_X, TUBE_TOP)
-        pen.box(GLASS, tube, border_radius=TUBE_WIDTH // 2)
-        pen.circle(GLASS, BULB_CENTER, BULB_RADIUS)
-        pen.circle(MERCURY, BULB_CENTER, BULB_RADIUS - 5)
+        if theme.glass_edge is not None:  # white glass on a light border needs an outline
+            pen.box(theme.glass_edge, tube.inflate(4, 4), border_radius=TUBE_WIDTH // 2 + 2)
+            pen.circle(theme.glass_edge, BULB_CENTER, BULB_RADIUS + 2)
+        pen.box(theme.glass, tube, border_radius=TUBE_WIDTH // 2)
+        pen.circle(theme.glass, BULB_CENTER, BULB_RADIUS)
+        pen.circle(theme.mercury, BULB_CENTER, BULB_RADIUS - 5)
         top = scale_row(mercury_fraction(sim.temperature, sim.initial_temperature))
         column = pygame.Rect(0, 0, MERCURY_WIDTH, BULB_CENTER[1] - top)
         column.midtop = (THERMO_X, top)
-        pen.fill(MERCURY, column)
+        pen.fill(theme.mercury, column)
         # Tick marks every tenth of the scale, then the critical temperature.
         for k in range(11):
             y = scale_row(k / 10)
-            pen.line((90, 90, 90), (tube.right - 5, y), (tube.right - 1, y))
+            pen.line(theme.ticks, (tube.right - 6, y), (tube.right - 1, y), thick)
         tc = scale_row(mercury_fraction(sim.critical_temperature, sim.initial_temperature))
-        pen.line((0, 0, 0), (tube.left - 6, tc), (tube.right + 2, tc), 2)
-        pen.text("Tc", 26, TEXT, midright=(tube.left - 8, tc))
-        pen.text("T", 26, TEXT, midbottom=(THERMO_X, TUBE_TOP - 2))
+        pen.line(theme.tc_line, (tube.left - 6, tc), (tube.right + 2, tc), 2 * thick)
+        size = round(26 * theme.text_scale)
+        pen.text("Tc", size, theme.text, thick > 1, midright=(tube.left - 8, tc))
+        pen.text("T", size, theme.text, thick > 1, midbottom=(THERMO_X, TUBE_TOP - 2))
 
     def draw_status(self, pen: Pen, game: Game) -> None:
         speed = game.speed
         shown = i18n.number(speed) if speed >= 1 else f"1/{i18n.number(1 / speed)}"
         text = i18n.t("status.speed", speed=shown)
-        pen.text(text, 22, (220, 220, 220), midleft=(10, BORDER_TOP // 2))
-        pen.text(
-            i18n.t("status.help_hint"),
-            22,
-            (220, 220, 220),
-            midright=(SCENE_SIZE[0] - 10, BORDER_TOP // 2),
-        )
+        theme = self.theme
+        bold = theme.text_scale > 1
+        hint = i18n.t("status.help_hint")
+        size = fit_size(text, round(22 * theme.text_scale), STATUS_WIDTH, bold)
+        pen.text(text, size, theme.text, bold, midleft=(10, BORDER_TOP // 2))
+        size = fit_size(hint, round(22 * theme.text_scale), STATUS_WIDTH, bold)
+        pen.text(hint, size, theme.text, bold, midright=(SCENE_SIZE[0] - 10, BORDER_TOP // 2))
 
     # -- messages over the play area ------------------------------------------------------
     def draw_score(self, pen: Pen, score: int) -> pygame.Rect:
         """'Score: N' in large text at the top of the play area (the win); its pixels."""
-        r = _shadowed(pen, i18n.t("win.score_big", n=score), 84, (PLAY_RECT.centerx, MESSAGE_Y))
+        theme = self.theme
+        r = _shadowed(
+            pen, i18n.t("win.score_big", n=score), 84, (PLAY_RECT.centerx, MESSAGE_Y), theme
+        )
         text = i18n.t("win.condensed")
         size = fit_size(text, 30, PLAY_RECT.width - 16, True, 18)
-        pen.text(text, size, TEXT, True, center=(PLAY_RECT.centerx, MESSAGE_Y + 58))
+        self._lines(pen, [text], size, MESSAGE_Y + 58 - size // 2, size + 4)
         return r
+
+    def _lines(self, pen: Pen, lines: Sequence[str], size: int, top: float, step: int) -> None:
+        """Centred bold lines over the play area, on the theme's band."""
+        if not lines:
+            return
+        width = max(text_size(line, size, True)[0] for line in lines)
+        cx = PLAY_RECT.centerx
+        _band(pen, (cx - width / 2 - 8, top - 4, width + 16, step * len(lines) + 6), self.theme)
+        for k, line in enumerate(lines):
+            pen.text(line, size, self.theme.text, True, midtop=(cx, top + step * k))
 
     def draw_too_few(self, pen: Pen, reason: str) -> None:
         """The gas can no longer condense: say why and offer a restart."""
         cx = PLAY_RECT.centerx
-        _shadowed(pen, i18n.t("lose.too_few"), 52, (cx, MESSAGE_Y))
+        _shadowed(pen, i18n.t("lose.too_few"), 52, (cx, MESSAGE_Y), self.theme)
         width = PLAY_RECT.width - 40
         lines = [*wrap(reason, 26, width, True), *wrap(i18n.t("lose.press_r"), 26, width, True)]
-        for k, line in enumerate(lines):
-            pen.text(line, 26, TEXT, True, center=(cx, MESSAGE_Y + 48 + 30 * k))
+        self._lines(pen, lines, 26, MESSAGE_Y + 48 - 15, 30)
 
     def draw_start_hint(self, pen: Pen) -> None:
-        for k, line in enumerate(wrap(i18n.t("start.press_space"), 28, PLAY_RECT.width - 24, True)):
-            pen.text(line, 28, TEXT, True, center=(PLAY_RECT.centerx, PLAY_RECT.top + 40 + 30 * k))
+        lines = wrap(i18n.t("start.press_space"), 28, PLAY_RECT.width - 24, True)
+        self._lines(pen, lines, 28, PLAY_RECT.top + 40 - 15, 30)
 
     def _frame(
         self, pen: Pen, rect: pygame.Rect, shade: tuple[int, int, int, int] = OVERLAY_SHADE

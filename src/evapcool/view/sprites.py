@@ -20,7 +20,9 @@ def sprite_key(radius: float) -> float:
 
 
 @lru_cache(maxsize=64)
-def _sprite(key: float, color: tuple[int, int, int]) -> pygame.Surface:
+def _sprite(
+    key: float, color: tuple[int, int, int], rim: tuple[int, int, int] | None = None
+) -> pygame.Surface:
     r = max(key, 0.5)
     size = math.ceil(2.0 * r) + 2
     c = size / 2.0
@@ -35,6 +37,9 @@ def _sprite(key: float, color: tuple[int, int, int]) -> pygame.Surface:
     spec = np.clip(refl_z, 0.0, 1.0) ** 12
     base = np.array(color, dtype=float)
     rgb = base[None, None, :] * (0.38 + 0.62 * lambert)[..., None] + 255.0 * 0.55 * spec[..., None]
+    if rim is not None:  # a dark ring: touching atoms stay two atoms on a light background
+        edge = np.clip((np.sqrt(d2) - 1.0) * r + max(1.5, 0.22 * r), 0.0, 1.0)[..., None]
+        rgb = rgb * (1.0 - edge) + np.array(rim, dtype=float)[None, None, :] * edge
     # Coverage: one pixel wide soft edge gives smooth outlines at any size.
     alpha = np.clip((1.0 - np.sqrt(d2)) * r + 0.5, 0.0, 1.0)
 
@@ -44,9 +49,13 @@ def _sprite(key: float, color: tuple[int, int, int]) -> pygame.Surface:
     return surf
 
 
-def atom_sprite(radius: float, color: tuple[int, int, int] = ATOM_COLOR) -> pygame.Surface:
+def atom_sprite(
+    radius: float,
+    color: tuple[int, int, int] = ATOM_COLOR,
+    rim: tuple[int, int, int] | None = None,
+) -> pygame.Surface:
     """A shaded sphere of this radius (px) on a transparent square, centre at its middle."""
-    return _sprite(sprite_key(radius), tuple(color))
+    return _sprite(sprite_key(radius), tuple(color), rim)
 
 
 def draw_atoms(
@@ -54,6 +63,7 @@ def draw_atoms(
     screen_xy: np.ndarray,
     radii: np.ndarray,
     color: tuple[int, int, int] = ATOM_COLOR,
+    rim: tuple[int, int, int] | None = None,
 ) -> None:
     """Draw spheres centred at screen_xy (N, 2) with one batched fblits per radius."""
     n = len(screen_xy)
@@ -66,7 +76,7 @@ def draw_atoms(
     else:
         groups = [(float(k), keys == k) for k in np.unique(keys)]
     for key, sel in groups:
-        sprite = _sprite(key, tuple(color))
+        sprite = _sprite(key, tuple(color), rim)
         half = sprite.get_width() / 2.0
         corners = np.floor(screen_xy[sel] - half + 0.5).astype(np.int64)
         # A lazy iterator of (sprite, (x, y)): several times faster than building
