@@ -15,7 +15,7 @@ static double whole_frame(double t) { return (double)(int64_t)t; }
  * at the atoms trapped now (one already on its way over the rim may still leave; the score
  * stays). 1 at the frame the win is first seen, else 0.
  */
-EXPORT(core_frame_end) int32_t core_frame_end(Core *core) {
+int32_t core_frame_end(Core *core) {
   Run *r = &core->run;
   if (!r->won || r->score >= 0) return 0;
   r->score = r->n_trapped;
@@ -29,7 +29,7 @@ EXPORT(core_frame_end) int32_t core_frame_end(Core *core) {
  * the next whole frame, then the frame's end. CORE_LOG_FULL: empty the log and call again with
  * the same height, which goes on where it stopped.
  */
-EXPORT(core_frame) int32_t core_frame(Core *core, double height) {
+int32_t core_frame(Core *core, double height) {
   Run *r = &core->run;
   if (r->record && r->n_log > 0) return CORE_LOG_FULL; /* the knife may log every atom */
   if (!r->won && height != r->trap_height) core_set_trap_height(core, height);
@@ -44,7 +44,7 @@ EXPORT(core_frame) int32_t core_frame(Core *core, double height) {
  * `limit` frames. Returns the frames played; the win and the score are the core's (core_won,
  * core_score). A replay keeps no event log.
  */
-EXPORT(core_replay) int32_t core_replay(Core *core, const double *runs, int32_t n_runs, int32_t limit) {
+int32_t core_replay(Core *core, const double *runs, int32_t n_runs, int32_t limit) {
   int32_t frames = 0;
   core->run.record = 0;
   core->run.n_log = 0;
@@ -59,4 +59,4 @@ EXPORT(core_replay) int32_t core_replay(Core *core, const double *runs, int32_t 
 }
 
 /* n doubles of the engine's memory for the caller to fill (a recording's runs). */
-EXPORT(core_buffer) double *core_buffer(Core *core, int32_t n) { return core_take(core, sizeof(double) * n); }
+double *core_buffer(Core *core, int32_t n) { return core_take(core, sizeof(double) * n); }
