@@ -189,6 +189,13 @@ CORE_API(core_frame_end) int32_t core_frame_end(Core *core);
  * the frames played.
  * py: Core.replay(runs: Any, limit: int) -> int */
 CORE_API(core_replay) int32_t core_replay(Core *core, const double *runs, int32_t n_runs, int32_t limit);
+/* game.c: a recording's path in the (N, T) plane: the runs played as core_replay plays
+ * them, frame 0 (height h0), every stride-th frame, the last and the win's kept as rows of
+ * (k, N, T, h) in points (their count into n_points); the frames played.
+ * py: Core.path(runs: Any, limit: int, stride: int, h0: float) -> tuple[int, Any] */
+CORE_API(core_path)
+int32_t core_path(Core *core, const double *runs, int32_t n_runs, int32_t limit, int32_t stride,
+                  double h0, double *points, int32_t *n_points);
 /* game.c: n doubles of the engine's memory for the caller to fill (a recording's runs). */
 CORE_API(core_buffer) double *core_buffer(Core *core, int32_t n);
 

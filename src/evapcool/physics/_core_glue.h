@@ -124,6 +124,7 @@ static PyMethodDef core_methods[] = {
     {"frame", (PyCFunction)core_py_frame, METH_VARARGS, "One whole frame, the height held: CORE_DONE, or CORE_LOG_FULL to empty the log and call again with the same height."},
     {"frame_end", (PyCFunction)core_py_frame_end, METH_NOARGS, "A whole frame's end: 1 at the frame the win is first seen (the score fixed)."},
     {"replay", (PyCFunction)core_py_replay, METH_VARARGS, "(height, frames) runs played from a whole frame up to the win or `limit` frames: the frames played."},
+    {"path", (PyCFunction)core_py_path, METH_VARARGS, "A recording's path in the (N, T) plane: the runs played as core_replay plays them, frame 0 (height h0), every stride-th frame, the last and the win's kept as rows of (k, N, T, h) in points (their count into n_points); the frames played."},
     {NULL, NULL, 0, NULL},
 };
 

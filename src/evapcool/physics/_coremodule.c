@@ -172,6 +172,41 @@ static PyObject *core_py_replay(CoreObject *self, PyObject *args) {
   return PyLong_FromLong(frames);
 }
 
+/* path(runs, limit, stride, h0) -> (frames played, the points' rows (k, N, T, h) as bytes of
+ * float64): runs float64 (height, frames) pairs. */
+static PyObject *core_py_path(CoreObject *self, PyObject *args) {
+  Core *core = ready(self);
+  PyObject *runs;
+  int limit, stride;
+  double h0;
+  if (!core || !PyArg_ParseTuple(args, "Oiid", &runs, &limit, &stride, &h0)) return NULL;
+  if (limit < 0 || stride < 1) {
+    PyErr_SetString(PyExc_ValueError, "limit must be at least 0 and stride at least 1");
+    return NULL;
+  }
+  Py_buffer view;
+  if (PyObject_GetBuffer(runs, &view, PyBUF_C_CONTIGUOUS) < 0) return NULL;
+  if (view.len % 16 != 0) {
+    PyBuffer_Release(&view);
+    PyErr_SetString(PyExc_ValueError, "runs: float64 (height, frames) pairs");
+    return NULL;
+  }
+  Py_ssize_t rows = limit / stride + 2;
+  double *points = PyMem_Malloc(sizeof(double) * 4 * rows);
+  if (!points) {
+    PyBuffer_Release(&view);
+    return PyErr_NoMemory();
+  }
+  int32_t frames, kept = 0;
+  Py_BEGIN_ALLOW_THREADS
+  frames = core_path(core, view.buf, (int32_t)(view.len / 16), limit, stride, h0, points, &kept);
+  Py_END_ALLOW_THREADS
+  PyBuffer_Release(&view);
+  PyObject *out = Py_BuildValue("(iy#)", frames, (const char *)points, (Py_ssize_t)kept * 32);
+  PyMem_Free(points);
+  return out;
+}
+
 /* load_cup(pos, vel, radius, curvature, y_top, seed) -> atoms placed: the start from a seed
  * into pos and vel ((n, 2) float64 each); fewer than n if they do not fit, -1 for
  * impossible odds (core/start.c). */

@@ -193,6 +193,15 @@ class CoreEngine:
         self._sync()
         return frames
 
+    def path(self, runs: np.ndarray, limit: int, stride: int, h0: float) -> tuple[int, np.ndarray]:
+        """The game's path in the (N, T) plane (core_path): the frames played and the rows
+        (k, N, T, h) kept (no event log is kept)."""
+        self._update_tc_table()
+        runs = np.ascontiguousarray(runs, dtype=np.float64)
+        frames, rows = self.core.path(runs, int(limit), int(stride), float(h0))
+        self._sync()
+        return int(frames), np.frombuffer(rows, dtype=np.float64).reshape(-1, 4)
+
     # -- diagnostics --------------------------------------------------------------
     @property
     def crossing_count(self) -> int:

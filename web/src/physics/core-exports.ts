@@ -123,6 +123,21 @@ export interface CoreExports {
    * played.
    */
   core_replay(core: Core, runs: number, nRuns: number, limit: number): number;
+  /**
+   * A recording's path in the (N, T) plane: the runs played as core_replay plays them, frame 0
+   * (height h0), every stride-th frame, the last and the win's kept as rows of (k, N, T, h) in
+   * points (their count into n_points); the frames played.
+   */
+  core_path(
+    core: Core,
+    runs: number,
+    nRuns: number,
+    limit: number,
+    stride: number,
+    h0: number,
+    points: number,
+    nPoints: number,
+  ): number;
   /** N doubles of the engine's memory for the caller to fill (a recording's runs). */
   core_buffer(core: Core, n: number): number;
 }
