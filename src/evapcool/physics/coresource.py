@@ -37,7 +37,10 @@ def source_hash(root: Path) -> str:
 
 def checkout_of(extension: Path) -> Path | None:
     """The source checkout an extension file was built in place in, or None (an install)."""
-    root = extension.resolve().parents[3]  # root/src/evapcool/physics/_core*.so
+    parents = extension.resolve().parents  # root/src/evapcool/physics/_core*.so
+    if len(parents) < 4:
+        return None
+    root = parents[3]
     if (root / "core" / "evapcool_core.h").is_file() and (root / "setup.py").is_file():
         return root
     return None
