@@ -4,6 +4,9 @@
  * (setup.py, src/evapcool/physics/_coremodule.c). An engine is a `Core`: its scalars and tables,
  * allocated once at the start (no allocation per event); a process may hold several.
  *
+ * The entry points the wrappers call, the constants and the log line are the core's API,
+ * declared in evapcool_core.h; this header is the core's inside.
+ *
  * Row i of the three per-atom tables belongs to the same atom, but not to atom i of the
  * World: rows are renumbered in cell order now and then (driver.c), and `atom` holds the
  * World index. What orders events or is seen outside (tie breaks, the log, the knife's
