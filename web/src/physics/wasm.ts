@@ -280,6 +280,31 @@ export class WasmEngine {
     return this.c.core_replay(this.core, at, runs.length, limit);
   }
 
+  /** A recording's path in the (N, T) plane (core_path, Python's game/path.py sampling): the
+   * runs played as `replay` plays them; rows [k, N, T, h] kept at frame 0 (height h0), every
+   * stride-th whole frame, the last and the win's, T unrounded. */
+  path(
+    runs: ReadonlyArray<readonly [number, number]>,
+    limit: number,
+    stride: number,
+    h0: number,
+  ): { frames: number; rows: Array<[number, number, number, number]> } {
+    const most = Math.floor(limit / stride) + 2;
+    const at = this.c.core_buffer(this.core, 2 * runs.length + 4 * most + 1);
+    if (at === 0) throw new RangeError(OUT_OF_MEMORY(this.nAtoms));
+    const input = new Float64Array(this.c.memory.buffer, at, 2 * runs.length);
+    runs.forEach(([height, frames], k) => input.set([height, frames], 2 * k));
+    const points = at + 16 * runs.length;
+    const count = points + 32 * most;
+    const frames = this.c.core_path(this.core, at, runs.length, limit, stride, h0, points, count);
+    const kept = new Int32Array(this.c.memory.buffer, count, 1)[0]; // views after: memory may grow
+    const flat = new Float64Array(this.c.memory.buffer, points, 4 * kept);
+    const rows: Array<[number, number, number, number]> = [];
+    for (let r = 0; r < kept; r++)
+      rows.push([flat[4 * r], flat[4 * r + 1], flat[4 * r + 2], flat[4 * r + 3]]);
+    return { frames, rows };
+  }
+
   /** Tc(N) = Tc0 (N / N0)^p, seed Eq. (46) with exponent p. */
   criticalTemperatureOf(nTrapped: number): number {
     return this.tc0 * this.c.core_power(nTrapped / this.nAtoms, this.rules.tcExponent);
