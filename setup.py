@@ -7,6 +7,7 @@ extension is optional: without a C compiler the package installs and plays on th
 reference engine, and says so (physics/core.py).
 """
 
+import importlib.util
 import platform
 import sysconfig
 from pathlib import Path
@@ -15,6 +16,17 @@ from setuptools import Extension, setup
 from setuptools.command.build_ext import build_ext
 
 CORE = sorted(str(p).replace("\\", "/") for p in Path("core").glob("*.c"))
+
+
+def _source_hash() -> str:
+    """The sources' hash (src/evapcool/physics/coresource.py, loaded without the package)."""
+    path = Path("src/evapcool/physics/coresource.py")
+    spec = importlib.util.spec_from_file_location("coresource", path)
+    assert spec and spec.loader
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return str(module.source_hash(Path(".").resolve()))
+
 
 UNIX_FLAGS = [
     "-std=c11",
@@ -54,6 +66,8 @@ setup(
             "evapcool.physics._core",
             sources=["src/evapcool/physics/_coremodule.c", *CORE],
             include_dirs=["core"],
+            # compiled in: an extension built in place is refused once its sources change
+            define_macros=[("CORE_SOURCE_HASH", f'"{_source_hash()}"')],
             optional=True,
         )
     ],

@@ -57,7 +57,7 @@ static inline int32_t touch_ahead(Core *core) {
 #endif
 
 /* Process every event with time <= t_end in key order, then set the clock. */
-EXPORT(core_advance_to) int32_t core_advance_to(Core *core, double t_end) {
+int32_t core_advance_to(Core *core, double t_end) {
   for (;;) {
     if (core->run.record && core->run.n_log + LOG_ROOM > core->run.log_capacity) return CORE_LOG_FULL;
     if (++core->run.since_maintain > core->run.maintain_every) {
@@ -164,7 +164,7 @@ void renumber(Core *core) {
 }
 
 /* New rim height; with the knife rule, atoms above m g H go at once, in index order. */
-EXPORT(core_set_trap_height) void core_set_trap_height(Core *core, double height) {
+void core_set_trap_height(Core *core, double height) {
   core->run.trap_height = height;
   core->run.x_rim = __builtin_sqrt(height / core->run.curvature);
   if (!core->run.knife) return;
@@ -177,7 +177,7 @@ EXPORT(core_set_trap_height) void core_set_trap_height(Core *core, double height
 /* The tables of n atoms; returns the inputs' place: x, y, vx, vy, t, radius, mass (n
  * doubles each), then the status (n int32), or 0 if the memory cannot hold them. The
  * wrapper fills them, then calls load. */
-EXPORT(core_allocate) double *core_allocate(Core *core, int32_t n, int32_t log_capacity) {
+double *core_allocate(Core *core, int32_t n, int32_t log_capacity) {
   core->run.n_atoms = n;
   core->state = core_take(core, sizeof(State) * n);
   core->queued = core_take(core, sizeof(Queued) * n);
@@ -200,11 +200,11 @@ EXPORT(core_allocate) double *core_allocate(Core *core, int32_t n, int32_t log_c
 }
 
 /* Copy the inputs into the tables and set the fixed parameters and the clock. */
-EXPORT(core_load) void core_load(Core *core, const double *in, double gravity, double curvature, double x_left,
+void core_load(Core *core, const double *inputs, double gravity, double curvature, double x_left,
                        double x_right, double y_bottom, int32_t knife_rule, int32_t win_rule,
                        int32_t record, double time, int32_t won, double pairs, double walls) {
   const int32_t n = core->run.n_atoms;
-  const int32_t *status = (const int32_t *)(in + 7 * n);
+  const int32_t *status = (const int32_t *)(inputs + 7 * n);
   core->run.gravity = gravity;
   core->run.curvature = curvature;
   core->run.x_left = x_left;
@@ -221,15 +221,15 @@ EXPORT(core_load) void core_load(Core *core, const double *in, double gravity, d
   core->run.n_trapped = 0;
   for (int32_t i = 0; i < n; i++) {
     State *s = &core->state[i];
-    s->x = in[i];
-    s->y = in[n + i];
-    s->vx = in[2 * n + i];
-    s->vy = in[3 * n + i];
-    s->t = in[4 * n + i];
-    s->radius = in[5 * n + i];
+    s->x = inputs[i];
+    s->y = inputs[n + i];
+    s->vx = inputs[2 * n + i];
+    s->vy = inputs[3 * n + i];
+    s->t = inputs[4 * n + i];
+    s->radius = inputs[5 * n + i];
     s->atom = i;
     s->next = -1;
-    core->queued[i].mass = in[6 * n + i];
+    core->queued[i].mass = inputs[6 * n + i];
     core->queued[i].arc_cross_t = -INF;
     core->plan[i].status = status[i];
     core->plan[i].atom = i;
@@ -241,7 +241,7 @@ EXPORT(core_load) void core_load(Core *core, const double *in, double gravity, d
 
 /* The grid, the cells and every prediction; the energy sum and the Tc table are set. 0 if
  * the memory cannot hold the cells. */
-EXPORT(core_start) int32_t core_start(Core *core, double energy_sum, double trap_height) {
+int32_t core_start(Core *core, double energy_sum, double trap_height) {
   core->run.energy_sum = energy_sum;
   core->run.trap_height = trap_height;
   core->run.x_rim = __builtin_sqrt(trap_height / core->run.curvature);

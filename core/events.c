@@ -5,12 +5,6 @@
 #include "tables.h"
 
 
-/* Energy of row i from its stored state (conserved in flight). */
-double energy(Core *core, int32_t i) {
-  const State *s = &core->state[i];
-  return atom_energy_of(core->queued[i].mass, s->y, s->vx, s->vy, core->run.gravity);
-}
-
 /* Carry row i's stored state to the clock (exact free flight, seed Eqs. 3-4). */
 void fly_to_clock(Core *core, int32_t i) {
   State *s = &core->state[i];

@@ -15,7 +15,7 @@ static double whole_frame(double t) { return (double)(int64_t)t; }
  * at the atoms trapped now (one already on its way over the rim may still leave; the score
  * stays). 1 at the frame the win is first seen, else 0.
  */
-EXPORT(core_frame_end) int32_t core_frame_end(Core *core) {
+int32_t core_frame_end(Core *core) {
   Run *r = &core->run;
   if (!r->won || r->score >= 0) return 0;
   r->score = r->n_trapped;
@@ -29,7 +29,7 @@ EXPORT(core_frame_end) int32_t core_frame_end(Core *core) {
  * the next whole frame, then the frame's end. CORE_LOG_FULL: empty the log and call again with
  * the same height, which goes on where it stopped.
  */
-EXPORT(core_frame) int32_t core_frame(Core *core, double height) {
+int32_t core_frame(Core *core, double height) {
   Run *r = &core->run;
   if (r->record && r->n_log > 0) return CORE_LOG_FULL; /* the knife may log every atom */
   if (!r->won && height != r->trap_height) core_set_trap_height(core, height);
@@ -44,7 +44,7 @@ EXPORT(core_frame) int32_t core_frame(Core *core, double height) {
  * `limit` frames. Returns the frames played; the win and the score are the core's (core_won,
  * core_score). A replay keeps no event log.
  */
-EXPORT(core_replay) int32_t core_replay(Core *core, const double *runs, int32_t n_runs, int32_t limit) {
+int32_t core_replay(Core *core, const double *runs, int32_t n_runs, int32_t limit) {
   int32_t frames = 0;
   core->run.record = 0;
   core->run.n_log = 0;
@@ -59,4 +59,75 @@ EXPORT(core_replay) int32_t core_replay(Core *core, const double *runs, int32_t 
 }
 
 /* n doubles of the engine's memory for the caller to fill (a recording's runs). */
-EXPORT(core_buffer) double *core_buffer(Core *core, int32_t n) { return core_take(core, sizeof(double) * n); }
+double *core_buffer(Core *core, int32_t n) { return core_take(core, sizeof(double) * n); }
+
+/* NumPy's sum of n doubles (pairwise: blocks of 128 with eight running sums), so a
+ * temperature here has the bits of Python's np.sum and the page's pairwiseSum. */
+static double pairwise_sum(const double *a, int32_t n) {
+  if (n < 8) {
+    double res = 0.0;
+    for (int32_t i = 0; i < n; i++) res += a[i];
+    return res;
+  }
+  if (n <= 128) {
+    double r[8];
+    for (int32_t j = 0; j < 8; j++) r[j] = a[j];
+    int32_t i = 8;
+    for (; i < n - (n % 8); i += 8)
+      for (int32_t j = 0; j < 8; j++) r[j] += a[i + j];
+    double res = ((r[0] + r[1]) + (r[2] + r[3])) + ((r[4] + r[5]) + (r[6] + r[7]));
+    for (; i < n; i++) res += a[i];
+    return res;
+  }
+  int32_t n2 = n / 2;
+  n2 -= n2 % 8;
+  return pairwise_sum(a, n2) + pairwise_sum(a + n2, n - n2);
+}
+
+/* T = E / N (seed Eq. 1) with E the trapped atoms' energies summed in World index order. */
+static double temperature(Core *core, double *energies) {
+  int32_t n = 0;
+  for (int32_t a = 0; a < core->run.n_atoms; a++)
+    if (core_status_of(core, a) == TRAPPED) energies[n++] = core_atom_energy(core, a);
+  return n > 0 ? pairwise_sum(energies, n) / n : 0.0;
+}
+
+/* Keep frame k's point (k, N, T, h) unless no atom is trapped or T is not finite and > 0. */
+static void keep(Core *core, double *points, int32_t *n_points, double *energies, int32_t k, double h) {
+  double t = temperature(core, energies);
+  int32_t n = core->run.n_trapped;
+  if (n <= 0 || !__builtin_isfinite(t) || !(t > 0.0)) return;
+  double *p = points + 4 * (*n_points)++;
+  p[0] = k;
+  p[1] = n;
+  p[2] = t;
+  p[3] = h;
+}
+
+/*
+ * A recording's path in the (N, T) plane (game/path.py's sampling, its oracle): the runs
+ * played as core_replay plays them, up to the win or `limit` frames; kept are frame 0 (with
+ * height h0) and every `stride`-th whole frame, the last one and the win's. points: rows
+ * of (k, N, T, h), at least limit / stride + 2 of them; their count into n_points. Returns
+ * the frames played (0 if the memory cannot hold the energies).
+ */
+int32_t core_path(Core *core, const double *runs, int32_t n_runs, int32_t limit, int32_t stride,
+                  double h0, double *points, int32_t *n_points) {
+  if (!core->scratch) core->scratch = core_take(core, sizeof(double) * (core->run.n_atoms + 1));
+  double *energies = core->scratch;
+  *n_points = 0;
+  if (!energies) return 0;
+  core->run.record = 0;
+  core->run.n_log = 0;
+  keep(core, points, n_points, energies, 0, h0);
+  int32_t k = 0;
+  for (int32_t r = 0; r < n_runs; r++)
+    for (double f = 0.0; f < runs[2 * r + 1]; f += 1.0) {
+      if (k >= limit || core->run.score >= 0) return k;
+      core_frame(core, runs[2 * r]);
+      k++;
+      if (k % stride == 0 || k == limit || core->run.score >= 0)
+        keep(core, points, n_points, energies, k, runs[2 * r]);
+    }
+  return k;
+}

@@ -104,7 +104,7 @@ static int beyond(double u, double u0, int32_t c, int32_t n, double cs, double r
 
 /* Trapped atoms now beyond their cell, its skin and its round-off room (0 if sound:
  * every pair within reach is then in neighbouring cells). */
-EXPORT(core_grid_errors) int32_t core_grid_errors(Core *core) {
+int32_t core_grid_errors(Core *core) {
   if (core->run.won) return 0;
   const double cs = core->run.cell, room = core->run.skin + cs * (0.01 / CELL_FACTOR);
   int32_t bad = 0;

@@ -169,3 +169,9 @@ void settle_wall(State *s, double a, double keep, double v_floor) {
  * such inputs to catch a build that contracts.
  */
 double core_contraction_probe(double a, double b, double c) { return a * b + c; }
+
+/* Energy of row i from its stored state (conserved in flight). */
+double energy(Core *core, int32_t i) {
+  const State *s = &core->state[i];
+  return atom_energy_of(core->queued[i].mass, s->y, s->vx, s->vy, core->run.gravity);
+}

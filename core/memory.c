@@ -28,7 +28,7 @@ void *core_take(Core *core, uintptr_t bytes) {
   return p;
 }
 
-EXPORT(core_new) Core *core_new(void) { return bump(sizeof(Core)); }
+Core *core_new(void) { return bump(sizeof(Core)); }
 void core_free(Core *core) { (void)core; }
 
 #else

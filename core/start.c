@@ -162,7 +162,7 @@ static int32_t cell_centres(double *xy, int32_t n, double radius, double curvatu
  * ring 1/16 <= r^2 < 1 normalised by sqrt) at a speed growing with its row's height.
  * Returns n; if the atoms do not fit below y_top, how many fit; -1 for impossible odds.
  */
-EXPORT(core_load_cup) int32_t core_load_cup(double *pos, double *vel, int32_t n, double radius,
+int32_t core_load_cup(double *pos, double *vel, int32_t n, double radius,
                                             double curvature, double y_top, uint32_t seed_lo,
                                             uint32_t seed_hi) {
   int32_t fit = cell_centres(pos, n, radius, curvature, y_top);
@@ -186,7 +186,7 @@ EXPORT(core_load_cup) int32_t core_load_cup(double *pos, double *vel, int32_t n,
 
 /* How many atoms of this radius the loading places with every disk below y_top: the whole
  * rows of cells whose disks stay under it, wherever the jitter puts them. */
-EXPORT(core_cup_capacity) int32_t core_cup_capacity(double radius, double curvature, double y_top) {
+int32_t core_cup_capacity(double radius, double curvature, double y_top) {
   Rows r = rows_of(radius);
   int32_t count = 0;
   for (int32_t k = 0;; k++) {
@@ -202,7 +202,7 @@ EXPORT(core_cup_capacity) int32_t core_cup_capacity(double radius, double curvat
  * p = whole + sum of b_k 2^-k, so x^p is x^whole times x^(2^-k) for the digits set, x^(2^-k)
  * by k nested square roots (60 at most: x^(2^-60) is 1.0 in double precision here).
  */
-EXPORT(core_power) double core_power(double x, double p) {
+double core_power(double x, double p) {
   if (x == 0.0) return 0.0;
   int32_t whole = (int32_t)p; /* floor: p > 0 */
   double result = 1.0, frac = p - whole, root = x;
@@ -219,7 +219,7 @@ EXPORT(core_power) double core_power(double x, double p) {
 }
 
 /* Tc(N) = Tc0 (N / N0)^p for every N = 0..N0 into the table the win test reads (seed Eq. 46). */
-EXPORT(core_fill_tc_table) void core_fill_tc_table(Core *core, double tc0, double exponent) {
+void core_fill_tc_table(Core *core, double tc0, double exponent) {
   const int32_t n0 = core->run.n_atoms;
   for (int32_t m = 0; m <= n0; m++) core->tc_table[m] = tc0 * core_power((double)m / (double)n0, exponent);
 }

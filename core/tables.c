@@ -1,13 +1,14 @@
 /*
  * Reading the tables by World index, and the scalars, for the TypeScript wrapper
- * (web/src/physics/wasm.ts, src/evapcool/physics/_coremodule.c); the tables themselves are declared in tables.h.
+ * (web/src/physics/wasm.ts, src/evapcool/physics/_coremodule.c); the tables themselves are
+ * declared in tables.h, the entry points in evapcool_core.h.
  */
 #include "tables.h"
 
-EXPORT(core_status_of) int32_t core_status_of(Core *core, int32_t a) { return core->plan[core->row_of[a]].status; }
+int32_t core_status_of(Core *core, int32_t a) { return core->plan[core->row_of[a]].status; }
 
 /* Stored value k of World atom a: 0 x, 1 y, 2 vx, 3 vy, 4 t, 5 radius, 6 mass. */
-EXPORT(core_stored_of) double core_stored_of(Core *core, int32_t a, int32_t k) {
+double core_stored_of(Core *core, int32_t a, int32_t k) {
   int32_t r = core->row_of[a];
   const State *s = &core->state[r];
   switch (k) {
@@ -22,10 +23,10 @@ EXPORT(core_stored_of) double core_stored_of(Core *core, int32_t a, int32_t k) {
 }
 
 /* World atom a's energy 1/2 m v^2 + m g y from its stored state (conserved in flight). */
-EXPORT(core_atom_energy) double core_atom_energy(Core *core, int32_t a) { return energy(core, core->row_of[a]); }
+double core_atom_energy(Core *core, int32_t a) { return energy(core, core->row_of[a]); }
 
 /* Position and velocity of World atom a carried to time t, into state_out. */
-EXPORT(core_state_at) double *core_state_at(Core *core, int32_t a, double t) {
+double *core_state_at(Core *core, int32_t a, double t) {
   const State *s = &core->state[core->row_of[a]];
   double dt = t - s->t;
   core->state_out[0] = flight_x(s->x, s->vx, dt);
@@ -36,21 +37,21 @@ EXPORT(core_state_at) double *core_state_at(Core *core, int32_t a, double t) {
 }
 
 /* Sum of trapped energies added in World index order (the engines continue it). */
-EXPORT(core_sequential_energy_sum) double core_sequential_energy_sum(Core *core) {
+double core_sequential_energy_sum(Core *core) {
   double total = 0.0;
   for (int32_t a = 0; a < core->run.n_atoms; a++)
     if (core_status_of(core, a) == TRAPPED) total += core_atom_energy(core, a);
   return total;
 }
 
-EXPORT(core_force_win) void core_force_win(Core *core) { core->run.won = 1; }
-EXPORT(core_log_address) LogLine *core_log_address(Core *core) { return core->event_log; }
+void core_force_win(Core *core) { core->run.won = 1; }
+LogLine *core_log_address(Core *core) { return core->event_log; }
 /* The log was copied out: start it again. */
-EXPORT(core_log_clear) void core_log_clear(Core *core) { core->run.n_log = 0; }
+void core_log_clear(Core *core) { core->run.n_log = 0; }
 
 /* The scalars, by name. */
 #define READ(type, field) \
-  EXPORT(core_##field) type core_##field(const Core *core) { return core->run.field; }
+  type core_##field(const Core *core) { return core->run.field; }
 READ(double, time)
 READ(double, energy_sum)
 READ(double, x_rim)
@@ -66,4 +67,22 @@ READ(int32_t, n_log)
 READ(int32_t, nx)
 READ(int32_t, ny)
 READ(double, cell)
+READ(double, skin)
 READ(int32_t, score)
+READ(double, win_frame)
+
+/* Every atom's stored state by World index into the caller's arrays (Python's World). */
+void core_export_states(Core *core, double *pos, double *vel, double *t, int8_t *status,
+                        int64_t *counter) {
+  for (int32_t a = 0; a < core->run.n_atoms; a++) {
+    int32_t r = core->row_of[a];
+    const State *s = &core->state[r];
+    pos[2 * a] = s->x;
+    pos[2 * a + 1] = s->y;
+    vel[2 * a] = s->vx;
+    vel[2 * a + 1] = s->vy;
+    t[a] = s->t;
+    status[a] = (int8_t)core->plan[r].status;
+    counter[a] = s->count;
+  }
+}

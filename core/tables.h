@@ -4,6 +4,9 @@
  * (setup.py, src/evapcool/physics/_coremodule.c). An engine is a `Core`: its scalars and tables,
  * allocated once at the start (no allocation per event); a process may hold several.
  *
+ * The entry points the wrappers call, the constants and the log line are the core's API,
+ * declared in evapcool_core.h; this header is the core's inside.
+ *
  * Row i of the three per-atom tables belongs to the same atom, but not to atom i of the
  * World: rows are renumbered in cell order now and then (driver.c), and `atom` holds the
  * World index. What orders events or is seen outside (tie breaks, the log, the knife's
@@ -12,19 +15,13 @@
 #ifndef EVAPCOOL_TABLES_H
 #define EVAPCOOL_TABLES_H
 
-#include <stdint.h>
+#include "evapcool_core.h"
 
 #define INF __builtin_inf()
 /* Native builds ask for memory ahead of the loop (lookahead.c); -DCORE_NO_LOOKAHEAD turns it
  * off. WebAssembly has no prefetch: there the loop touches the next rows instead. */
 #if !defined(__wasm__) && !defined(CORE_NO_LOOKAHEAD)
 #define CORE_LOOKAHEAD 1
-#endif
-#ifdef __wasm__
-#define EXPORT(name) __attribute__((export_name(#name)))
-#else
-#define EXPORT(name)
-
 #endif
 
 /* What the pair scan reads of every neighbour, one 64-byte line. */
@@ -77,12 +74,6 @@ typedef struct {
   int32_t pad;
 } HeapEntry;
 
-/* One line of the event log: (EV_* kind, atom, other atom or -1, time). */
-typedef struct {
-  int32_t kind, a, b, pad;
-  double t;
-} LogLine;
-
 /* The engine's scalars (Python's RUN record). */
 typedef struct {
   /* fixed for the engine's life */
@@ -112,15 +103,13 @@ typedef struct {
   int32_t walk;     /* ... and the row it has reached (-1: at the end) */
 } Run;
 
-/* Lifecycle (SPEC 2.3) and log kinds, the wall's and the win's numbers: world.py's. */
-#include "model.h"
 /* Event kinds inside the engine. */
 enum { KIND_NONE = 0, KIND_PAIR, KIND_WALL, KIND_EXIT, KIND_CROSS_X, KIND_CROSS_Y };
 /* Ranks order events of equal time: crossings, then solo events, then pairs. */
 enum { RANK_CROSS = -1, RANK_SOLO = 0, RANK_PAIR = 1 };
 
 /* One engine: its scalars and tables (no globals, so a process may hold several). */
-typedef struct Core {
+struct Core {
   Run run;
   State *state;
   Queued *queued;
@@ -138,12 +127,13 @@ typedef struct Core {
   Plan *plan2;
   int32_t *order;
   double *inputs;     /* where the caller writes the atoms before load() */
+  double *scratch;    /* n + 1 doubles for a path's energies (game.c), taken once */
   double state_out[4]; /* where state_at writes: x, y, vx, vy */
   int32_t out_of_memory;
   /* every block taken (memory.c frees them with the engine) */
   void *blocks[24];
   int32_t n_blocks;
-} Core;
+};
 
 /* kernels.c */
 double flight_x(double x, double vx, double dt);
@@ -156,6 +146,7 @@ double exit_time(const State *s, double x_left, double x_right, double y_bottom,
 void collide_pair(double rx, double ry, State *p, double m1, State *q, double m2);
 void bounce_wall(State *s, double a, double v_min);
 void settle_wall(State *s, double a, double keep, double v_floor);
+double energy(Core *core, int32_t i);
 
 /* calendar.c */
 void calendar_init(Core *core, int32_t n);
@@ -179,7 +170,6 @@ void load_key(Core *core, int32_t i);
 void predict(Core *core, int32_t i);
 
 /* events.c */
-double energy(Core *core, int32_t i);
 void fly_to_clock(Core *core, int32_t i);
 int32_t knife(Core *core, int32_t i);
 int32_t pair_event(Core *core, int32_t i, double te, int32_t *second);
@@ -196,41 +186,6 @@ void look_after(Core *core, int32_t next, int32_t after);
 
 /* memory.c: n zeroed bytes on a 64-byte line, 0 if none are left */
 void *core_take(Core *core, uintptr_t bytes);
-Core *core_new(void);
-void core_free(Core *core);
 
-
-/* The entry points (driver.c, tables.c, grid.c): what the wrappers call. */
-double *core_allocate(Core *core, int32_t n, int32_t log_capacity);
-void core_load(Core *core, const double *in, double gravity, double curvature, double x_left,
-               double x_right, double y_bottom, int32_t knife_rule, int32_t win_rule,
-               int32_t record, double time, int32_t won, double pairs, double walls);
-int32_t core_start(Core *core, double energy_sum, double trap_height);
-int32_t core_advance_to(Core *core, double t_end);
-void core_set_trap_height(Core *core, double height);
-int32_t core_status_of(Core *core, int32_t a);
-double core_stored_of(Core *core, int32_t a, int32_t k);
-double core_atom_energy(Core *core, int32_t a);
-double *core_state_at(Core *core, int32_t a, double t);
-double core_sequential_energy_sum(Core *core);
-void core_force_win(Core *core);
-int32_t core_grid_errors(Core *core);
-double core_contraction_probe(double a, double b, double c);
-
-/* start.c: the start from a seed, the cup's capacity, portable powers and the Tc table. */
-int32_t core_load_cup(double *pos, double *vel, int32_t n, double radius, double curvature,
-                      double y_top, uint32_t seed_lo, uint32_t seed_hi);
-int32_t core_cup_capacity(double radius, double curvature, double y_top);
-double core_power(double x, double p);
-void core_fill_tc_table(Core *core, double tc0, double exponent);
-
-/* game.c: the game's whole frame, its end (the win seen, the score fixed), a replay. */
-int32_t core_frame_end(Core *core);
-int32_t core_frame(Core *core, double height);
-int32_t core_replay(Core *core, const double *runs, int32_t n_runs, int32_t limit);
-double *core_buffer(Core *core, int32_t n);
-
-/* core_advance_to's answers: every event up to t_end done, or the log to be emptied first. */
-enum { CORE_DONE = 0, CORE_LOG_FULL = 1 };
 
 #endif

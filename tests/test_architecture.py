@@ -1,4 +1,5 @@
-"""The layers' imports point one way, and no modules import each other in a circle.
+"""The layers' imports point one way, and no modules import each other in a circle; the C
+core's files (core/) call each other one way and none is over 400 lines.
 
 physics <- game <- view <- app, and beside them the lab, the optimizer, the benchmarks and
 the web launcher (docs/architecture.md). Every import form counts: `import evapcool.x`,
@@ -10,6 +11,7 @@ checker is first shown to catch a violation in a small synthetic tree (tmp_path)
 from __future__ import annotations
 
 import ast
+import re
 from pathlib import Path
 
 import pytest
@@ -381,3 +383,55 @@ def test_the_architecture_names_every_room_of_the_class_server() -> None:
     rooms = sorted((SRC / PACKAGE / "classroom").rglob("*.py"))
     missing = [p.name for p in rooms if p.name != "__init__.py" and p.name not in paragraph]
     assert missing == []
+
+
+# -- core/: the C core's rooms call one way, and each fits the house's limit ----------------
+
+CORE = SRC.parent / "core"
+#: The house's limit for a file of the core (issue 47).
+CORE_FILE_LINES = 400
+_C_COMMENT = re.compile(r"/\*.*?\*/|//[^\n]*", re.S)
+#: A function defined at file level (not static): its name before the parameters' brace.
+_C_DEFINITION = re.compile(r"^(?!static\b)[A-Za-z_][\w \t\*]*?\b(\w+)\s*\([^;{}]*\)\s*\{", re.M)
+
+
+def c_calls(root: Path) -> dict[str, set[str]]:
+    """core/*.c -> the other .c files whose (non-static) functions it calls."""
+    texts = {p.name: _C_COMMENT.sub("", p.read_text("utf-8")) for p in sorted(root.glob("*.c"))}
+    owner: dict[str, str] = {}
+    for name, text in texts.items():
+        for m in _C_DEFINITION.finditer(text):
+            owner.setdefault(m[1], name)
+    return {
+        name: {owner[f] for f in re.findall(r"\b(\w+)\s*\(", text) if owner.get(f, name) != name}
+        for name, text in texts.items()
+    }
+
+
+def test_a_call_circle_between_c_files_is_found(tmp_path: Path) -> None:
+    root = _tree(
+        tmp_path,
+        {
+            "a.c": "int f(int x) { return g(x) + 1; }\nstatic int h(void) { return 0; }\n",
+            "b.c": "/* f( in a comment */\nint g(int x) {\n  return x ? f(x - 1) : 0;\n}\n",
+            "c.c": "void k(void) { f(2); }\n",
+        },
+    )
+    assert c_calls(root) == {"a.c": {"b.c"}, "b.c": {"a.c"}, "c.c": {"a.c"}}
+    assert cycles(c_calls(root)) == [["a.c", "b.c"]]
+    (root / "b.c").write_text("int g(int x) { return x; }\n")
+    assert cycles(c_calls(root)) == []
+
+
+def test_the_cores_files_call_each_other_one_way() -> None:
+    calls = c_calls(CORE)
+    assert len(calls) >= 10 and calls["driver.c"] >= {"calendar.c", "events.c", "predict.c"}
+    assert cycles(calls) == []
+
+
+def test_no_file_of_the_core_is_over_the_limit() -> None:
+    files = sorted([*CORE.glob("*.c"), *CORE.glob("*.h")])
+    long = {
+        p.name: n for p in files if (n := len(p.read_text("utf-8").splitlines())) > CORE_FILE_LINES
+    }
+    assert len(files) >= 12 and long == {}

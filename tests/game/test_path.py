@@ -4,9 +4,13 @@ from __future__ import annotations
 
 import math
 
+import numpy as np
+import pytest
+
 from evapcool.game.path import MAX_POINTS, game_path, round_t, stride_of
 from evapcool.game.replay import Recording, Settings, record_autopilot, replay
-from evapcool.game.rules import Game
+from evapcool.game.rules import Game, clamp_height
+from evapcool.physics import core
 
 
 def test_the_path_ends_at_the_replayed_result_and_keeps_few_points() -> None:
@@ -44,3 +48,32 @@ def test_full_stride_and_rounding() -> None:
     assert game_path(rec, frames=10).frames == 10
     assert round_t(80.00136587525876) == 80.001 and round_t(1.23456e-4) == 1.2346e-4
     assert math.isclose(round_t(2 / 3), 0.66667)
+
+
+def _path_rows(rec: Recording, engine: str, stride: int) -> tuple[int, object, int | None]:
+    sim = Game(rec.settings.game_config(rec.seed, engine)).sim
+    runs = [(clamp_height(h), n) for h, n in rec.moves]
+    frames, rows = sim.path(runs, rec.n_frames, stride, runs[0][0])
+    return frames, rows, sim.score
+
+
+def test_the_cores_path_is_the_reference_engines_bit_for_bit() -> None:
+    """core_path (C) against its oracle, the reference engine's readable loop: the same
+    frames, N, unrounded T (NumPy's pairwise sum) and heights, to the last bit."""
+    if not core.available():
+        pytest.skip("the compiled core is not installed here (core.available() is False)")
+    won = record_autopilot("demo", Settings(n_atoms=49), 3, budget=4000)
+    assert replay(won).won
+    ramp = ((400.0, 40), (250.0, 300), (120.0, 400))
+    dense = Settings(n_atoms=200, radius=4.0)
+    cases = [
+        (won, stride_of(won.n_frames)),
+        (Recording(Settings(n_atoms=30), 4, ramp, False, 0, 740), 1),
+        (Recording(dense, 9, ((380.0, 30), (90.0, 170)), False, 0, 200), 7),
+    ]
+    for rec, stride in cases:
+        frames, rows, score = _path_rows(rec, "fast", stride)
+        want_frames, want_rows, want_score = _path_rows(rec, "reference", stride)
+        assert (frames, score) == (want_frames, want_score)
+        assert np.array_equal(rows, want_rows) and len(rows) > 20  # type: ignore[arg-type]
+    assert score is None and won.n_frames > 0

@@ -14,7 +14,6 @@ from pathlib import Path
 from types import ModuleType
 
 from evapcool import limits
-from evapcool.physics import world
 
 ROOT = Path(__file__).resolve().parents[2]
 
@@ -31,18 +30,6 @@ def test_the_committed_limits_table_is_limits_py() -> None:
     web_limits = _script("web_limits")
     committed = (ROOT / "web" / "src" / "limits.json").read_text(encoding="utf-8")
     assert committed == web_limits.table_text(), "run python scripts/web_limits.py"
-
-
-def test_the_cores_model_header_is_world_py() -> None:
-    """core/model.h carries world.py's constants to the C core (written once, issue 32)."""
-    web_limits = _script("web_limits")
-    committed = (ROOT / "core" / "model.h").read_text(encoding="utf-8")
-    assert committed == web_limits.header_text(), "run python scripts/web_limits.py"
-    for name, kind in web_limits.MODEL:
-        line = next(t for t in committed.splitlines() if t.startswith(f"#define {name} "))
-        text = line.split()[2]
-        value = float.fromhex(text) if kind == "double" else int(text)
-        assert value == getattr(world, name)
 
 
 def test_every_range_of_limits_py_is_in_the_table_entry_by_entry() -> None:

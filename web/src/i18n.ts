@@ -2,6 +2,7 @@
  * Message catalogs of the page (issue 23): the same JSON files as the desktop
  * (src/evapcool/locales/), the same ICU MessageFormat subset as evapcool.i18n, with plural
  * categories and number formats from Intl so both editions print the same words.
+ * Python's twin: `src/evapcool/i18n.py` (docs/twins.md).
  */
 import { english, packed } from "virtual:evapcool-catalogs";
 

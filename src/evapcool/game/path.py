@@ -3,7 +3,8 @@
 The class's debrief draws every verified game's path at once, so the server computes it
 once, at verification, and keeps it. The path is the applet's path chart's: the atoms
 trapped N and the temperature T at the end of whole frames, replayed with the game's own
-frame rule (`Simulation.frame`, as `replay.replay` plays it). The twin in
+frame rule (`Simulation.path`: the core's `core_path`, whose oracle is the reference
+engine's readable loop, as `replay.replay` plays the frames). The twin in
 web/src/game/path.ts samples the same frames and rounds the same way, so a path from the
 server equals the one the student's page computes for that game, point for point.
 
@@ -66,30 +67,13 @@ def game_path(
     total = rec.n_frames if frames is None else min(frames, rec.n_frames)
     stride = stride or stride_of(total)
     sim = Game(rec.settings.game_config(rec.seed, engine)).sim
-    heights = [clamp_height(h) for h, _ in rec.moves]
-    ks: list[int] = []
-    ns: list[int] = []
-    ts: list[float] = []
-    hs: list[float] = []
-
-    def keep(k: int, h: float) -> None:
-        n, t = sim.n_trapped, sim.temperature
-        if n > 0 and math.isfinite(t) and t > 0:
-            ks.append(k)
-            ns.append(int(n))
-            ts.append(round_t(t))
-            hs.append(h)
-
+    runs = [(clamp_height(h), run) for h, run in rec.moves]
     t0 = float(sim.temperature)
-    keep(0, heights[0] if heights else clamp_height(sim.trap_height))
-    k = 0
-    for (_, run), h in zip(rec.moves, heights, strict=True):
-        for _ in range(run):
-            if k >= total or sim.score is not None:
-                break
-            sim.frame(h)
-            k += 1
-            if k % stride == 0 or k == total or sim.score is not None:
-                keep(k, h)
+    h0 = runs[0][0] if runs else clamp_height(sim.trap_height)
+    played, rows = sim.path(runs, total, stride, h0)
+    ks = tuple(int(k) for k in rows[:, 0])
+    ns = tuple(int(n) for n in rows[:, 1])
+    ts = tuple(round_t(float(t)) for t in rows[:, 2])
+    hs = tuple(float(h) for h in rows[:, 3])
     won, score = sim.score is not None, sim.score or 0
-    return GamePath(tuple(ks), tuple(ns), tuple(ts), tuple(hs), k, won, score, t0)
+    return GamePath(ks, ns, ts, hs, played, won, score, t0)

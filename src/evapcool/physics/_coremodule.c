@@ -1,16 +1,25 @@
 /*
  * evapcool.physics._core: the engine core (core/*.c, the same source the page compiles to
- * WebAssembly) bound to CPython. One `Core` object is one engine; physics/core.py's
- * CoreEngine drives it over a World. The arrays pass as buffers (NumPy arrays), read or
- * written in one pass in C: no Python object per atom.
+ * WebAssembly) bound to CPython through its API alone (core/evapcool_core.h). One `Core`
+ * object is one engine; physics/core.py's CoreEngine drives it over a World. The arrays pass
+ * as buffers (NumPy arrays), read or written in one pass in C: no Python object per atom.
+ * The method tables and the wrappers of plain numbers are generated from the header
+ * (_core_glue.h, scripts/core_api.py); the wrappers of buffers and tuples are here.
  */
 #define PY_SSIZE_T_CLEAN
 #include <Python.h>
+#include <string.h>
 
-#include "tables.h"
+#include "evapcool_core.h"
+
+/* The hash of the core's sources this build was made from (setup.py; physics/coresource.py). */
+#ifndef CORE_SOURCE_HASH
+#define CORE_SOURCE_HASH "unknown"
+#endif
 
 typedef struct {
   PyObject_HEAD Core *core;
+  double *inputs; /* where load() writes the atoms (core_allocate's answer) */
   int32_t n, log_capacity;
 } CoreObject;
 
@@ -30,7 +39,8 @@ static int core_init(CoreObject *self, PyObject *args, PyObject *kwds) {
   }
   if (self->core) return 0;
   self->core = core_new();
-  if (!self->core || !core_allocate(self->core, n, log_capacity)) {
+  self->inputs = self->core ? core_allocate(self->core, n, log_capacity) : NULL;
+  if (!self->inputs) {
     PyErr_NoMemory();
     return -1;
   }
@@ -77,7 +87,7 @@ static PyObject *core_py_load(CoreObject *self, PyObject *args) {
     PyBuffer_Release(&in);
     return NULL;
   }
-  double *place = core->inputs;
+  double *place = self->inputs;
   memcpy(place, in.buf, (size_t)in.len);
   memcpy(place + 7 * (Py_ssize_t)self->n, st.buf, (size_t)st.len);
   PyBuffer_Release(&in);
@@ -86,42 +96,13 @@ static PyObject *core_py_load(CoreObject *self, PyObject *args) {
   Py_RETURN_NONE;
 }
 
-/* start(energy_sum, trap_height): the grid, the cells and every prediction. */
-static PyObject *core_py_start(CoreObject *self, PyObject *args) {
-  Core *core = ready(self);
-  double energy_sum, height;
-  if (!core || !PyArg_ParseTuple(args, "dd", &energy_sum, &height)) return NULL;
-  if (!core_start(core, energy_sum, height)) return PyErr_NoMemory();
-  Py_RETURN_NONE;
-}
-
-/* advance_to(t_end) -> 0 when done, 1 when the log must be emptied first (take_log). */
-static PyObject *core_py_advance_to(CoreObject *self, PyObject *arg) {
-  Core *core = ready(self);
-  if (!core) return NULL;
-  double t_end = PyFloat_AsDouble(arg);
-  if (t_end == -1.0 && PyErr_Occurred()) return NULL;
-  int32_t status;
-  Py_BEGIN_ALLOW_THREADS status = core_advance_to(core, t_end);
-  Py_END_ALLOW_THREADS return PyLong_FromLong(status);
-}
-
-static PyObject *core_py_set_trap_height(CoreObject *self, PyObject *arg) {
-  Core *core = ready(self);
-  if (!core) return NULL;
-  double h = PyFloat_AsDouble(arg);
-  if (h == -1.0 && PyErr_Occurred()) return NULL;
-  core_set_trap_height(core, h);
-  Py_RETURN_NONE;
-}
-
 /* take_log() -> the log lines since the last take (bytes: int32 kind, a, b, pad; f64 t). */
 static PyObject *core_py_take_log(CoreObject *self, PyObject *Py_UNUSED(ignored)) {
   Core *core = ready(self);
   if (!core) return NULL;
-  PyObject *out = PyBytes_FromStringAndSize((const char *)core->event_log,
-                                            (Py_ssize_t)core->run.n_log * sizeof(LogLine));
-  core->run.n_log = 0;
+  PyObject *out = PyBytes_FromStringAndSize((const char *)core_log_address(core),
+                                            (Py_ssize_t)core_n_log(core) * sizeof(LogLine));
+  core_log_clear(core);
   return out;
 }
 
@@ -140,20 +121,7 @@ static PyObject *core_py_export(CoreObject *self, PyObject *args) {
       while (k--) PyBuffer_Release(&v[k]);
       return NULL;
     }
-  double *pos = v[0].buf, *vel = v[1].buf, *t = v[2].buf;
-  int8_t *status = v[3].buf;
-  int64_t *counter = v[4].buf;
-  for (Py_ssize_t a = 0; a < n; a++) {
-    int32_t r = core->row_of[a];
-    const State *s = &core->state[r];
-    pos[2 * a] = s->x;
-    pos[2 * a + 1] = s->y;
-    vel[2 * a] = s->vx;
-    vel[2 * a + 1] = s->vy;
-    t[a] = s->t;
-    status[a] = (int8_t)core->plan[r].status;
-    counter[a] = s->count;
-  }
+  core_export_states(core, v[0].buf, v[1].buf, v[2].buf, v[3].buf, v[4].buf);
   for (int k = 0; k < 5; k++) PyBuffer_Release(&v[k]);
   Py_RETURN_NONE;
 }
@@ -163,66 +131,26 @@ static PyObject *core_py_export(CoreObject *self, PyObject *args) {
 static PyObject *core_py_scalars(CoreObject *self, PyObject *Py_UNUSED(ignored)) {
   Core *core = ready(self);
   if (!core) return NULL;
-  const Run *r = &core->run;
-  return Py_BuildValue("(ddOiLLLLd)", r->time, r->energy_sum, r->won ? Py_True : Py_False,
-                       r->n_trapped, (long long)r->pairs, (long long)r->walls,
-                       (long long)r->crossings, (long long)r->stale, r->trap_height);
-}
-
-static PyObject *core_py_force_win(CoreObject *self, PyObject *Py_UNUSED(ignored)) {
-  Core *core = ready(self);
-  if (!core) return NULL;
-  core_force_win(core);
-  Py_RETURN_NONE;
+  return Py_BuildValue("(ddOiLLLLd)", core_time(core), core_energy_sum(core),
+                       core_won(core) ? Py_True : Py_False, core_n_trapped(core),
+                       (long long)core_pairs(core), (long long)core_walls(core),
+                       (long long)core_crossings(core), (long long)core_stale(core),
+                       core_trap_height(core));
 }
 
 /* grid() -> (columns, rows, cell edge px, skin px). */
 static PyObject *core_py_grid(CoreObject *self, PyObject *Py_UNUSED(ignored)) {
   Core *core = ready(self);
   if (!core) return NULL;
-  return Py_BuildValue("(iidd)", core->run.nx, core->run.ny, core->run.cell, core->run.skin);
-}
-
-static PyObject *core_py_grid_errors(CoreObject *self, PyObject *Py_UNUSED(ignored)) {
-  Core *core = ready(self);
-  if (!core) return NULL;
-  return PyLong_FromLong(core_grid_errors(core));
-}
-
-
-/* fill_tc_table(tc0, exponent): Tc(N) = Tc0 (N / N0)^p for N = 0..N0, the core's own power. */
-static PyObject *core_py_fill_tc_table(CoreObject *self, PyObject *args) {
-  Core *core = ready(self);
-  double tc0, exponent;
-  if (!core || !PyArg_ParseTuple(args, "dd", &tc0, &exponent)) return NULL;
-  core_fill_tc_table(core, tc0, exponent);
-  Py_RETURN_NONE;
-}
-
-/* frame(height) -> 0 when the whole frame is done, 1 when the log must be emptied first. */
-static PyObject *core_py_frame(CoreObject *self, PyObject *arg) {
-  Core *core = ready(self);
-  if (!core) return NULL;
-  double h = PyFloat_AsDouble(arg);
-  if (h == -1.0 && PyErr_Occurred()) return NULL;
-  int32_t status;
-  Py_BEGIN_ALLOW_THREADS status = core_frame(core, h);
-  Py_END_ALLOW_THREADS return PyLong_FromLong(status);
-}
-
-/* frame_end() -> True at the whole frame the win is first seen (the score fixed then). */
-static PyObject *core_py_frame_end(CoreObject *self, PyObject *Py_UNUSED(ignored)) {
-  Core *core = ready(self);
-  if (!core) return NULL;
-  return PyBool_FromLong(core_frame_end(core));
+  return Py_BuildValue("(iidd)", core_nx(core), core_ny(core), core_cell(core), core_skin(core));
 }
 
 /* score() -> (atoms trapped at the end of the win's frame, that frame), or None before. */
 static PyObject *core_py_score(CoreObject *self, PyObject *Py_UNUSED(ignored)) {
   Core *core = ready(self);
   if (!core) return NULL;
-  if (core->run.score < 0) Py_RETURN_NONE;
-  return Py_BuildValue("(id)", core->run.score, core->run.win_frame);
+  if (core_score(core) < 0) Py_RETURN_NONE;
+  return Py_BuildValue("(id)", core_score(core), core_win_frame(core));
 }
 
 /* replay(runs, limit) -> frames played: runs float64 (height, frames) pairs. */
@@ -244,48 +172,45 @@ static PyObject *core_py_replay(CoreObject *self, PyObject *args) {
   return PyLong_FromLong(frames);
 }
 
-static PyMethodDef core_methods[] = {
-    {"load", (PyCFunction)core_py_load, METH_VARARGS, "The atoms and the fixed parameters."},
-    {"start", (PyCFunction)core_py_start, METH_VARARGS, "The grid and every prediction."},
-    {"advance_to", (PyCFunction)core_py_advance_to, METH_O, "Events up to t_end: 0 done, 1 log full."},
-    {"set_trap_height", (PyCFunction)core_py_set_trap_height, METH_O, "New rim height."},
-    {"take_log", (PyCFunction)core_py_take_log, METH_NOARGS, "The log lines since the last take."},
-    {"export", (PyCFunction)core_py_export, METH_VARARGS, "Stored states into the World's arrays."},
-    {"scalars", (PyCFunction)core_py_scalars, METH_NOARGS, "The clock, sums and counts."},
-    {"force_win", (PyCFunction)core_py_force_win, METH_NOARGS, "Latch the win."},
-    {"grid", (PyCFunction)core_py_grid, METH_NOARGS, "(columns, rows, cell edge, skin)."},
-    {"grid_errors", (PyCFunction)core_py_grid_errors, METH_NOARGS, "Atoms beyond their cell's skin."},
-    {"fill_tc_table", (PyCFunction)core_py_fill_tc_table, METH_VARARGS, "Tc(N) for N = 0..n."},
-    {"frame", (PyCFunction)core_py_frame, METH_O, "One whole frame, the height held: 0 done, 1 log full."},
-    {"frame_end", (PyCFunction)core_py_frame_end, METH_NOARGS, "A whole frame's end: True if the win is seen."},
-    {"score", (PyCFunction)core_py_score, METH_NOARGS, "(score, frame of the win) or None."},
-    {"replay", (PyCFunction)core_py_replay, METH_VARARGS, "Frames played of (height, frames) runs."},
-    {NULL, NULL, 0, NULL},
-};
-
-static PyTypeObject CoreType = {
-    PyVarObject_HEAD_INIT(NULL, 0).tp_name = "evapcool.physics._core.Core",
-    .tp_basicsize = sizeof(CoreObject),
-    .tp_flags = Py_TPFLAGS_DEFAULT,
-    .tp_doc = "One engine of the core: its scalars and tables.",
-    .tp_new = PyType_GenericNew,
-    .tp_init = (initproc)core_init,
-    .tp_dealloc = (destructor)core_dealloc,
-    .tp_methods = core_methods,
-};
-
-/* contraction_probe(a, b, c) -> a * b + c as the core computes it (two roundings). */
-static PyObject *contraction_probe(PyObject *Py_UNUSED(module), PyObject *args) {
-  double a, b, c;
-  if (!PyArg_ParseTuple(args, "ddd", &a, &b, &c)) return NULL;
-  return PyFloat_FromDouble(core_contraction_probe(a, b, c));
+/* path(runs, limit, stride, h0) -> (frames played, the points' rows (k, N, T, h) as bytes of
+ * float64): runs float64 (height, frames) pairs. */
+static PyObject *core_py_path(CoreObject *self, PyObject *args) {
+  Core *core = ready(self);
+  PyObject *runs;
+  int limit, stride;
+  double h0;
+  if (!core || !PyArg_ParseTuple(args, "Oiid", &runs, &limit, &stride, &h0)) return NULL;
+  if (limit < 0 || stride < 1) {
+    PyErr_SetString(PyExc_ValueError, "limit must be at least 0 and stride at least 1");
+    return NULL;
+  }
+  Py_buffer view;
+  if (PyObject_GetBuffer(runs, &view, PyBUF_C_CONTIGUOUS) < 0) return NULL;
+  if (view.len % 16 != 0) {
+    PyBuffer_Release(&view);
+    PyErr_SetString(PyExc_ValueError, "runs: float64 (height, frames) pairs");
+    return NULL;
+  }
+  Py_ssize_t rows = limit / stride + 2;
+  double *points = PyMem_Malloc(sizeof(double) * 4 * rows);
+  if (!points) {
+    PyBuffer_Release(&view);
+    return PyErr_NoMemory();
+  }
+  int32_t frames, kept = 0;
+  Py_BEGIN_ALLOW_THREADS
+  frames = core_path(core, view.buf, (int32_t)(view.len / 16), limit, stride, h0, points, &kept);
+  Py_END_ALLOW_THREADS
+  PyBuffer_Release(&view);
+  PyObject *out = Py_BuildValue("(iy#)", frames, (const char *)points, (Py_ssize_t)kept * 32);
+  PyMem_Free(points);
+  return out;
 }
-
 
 /* load_cup(pos, vel, radius, curvature, y_top, seed) -> atoms placed: the start from a seed
  * into pos and vel ((n, 2) float64 each); fewer than n if they do not fit, -1 for
  * impossible odds (core/start.c). */
-static PyObject *load_cup(PyObject *Py_UNUSED(module), PyObject *args) {
+static PyObject *py_load_cup(PyObject *Py_UNUSED(module), PyObject *args) {
   PyObject *objs[2];
   double radius, curvature, y_top;
   unsigned long long seed;
@@ -305,26 +230,17 @@ static PyObject *load_cup(PyObject *Py_UNUSED(module), PyObject *args) {
   return PyLong_FromLong(placed);
 }
 
-/* cup_capacity(radius, curvature, y_top) -> atoms the loading places below y_top. */
-static PyObject *cup_capacity(PyObject *Py_UNUSED(module), PyObject *args) {
-  double radius, curvature, y_top;
-  if (!PyArg_ParseTuple(args, "ddd", &radius, &curvature, &y_top)) return NULL;
-  return PyLong_FromLong(core_cup_capacity(radius, curvature, y_top));
-}
+#include "_core_glue.h"
 
-/* power(x, p) -> x^p from products and square roots (core/start.c). */
-static PyObject *power(PyObject *Py_UNUSED(module), PyObject *args) {
-  double x, p;
-  if (!PyArg_ParseTuple(args, "dd", &x, &p)) return NULL;
-  return PyFloat_FromDouble(core_power(x, p));
-}
-
-static PyMethodDef module_methods[] = {
-    {"contraction_probe", contraction_probe, METH_VARARGS, "a * b + c, rounded twice."},
-    {"load_cup", load_cup, METH_VARARGS, "The start from a seed into pos and vel."},
-    {"cup_capacity", cup_capacity, METH_VARARGS, "Atoms the loading places below y_top."},
-    {"power", power, METH_VARARGS, "x^p from products and square roots."},
-    {NULL, NULL, 0, NULL},
+static PyTypeObject CoreType = {
+    PyVarObject_HEAD_INIT(NULL, 0).tp_name = "evapcool.physics._core.Core",
+    .tp_basicsize = sizeof(CoreObject),
+    .tp_flags = Py_TPFLAGS_DEFAULT,
+    .tp_doc = "One engine of the core: its scalars and tables.",
+    .tp_new = PyType_GenericNew,
+    .tp_init = (initproc)core_init,
+    .tp_dealloc = (destructor)core_dealloc,
+    .tp_methods = core_methods,
 };
 
 static struct PyModuleDef core_module = {
@@ -342,7 +258,7 @@ PyMODINIT_FUNC PyInit__core(void) {
     Py_DECREF(m);
     return NULL;
   }
-  PyModule_AddIntConstant(m, "LOG_LINE_BYTES", (long)sizeof(LogLine));
+  PyModule_AddStringConstant(m, "SOURCE_HASH", CORE_SOURCE_HASH);
 #ifdef __VERSION__
   PyModule_AddStringConstant(m, "COMPILER", __VERSION__);
 #else

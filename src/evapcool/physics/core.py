@@ -10,32 +10,59 @@ lab and the server play on the reference engine, saying so once (`missing_note`)
 
 from __future__ import annotations
 
+import functools
 import importlib
+from pathlib import Path
 from types import ModuleType
 
 import numpy as np
 
 from evapcool.extras import MissingExtraError
+from evapcool.physics import coresource
+from evapcool.physics.model import CORE_LOG_FULL, CORE_LOG_LINE_BYTES
 from evapcool.physics.world import World
 
 #: Lines of the core's event log buffer (emptied into the World when full).
 LOG_CAPACITY = 1 << 16
-#: One log line in C: int32 kind, a, b, padding; float64 time (core/tables.h LogLine).
+#: One log line in C: int32 kind, a, b, padding; float64 time (core/evapcool_core.h LogLine).
 LOG_LINE = np.dtype([("kind", "<i4"), ("a", "<i4"), ("b", "<i4"), ("pad", "<i4"), ("t", "<f8")])
+assert LOG_LINE.itemsize == CORE_LOG_LINE_BYTES
 #: core_advance_to's answer when the log must be emptied before it goes on.
-LOG_FULL = 1
+LOG_FULL = CORE_LOG_FULL
 
 
 #: How to get the core where it is missing (the wheels carry it; an sdist compiles it).
 REINSTALL = "reinstall evapcool where a C compiler is at hand (or from a wheel)"
 
 
+class StaleCoreError(MissingExtraError):
+    """The extension built in place in a source checkout is older than the core's sources."""
+
+
 def compiled() -> ModuleType | None:
-    """The extension evapcool.physics._core, or None where it was not built."""
+    """The extension evapcool.physics._core, or None where it was not built. StaleCoreError
+    (one line naming the command that rebuilds it) if it was built in place from sources
+    that have changed since: an edited core is never run stale."""
     try:
-        return importlib.import_module("evapcool.physics._core")
+        module = importlib.import_module("evapcool.physics._core")
     except ImportError:
         return None
+    _refuse_if_stale(module.__file__ or "")
+    return module
+
+
+@functools.cache
+def _refuse_if_stale(extension: str) -> None:
+    """Compare an in-place build's recorded source hash with its checkout's sources (once)."""
+    root = coresource.checkout_of(Path(extension)) if extension else None
+    if root is None:
+        return
+    built = getattr(importlib.import_module("evapcool.physics._core"), "SOURCE_HASH", "unknown")
+    if built != coresource.source_hash(root):
+        raise StaleCoreError(
+            f"the compiled engine core in {root} is older than its sources (core/): "
+            f"rebuild it with: {coresource.REBUILD}"
+        )
 
 
 def available() -> bool:
@@ -165,6 +192,15 @@ class CoreEngine:
         frames = int(self.core.replay(np.ascontiguousarray(runs, dtype=np.float64), limit))
         self._sync()
         return frames
+
+    def path(self, runs: np.ndarray, limit: int, stride: int, h0: float) -> tuple[int, np.ndarray]:
+        """The game's path in the (N, T) plane (core_path): the frames played and the rows
+        (k, N, T, h) kept (no event log is kept)."""
+        self._update_tc_table()
+        runs = np.ascontiguousarray(runs, dtype=np.float64)
+        frames, rows = self.core.path(runs, int(limit), int(stride), float(h0))
+        self._sync()
+        return int(frames), np.frombuffer(rows, dtype=np.float64).reshape(-1, 4)
 
     # -- diagnostics --------------------------------------------------------------
     @property

@@ -40,6 +40,8 @@ class ReferenceEngine:
 
     def __init__(self, world: World) -> None:
         self.w = world
+        #: Atoms trapped at the end of the whole frame the win was seen in; None before.
+        self.score: int | None = None
         n = len(world.radius)
         self.pair = np.full((n, n), INF)
         self.solo = np.full(n, INF)  # wall time if trapped, exit time if escaped
@@ -253,3 +255,60 @@ class ReferenceEngine:
         for i in over:
             self._log(EV_KNIFE, int(i), -1, w.time)
             self._remove(int(i), GONE, w.time)
+
+    # -- the game's frame: the readable rule core/game.c runs, its oracle -------------------
+    def frame(self, height: float) -> None:
+        """One whole frame from a whole frame, the trap at height during it: the height takes
+        effect at the frame's start (not after the win: the score is the atoms left), and the
+        frame's end sees the win and fixes the score (game/rules.py's rule)."""
+        w = self.w
+        if not w.won and height != w.trap_height:
+            self.set_trap_height(height)
+        self.advance_to(math.floor(w.time) + 1.0)
+        self.frame_end()
+
+    def frame_end(self) -> None:
+        """The end of a whole frame: a win latched during it is seen now and the score fixed
+        at the atoms trapped now (one on its way over the rim may still leave; it stays)."""
+        if self.w.won and self.score is None:
+            self.score = self.w.n_trapped
+
+    def replay(self, runs: np.ndarray, limit: int) -> int:
+        """Hold each (height, frames) run's height for that many whole frames, from a whole
+        frame, up to the end of the frame the win is seen in or `limit` frames: the frames
+        played."""
+        frames = 0
+        for height, n in runs.tolist():
+            for _ in range(int(n)):
+                if frames >= limit:
+                    return frames
+                self.frame(height)
+                frames += 1
+                if self.score is not None:
+                    return frames
+        return frames
+
+    def path(self, runs: np.ndarray, limit: int, stride: int, h0: float) -> tuple[int, np.ndarray]:
+        """The game's path in the (N, T) plane, the oracle of core_path: the runs played as
+        `replay` plays them, keeping (k, N, T, h) at frame 0 (height h0), every stride-th
+        frame, the last and the win's, where N > 0 and T is finite and positive."""
+        w = self.w
+        points: list[tuple[float, float, float, float]] = []
+
+        def keep(k: int, h: float) -> None:
+            n = w.n_trapped
+            t = float(np.sum(w.energies()[w.status == TRAPPED])) / n if n else 0.0
+            if n > 0 and math.isfinite(t) and t > 0:
+                points.append((k, n, t, h))
+
+        keep(0, h0)
+        k = 0
+        for height, n_frames in runs.tolist():
+            for _ in range(int(n_frames)):
+                if k >= limit or self.score is not None:
+                    return k, np.array(points, dtype=np.float64).reshape(-1, 4)
+                self.frame(height)
+                k += 1
+                if k % stride == 0 or k == limit or self.score is not None:
+                    keep(k, height)
+        return k, np.array(points, dtype=np.float64).reshape(-1, 4)

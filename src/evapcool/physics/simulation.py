@@ -5,7 +5,6 @@ Pure model: NumPy and the compiled core (physics/core.py), never pygame.
 
 from __future__ import annotations
 
-import math
 import warnings
 from collections.abc import Sequence
 from typing import Any
@@ -153,7 +152,6 @@ class Simulation:
         self._world = world
         self._engine = self._make_engine(engine, len(world.radius))
         self._engine.set_trap_height(world.trap_height)
-        self._score: int | None = None
 
     @classmethod
     def classic(cls, seed: int | None = None, **overrides: Any) -> Simulation:
@@ -230,52 +228,40 @@ class Simulation:
         """Name of the engine in use: 'reference', or 'fast' (the compiled core)."""
         return self._engine.name
 
-    # -- the game's frame (core/game.c; the Python below where the core is missing) ------
+    # -- the game's frame (core/game.c; the reference engine's readable rule is its oracle) --
     def frame(self, height: float) -> None:
         """One whole frame from a whole frame, the trap at height during it: the height takes
         effect at the frame's start (not after the win: the score is the atoms left), and the
         frame's end sees the win and fixes the score (game/rules.py's rule). height: checked
         within limits.TRAP_HEIGHT by the caller."""
-        if self._engine.name == "fast":
-            self._engine.frame(height)  # type: ignore[union-attr]
-            return
-        if not self.won and height != self.trap_height:
-            self._engine.set_trap_height(height)
-        self._engine.advance_to(math.floor(self.time) + 1.0)
-        self.frame_end()
+        self._engine.frame(height)
 
     def frame_end(self) -> None:
         """The end of a whole frame: a win latched during it is seen now and the score fixed
         at the atoms trapped now (one on its way over the rim may still leave; it stays)."""
-        if self._engine.name == "fast":
-            self._engine.frame_end()  # type: ignore[union-attr]
-        elif self.won and self._score is None:
-            self._score = self.n_trapped
+        self._engine.frame_end()
 
     @property
     def score(self) -> int | None:
         """Atoms trapped at the end of the whole frame the win was seen in; None before."""
-        if self._engine.name == "fast":
-            return self._engine.score  # type: ignore[union-attr]
-        return self._score
+        return self._engine.score
 
     def replay(self, moves: Sequence[tuple[float, int]], limit: int) -> int:
         """Hold each (height, frames) run's height for that many whole frames (`frame`), from
         a whole frame, up to the end of the frame the win is seen in or `limit` frames;
         returns the frames played (the result: `won`, `score`)."""
-        if self._engine.name == "fast":
-            runs = np.array(moves, dtype=np.float64).reshape(-1, 2)
-            return self._engine.replay(runs, limit)  # type: ignore[union-attr]
-        frames = 0
-        for height, n in moves:
-            for _ in range(n):
-                if frames >= limit:
-                    return frames
-                self.frame(height)
-                frames += 1
-                if self.score is not None:
-                    return frames
-        return frames
+        runs = np.array(moves, dtype=np.float64).reshape(-1, 2)
+        return self._engine.replay(runs, limit)
+
+    def path(
+        self, moves: Sequence[tuple[float, int]], limit: int, stride: int, h0: float
+    ) -> tuple[int, np.ndarray]:
+        """The game's path in the (N, T) plane: (height, frames) runs played as `replay`
+        plays them; kept are (k, N, T, h) at frame 0 (height h0), every stride-th whole
+        frame, the last and the win's, where N > 0 and T > 0 (game/path.py rounds T).
+        Returns the frames played and those rows."""
+        runs = np.array(moves, dtype=np.float64).reshape(-1, 2)
+        return self._engine.path(runs, limit, stride, h0)
 
     # -- the trap ---------------------------------------------------------------
     @property

@@ -14,33 +14,46 @@ from typing import Protocol
 import numpy as np
 
 from evapcool.physics.kernels import flight_vy, flight_x, flight_y
+from evapcool.physics.model import (
+    ESCAPE_RULES,
+    ESCAPED,
+    EV_ESCAPE,
+    EV_GONE,
+    EV_KNIFE,
+    EV_PAIR,
+    EV_WALL,
+    EVENT_NAMES,
+    GONE,
+    TRAPPED,
+    WALL_MIN_NORMAL_SPEED,
+    WIN_DAMPING,
+    WIN_DAMPING_MIN_SPEED,
+    WIN_NORMAL_SPEED_FLOOR,
+)
 from evapcool.physics.portable import power
 from evapcool.physics.room import Room
 
-# Atom lifecycle, SPEC 2.3: trapped -> escaped -> gone.
-TRAPPED = 0
-ESCAPED = 1
-GONE = 2
-
-# Event kinds in the event log.
-EV_PAIR = 0
-EV_WALL = 1
-EV_ESCAPE = 2
-EV_GONE = 3
-EV_KNIFE = 4
-EVENT_NAMES = ("pair", "wall", "escape", "gone", "knife")
-
-ESCAPE_RULES = ("rim", "knife")
-
-#: An elastic bounce leaves the wall at least this fast along the normal (px/frame), so
-#: grazing and resting atoms hop instead of stalling (kernels.bounce_wall, docs/model.md).
-WALL_MIN_NORMAL_SPEED = 1e-3
-#: After the win, wall bounces keep 1 - 0.2 of the speed (seed Eq. 34)...
-WIN_DAMPING = 0.2
-#: ...but only while the speed is at least this (px/frame).
-WIN_DAMPING_MIN_SPEED = 1.0
-#: A damped bounce leaves the wall at least this fast (px/frame), see kernels.settle_wall.
-WIN_NORMAL_SPEED_FLOOR = 0.25
+# The lifecycle (SPEC 2.3), the event log's kinds, the escape rules and the wall's and the
+# win's numbers are the core's (core/evapcool_core.h, generated into model.py).
+__all__ = [
+    "ESCAPED",
+    "ESCAPE_RULES",
+    "EVENT_NAMES",
+    "EV_ESCAPE",
+    "EV_GONE",
+    "EV_KNIFE",
+    "EV_PAIR",
+    "EV_WALL",
+    "GONE",
+    "TRAPPED",
+    "WALL_MIN_NORMAL_SPEED",
+    "WIN_DAMPING",
+    "WIN_DAMPING_MIN_SPEED",
+    "WIN_NORMAL_SPEED_FLOOR",
+    "World",
+    "WorldRules",
+    "world_in",
+]
 
 
 @dataclass

@@ -1,6 +1,7 @@
 /**
  * The charts beside (or below) the scene: which are shown, a record per frame the
  * physics advanced, and drawing into the rectangles the layout gives.
+ * Python's twin: `src/evapcool/app/charts.py` (docs/twins.md).
  */
 import type { AtomArrays, SimLike } from "../game/sim";
 import type { ChartsShown, Layout } from "../view/geometry";

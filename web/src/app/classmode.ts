@@ -4,6 +4,7 @@
  * plays the open challenge's settings and seed, and each win's replay code is sent to the
  * server, which replays it and ranks only verified results. The page from a file has no
  * marker and never talks to anything.
+ * Python's twin: `src/evapcool/app/classmode.py` (docs/twins.md).
  */
 import { activeTranslator, t } from "../i18n";
 import type { Recording, ReplaySettings } from "../game/replay";

@@ -2,6 +2,7 @@
  * The scene's own controls: play/pause, restart, the trap slider, the chart button and
  * the tools (help, scores, settings, full screen). Drawn on the canvas; transparent
  * elements over them give keyboard focus, screen-reader labels and 44 px touch targets.
+ * Python's twin: `src/evapcool/app/controls.py` (docs/twins.md).
  */
 import { HEIGHT_MAX, HEIGHT_MIN } from "../game/rules";
 import { t } from "../i18n";

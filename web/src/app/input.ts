@@ -2,6 +2,7 @@
  * The page's input: the key table applied in the applet's modes (a question pending, the
  * name box, the settings screen, play), taps on the drawn panels, and the window's events
  * (resize, pixel ratio, another tab's scores, hiding, full screen).
+ * Python's twin: `src/evapcool/app/input.py` (docs/twins.md).
  */
 import { cutName, NAME_CODE_POINTS } from "../game/highscores";
 import { atLeast, contains, MIN_TARGET_CSS } from "../view/geometry";

@@ -2,6 +2,7 @@
  * The page's screen: the layout for the viewport (scene, controls, charts; see
  * view/geometry), the canvas sized at the device's pixel ratio, and the mapping between
  * logical scene px and CSS px for elements over the canvas and for pointer events.
+ * Python's twin: `src/evapcool/app/layout.py` (docs/twins.md).
  */
 import { layoutFor, PLAY_RECT, type ChartsShown, type Layout, type Rect } from "../view/geometry";
 

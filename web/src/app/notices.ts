@@ -1,6 +1,7 @@
 /**
  * Short messages shown for a few seconds at the bottom of the play area, what a screen
  * reader is told (a polite live region) and the canvas's text alternative (the status).
+ * Python's twin: `src/evapcool/app/notices.py` (docs/twins.md).
  */
 import { formatNumber, t } from "../i18n";
 import type { GameLike } from "./remote";

@@ -1,4 +1,7 @@
-/** The settings screen (key O): a draft edited with the arrow keys or taps, saved or dropped. */
+/**
+ * The settings screen (key O): a draft edited with the arrow keys or taps, saved or dropped.
+ * Python's twin: `src/evapcool/app/options.py` (docs/twins.md).
+ */
 import type { GameConfig } from "../game/rules";
 import {
   describe,

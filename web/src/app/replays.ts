@@ -2,6 +2,7 @@
  * Every game's recording (issue 22): at a win the game's moves, settings and seed become a
  * replay code the player can copy from the win screen (button or key C) into a chat or a
  * learning platform; `evapcool verify` and the page's verify panel check it by replaying.
+ * Python's twin: `src/evapcool/app/replays.py` (docs/twins.md).
  */
 import { t } from "../i18n";
 import { recordingOf, type Recording } from "../game/replay";

@@ -1,4 +1,7 @@
-/** The win's name entry and the high-score table, for one visit of the page. */
+/**
+ * The win's name entry and the high-score table, for one visit of the page.
+ * Python's twin: `src/evapcool/app/scoring.py` (docs/twins.md).
+ */
 import { graphemes, HighScoreTable, scoresKey } from "../game/highscores";
 import { settingsKey, type Settings } from "../game/settings";
 import type { KeyValue } from "../game/store";

@@ -1,4 +1,7 @@
-/** Frame times the page records itself: work per frame (physics + drawing) and display rate. */
+/**
+ * Frame times the page records itself: work per frame (physics + drawing) and display rate.
+ * Python's twin: `src/evapcool/app/stats.py` (docs/twins.md).
+ */
 
 export interface FrameSummary {
   frames: number;

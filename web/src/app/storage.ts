@@ -1,4 +1,7 @@
-/** Where the page keeps scores and settings: the browser's localStorage, or memory. */
+/**
+ * Where the page keeps scores and settings: the browser's localStorage, or memory.
+ * Python's twin: `src/evapcool/app/storage.py` (docs/twins.md).
+ */
 import { t } from "../i18n";
 import { MemoryStore, reason, type KeyValue } from "../game/store";
 

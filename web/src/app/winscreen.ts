@@ -2,6 +2,7 @@
  * The win and the name box, and the lines over the play area before it: the score at the
  * win (with the replay code's button, or the name box's frame when the score makes the
  * table), the too-few message when the gas can no longer condense, the start hint.
+ * Python's twin: `src/evapcool/app/winscreen.py` (docs/twins.md).
  */
 import { NAME_MAX } from "../game/highscores";
 import type { AtomArrays } from "../game/sim";

@@ -5,6 +5,7 @@
  * Trap coordinates: x right, y up, origin at the lowest point an atom centre can reach;
  * lengths in px, time in frames (1/30 s), mass in atom masses. Arrays of points are
  * interleaved: [x0, y0, x1, y1, ...].
+ * Python's twin: `src/evapcool/physics/simulation.py` (docs/twins.md).
  */
 import {
   ATOM_RADIUS,

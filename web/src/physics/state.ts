@@ -5,6 +5,7 @@
  * its own last-event time (positions move lazily), radius, mass and lifecycle, the clock,
  * the trap, the rules, and what the win needs (the starting temperature; N0 is the number
  * of atoms listed, gone ones included, so indices stay those of the run).
+ * Python's twin: `src/evapcool/physics/state.py` (docs/twins.md).
  */
 import { pyFloat } from "../limits";
 import {

@@ -5,7 +5,8 @@
  * the same order with the same arithmetic, so the golden traces replay bit for bit.
  *
  * One WebAssembly instance per engine, holding one `Core` (core_new): its memory holds that
- * engine's tables, allocated once. Validation stays in front of it (Simulation, state.ts):
+ * engine's tables, allocated once. Its exports' types (core-exports.ts) are generated from the
+ * core's header, core/evapcool_core.h, as Python's binding is. Validation stays in front of it (Simulation, state.ts):
  * the core is handed sound states.
  */
 import packedCore from "virtual:evapcool-wasm";
@@ -13,6 +14,8 @@ import { ParameterError, pyG } from "../limits";
 import { SEED_PORTABLE_MAX } from "./start";
 import { escapeBox } from "./room";
 import type { SimulationConfig } from "./config";
+import type { Core, CoreExports } from "./core-exports";
+import { CORE_LOG_FULL, CORE_LOG_LINE_BYTES } from "./model";
 
 /** Everything an engine needs besides the atoms: a checked config's rules, or a state's. */
 export type EngineRules = Pick<
@@ -43,86 +46,15 @@ export interface EngineAtoms {
 /** What storedOf(i, k) returns for each k: the core's State fields in order, then the mass. */
 export const STORED = { x: 0, y: 1, vx: 2, vy: 3, t: 4, radius: 5, mass: 6 } as const;
 
-/** A Core's address in the instance's memory (core/tables.h). */
-type Core = number;
-
-/** The C entry points (core/driver.c, tables.c, grid.c, memory.c): a Core first. */
-interface CoreExports {
-  memory: WebAssembly.Memory;
-  core_new(): Core;
-  core_allocate(core: Core, n: number, logCapacity: number): number;
-  core_load(
-    core: Core,
-    inputs: number,
-    gravity: number,
-    curvature: number,
-    xLeft: number,
-    xRight: number,
-    yBottom: number,
-    knife: number,
-    winRule: number,
-    record: number,
-    time: number,
-    won: number,
-    pairs: number,
-    walls: number,
-  ): void;
-  core_start(core: Core, energySum: number, trapHeight: number): number;
-  core_advance_to(core: Core, tEnd: number): number;
-  core_set_trap_height(core: Core, height: number): void;
-  core_force_win(core: Core): void;
-  core_status_of(core: Core, i: number): number;
-  core_stored_of(core: Core, i: number, k: number): number;
-  core_atom_energy(core: Core, i: number): number;
-  core_state_at(core: Core, i: number, t: number): number;
-  core_sequential_energy_sum(core: Core): number;
-  core_grid_errors(core: Core): number;
-  core_log_address(core: Core): number;
-  core_log_clear(core: Core): void;
-  core_time(core: Core): number;
-  core_energy_sum(core: Core): number;
-  core_x_rim(core: Core): number;
-  core_trap_height(core: Core): number;
-  core_won(core: Core): number;
-  core_n_trapped(core: Core): number;
-  core_pairs(core: Core): number;
-  core_walls(core: Core): number;
-  core_crossings(core: Core): number;
-  core_stale(core: Core): number;
-  core_renumbered(core: Core): number;
-  core_n_log(core: Core): number;
-  core_nx(core: Core): number;
-  core_ny(core: Core): number;
-  core_cell(core: Core): number;
-  core_score(core: Core): number;
-  core_fill_tc_table(core: Core, tc0: number, exponent: number): void;
-  core_power(x: number, p: number): number;
-  core_frame(core: Core, height: number): number;
-  core_frame_end(core: Core): number;
-  core_replay(core: Core, runs: number, nRuns: number, limit: number): number;
-  core_buffer(core: Core, n: number): number;
-  core_load_cup(
-    pos: number,
-    vel: number,
-    n: number,
-    radius: number,
-    curvature: number,
-    yTop: number,
-    seedLo: number,
-    seedHi: number,
-  ): number;
-  core_cup_capacity(radius: number, curvature: number, yTop: number): number;
-}
-
 /** Entry points called with a Core alone that answer a number: its scalars (core/tables.c) among them. */
 type Reader = {
   [K in keyof CoreExports]: CoreExports[K] extends (core: Core) => number ? K : never;
 }[keyof CoreExports];
 
-/** core_advance_to's answer (CORE_LOG_FULL) when the log must be emptied before it goes on. */
-const LOG_FULL = 1;
+/** core_advance_to's answer when the log must be emptied before it goes on. */
+const LOG_FULL = CORE_LOG_FULL;
 /** A log line in C: kind, a, b, padding (int32 each), then the time (double). */
-const LOG_LINE_BYTES = 24;
+const LOG_LINE_BYTES = CORE_LOG_LINE_BYTES;
 /** Log lines the core buffers between two copies (at least the atom count + 8). */
 const LOG_BUFFER = 4096;
 
@@ -346,6 +278,31 @@ export class WasmEngine {
     const buffer = new Float64Array(this.c.memory.buffer, at, 2 * runs.length);
     runs.forEach(([height, frames], k) => buffer.set([height, frames], 2 * k));
     return this.c.core_replay(this.core, at, runs.length, limit);
+  }
+
+  /** A recording's path in the (N, T) plane (core_path, Python's game/path.py sampling): the
+   * runs played as `replay` plays them; rows [k, N, T, h] kept at frame 0 (height h0), every
+   * stride-th whole frame, the last and the win's, T unrounded. */
+  path(
+    runs: ReadonlyArray<readonly [number, number]>,
+    limit: number,
+    stride: number,
+    h0: number,
+  ): { frames: number; rows: Array<[number, number, number, number]> } {
+    const most = Math.floor(limit / stride) + 2;
+    const at = this.c.core_buffer(this.core, 2 * runs.length + 4 * most + 1);
+    if (at === 0) throw new RangeError(OUT_OF_MEMORY(this.nAtoms));
+    const input = new Float64Array(this.c.memory.buffer, at, 2 * runs.length);
+    runs.forEach(([height, frames], k) => input.set([height, frames], 2 * k));
+    const points = at + 16 * runs.length;
+    const count = points + 32 * most;
+    const frames = this.c.core_path(this.core, at, runs.length, limit, stride, h0, points, count);
+    const kept = new Int32Array(this.c.memory.buffer, count, 1)[0]; // views after: memory may grow
+    const flat = new Float64Array(this.c.memory.buffer, points, 4 * kept);
+    const rows: Array<[number, number, number, number]> = [];
+    for (let r = 0; r < kept; r++)
+      rows.push([flat[4 * r], flat[4 * r + 1], flat[4 * r + 2], flat[4 * r + 3]]);
+    return { frames, rows };
   }
 
   /** Tc(N) = Tc0 (N / N0)^p, seed Eq. (46) with exponent p. */

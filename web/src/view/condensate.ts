@@ -2,6 +2,7 @@
  * The condensate moment: after the win the atoms merge into one glowing wave packet at
  * the bottom of the cup, sized by the atoms left (the desktop's picture). It fades in
  * over 1.5 s and as the atoms settle; with reduced motion it neither breathes nor drifts.
+ * Python's twin: `src/evapcool/view/condensate.py` (docs/twins.md).
  */
 import type { AtomArrays, SimLike } from "../game/sim";
 import { screenOrigin } from "./screen";

@@ -1,6 +1,7 @@
 /**
  * Button faces and symbols drawn as vector paths, so they are sharp at any scale: the
  * desktop's yellow rounded squares with a black outline and a black symbol.
+ * Python's twin: `src/evapcool/view/icons.py` (docs/twins.md).
  */
 import { BLACK, FACE } from "./colors";
 import type { Rect } from "./geometry";

@@ -1,6 +1,7 @@
 /**
  * Panels over the play area: help, high scores, settings, the name box's frame and the
  * notices. Each draw returns the tap targets it drew (touch users have no keyboard).
+ * Python's twin: `src/evapcool/app/overlays.py` (docs/twins.md).
  */
 import { decimalMark, formatNumber, t, textDirection } from "../i18n";
 import { formatSeconds, type Entry } from "../game/highscores";

@@ -4,6 +4,7 @@
  * and the equilibrium law N P(E), P(E) ~ E^(3/2) exp(-E/kT), kT = 2/5 T (SPEC 4);
  * `PathPanel`, the run in the (N, T) plane on log-log axes with T = Tc(N) and the
  * condensate region shaded. Both record once per frame the physics advanced.
+ * Python's twin: `src/evapcool/view/panels.py` (docs/twins.md).
  */
 import { decimalMark, formatNumber, t } from "../i18n";
 import type { AtomArrays, SimLike } from "../game/sim";

@@ -2,6 +2,7 @@
  * The 640 x 672 scene in logical pixels (the app sets the transform for the window and
  * the device's pixel ratio): borders, title, cup, atoms, thermometer, status and the
  * messages over the play area. Positions and colours follow the desktop applet.
+ * Python's twin: `src/evapcool/view/scene.py` (docs/twins.md).
  */
 import { formatNumber, t } from "../i18n";
 import { BORDER_TOP, screenOrigin } from "./screen";

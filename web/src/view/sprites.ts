@@ -2,6 +2,7 @@
  * Shaded cyan spheres for the atoms: one sprite per radius and device scale, rendered
  * once (Lambert + Phong from the upper left, like the desktop's) and drawn for every
  * atom in one pass of drawImage calls at whole device pixels.
+ * Python's twin: `src/evapcool/view/sprites.py` (docs/twins.md).
  */
 import { ATOM_RGB } from "./colors";
 

@@ -1,4 +1,7 @@
-/** The trap-height slider and the control buttons, drawn from plain state. */
+/**
+ * The trap-height slider and the control buttons, drawn from plain state.
+ * Python's twin: `src/evapcool/view/widgets.py` (docs/twins.md).
+ */
 import * as C from "./colors";
 import { drawButton, type Look, type SymbolName } from "./icons";
 import type { Rect } from "./geometry";
