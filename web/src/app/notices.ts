@@ -3,7 +3,7 @@
  * reader is told (a polite live region) and the canvas's text alternative (the status).
  */
 import { formatNumber, t } from "../i18n";
-import type { GameLike } from "./remote";
+import type { GameLike } from "../runtime/remote";
 
 /** How long a notice stays on screen, s of the applet's own clock. */
 export const NOTICE_SECONDS = 8;
