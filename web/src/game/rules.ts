@@ -10,7 +10,7 @@
  * C as the desktop's: GameSim).
  */
 import { MoveRecorder } from "./moves";
-import { FPS, N_ATOMS, ATOM_RADIUS, TC_EXPONENT_SEED, type EscapeRule } from "./engine";
+import { FPS, N_ATOMS, ATOM_RADIUS, TC_EXPONENT_SEED, type GamePhysics } from "./engine";
 import type { GameSim } from "./sim";
 import { APPLET_SPEED } from "../limits";
 
@@ -27,13 +27,8 @@ export const SPEED_MAX = APPLET_SPEED.high;
  */
 export const MAX_WALL_STEP = 1 / 15;
 
-export interface GameConfig {
-  nAtoms: number;
-  radius: number;
-  seed: number | null;
+export interface GameConfig extends GamePhysics {
   speed: number;
-  tcExponent: number;
-  escape: EscapeRule;
 }
 
 export const DEFAULT_CONFIG: GameConfig = {
