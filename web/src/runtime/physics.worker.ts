@@ -6,7 +6,7 @@
  * A worker of the same code replays the verify panel's codes (off the page's thread).
  */
 import { forceWin, makeSimulation, provideCore, replayGolden } from "../game/engine";
-import { Game, MAX_WALL_STEP, type GameConfig } from "../game/rules";
+import { Game, LOSE_REASONS, MAX_WALL_STEP, lightestMass, type GameConfig } from "../game/rules";
 import {
   bufferBytes,
   bufferCapacity,
@@ -62,7 +62,7 @@ function apply(command: Command): void {
       g.paused = command.paused;
       break;
     case "height":
-      g.setTrapHeight(command.height);
+      g.holdHeight(command.height);
       break;
     case "speed":
       g.speed = command.speed;
@@ -125,6 +125,9 @@ function publish(): void {
   h[HEADER.physicsMs] = physicsMs;
   // The score the core fixed at the win's frame (atoms may still leave after it).
   h[HEADER.scoreAtWin] = g.sim.score ?? NaN;
+  // The reach rule, here only: the page reads its answer (runtime/remote.ts).
+  const tooFew = g.tooFewAtoms(lightestMass(v.trapped));
+  h[HEADER.tooFew] = tooFew === null ? NaN : LOSE_REASONS.indexOf(tooFew);
   changed = false;
   post({ type: "frame", buffer }, [buffer]);
 }

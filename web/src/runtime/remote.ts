@@ -7,14 +7,14 @@
 import { FPS } from "../game/engine";
 import {
   checkSpeed,
+  clampHeight,
   Game,
-  HEIGHT_MAX,
-  HEIGHT_MIN,
   HEIGHT_START,
-  outOfReach,
+  LOSE_REASONS,
   SPEED_MAX,
   SPEED_MIN,
   type GameConfig,
+  type LoseReason,
   type SimFactory,
 } from "../game/rules";
 import { CLASSIC_ROOM, coreBytes, randomSeed, type Room } from "../game/engine";
@@ -336,9 +336,10 @@ export class RemoteGame implements GameLike {
     return this.height;
   }
 
+  /** The one clamp on the height's way down: the worker holds it as sent (Game.holdHeight). */
   setTrapHeight(height: number): boolean {
     if (this.won || !Number.isFinite(height)) return false;
-    const h = Math.min(HEIGHT_MAX, Math.max(HEIGHT_MIN, height));
+    const h = clampHeight(height);
     if (h === this.height) return false;
     this.height = h;
     this.command({ kind: "height", height: h });
@@ -383,17 +384,10 @@ export class RemoteGame implements GameLike {
     this.command({ kind: "restart", config: this.withSeed(c) });
   }
 
-  tooFewAtoms(lightest = 1): string | null {
-    const sim = this.sim;
-    if (this.stale || sim.won || !sim.winRule) return null;
-    const n = sim.nTrapped;
-    return outOfReach(
-      n,
-      sim.temperature * n,
-      sim.criticalTemperature,
-      lightest * sim.gravity * HEIGHT_MIN,
-      lightest * sim.gravity * this.trapHeight,
-    );
+  /** The worker's answer to the reach rule (Game.tooFewAtoms) for the frame drawn. */
+  tooFewAtoms(): LoseReason | null {
+    const k = this.stale || !this.frame ? NaN : this.frame.header[HEADER.tooFew];
+    return Number.isNaN(k) ? null : LOSE_REASONS[k];
   }
 
   /** The worker's ms spent on the physics for its newest frame. */

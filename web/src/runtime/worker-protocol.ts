@@ -47,6 +47,8 @@ export const HEADER = {
   roomRight: 25,
   roomBelow: 26,
   roomAbove: 27,
+  /** Why the gas can no longer condense: an index of LOSE_REASONS (game/rules.ts), NaN: none. */
+  tooFew: 28,
 } as const;
 export const HEADER_SLOTS = 32;
 
