@@ -17,6 +17,8 @@ const NO_TWIN: Record<string, string> = {
     "the applet's constants; Python keeps them in constants.py, world.py and limits.py",
   "wasm.ts": "the core's WebAssembly wrapper (Python's native one is physics/core.py)",
   "wasm-core.d.ts": "the type of the core the build inlines (web/scripts/wasm-plugin.mjs)",
+  "snapshot.ts":
+    "the atoms read out of the core's tables, summed as NumPy sums (Python reads World's arrays)",
 };
 
 /** The TypeScript engine's rooms, retired for the core's (issue 32). */
@@ -65,4 +67,18 @@ test("wasm.ts calls exactly the entry points the compiled core exports", () => {
   const noEngine = ["core_new", "core_load_cup", "core_cup_capacity", "core_power"];
   for (const m of block.matchAll(/^\s+(core_\w+)\(([^)]*)\)/gm))
     if (!noEngine.includes(m[1])) expect(m[2], m[1]).toMatch(/^\s*core: Core/);
+});
+
+/** Files allowed over the house's 400 lines for now, each with the most it may have. */
+const OVER_400: Record<string, number> = {
+  // Until the core's interface moves to a file generated from its header (issue 47).
+  "wasm.ts": 414,
+};
+
+test("no web physics file over 400 lines (issue 47's budget)", () => {
+  const long = readdirSync(WEB)
+    .filter((f) => f.endsWith(".ts"))
+    .map((f) => [f, readFileSync(resolve(WEB, f), "utf8").split("\n").length - 1] as const)
+    .filter(([f, n]) => n > (OVER_400[f] ?? 400));
+  expect(long).toEqual([]);
 });
