@@ -48,6 +48,11 @@ export function checkSpeed(speed: unknown): number {
   throw new RangeError(`speed must be ${APPLET_SPEED.allowed()} (got ${String(speed)})`);
 }
 
+/** The speed doubled (up) or halved, within the range (the +/- keys). */
+export function nextSpeed(speed: number, up: boolean): number {
+  return up ? Math.min(SPEED_MAX, speed * 2) : Math.max(SPEED_MIN, speed / 2);
+}
+
 /** A height within the slider's range; NaN (a broken rule) gives the top of the range. */
 export function clampHeight(h: number): number {
   return Number.isNaN(h) ? HEIGHT_MAX : Math.min(HEIGHT_MAX, Math.max(HEIGHT_MIN, h));
@@ -134,11 +139,11 @@ export class Game {
   }
 
   faster(): void {
-    this.speed = Math.min(SPEED_MAX, this.speed * 2);
+    this.speed = nextSpeed(this.speed, true);
   }
 
   slower(): void {
-    this.speed = Math.max(SPEED_MIN, this.speed / 2);
+    this.speed = nextSpeed(this.speed, false);
   }
 
   /** The height the trap has, or will have at the next frame boundary. */

@@ -123,9 +123,10 @@ function publish(): void {
   h[HEADER.escapedCount] = v.escaped.count;
   h[HEADER.capacity] = capacity;
   h[HEADER.physicsMs] = physicsMs;
-  // The score the core fixed at the win's frame (atoms may still leave after it).
-  h[HEADER.scoreAtWin] = g.sim.score ?? NaN;
-  // The reach rule, here only: the page reads its answer (runtime/remote.ts).
+  // The game's answers, here only: the page reads them (runtime/remote.ts). The score is
+  // the one the core fixed at the win's frame (atoms may still leave after it).
+  h[HEADER.score] = g.score ?? NaN;
+  h[HEADER.allEscaped] = g.allEscaped ? 1 : 0;
   const tooFew = g.tooFewAtoms(lightestMass(v.trapped));
   h[HEADER.tooFew] = tooFew === null ? NaN : LOSE_REASONS.indexOf(tooFew);
   changed = false;

@@ -11,8 +11,7 @@ import {
   Game,
   HEIGHT_START,
   LOSE_REASONS,
-  SPEED_MAX,
-  SPEED_MIN,
+  nextSpeed,
   type GameConfig,
   type LoseReason,
   type SimFactory,
@@ -165,7 +164,6 @@ export class RemoteGame implements GameLike {
   private movesAsked = new Map<number, (runs: Array<[number, number]>) => void>();
   private readonly checked = new Set<string>();
   private alive = false;
-  private winScore: number | null = null;
 
   constructor(
     private readonly worker: Worker,
@@ -255,8 +253,6 @@ export class RemoteGame implements GameLike {
       const wonAt = h[HEADER.wonAt];
       if (this.wonAtNow === null && !Number.isNaN(wonAt)) {
         this.wonAtNow = wonAt;
-        // The score is fixed at the whole frame the win was seen, as the page's own game's.
-        this.winScore = h[HEADER.scoreAtWin];
         this.hooks.won();
       }
     }
@@ -288,11 +284,11 @@ export class RemoteGame implements GameLike {
   }
 
   faster(): void {
-    this.setSpeed(Math.min(SPEED_MAX, this.speed * 2));
+    this.setSpeed(nextSpeed(this.speed, true));
   }
 
   slower(): void {
-    this.setSpeed(Math.max(SPEED_MIN, this.speed / 2));
+    this.setSpeed(nextSpeed(this.speed, false));
   }
 
   private setSpeed(speed: number): void {
@@ -318,13 +314,14 @@ export class RemoteGame implements GameLike {
     return this.wonAtNow;
   }
 
+  /** The worker's Game.score (fixed at the whole frame the win was seen). */
   get score(): number | null {
-    if (!this.won) return null;
-    return this.winScore ?? this.sim.nTrapped;
+    const score = this.stale || !this.frame ? NaN : this.frame.header[HEADER.score];
+    return Number.isNaN(score) ? null : score;
   }
 
   get allEscaped(): boolean {
-    return !this.stale && this.sim.nTrapped === 0 && !this.sim.won;
+    return !this.stale && this.frame?.header[HEADER.allEscaped] === 1;
   }
 
   get playTime(): number {
@@ -379,7 +376,6 @@ export class RemoteGame implements GameLike {
     this.pausedNow = true;
     this.height = HEIGHT_START;
     this.wonAtNow = null;
-    this.winScore = null;
     this.asked += 1;
     this.command({ kind: "restart", config: this.withSeed(c) });
   }
