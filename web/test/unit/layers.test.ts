@@ -207,3 +207,11 @@ test("the page's rooms never import their owner: app.ts is imported by main and 
   const owners = [...graph].filter(([, targets]) => targets.includes(app)).map(([f]) => f);
   expect(owners.sort()).toEqual([join("app", "api.ts"), join("app", "main.ts")]);
 });
+
+test("the game layer never branches on the engine's name (one engine: the core's frame)", () => {
+  const branch = /\bengine\.name\b|\bname\s*[!=]==?\s*["'](?:fast|reference|wasm)["']/;
+  const game = sources(SRC).filter((f) => f.startsWith(`game${sep}`));
+  expect(game.length).toBeGreaterThan(5);
+  expect(game.filter((f) => branch.test(readFileSync(join(SRC, f), "utf8")))).toEqual([]);
+  expect(branch.test('if (this.sim.engine.name === "fast") step();')).toBe(true);
+});
