@@ -158,7 +158,8 @@ function field<T>(allowed: string, ok: (v: unknown) => boolean) {
     return v as T;
   };
 }
-const num = (v: unknown): v is number => typeof v === "number" && Number.isFinite(v);
+/** A finite number (the type guard of every numeric field). */
+export const num = (v: unknown): v is number => typeof v === "number" && Number.isFinite(v);
 const finite = field<number>("a finite number", num);
 const positive = field<number>("a positive finite number", (v) => num(v) && v > 0);
 const count = field<number>(
