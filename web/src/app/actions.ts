@@ -10,7 +10,7 @@ import type { Hints } from "./hints";
 import type { SettingsEditor } from "./options";
 import type { Panels } from "./panels";
 import type { Play } from "./play";
-import type { GameLike } from "./remote";
+import type { GameLike } from "../runtime/remote";
 import type { Replays } from "./replays";
 import type { Scoreboard } from "./scoring";
 

@@ -32,7 +32,7 @@ import { SettingsEditor } from "./options";
 import { Panels, type Overlay, type PanelRooms } from "./panels";
 import { Picture, type DrawnControls, type PictureRooms } from "./picture";
 import { Play, type PlayEvents } from "./play";
-import type { GameLike } from "./remote";
+import type { GameLike } from "../runtime/remote";
 import { Replays } from "./replays";
 import { Scoreboard } from "./scoring";
 import { Verifier } from "./verifier";

@@ -19,7 +19,7 @@ import { drawControlButton, drawSlider, SliderModel } from "../view/widgets";
 import type { Action } from "./bindings";
 import type { Screen } from "./layout";
 import type { Overlay } from "./panels";
-import type { GameLike } from "./remote";
+import type { GameLike } from "../runtime/remote";
 
 /** What the controls move and show (the composition root wires them; app.ts). */
 export interface ControlsHost {

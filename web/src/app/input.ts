@@ -12,7 +12,7 @@ import type { Hints } from "./hints";
 import type { Screen } from "./layout";
 import type { SettingsEditor } from "./options";
 import type { Panels } from "./panels";
-import type { GameLike } from "./remote";
+import type { GameLike } from "../runtime/remote";
 import type { Scoreboard } from "./scoring";
 import type { Verifier } from "./verifier";
 

@@ -7,7 +7,7 @@ import { App } from "./app";
 import { classApi, ClassMode, classNameMax } from "./classmode";
 import { exposeApi } from "./api";
 import { parseParams } from "./params";
-import physicsWorkerCode from "./physics.worker?packed";
+import physicsWorkerCode from "../runtime/physics.worker?packed";
 import { pageStorage, ReadOnly } from "./storage";
 import { chooseLocale, onLocaleChange, STORAGE_KEY, t, useLocale, type Translator } from "../i18n";
 

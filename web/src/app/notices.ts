@@ -4,7 +4,7 @@
  * Python's twin: `src/evapcool/app/notices.py` (docs/twins.md).
  */
 import { formatNumber, t } from "../i18n";
-import type { GameLike } from "./remote";
+import type { GameLike } from "../runtime/remote";
 
 /** How long a notice stays on screen, s of the applet's own clock. */
 export const NOTICE_SECONDS = 8;

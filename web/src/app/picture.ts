@@ -19,7 +19,7 @@ import type { FrameLoop } from "./loop";
 import { StatusLine, type Notices } from "./notices";
 import type { Overlay, Panels } from "./panels";
 import type { Play } from "./play";
-import type { GameLike } from "./remote";
+import type { GameLike } from "../runtime/remote";
 import type { Verifier } from "./verifier";
 import type { WinScreen } from "./winscreen";
 

@@ -18,7 +18,7 @@ import type { Hints } from "./hints";
 import { configFor, type SettingsEditor } from "./options";
 import { PaceMeter } from "./pace";
 import { ADDRESS_NAMES } from "./params";
-import { RemoteGame, type GameLike } from "./remote";
+import { RemoteGame, type GameLike } from "../runtime/remote";
 
 /** Wait this long after the last trap move before speaking the height, ms. */
 const HEIGHT_SPEECH_MS = 400;

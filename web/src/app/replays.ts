@@ -8,7 +8,7 @@ import { t } from "../i18n";
 import { recordingOf, type Recording } from "../game/replay";
 import { encode } from "../game/replaycode";
 import type { Game } from "../game/rules";
-import { RemoteGame, type GameLike } from "./remote";
+import { RemoteGame, type GameLike } from "../runtime/remote";
 
 export interface ReplayHost {
   readonly game: GameLike;

@@ -9,7 +9,7 @@ import { nameField } from "../view/overlays";
 import { t } from "../i18n";
 import type { Hints } from "./hints";
 import type { Screen } from "./layout";
-import type { GameLike } from "./remote";
+import type { GameLike } from "../runtime/remote";
 
 const WON = (n: number) => t("page.won_spoken", { n });
 

@@ -13,10 +13,10 @@ import type { Zoom } from "./layout";
 import type { Screen } from "./layout";
 import { PLAY_RECT, type Rect } from "../view/geometry";
 import { decode } from "../game/replaycode";
-import { refused, replayed, type Checked, type Decoded } from "./verify-check";
-import type { FromWorker, ToWorker } from "./worker-protocol";
+import { refused, replayed, type Checked, type Decoded } from "../runtime/verify-check";
+import type { FromWorker, ToWorker } from "../runtime/worker-protocol";
 
-export type { Checked } from "./verify-check";
+export type { Checked } from "../runtime/verify-check";
 
 /** Codes checked in one run at most: a class's worth (more pasted are left, with a notice). */
 export const MAX_CODES = 100;

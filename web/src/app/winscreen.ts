@@ -5,6 +5,7 @@
  * Python's twin: `src/evapcool/app/winscreen.py` (docs/twins.md).
  */
 import { NAME_MAX } from "../game/highscores";
+import { lightestMass } from "../game/rules";
 import type { AtomArrays } from "../game/sim";
 import { t } from "../i18n";
 import { MIN_TARGET_CSS } from "../view/geometry";
@@ -63,11 +64,4 @@ export class WinScreen {
       return drawMessageButtons(ctx, [[t("page.copy_code"), "copycode"]], h);
     return [];
   }
-}
-
-/** The lightest trapped atom's mass (the escape energy of the too-few rule). */
-function lightestMass(a: AtomArrays): number {
-  let m = Infinity;
-  for (let i = 0; i < a.count; i++) m = Math.min(m, a.mass[i]);
-  return Number.isFinite(m) ? m : 1;
 }

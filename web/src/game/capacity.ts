@@ -4,9 +4,8 @@
  * `loading.capacity`, so the settings screen offers the same "1 to N".
  */
 import { CLASSIC_ROOM, CURVATURE, roomTop, startCapacity } from "./engine";
+import { HEIGHT_START } from "./rules";
 
-/** The rim at the start, px: no atom of the start may sit above it (or under the border). */
-const START_HEIGHT = 400;
 /** Atoms this far below the room's top are in view: under the play area's top border, px. */
 const SHOWN_BELOW_TOP = 48;
 
@@ -17,8 +16,8 @@ export function cupCapacity(radius: number, curvature = CURVATURE): number {
   const key = radius * 1e6 + curvature;
   const hit = cache.get(key);
   if (hit !== undefined) return hit;
-  // The border's edge in trap coordinates, or the rim if that is lower.
-  const yTop = Math.min(START_HEIGHT, roomTop(CLASSIC_ROOM, radius) - SHOWN_BELOW_TOP);
+  // The border's edge in trap coordinates, or the rim at the start if that is lower.
+  const yTop = Math.min(HEIGHT_START, roomTop(CLASSIC_ROOM, radius) - SHOWN_BELOW_TOP);
   const count = startCapacity(radius, curvature, yTop);
   cache.set(key, count);
   return count;

@@ -1,6 +1,7 @@
 /** The simulation the game plays: the exact engine of `../physics`, seen as a SimLike. */
 import { Simulation, type AtomSnapshot } from "../physics/index";
 import { readTrace, replayTrace, traceText } from "../physics/trace";
+import type { EscapeRule } from "../physics/constants";
 
 /** The start's own count of the atoms a cup holds, for the settings (game/capacity.ts). */
 export { startCapacity } from "../physics/wasm";
@@ -23,14 +24,21 @@ export {
   TC_EXPONENT_SEED,
   type EscapeRule,
 } from "../physics/constants";
-import type { GameConfig } from "./rules";
-import type { AtomArrays, GameSim, SimLike } from "./sim";
+
+/** What a game chooses of its physics (its GameConfig but the speed: game/rules.ts). */
+export interface GamePhysics {
+  nAtoms: number;
+  radius: number;
+  seed: number | null;
+  tcExponent: number;
+  escape: EscapeRule;
+}
 
 /**
- * The physics' Simulation as the game plays it: snapshots kept between frames (no allocation
- * per frame) and T computed once per state of the gas.
+ * The physics' Simulation as the game plays it (a GameSim: game/sim.ts): snapshots kept
+ * between frames (no allocation per frame) and T computed once per state of the gas.
  */
-export class EngineSim extends Simulation implements GameSim {
+export class EngineSim extends Simulation {
   private trappedSnap: AtomSnapshot | undefined;
   private escapedSnap: AtomSnapshot | undefined;
   private temperatureKey = "";
@@ -46,16 +54,16 @@ export class EngineSim extends Simulation implements GameSim {
     return this.temperatureValue;
   }
 
-  trapped(): AtomArrays {
+  trapped(): AtomSnapshot {
     return (this.trappedSnap = this.atoms("trapped", this.trappedSnap));
   }
 
-  escaped(): AtomArrays {
+  escaped(): AtomSnapshot {
     return (this.escapedSnap = this.atoms("escaped", this.escapedSnap));
   }
 }
 
-export function makeSimulation(config: GameConfig): GameSim {
+export function makeSimulation(config: GamePhysics): EngineSim {
   return new EngineSim({
     nAtoms: config.nAtoms,
     radius: config.radius,
@@ -71,6 +79,6 @@ export function replayGolden(text: string): string {
 }
 
 /** The physics' own switch to the won state, for a game's sim (tests of the condensate). */
-export function forceWin(sim: SimLike): void {
+export function forceWin(sim: object): void {
   if (sim instanceof EngineSim) sim.forceWin();
 }

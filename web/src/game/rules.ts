@@ -10,8 +10,8 @@
  * C as the desktop's: GameSim).
  */
 import { MoveRecorder } from "./moves";
-import { FPS, N_ATOMS, ATOM_RADIUS, TC_EXPONENT_SEED, type EscapeRule } from "./engine";
-import type { GameSim } from "./sim";
+import { FPS, N_ATOMS, ATOM_RADIUS, TC_EXPONENT_SEED, type GamePhysics } from "./engine";
+import type { AtomArrays, GameSim } from "./sim";
 import { APPLET_SPEED } from "../limits";
 
 export const HEIGHT_MIN = 25;
@@ -27,13 +27,8 @@ export const SPEED_MAX = APPLET_SPEED.high;
  */
 export const MAX_WALL_STEP = 1 / 15;
 
-export interface GameConfig {
-  nAtoms: number;
-  radius: number;
-  seed: number | null;
+export interface GameConfig extends GamePhysics {
   speed: number;
-  tcExponent: number;
-  escape: EscapeRule;
 }
 
 export const DEFAULT_CONFIG: GameConfig = {
@@ -51,6 +46,11 @@ export type SimFactory = (config: GameConfig) => GameSim;
 export function checkSpeed(speed: unknown): number {
   if (typeof speed === "number" && APPLET_SPEED.contains(speed)) return speed;
   throw new RangeError(`speed must be ${APPLET_SPEED.allowed()} (got ${String(speed)})`);
+}
+
+/** The speed doubled (up) or halved, within the range (the +/- keys). */
+export function nextSpeed(speed: number, up: boolean): number {
+  return up ? Math.min(SPEED_MAX, speed * 2) : Math.max(SPEED_MIN, speed / 2);
 }
 
 /** A height within the slider's range; NaN (a broken rule) gives the top of the range. */
@@ -139,11 +139,11 @@ export class Game {
   }
 
   faster(): void {
-    this.speed = Math.min(SPEED_MAX, this.speed * 2);
+    this.speed = nextSpeed(this.speed, true);
   }
 
   slower(): void {
-    this.speed = Math.max(SPEED_MIN, this.speed / 2);
+    this.speed = nextSpeed(this.speed, false);
   }
 
   /** The height the trap has, or will have at the next frame boundary. */
@@ -151,11 +151,15 @@ export class Game {
     return this.pendingHeight ?? this.sim.trapHeight;
   }
 
-  /** Ask for a rim height (clamped to the slider's range); frozen once the gas condensed. */
+  /** Ask for a rim height, clamped to the slider's range: the one clamp on its way down. */
   setTrapHeight(height: number): boolean {
-    if (this.won || this.script || !Number.isFinite(height)) return false;
-    const h = clampHeight(height);
-    if (h === this.trapHeight) return false;
+    return Number.isFinite(height) && this.holdHeight(clampHeight(height));
+  }
+
+  /** Hold a height of the slider's range from the next whole frame (the physics worker's:
+   * the page's mirror clamped it, runtime/remote.ts); frozen once the gas condensed. */
+  holdHeight(h: number): boolean {
+    if (this.won || this.script || h === this.trapHeight) return false;
     this.pendingHeight = h;
     // Paused, or at a frame boundary: nothing is in flight, apply now.
     if (this.paused || Number.isInteger(this.sim.time)) this.applyPending();
@@ -247,8 +251,9 @@ export class Game {
     return this.sim.nTrapped === 0 && !this.sim.won;
   }
 
-  /** Why the gas can no longer condense (a message key: lose.*), or null; `lightest`: mass. */
-  tooFewAtoms(lightest = 1): string | null {
+  /** Why the gas can no longer condense (a message key: lose.*), or null; `lightest`: the
+   * lightest trapped atom's mass (the escape energy's). */
+  tooFewAtoms(lightest = lightestMass(this.sim.trapped())): LoseReason | null {
     const sim = this.sim;
     if (sim.won || !sim.winRule) return null;
     const n = sim.nTrapped;
@@ -260,6 +265,22 @@ export class Game {
       lightest * sim.gravity * this.trapHeight,
     );
   }
+}
+
+/** What outOfReach answers (message keys; the physics worker posts their index). */
+export const LOSE_REASONS = [
+  "lose.all_escaped",
+  "lose.one_atom",
+  "lose.stuck",
+  "lose.stuck_here",
+] as const;
+export type LoseReason = (typeof LOSE_REASONS)[number];
+
+/** The lightest of these atoms' masses (1 for none). */
+export function lightestMass(a: AtomArrays): number {
+  let m = Infinity;
+  for (let i = 0; i < a.count; i++) m = Math.min(m, a.mass[i]);
+  return Number.isFinite(m) ? m : 1;
 }
 
 /**
@@ -276,7 +297,7 @@ export function outOfReach(
   criticalTemperature: number,
   escapeEnergy: number,
   trapEnergy: number | null = null,
-): string | null {
+): LoseReason | null {
   if (n <= 0) return "lose.all_escaped";
   if (energy / n < criticalTemperature) return null; // condensing now
   if (n === 1) return "lose.one_atom";

@@ -14,7 +14,7 @@ export type AtomArrays = Pick<AtomSnapshot, "count" | "x" | "y" | "vx" | "vy" | 
 
 /**
  * What the game and the view read of a simulation: the physics' Simulation's own members
- * (SPEC section 3, in camelCase), so a mirror of one in the page (app/remote.ts) has its shape.
+ * (SPEC section 3, in camelCase), so a mirror of one in the page (runtime/remote.ts) has its shape.
  */
 export interface SimLike extends Pick<
   Simulation,

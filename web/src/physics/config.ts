@@ -15,7 +15,7 @@ import {
   type EscapeRule,
 } from "./constants";
 import { CLASSIC_ROOM, checkRoom, type Room } from "./room";
-import { bad } from "./state";
+import { bad, num } from "./state";
 import { checkStart, perAtomWithin, type Motion } from "./validation";
 import {
   CURVATURE as CURVATURE_RANGE,
@@ -198,12 +198,7 @@ export function points(name: string, v: unknown, n: number): [Float64Array, Floa
       x = arr[2 * i];
       y = arr[2 * i + 1];
     }
-    if (
-      typeof x !== "number" ||
-      typeof y !== "number" ||
-      !Number.isFinite(x) ||
-      !Number.isFinite(y)
-    )
+    if (!num(x) || !num(y))
       throw bad(`${name}[${i}]`, "a point of finite numbers", pairs ? arr[i] : [x, y]);
     xs[i] = x;
     ys[i] = y;

@@ -17,21 +17,29 @@ import {
   type EscapeRule,
   type EventName,
 } from "./constants";
-import { checkedConfig, type SimulationOptions } from "./config";
+import { checkedConfig, points, type SimulationOptions } from "./config";
 import { roomTop, type Room } from "./room";
 import { randomSeed } from "./start";
 import {
   STATE_FORMAT,
   STATE_VERSION,
   bad,
-  checkPlacement,
+  checkState,
   parseState,
   windowOfRoom,
   type SimulationState,
   type StateInput,
 } from "./state";
 import { STORED, WasmEngine, loadCup, type EngineAtoms, type EngineRules } from "./wasm";
-import { checkWorld, flownToNow } from "./validation";
+import {
+  countOf,
+  interleaved,
+  pairwiseSum,
+  snapshot,
+  trappedEnergies,
+  type AtomGroup,
+  type AtomSnapshot,
+} from "./snapshot";
 import { CONTACT_TOLERANCE, DT, TRAP_HEIGHT as TRAP_HEIGHT_RANGE } from "../limits";
 
 /** One processed event: kind, atoms (j = -1 for solo events) and time in frames. */
@@ -42,68 +50,10 @@ export interface PhysicsEvent {
   time: number;
 }
 
-/** Per-atom columns of trapped or escaped atoms now; `count` rows are valid. */
-export interface AtomSnapshot {
-  count: number;
-  /** The atom's index (stable for the whole run: colours, selection). */
-  index: Int32Array;
-  x: Float64Array;
-  y: Float64Array;
-  vx: Float64Array;
-  vy: Float64Array;
-  radius: Float64Array;
-  mass: Float64Array;
-  /** 1/2 m v^2 + m g y. */
-  energy: Float64Array;
-}
-
-/** Interleaved points [x0, y0, ...] of the loader as two columns. */
-function columns(xy: Float64Array, n: number): [Float64Array, Float64Array] {
-  const xs = new Float64Array(n);
-  const ys = new Float64Array(n);
-  for (let i = 0; i < n; i++) {
-    xs[i] = xy[2 * i];
-    ys[i] = xy[2 * i + 1];
-  }
-  return [xs, ys];
-}
-
-/** NumPy's pairwise summation (np.sum of a float64 array), so sums match Python's bits. */
-export function pairwiseSum(a: Float64Array, start: number, n: number): number {
-  if (n < 8) {
-    let res = 0.0;
-    for (let i = 0; i < n; i++) res += a[start + i];
-    return res;
-  }
-  if (n <= 128) {
-    // Eight running sums, element j into sum j mod 8, added up pairwise: NumPy's order.
-    const r = a.slice(start, start + 8);
-    let i = 8;
-    for (; i < n - (n % 8); i += 8) for (let j = 0; j < 8; j++) r[j] += a[start + i + j];
-    let res = r[0] + r[1] + (r[2] + r[3]) + (r[4] + r[5] + (r[6] + r[7]));
-    for (; i < n; i++) res += a[start + i];
-    return res;
-  }
-  let n2 = Math.floor(n / 2);
-  n2 -= n2 % 8;
-  return pairwiseSum(a, start, n2) + pairwiseSum(a, start + n2, n - n2);
-}
-
-/** Two snapshot columns interleaved, [a0, b0, a1, b1, ...], of their first n rows. */
-function interleaved(a: Float64Array, b: Float64Array, n: number): Float64Array {
-  const out = new Float64Array(2 * n);
-  for (let k = 0; k < n; k++) {
-    out[2 * k] = a[k];
-    out[2 * k + 1] = b[k];
-  }
-  return out;
-}
-
 /** Hard disks in a parabolic cup under gravity, advanced event by event, exactly. */
 export class Simulation {
   private engine!: WasmEngine;
   private seedUsed!: number | null;
-  private scratch!: Float64Array;
 
   /** A simulation of options checked once, here (checkedConfig); nothing below checks them
    * again but whether the atoms fit the cup (the loader's). */
@@ -115,8 +65,8 @@ export class Simulation {
     if (start === null) {
       seed = c.seed ?? randomSeed();
       const cup = loadCup(n, c.radius[0], c.curvature, roomTop(c.room, c.radius[0]), seed);
-      const [x, y] = columns(cup.positions, n);
-      const [vx, vy] = columns(cup.velocities, n);
+      const [x, y] = points("positions", cup.positions, n);
+      const [vx, vy] = points("velocities", cup.velocities, n);
       start = { x, y, vx, vy };
     }
     const atoms: EngineAtoms = {
@@ -134,7 +84,6 @@ export class Simulation {
   }
 
   private init(rules: EngineRules, atoms: EngineAtoms, seed: number | null): void {
-    this.scratch = new Float64Array(4);
     this.seedUsed = seed;
     this.engine = new WasmEngine(rules, atoms);
     this.engine.setTrapHeight(rules.trapHeight);
@@ -156,28 +105,15 @@ export class Simulation {
     const p = parseState(state);
     const recordEvents = options.recordEvents ?? false;
     if (typeof recordEvents !== "boolean") throw bad("recordEvents", "true or false", recordEvents);
-    // Trapped atoms where they are now: inside the cup, not overlapping (up to round-off).
-    const now = flownToNow(p);
-    const trapped = (i: number) => p.status[i] === TRAPPED;
-    // The condensate's atoms no longer collide: after the win they may overlap.
-    checkPlacement(
-      "state.atoms",
-      now.x,
-      now.y,
-      p.radius,
-      trapped,
-      p.curvature,
-      CONTACT_TOLERANCE,
-      !p.won,
-    );
-    checkWorld(p, now, trapped);
+    checkState(p);
     const sim = Object.create(Simulation.prototype) as Simulation;
     sim.init({ ...p, recordEvents }, p, null);
     if (p.energySum !== undefined) {
       const e = sim.engine;
       const sum = e.sequentialEnergySum();
       let scale = 0;
-      for (let i = 0; i < e.nAtoms; i++) if (trapped(i)) scale += Math.abs(e.atomEnergy(i));
+      for (let i = 0; i < e.nAtoms; i++)
+        if (p.status[i] === TRAPPED) scale += Math.abs(e.atomEnergy(i));
       if (!(Math.abs(p.energySum - sum) <= CONTACT_TOLERANCE * Math.max(1, scale)))
         throw bad("state.energy_sum", `the trapped atoms' energy sum, ${sum}`, p.energySum);
     }
@@ -285,10 +221,7 @@ export class Simulation {
 
   /** Atoms that left the trap and are still falling inside the window. */
   get nEscaped(): number {
-    const e = this.engine;
-    let k = 0;
-    for (let i = 0; i < e.nAtoms; i++) if (e.statusOf(i) === ESCAPED) k++;
-    return k;
+    return countOf(this.engine, ESCAPED);
   }
 
   /** Centres of the trapped atoms now, [x0, y0, x1, y1, ...], trap coordinates (y up), px. */
@@ -318,51 +251,13 @@ export class Simulation {
    * Trapped (or escaped) atoms now in per-atom columns, written into `out` when it has room
    * (no allocation per frame for a view that keeps its snapshot).
    */
-  atoms(which: "trapped" | "escaped" = "trapped", out?: AtomSnapshot): AtomSnapshot {
-    const e = this.engine;
-    const status = which === "trapped" ? TRAPPED : which === "escaped" ? ESCAPED : -1;
-    if (status < 0) throw bad("which", `"trapped" or "escaped"`, which);
-    let snap = out;
-    if (snap === undefined || snap.index.length < e.nAtoms) {
-      const n = e.nAtoms;
-      snap = {
-        count: 0,
-        index: new Int32Array(n),
-        x: new Float64Array(n),
-        y: new Float64Array(n),
-        vx: new Float64Array(n),
-        vy: new Float64Array(n),
-        radius: new Float64Array(n),
-        mass: new Float64Array(n),
-        energy: new Float64Array(n),
-      };
-    }
-    const s = this.scratch;
-    let k = 0;
-    for (let i = 0; i < e.nAtoms; i++) {
-      if (e.statusOf(i) !== status) continue;
-      e.stateAt(i, this.time, s);
-      snap.index[k] = i;
-      snap.x[k] = s[0];
-      snap.y[k] = s[1];
-      snap.vx[k] = s[2];
-      snap.vy[k] = s[3];
-      snap.radius[k] = e.storedOf(i, STORED.radius);
-      snap.mass[k] = e.storedOf(i, STORED.mass);
-      snap.energy[k] = e.atomEnergy(i);
-      k++;
-    }
-    snap.count = k;
-    return snap;
+  atoms(which: AtomGroup = "trapped", out?: AtomSnapshot): AtomSnapshot {
+    return snapshot(this.engine, which, this.time, out);
   }
 
   /** Energy 1/2 m v^2 + m g y of each trapped atom. */
   energies(): Float64Array {
-    const e = this.engine;
-    const out = new Float64Array(this.nTrapped);
-    let k = 0;
-    for (let i = 0; i < e.nAtoms; i++) if (e.statusOf(i) === TRAPPED) out[k++] = e.atomEnergy(i);
-    return out;
+    return trappedEnergies(this.engine, this.nTrapped);
   }
 
   /** Sum of 1/2 m v^2 + m g y over trapped atoms (summed as NumPy does: the same bits). */
@@ -465,18 +360,12 @@ export class Simulation {
   }
 
   /** Engine diagnostics: cell crossings and stale pair events processed, grid shape. */
-  get engineStats(): {
-    crossings: number;
-    stale: number;
-    cells: [number, number];
-    cellSize: number;
-    gridErrors: number;
-  } {
+  get engineStats() {
     const e = this.engine;
     return {
       crossings: e.read("core_crossings"),
       stale: e.read("core_stale"),
-      cells: [e.gridColumns, e.gridRows],
+      cells: [e.gridColumns, e.gridRows] as [number, number],
       cellSize: e.cellSize,
       gridErrors: e.gridErrors(),
     };

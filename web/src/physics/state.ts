@@ -8,6 +8,7 @@
  * Python's twin: `src/evapcool/physics/state.py` (docs/twins.md).
  */
 import { pyFloat } from "../limits";
+import { CONTACT_TOLERANCE } from "../limits";
 import {
   CURVATURE,
   ESCAPE_RULES,
@@ -15,11 +16,12 @@ import {
   STATUS_NAMES,
   TC_EXPONENT_SEED,
   TRAP_HEIGHT,
+  TRAPPED,
   type EscapeRule,
   type StatusName,
 } from "./constants";
 import type { Room } from "./room";
-import type { WorldLimitsInput } from "./validation";
+import { checkWorld, firstOverlap, flownToNow, type WorldLimitsInput } from "./validation";
 
 export const STATE_FORMAT = "evapcool-state";
 export const STATE_VERSION = 1;
@@ -148,31 +150,24 @@ function isObject(v: unknown): v is Record<string, unknown> {
   return typeof v === "object" && v !== null && !Array.isArray(v);
 }
 
-function finite(name: string, v: unknown, fallback: number): number {
-  if (v === undefined) return fallback;
-  if (typeof v !== "number" || !Number.isFinite(v)) throw bad(name, "a finite number", v);
-  return v;
+/** A field's value, or the fallback when absent; RangeError "<name> must be <allowed>" unless
+ * ok(value). */
+function field<T>(allowed: string, ok: (v: unknown) => boolean) {
+  return (name: string, v: unknown, fallback: T): T => {
+    if (v === undefined) return fallback;
+    if (!ok(v)) throw bad(name, allowed, v);
+    return v as T;
+  };
 }
-
-function positive(name: string, v: unknown, fallback: number): number {
-  if (v === undefined) return fallback;
-  if (typeof v !== "number" || !Number.isFinite(v) || v <= 0)
-    throw bad(name, "a positive finite number", v);
-  return v;
-}
-
-function count(name: string, v: unknown): number {
-  if (v === undefined) return 0;
-  if (typeof v !== "number" || !Number.isSafeInteger(v) || v < 0)
-    throw bad(name, "a whole number >= 0", v);
-  return v;
-}
-
-function flag(name: string, v: unknown, fallback: boolean): boolean {
-  if (v === undefined) return fallback;
-  if (typeof v !== "boolean") throw bad(name, "true or false", v);
-  return v;
-}
+/** A finite number (the type guard of every numeric field). */
+export const num = (v: unknown): v is number => typeof v === "number" && Number.isFinite(v);
+const finite = field<number>("a finite number", num);
+const positive = field<number>("a positive finite number", (v) => num(v) && v > 0);
+const count = field<number>(
+  "a whole number >= 0",
+  (v) => Number.isSafeInteger(v) && num(v) && v >= 0,
+);
+const flag = field<boolean>("true or false", (v) => typeof v === "boolean");
 
 function column(name: string, v: unknown, n: number): Float64Array {
   if (!Array.isArray(v) || (n >= 0 && v.length !== n))
@@ -180,18 +175,15 @@ function column(name: string, v: unknown, n: number): Float64Array {
   const out = new Float64Array(v.length);
   for (let i = 0; i < v.length; i++) {
     const e: unknown = v[i];
-    if (typeof e !== "number" || !Number.isFinite(e))
-      throw bad(`${name}[${i}]`, "a finite number", e);
+    if (!num(e)) throw bad(`${name}[${i}]`, "a finite number", e);
     out[i] = e;
   }
   return out;
 }
 
 function perAtom(name: string, v: unknown, n: number, fallback: number): Float64Array {
-  if (v === undefined || typeof v === "number") {
-    const value = positive(name, v, fallback);
-    return new Float64Array(n).fill(value);
-  }
+  if (v === undefined || typeof v === "number")
+    return new Float64Array(n).fill(positive(name, v, fallback));
   const out = column(name, v, n);
   for (let i = 0; i < n; i++)
     if (!(out[i] > 0)) throw bad(`${name}[${i}]`, "a positive finite number", out[i]);
@@ -317,8 +309,8 @@ export function parseState(input: unknown): ParsedState {
         ? undefined
         : finite("state.initial_temperature", s.initial_temperature, 0),
     energySum: s.energy_sum === undefined ? undefined : finite("state.energy_sum", s.energy_sum, 0),
-    pairCount: count("state.pair_collisions", s.pair_collisions),
-    wallCount: count("state.wall_collisions", s.wall_collisions),
+    pairCount: count("state.pair_collisions", s.pair_collisions, 0),
+    wallCount: count("state.wall_collisions", s.wall_collisions, 0),
     x,
     y,
     vx,
@@ -370,44 +362,21 @@ export function checkPlacement(
   }
 }
 
-/** The overlapping pair of trapped atoms with the least index, then the least partner. */
-export function firstOverlap(
-  x: Float64Array,
-  y: Float64Array,
-  radius: Float64Array,
-  trapped: (i: number) => boolean,
-  tol: number,
-): [number, number] | null {
-  const n = x.length;
-  // Sweep along x: only atoms closer than the largest contact distance in x can overlap.
-  const order: number[] = [];
-  let rMax = 0;
-  for (let i = 0; i < n; i++) {
-    if (!trapped(i)) continue;
-    order.push(i);
-    if (radius[i] > rMax) rMax = radius[i];
-  }
-  order.sort((p, q) => x[p] - x[q] || p - q);
-  let bi = -1;
-  let bj = -1;
-  for (let p = 0; p < order.length; p++) {
-    const i = order[p];
-    for (let q = p + 1; q < order.length; q++) {
-      const j = order[q];
-      const dx = x[j] - x[i];
-      if (dx > 2 * rMax) break;
-      const dy = y[j] - y[i];
-      const sigma = radius[i] + radius[j];
-      const lim = sigma * (1 - tol);
-      if (dx * dx + dy * dy < lim * lim) {
-        const lo = i < j ? i : j;
-        const hi = i < j ? j : i;
-        if (bi < 0 || lo < bi || (lo === bi && hi < bj)) {
-          bi = lo;
-          bj = hi;
-        }
-      }
-    }
-  }
-  return bi >= 0 ? [bi, bj] : null;
+/** A parsed state's trapped atoms where they are now: inside the cup, not overlapping (up to
+ * round-off; the condensate's no longer collide, so after the win they may), within the
+ * limits (Python's world_from_state). RangeError naming the first atom or field that is not. */
+export function checkState(p: ParsedState): void {
+  const now = flownToNow(p);
+  const trapped = (i: number) => p.status[i] === TRAPPED;
+  checkPlacement(
+    "state.atoms",
+    now.x,
+    now.y,
+    p.radius,
+    trapped,
+    p.curvature,
+    CONTACT_TOLERANCE,
+    !p.won,
+  );
+  checkWorld(p, now, trapped);
 }

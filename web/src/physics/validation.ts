@@ -17,7 +17,6 @@ import {
   pyG,
   type Range,
 } from "../limits";
-import { firstOverlap } from "./state";
 
 /** Per-atom positions and velocities as columns, trap coordinates. */
 export interface Motion {
@@ -140,4 +139,46 @@ export function checkStart(
         `(atoms ${a} and ${b} are ${pyG(d)} px apart, r_${a} + r_${b} = ${pyG(radius[a] + radius[b])} px)`,
     );
   }
+}
+
+/** The overlapping pair of trapped atoms with the least index, then the least partner. */
+export function firstOverlap(
+  x: Float64Array,
+  y: Float64Array,
+  radius: Float64Array,
+  trapped: (i: number) => boolean,
+  tol: number,
+): [number, number] | null {
+  const n = x.length;
+  // Sweep along x: only atoms closer than the largest contact distance in x can overlap.
+  const order: number[] = [];
+  let rMax = 0;
+  for (let i = 0; i < n; i++) {
+    if (!trapped(i)) continue;
+    order.push(i);
+    if (radius[i] > rMax) rMax = radius[i];
+  }
+  order.sort((p, q) => x[p] - x[q] || p - q);
+  let bi = -1;
+  let bj = -1;
+  for (let p = 0; p < order.length; p++) {
+    const i = order[p];
+    for (let q = p + 1; q < order.length; q++) {
+      const j = order[q];
+      const dx = x[j] - x[i];
+      if (dx > 2 * rMax) break;
+      const dy = y[j] - y[i];
+      const sigma = radius[i] + radius[j];
+      const lim = sigma * (1 - tol);
+      if (dx * dx + dy * dy < lim * lim) {
+        const lo = i < j ? i : j;
+        const hi = i < j ? j : i;
+        if (bi < 0 || lo < bi || (lo === bi && hi < bj)) {
+          bi = lo;
+          bj = hi;
+        }
+      }
+    }
+  }
+  return bi >= 0 ? [bi, bj] : null;
 }

@@ -113,6 +113,45 @@ describe("the physics worker", () => {
       );
   });
 
+  test("the reach rule runs in the worker; the height asked for is clamped once, on the page", async () => {
+    const play = async (initScript) => {
+      const { page, log } = await openPage(browser, { query: "?seed=1&atoms=20", initScript });
+      const out = await page.evaluate(async () => {
+        const api = window.evapcool;
+        api.app.stop(); // frames only from the script below
+        const g = api.app.game;
+        const changed = g.setTrapHeight(-1000);
+        const asked = g.trapHeight; // answered at once
+        const held = (await api.state()).trapHeight;
+        const sim = g.sim.trapHeight; // the physics' own, as the worker (or page) applied it
+        let reason = null;
+        let k = 0;
+        for (; k < 200 && reason === null; k++) {
+          await api.runFrames(10);
+          reason = g.tooFewAtoms();
+        }
+        const s = await api.state();
+        return { engine: s.engine, changed, asked, held, sim, reason, k, nTrapped: s.nTrapped };
+      });
+      assert.deepEqual(log.errors, []);
+      await page.close();
+      return out;
+    };
+    const worker = await play(undefined);
+    const page = await play(NO_WORKER);
+    assert.equal(worker.engine, "worker");
+    assert.equal(page.engine, "page");
+    for (const run of [worker, page]) {
+      assert.equal(run.changed, true);
+      assert.equal(run.asked, 25);
+      assert.equal(run.held, 25);
+      assert.equal(run.sim, 25);
+      assert.match(run.reason ?? "", /^lose\./, "too few atoms are left to condense");
+    }
+    for (const key of ["reason", "k", "nTrapped"])
+      assert.ok(Object.is(worker[key], page[key]), `${key}: ${worker[key]} vs ${page[key]}`);
+  });
+
   for (const [name, initScript] of [
     ["no Worker at all", NO_WORKER],
     ["a worker that fails", BROKEN_WORKER],

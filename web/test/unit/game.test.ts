@@ -314,6 +314,19 @@ describe("game rules", () => {
     ]);
   });
 
+  test("holdHeight: the worker holds a height as the page's mirror sent it (clamped once)", () => {
+    const { game, sims } = make();
+    expect(game.holdHeight(300)).toBe(true);
+    expect(sims[0].trapHeight).toBe(300); // paused: at once
+    expect(game.holdHeight(300)).toBe(false);
+    game.setTrapHeight(280); // T = 70 < Tc = 75
+    game.paused = false;
+    game.runFrames(2);
+    expect(game.won).toBe(true);
+    expect(game.holdHeight(350)).toBe(false); // frozen after the win
+    expect(game.trapHeight).toBe(280);
+  });
+
   test("pausing mid-frame finishes the frame: a paused height lands on a whole frame", () => {
     const { game, sims } = make();
     game.paused = false;
@@ -384,6 +397,19 @@ describe("too few atoms (the desktop's rule)", () => {
     });
     sims[0].nTrapped = 1;
     expect(game.tooFewAtoms()).toBe("lose.one_atom");
+    // Two atoms too cold to leave, the escape energy from the lightest trapped atom's mass:
+    // T = 100 >= Tc, E = 200 <= m g H_min with m = 24 (25 x 24 / 3 = 200): stuck for good;
+    // with m = 23 one may leave, but not over the trap as it stands (H = 400).
+    sims[0].nTrapped = 2;
+    const heavy = (m: number) => {
+      const mass = Float64Array.of(m + 1, m);
+      const z = new Float64Array(2);
+      return { x: z, y: z, vx: z, vy: z, radius: z, mass, count: 2 };
+    };
+    sims[0].trapped = () => heavy(24);
+    expect(game.tooFewAtoms()).toBe("lose.stuck");
+    sims[0].trapped = () => heavy(23);
+    expect(game.tooFewAtoms()).toBe("lose.stuck_here");
     sims[0].won = true;
     expect(game.tooFewAtoms()).toBeNull();
     sims[0].won = false;

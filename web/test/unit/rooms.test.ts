@@ -19,6 +19,8 @@ const NO_TWIN: Record<string, string> = {
   "wasm.ts": "the core's WebAssembly wrapper (Python's native one is physics/core.py)",
   "wasm-core.d.ts": "the type of the core the build inlines (web/scripts/wasm-plugin.mjs)",
   "core-exports.ts": "the core's exports, generated from core/evapcool_core.h (Python's _core.pyi)",
+  "snapshot.ts":
+    "the atoms read out of the core's tables, summed as NumPy sums (Python reads World's arrays)",
 };
 
 /** The TypeScript engine's rooms, retired for the core's (issue 32). */
@@ -73,4 +75,12 @@ test("core-exports.ts declares exactly the entry points the compiled core export
   ];
   for (const m of block.matchAll(/^\s+(core_\w+)\(([^)]*)\)/gm))
     if (!noEngine.includes(m[1])) expect(m[2], m[1]).toMatch(/^\s*core: Core/);
+});
+
+test("no web physics file over 400 lines (issue 47's budget)", () => {
+  const long = readdirSync(WEB)
+    .filter((f) => f.endsWith(".ts"))
+    .map((f) => [f, readFileSync(resolve(WEB, f), "utf8").split("\n").length - 1] as const)
+    .filter(([, n]) => n > 400);
+  expect(long).toEqual([]);
 });

@@ -6,7 +6,7 @@
  * A worker of the same code replays the verify panel's codes (off the page's thread).
  */
 import { forceWin, makeSimulation, provideCore, replayGolden } from "../game/engine";
-import { Game, MAX_WALL_STEP, type GameConfig } from "../game/rules";
+import { Game, LOSE_REASONS, MAX_WALL_STEP, lightestMass, type GameConfig } from "../game/rules";
 import {
   bufferBytes,
   bufferCapacity,
@@ -62,7 +62,7 @@ function apply(command: Command): void {
       g.paused = command.paused;
       break;
     case "height":
-      g.setTrapHeight(command.height);
+      g.holdHeight(command.height);
       break;
     case "speed":
       g.speed = command.speed;
@@ -123,8 +123,12 @@ function publish(): void {
   h[HEADER.escapedCount] = v.escaped.count;
   h[HEADER.capacity] = capacity;
   h[HEADER.physicsMs] = physicsMs;
-  // The score the core fixed at the win's frame (atoms may still leave after it).
-  h[HEADER.scoreAtWin] = g.sim.score ?? NaN;
+  // The game's answers, here only: the page reads them (runtime/remote.ts). The score is
+  // the one the core fixed at the win's frame (atoms may still leave after it).
+  h[HEADER.score] = g.score ?? NaN;
+  h[HEADER.allEscaped] = g.allEscaped ? 1 : 0;
+  const tooFew = g.tooFewAtoms(lightestMass(v.trapped));
+  h[HEADER.tooFew] = tooFew === null ? NaN : LOSE_REASONS.indexOf(tooFew);
   changed = false;
   post({ type: "frame", buffer }, [buffer]);
 }

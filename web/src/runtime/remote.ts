@@ -7,14 +7,13 @@
 import { FPS } from "../game/engine";
 import {
   checkSpeed,
+  clampHeight,
   Game,
-  HEIGHT_MAX,
-  HEIGHT_MIN,
   HEIGHT_START,
-  outOfReach,
-  SPEED_MAX,
-  SPEED_MIN,
+  LOSE_REASONS,
+  nextSpeed,
   type GameConfig,
+  type LoseReason,
   type SimFactory,
 } from "../game/rules";
 import { CLASSIC_ROOM, coreBytes, randomSeed, type Room } from "../game/engine";
@@ -165,7 +164,6 @@ export class RemoteGame implements GameLike {
   private movesAsked = new Map<number, (runs: Array<[number, number]>) => void>();
   private readonly checked = new Set<string>();
   private alive = false;
-  private winScore: number | null = null;
 
   constructor(
     private readonly worker: Worker,
@@ -255,8 +253,6 @@ export class RemoteGame implements GameLike {
       const wonAt = h[HEADER.wonAt];
       if (this.wonAtNow === null && !Number.isNaN(wonAt)) {
         this.wonAtNow = wonAt;
-        // The score is fixed at the whole frame the win was seen, as the page's own game's.
-        this.winScore = h[HEADER.scoreAtWin];
         this.hooks.won();
       }
     }
@@ -288,11 +284,11 @@ export class RemoteGame implements GameLike {
   }
 
   faster(): void {
-    this.setSpeed(Math.min(SPEED_MAX, this.speed * 2));
+    this.setSpeed(nextSpeed(this.speed, true));
   }
 
   slower(): void {
-    this.setSpeed(Math.max(SPEED_MIN, this.speed / 2));
+    this.setSpeed(nextSpeed(this.speed, false));
   }
 
   private setSpeed(speed: number): void {
@@ -318,13 +314,14 @@ export class RemoteGame implements GameLike {
     return this.wonAtNow;
   }
 
+  /** The worker's Game.score (fixed at the whole frame the win was seen). */
   get score(): number | null {
-    if (!this.won) return null;
-    return this.winScore ?? this.sim.nTrapped;
+    const score = this.stale || !this.frame ? NaN : this.frame.header[HEADER.score];
+    return Number.isNaN(score) ? null : score;
   }
 
   get allEscaped(): boolean {
-    return !this.stale && this.sim.nTrapped === 0 && !this.sim.won;
+    return !this.stale && this.frame?.header[HEADER.allEscaped] === 1;
   }
 
   get playTime(): number {
@@ -336,9 +333,10 @@ export class RemoteGame implements GameLike {
     return this.height;
   }
 
+  /** The one clamp on the height's way down: the worker holds it as sent (Game.holdHeight). */
   setTrapHeight(height: number): boolean {
     if (this.won || !Number.isFinite(height)) return false;
-    const h = Math.min(HEIGHT_MAX, Math.max(HEIGHT_MIN, height));
+    const h = clampHeight(height);
     if (h === this.height) return false;
     this.height = h;
     this.command({ kind: "height", height: h });
@@ -378,22 +376,14 @@ export class RemoteGame implements GameLike {
     this.pausedNow = true;
     this.height = HEIGHT_START;
     this.wonAtNow = null;
-    this.winScore = null;
     this.asked += 1;
     this.command({ kind: "restart", config: this.withSeed(c) });
   }
 
-  tooFewAtoms(lightest = 1): string | null {
-    const sim = this.sim;
-    if (this.stale || sim.won || !sim.winRule) return null;
-    const n = sim.nTrapped;
-    return outOfReach(
-      n,
-      sim.temperature * n,
-      sim.criticalTemperature,
-      lightest * sim.gravity * HEIGHT_MIN,
-      lightest * sim.gravity * this.trapHeight,
-    );
+  /** The worker's answer to the reach rule (Game.tooFewAtoms) for the frame drawn. */
+  tooFewAtoms(): LoseReason | null {
+    const k = this.stale || !this.frame ? NaN : this.frame.header[HEADER.tooFew];
+    return Number.isNaN(k) ? null : LOSE_REASONS[k];
   }
 
   /** The worker's ms spent on the physics for its newest frame. */

@@ -42,11 +42,15 @@ export const HEADER = {
   capacity: 22,
   /** Worker ms spent advancing the physics for this frame. */
   physicsMs: 23,
-  /** Atoms in the cup at the moment of the win (NaN before). */
-  scoreAtWin: 24,
+  /** The game's score: atoms in the cup at the whole frame the win was seen (NaN before). */
+  score: 24,
   roomRight: 25,
   roomBelow: 26,
   roomAbove: 27,
+  /** Why the gas can no longer condense: an index of LOSE_REASONS (game/rules.ts), NaN: none. */
+  tooFew: 28,
+  /** Every atom has left the cup (Game.allEscaped): 0 / 1. */
+  allEscaped: 29,
 } as const;
 export const HEADER_SLOTS = 32;
 

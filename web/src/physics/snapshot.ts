@@ -1,0 +1,108 @@
+/**
+ * The atoms read out of the core's tables as per-atom columns, and their energies summed in
+ * NumPy's order: what Python reads of its World's arrays with NumPy (`Simulation` calls these).
+ */
+import { ESCAPED, TRAPPED } from "./constants";
+import { bad } from "./state";
+import { STORED, type WasmEngine } from "./wasm";
+
+/** Per-atom columns of trapped or escaped atoms now; `count` rows are valid. */
+export interface AtomSnapshot {
+  count: number;
+  /** The atom's index (stable for the whole run: colours, selection). */
+  index: Int32Array;
+  x: Float64Array;
+  y: Float64Array;
+  vx: Float64Array;
+  vy: Float64Array;
+  radius: Float64Array;
+  mass: Float64Array;
+  /** 1/2 m v^2 + m g y. */
+  energy: Float64Array;
+}
+
+export type AtomGroup = "trapped" | "escaped";
+
+const scratch = new Float64Array(4);
+
+/** The group's atoms at time t, written into `out` when it has room (no allocation per
+ * frame for a view that keeps its snapshot). */
+export function snapshot(
+  e: WasmEngine,
+  which: AtomGroup,
+  t: number,
+  out?: AtomSnapshot,
+): AtomSnapshot {
+  const status = which === "trapped" ? TRAPPED : which === "escaped" ? ESCAPED : -1;
+  if (status < 0) throw bad("which", `"trapped" or "escaped"`, which);
+  const n = e.nAtoms;
+  const snap = out !== undefined && out.index.length >= n ? out : emptySnapshot(n);
+  let k = 0;
+  for (let i = 0; i < n; i++) {
+    if (e.statusOf(i) !== status) continue;
+    e.stateAt(i, t, scratch);
+    snap.index[k] = i;
+    snap.x[k] = scratch[0];
+    snap.y[k] = scratch[1];
+    snap.vx[k] = scratch[2];
+    snap.vy[k] = scratch[3];
+    snap.radius[k] = e.storedOf(i, STORED.radius);
+    snap.mass[k] = e.storedOf(i, STORED.mass);
+    snap.energy[k] = e.atomEnergy(i);
+    k++;
+  }
+  snap.count = k;
+  return snap;
+}
+
+function emptySnapshot(n: number): AtomSnapshot {
+  const f = () => new Float64Array(n);
+  const [x, y, vx, vy, radius, mass, energy] = [f(), f(), f(), f(), f(), f(), f()];
+  return { count: 0, index: new Int32Array(n), x, y, vx, vy, radius, mass, energy };
+}
+
+/** Atoms of this status (TRAPPED, ESCAPED, ...). */
+export function countOf(e: WasmEngine, status: number): number {
+  let k = 0;
+  for (let i = 0; i < e.nAtoms; i++) if (e.statusOf(i) === status) k++;
+  return k;
+}
+
+/** Energy 1/2 m v^2 + m g y of each of the n trapped atoms, in index order. */
+export function trappedEnergies(e: WasmEngine, n: number): Float64Array {
+  const out = new Float64Array(n);
+  let k = 0;
+  for (let i = 0; i < e.nAtoms; i++) if (e.statusOf(i) === TRAPPED) out[k++] = e.atomEnergy(i);
+  return out;
+}
+
+/** NumPy's pairwise summation (np.sum of a float64 array), so sums match Python's bits. */
+export function pairwiseSum(a: Float64Array, start: number, n: number): number {
+  if (n < 8) {
+    let res = 0.0;
+    for (let i = 0; i < n; i++) res += a[start + i];
+    return res;
+  }
+  if (n <= 128) {
+    // Eight running sums, element j into sum j mod 8, added up pairwise: NumPy's order.
+    const r = a.slice(start, start + 8);
+    let i = 8;
+    for (; i < n - (n % 8); i += 8) for (let j = 0; j < 8; j++) r[j] += a[start + i + j];
+    let res = r[0] + r[1] + (r[2] + r[3]) + (r[4] + r[5] + (r[6] + r[7]));
+    for (; i < n; i++) res += a[start + i];
+    return res;
+  }
+  let n2 = Math.floor(n / 2);
+  n2 -= n2 % 8;
+  return pairwiseSum(a, start, n2) + pairwiseSum(a, start + n2, n - n2);
+}
+
+/** Two snapshot columns interleaved, [a0, b0, a1, b1, ...], of their first n rows. */
+export function interleaved(a: Float64Array, b: Float64Array, n: number): Float64Array {
+  const out = new Float64Array(2 * n);
+  for (let k = 0; k < n; k++) {
+    out[2 * k] = a[k];
+    out[2 * k + 1] = b[k];
+  }
+  return out;
+}
