@@ -5,6 +5,9 @@
 import { activeTranslator, missingKeys } from "../i18n";
 import type { App, DrawnControls } from "./app";
 import { Sound } from "./sound";
+import { PLAY_RECT } from "../view/geometry";
+import { THERMO_X } from "../view/scene";
+import { BORDER_TOP } from "../view/screen";
 
 export interface PageState {
   paused: boolean;
@@ -138,6 +141,8 @@ export function exposeApi(app: App): void {
     resetStats(): void {
       app.loop.stats.reset();
     },
+    /** Where the scene draws its parts (logical px), for tests that read pixels. */
+    geometry: { PLAY_RECT, BORDER_TOP, THERMO_X },
     /** The address of the setup on screen ("Copy link to this setup"). */
     link(): string {
       return app.teaching.link();
