@@ -165,7 +165,8 @@ export function exposeApi(app: App): void {
       const left: number[] = [];
       app.game.paused = false;
       let n = app.game.sim.nTrapped;
-      for (let k = 0; k < frames; k++) {
+      sound.frame(app.teaching.heard(), 0); // what the first frame is heard against
+      for (let k = 1; k <= frames; k++) {
         await app.runFrames(1);
         const g = app.game;
         if (g.sim.nTrapped < n) left.push(k / 30);
