@@ -278,8 +278,14 @@ export function drawSettings(
 ): Target[] {
   const targets: Target[] = [];
   // Rows closer together when many (the page's own preferences, issue 48): all fit the cup.
-  const pitch = rows.length > 6 ? 32 : 40;
-  const high = 110 + pitch * rows.length + 28 * footer.length + 48 + 48;
+  const extra: Array<[string, string]> = [
+    [t("link.copy"), "copylink"],
+    [t("run.save"), "saverun"],
+  ];
+  const wide = extra.reduce((w, [label]) => w + textWidth(ctx, label, 21) + 40, 0);
+  const stacked = wide > PLAY_RECT.w - 24 - 16;
+  const pitch = rows.length <= 6 ? 40 : stacked ? 30 : 32;
+  const high = 110 + pitch * rows.length + 28 * footer.length + 48 + (stacked ? 86 : 48);
   const panel = overlay(ctx, t("settings.title"), high);
   const rtl = textDirection() === "rtl";
   rows.forEach(([label, value], k) => {
@@ -325,18 +331,11 @@ export function drawSettings(
     y + 6,
     targets,
   );
-  // What the teacher takes away (issue 48): the setup's link, the run's numbers.
-  buttonRow(
-    ctx,
-    [
-      [t("link.copy"), "copylink"],
-      [t("run.save"), "saverun"],
-    ],
-    panel.x + panel.w / 2,
-    y + 48,
-    targets,
-    30,
-  );
+  // What the teacher takes away (issue 48): the setup's link, the run's numbers; one under
+  // the other where the two do not fit side by side.
+  const cx = panel.x + panel.w / 2;
+  if (!stacked) buttonRow(ctx, extra, cx, y + 48, targets, 30);
+  else extra.forEach((b, k) => buttonRow(ctx, [b], cx, y + 48 + 38 * k, targets, 30));
   return targets;
 }
 
