@@ -129,7 +129,7 @@ test("the link written from the screen opens the same setup; the control copies 
   await page.mouse.click(x, y);
   const notices = (await state(page)).notices;
   assert.ok(
-    notices.some((n) => n.startsWith("Link zu diesem Aufbau kopiert") || n.includes(link)),
+    notices.some((n) => n.startsWith("Link kopiert") || n.includes(link)),
     notices.join("|"),
   );
   const again = await browser.context.newPage();
@@ -186,7 +186,11 @@ test("Save this run (key W): the download is evapcool lab's CSV, read back", asy
   const rows = lines.slice(lines.indexOf(header) + 1).map((l) => l.split(","));
   const col = (name) => rows.map((r) => Number(r[cols.indexOf(name)]));
   assert.ok(rows.length >= 4, `${rows.length} rows for 95 frames, one a second`);
-  assert.deepEqual(col("frame").slice(0, 4), [0, 30, 60, 90]);
+  // One row a second: the first drawn frame of each (the worker's newest frame at most a
+  // frame or two into it).
+  col("frame")
+    .slice(0, 4)
+    .forEach((f, k) => assert.ok(f >= 30 * k && f <= 30 * k + 2, `row ${k} at frame ${f}`));
   col("n_trapped").forEach((n, k) => assert.equal(n + col("escaped")[k], 40));
   assert.ok(col("trap_height").every((h) => h === 200));
   const s = await state(page);
