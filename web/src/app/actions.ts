@@ -13,6 +13,7 @@ import type { Play } from "./play";
 import type { GameLike } from "../runtime/remote";
 import type { Replays } from "./replays";
 import type { Scoreboard } from "./scoring";
+import type { Teaching } from "./teaching";
 
 /** The rooms an action moves. */
 export interface ActionHost {
@@ -24,6 +25,7 @@ export interface ActionHost {
   readonly replays: Replays;
   readonly charts: Charts;
   readonly hints: Hints;
+  readonly teaching: Teaching;
   /** New atoms with the current settings (the scores and panels follow). */
   restart(): void;
   /** Lay out again (a chart shown or hidden). */
@@ -36,6 +38,8 @@ export interface ActionHost {
 export function act(host: ActionHost, action: Action): void {
   const g = host.game;
   const panels = host.panels;
+  const teaching = host.teaching;
+  if (teaching.blocked(action)) return;
   // Another panel over the settings: they close first, and say if changes were dropped.
   if (panels.open === "settings" && ["help", "table", "clear", "escape"].includes(action))
     host.options.close(false);
@@ -101,6 +105,18 @@ export function act(host: ActionHost, action: Action): void {
     case "help":
     case "verify":
       panels.toggle(action);
+      break;
+    case "mute":
+      teaching.toggleMute();
+      break;
+    case "describe":
+      teaching.describe();
+      break;
+    case "copylink":
+      teaching.copyLink();
+      break;
+    case "saverun":
+      void teaching.saveRun();
       break;
     case "escape":
       if (panels.open !== null) panels.open = null;

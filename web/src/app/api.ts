@@ -4,6 +4,10 @@
  */
 import { activeTranslator, missingKeys } from "../i18n";
 import type { App, DrawnControls } from "./app";
+import { Sound } from "./sound";
+import { PLAY_RECT } from "../view/geometry";
+import { THERMO_X } from "../view/scene";
+import { BORDER_TOP } from "../view/screen";
 
 export interface PageState {
   paused: boolean;
@@ -49,6 +53,9 @@ export interface PageState {
   direction: "ltr" | "rtl";
   /** Keys asked for that the language's catalog lacks (shown in English); empty when whole. */
   missingKeys: string[];
+  theme: string;
+  soundOn: boolean;
+  volume: number;
 }
 
 export function exposeApi(app: App): void {
@@ -97,6 +104,9 @@ export function exposeApi(app: App): void {
         locale: activeTranslator().locale,
         direction: activeTranslator().direction,
         missingKeys: [...(missingKeys.get(activeTranslator().locale) ?? [])],
+        theme: app.teaching.theme,
+        soundOn: app.teaching.sound.on,
+        volume: app.teaching.sound.volume,
       };
     },
     /** Play n frames of 1/30 s x speed now, drawn (unpauses); resolves once shown. */
@@ -130,6 +140,41 @@ export function exposeApi(app: App): void {
     },
     resetStats(): void {
       app.loop.stats.reset();
+    },
+    /** Where the scene draws its parts (logical px), for tests that read pixels. */
+    geometry: { PLAY_RECT, BORDER_TOP, THERMO_X },
+    /** The address of the setup on screen ("Copy link to this setup"). */
+    link(): string {
+      return app.teaching.link();
+    },
+    /** The CSV "Save this run" writes. */
+    runCsv(): Promise<string> {
+      return app.teaching.runCsv();
+    },
+    /**
+     * The page's sound graph rendered offline: a Sound like the page's (its on and volume)
+     * on an OfflineAudioContext of `seconds`, fed the game as it plays `frames` drawn frames
+     * of 1/30 s, frame k heard at k/30 s. The samples, and the times atoms left.
+     */
+    async renderSound(frames: number, seconds: number) {
+      const rate = 22050;
+      const ctx = new OfflineAudioContext(1, Math.ceil(seconds * rate), rate);
+      const page = app.teaching.sound;
+      const sound = new Sound(page.on, page.volume);
+      sound.attach(ctx);
+      const left: number[] = [];
+      app.game.paused = false;
+      let n = app.game.sim.nTrapped;
+      sound.frame(app.teaching.heard(), 0); // what the first frame is heard against
+      for (let k = 1; k <= frames; k++) {
+        await app.runFrames(1);
+        const g = app.game;
+        if (g.sim.nTrapped < n) left.push(k / 30);
+        n = g.sim.nTrapped;
+        sound.frame(app.teaching.heard(), k / 30);
+      }
+      const buffer = await ctx.startRendering();
+      return { rate, samples: Array.from(buffer.getChannelData(0)), left };
     },
   };
   (window as unknown as { evapcool: typeof api }).evapcool = api;

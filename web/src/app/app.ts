@@ -15,7 +15,7 @@ import type { GameConfig, SimFactory } from "../game/rules";
 import type { Settings } from "../game/settings";
 import type { KeyValue } from "../game/store";
 import { Condensate } from "../view/condensate";
-import type { Layout } from "../view/geometry";
+import type { ControlName, Layout } from "../view/geometry";
 import type { Target } from "../view/overlays";
 import { Scene } from "../view/scene";
 import { act, type ActionHost } from "./actions";
@@ -34,6 +34,8 @@ import { Picture, type DrawnControls, type PictureRooms } from "./picture";
 import { Play, type PlayEvents } from "./play";
 import type { GameLike } from "../runtime/remote";
 import { Replays } from "./replays";
+import { NO_SETUP, Setup, type SetupParams } from "./setup";
+import { Teaching } from "./teaching";
 import { Scoreboard } from "./scoring";
 import { Verifier } from "./verifier";
 import { WinScreen, type WinRooms } from "./winscreen";
@@ -63,6 +65,10 @@ export interface AppOptions {
   verifyWorker?: () => Worker | null;
   /** The language of the browser and the address (the language menu's "as the browser"). */
   browserLocale?: string;
+  /** A teacher's link: start height, locks, hidden buttons, theme, sound (issue 48). */
+  setup?: SetupParams;
+  /** The page plays a class challenge (sound off unless chosen). */
+  inClass?: boolean;
 }
 
 export class App
@@ -88,6 +94,7 @@ export class App
   readonly replays: Replays;
   readonly win: WinScreen;
   readonly verifier: Verifier;
+  readonly teaching: Teaching;
   readonly controls: Controls;
   readonly input: Input;
   readonly loop = new FrameLoop(this);
@@ -107,6 +114,7 @@ export class App
     opts: AppOptions,
   ) {
     const app = this;
+    const setup = new Setup(opts.setup ?? NO_SETUP);
     this.picture = new Picture(this, el.status);
     const mq = (q: string) => typeof matchMedia === "function" && matchMedia(q).matches;
     this.reducedMotion = mq("(prefers-reduced-motion: reduce)");
@@ -130,9 +138,15 @@ export class App
         say,
         closeOverlay: () => (this.panels.open = null),
         browserLocale: opts.browserLocale ?? "en",
+        fieldLocked: (field) => setup.fieldLocked(field),
+        soundByDefault: !opts.inClass,
+        prefsChanged: (p) => this.teaching.prefsChanged(p),
       },
       opts.overrides ?? {},
     );
+    const o = this.options;
+    o.overrides = { ...setup.frozen(o.runSettings()), ...o.overrides };
+    this.teaching = new Teaching(this, setup, opts.inClass ?? false);
     this.play = new Play(this, opts, this.options);
     this.replays = new Replays({
       get game() {
@@ -178,6 +192,15 @@ export class App
     this.controls.build(el.root);
     this.resize();
     this.input.wire();
+    window.addEventListener("pointerdown", () => this.teaching.wake(), { capture: true });
+    this.startTrap();
+  }
+
+  /** The link's start height for a game the player plays (not a replay's or a challenge's). */
+  private startTrap(): void {
+    const h = this.teaching.setup.params.trap;
+    if (h !== null && !this.play.replaying && !this.play.challengeSettings)
+      this.game.setTrapHeight(h);
   }
 
   // -- what the rooms share, and scripts and tests read (window.evapcool.app) -------------
@@ -244,6 +267,7 @@ export class App
   /** A key was pressed (touch screens with a keyboard get key hints from now on). */
   keyPressed(): void {
     this.keyboardSeen = true;
+    this.teaching.wake();
   }
 
   resetClock(): void {
@@ -256,6 +280,14 @@ export class App
 
   takeOver(): void {
     this.play.takeOver();
+  }
+
+  hidden(name: ControlName): boolean {
+    return this.teaching.setup.isHidden(name);
+  }
+
+  trapLocked(): boolean {
+    return this.teaching.setup.locked.has("trap");
   }
 
   heightChanged(): void {
@@ -307,11 +339,13 @@ export class App
   restart(): void {
     const s = this.options.runSettings();
     this.play.restart(s);
+    this.startTrap();
     this.scores.newGame();
     if (this.panels.open === "table") this.panels.open = null;
     this.charts.reset();
     this.scores.openTable(s);
-    this.say(t("page.restarted", { n: this.game.config.nAtoms, height: 400 }));
+    const height = Math.round(this.game.trapHeight);
+    this.say(t("page.restarted", { n: this.game.config.nAtoms, height }));
   }
 
   resize(): void {
@@ -350,5 +384,6 @@ export class App
 
   draw(): void {
     if (this.picture.draw()) this.dirty = true;
+    this.teaching.frame();
   }
 }

@@ -26,6 +26,10 @@ export type Action =
   | "autopilot"
   | "copycode"
   | "verify"
+  | "mute"
+  | "describe"
+  | "copylink"
+  | "saverun"
   | "escape";
 
 export interface Binding {
@@ -77,6 +81,10 @@ export const BINDINGS: Binding[] = [
     action: "settings",
     more: ["help.choose_change_save"],
   },
+  { keys: ["m"], label: "M", help: "help.mute", action: "mute" },
+  { keys: ["d"], label: "D", help: "help.describe", action: "describe" },
+  { keys: ["l"], label: "L", help: "help.copylink", action: "copylink" },
+  { keys: ["w"], label: "W", help: "help.saverun", action: "saverun" },
   { keys: ["f11"], label: "F11", help: "help.fullscreen", action: "fullscreen" },
   { keys: ["h", "f1"], label: "H, F1", help: "help.help", action: "help" },
   { keys: ["escape"], label: "help.key.esc", help: "help.escape_page", action: "escape" },

@@ -33,6 +33,10 @@ export interface ControlsHost {
   /** The player moved the trap: the autopilot lets go, the height is spoken. */
   takeOver(): void;
   heightChanged(): void;
+  /** A link left the button out (issue 48). */
+  hidden(name: ControlName): boolean;
+  /** A link locked the trap: the slider is shown but does not move (said once per try). */
+  trapLocked(): boolean;
 }
 
 /** Each button's spoken name: a message key (issue 23). */
@@ -158,6 +162,7 @@ export class Controls {
       const k = ev.key;
       if (k === "Home" || k === "End" || k === "PageUp" || k === "PageDown") {
         ev.preventDefault();
+        if (this.host.trapLocked()) return;
         const g = this.host.game;
         const h = { Home: HEIGHT_MIN, End: HEIGHT_MAX, PageUp: g.trapHeight + 50 }[k as "Home"];
         this.host.takeOver();
@@ -187,6 +192,10 @@ export class Controls {
 
   private slideStart(ev: PointerEvent): void {
     if (this.host.game.won) return;
+    if (this.host.trapLocked()) {
+      this.host.act("lower"); // refused, and said so
+      return;
+    }
     ev.preventDefault();
     this.sliding = true;
     this.sliderEl.setPointerCapture?.(ev.pointerId);
@@ -228,7 +237,10 @@ export class Controls {
     const screen = this.host.screen;
     const l = screen.layout;
     const min = MIN_TARGET_CSS / l.scale;
-    for (const [name, b] of this.buttons) screen.place(b, atLeast(l.buttons[name], min));
+    for (const [name, b] of this.buttons) {
+      screen.place(b, atLeast(l.buttons[name], min));
+      b.hidden = this.host.hidden(name);
+    }
     const s = l.slider;
     const r = l.knobRadius;
     const upright = SliderModel.upright(s);
@@ -250,13 +262,14 @@ export class Controls {
     if (l.strip) {
       ctx.fillStyle = C.BORDER;
       ctx.fillRect(l.strip.x, l.strip.y, l.strip.w, l.strip.h);
-      ctx.fillStyle = "rgb(60,60,60)";
+      ctx.fillStyle = C.STRIP_LINE;
       // A line where the strip meets the scene: above it (tall), at its left (wide, side).
       if (l.mode === "tall") ctx.fillRect(l.strip.x, l.strip.y, l.strip.w, 2);
       else ctx.fillRect(l.strip.x, l.strip.y, 2, l.strip.h);
     }
     const flying = this.host.autopilotEngaged;
     for (const name of CONTROL_ORDER) {
+      if (this.host.hidden(name)) continue;
       const symbol: SymbolName = name === "pause" ? (g.paused ? "play" : "pause") : name;
       const down = this.pressed === name || (name === "autopilot" && flying);
       const look: Look = down ? "down" : this.hot === name ? "hover" : "idle";
@@ -277,7 +290,7 @@ export class Controls {
     const h = Math.round(g.trapHeight);
     setIfChanged(this.sliderEl, "aria-valuenow", String(h));
     setIfChanged(this.sliderEl, "aria-valuetext", t("control.height_value", { h }));
-    this.sliderEl.setAttribute("aria-disabled", String(g.won));
+    this.sliderEl.setAttribute("aria-disabled", String(g.won || this.host.trapLocked()));
   }
 }
 

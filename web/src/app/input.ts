@@ -193,6 +193,10 @@ export class Input {
       case "cancel":
         app.options.close(false);
         break;
+      case "copylink":
+      case "saverun":
+        app.act(name);
+        break;
       case "clear":
         app.act("clear");
         break;

@@ -116,6 +116,8 @@ async function main(): Promise<void> {
       worker,
       verifyWorker: () => startWorker(url, "evapcool verify"),
       browserLocale: browser,
+      setup: params,
+      inClass: classApi(document) !== null && params.replay === null,
     },
   );
   await app.play.ready();

@@ -6,6 +6,7 @@ import type { GameConfig } from "../game/rules";
 import {
   describe,
   FIELD_NAMES,
+  type FieldName,
   sameSettings,
   step as stepSetting,
   tcExponent,
@@ -15,6 +16,15 @@ import { loadSettings, saveSettings } from "../game/settingsStore";
 import type { KeyValue } from "../game/store";
 import { languageNames, STORAGE_KEY, t, useLocale } from "../i18n";
 import type { Hints } from "./hints";
+import {
+  loadPrefs,
+  PREF_ROWS,
+  prefRows,
+  samePrefs,
+  savePrefs,
+  stepPref,
+  type PagePrefs,
+} from "./prefs";
 
 /** The language row's value meaning "the browser's languages, then the address's". */
 export const AUTO_LANGUAGE = "auto";
@@ -28,6 +38,12 @@ export interface OptionsHost {
   say(text: string): void;
   /** The settings screen is closed (shown or not is the app's overlay). */
   closeOverlay(): void;
+  /** A settings row a link locked (issue 48). */
+  fieldLocked(field: FieldName): boolean;
+  /** The sound's default here (no choice stored): off in class mode. */
+  readonly soundByDefault: boolean;
+  /** The page's preferences changed (saved): theme and sound follow. */
+  prefsChanged(p: PagePrefs): void;
 }
 
 export class SettingsEditor {
@@ -37,6 +53,9 @@ export class SettingsEditor {
   language: string;
   languageDraft: string;
   row = 0;
+  /** The theme, sound and volume: saved, and the screen's draft. */
+  prefs: PagePrefs;
+  prefsDraft: PagePrefs;
 
   constructor(
     private readonly host: OptionsHost,
@@ -49,6 +68,12 @@ export class SettingsEditor {
     this.draft = saved;
     this.language = host.storage.getItem(STORAGE_KEY) ?? AUTO_LANGUAGE;
     this.languageDraft = this.language;
+    this.prefs = this.prefsDraft = loadPrefs(host.storage);
+  }
+
+  /** The sound on now (the choice saved, else the default here). */
+  get soundOn(): boolean {
+    return this.prefs.sound ?? this.host.soundByDefault;
   }
 
   /** The screen's rows: the game's settings, then the language menu. */
@@ -56,7 +81,13 @@ export class SettingsEditor {
     const choice = this.languageDraft;
     const name = languageNames().find((l) => l.tag === choice)?.name;
     const value = name ?? t("settings.language_browser");
-    return [...describe(this.draft), [t("settings.language"), value]];
+    const game = describe(this.draft).map(([label, v], k): [string, string] =>
+      this.host.fieldLocked(FIELD_NAMES[k])
+        ? [label, t("link.locked_value", { value: v })]
+        : [label, v],
+    );
+    const prefs = prefRows(this.prefsDraft, this.host.soundByDefault);
+    return [...game, [t("settings.language"), value], ...prefs];
   }
 
   /** The settings a restart plays: the saved ones under this visit's address options. */
@@ -68,13 +99,14 @@ export class SettingsEditor {
   open(): void {
     this.draft = this.settings;
     this.languageDraft = this.language;
+    this.prefsDraft = this.prefs;
     this.row = 0;
     this.sayRow();
   }
 
   /** A key while the screen is open (lower-case KeyboardEvent.key). */
   key(key: string): void {
-    const n = FIELD_NAMES.length + 1;
+    const n = FIELD_NAMES.length + 1 + PREF_ROWS;
     if (key === "arrowup") this.row = (this.row + n - 1) % n;
     else if (key === "arrowdown") this.row = (this.row + 1) % n;
     else if (key === "arrowleft" || key === "arrowright") {
@@ -92,8 +124,15 @@ export class SettingsEditor {
 
   change(row: number, d: number): void {
     this.row = row;
+    if (row < FIELD_NAMES.length && this.host.fieldLocked(FIELD_NAMES[row])) {
+      this.host.notify(t("link.locked", { name: this.rows()[row][0] }));
+      return;
+    }
     if (row < FIELD_NAMES.length) this.draft = stepSetting(this.draft, FIELD_NAMES[row], d);
-    else {
+    else if (row > FIELD_NAMES.length) {
+      const k = row - FIELD_NAMES.length - 1;
+      this.prefsDraft = stepPref(this.prefsDraft, k, d, this.host.soundByDefault);
+    } else {
       const choices = [AUTO_LANGUAGE, ...languageNames().map((l) => l.tag)];
       const i = Math.max(0, choices.indexOf(this.languageDraft));
       this.languageDraft = choices[(i + d + choices.length) % choices.length];
@@ -115,19 +154,31 @@ export class SettingsEditor {
     this.host.closeOverlay();
     const draft = this.draft;
     const newLanguage = this.languageDraft !== this.language;
-    if (sameSettings(draft, this.settings) && !newLanguage) return;
+    const newPrefs = !samePrefs(this.prefsDraft, this.prefs);
+    if (sameSettings(draft, this.settings) && !newLanguage && !newPrefs) return;
     if (!save) {
       // A panel never drops changes silently (issue 27.1).
       this.host.notify(t("page.settings_dropped"));
       return;
     }
     if (newLanguage) this.saveLanguage();
+    if (newPrefs) {
+      this.prefs = this.prefsDraft;
+      savePrefs(this.host.storage, this.prefs);
+      this.host.prefsChanged(this.prefs);
+    }
     if (sameSettings(draft, this.settings)) {
-      this.host.notify(t("page.language_saved"));
+      this.host.notify(t(newLanguage ? "page.language_saved" : "settings.prefs_saved"));
       return;
     }
     const base = this.settings;
-    this.overrides = {}; // a choice made here beats the address for the rest of the visit
+    // A choice made here beats the address for the rest of the visit; a locked one stays.
+    this.overrides = Object.fromEntries(
+      FIELD_NAMES.filter((f) => this.host.fieldLocked(f))
+        .map((f) => ({ n_atoms: "nAtoms", radius: "radius", tc_law: "tcLaw", escape: "escape" })[f])
+        .filter((k) => k in this.overrides)
+        .map((k) => [k, this.overrides[k as keyof Settings]]),
+    );
     // What was stored: this draft's changes over another tab's choices made meanwhile.
     const { saved, notices: problems } = saveSettings(this.host.storage, draft, base);
     this.settings = saved;

@@ -6,8 +6,9 @@
  * (not `0x20`, not `Infinity`), and an option given twice is refused, not half-read.
  */
 import { RADIUS, SEED } from "../limits";
+import linkOptions from "../link-options.json";
 import { availableLocales, bestMatch, t } from "../i18n";
-import { SPEED_MAX, SPEED_MIN } from "../game/rules";
+import { HEIGHT_MAX, HEIGHT_MIN, SPEED_MAX, SPEED_MIN } from "../game/rules";
 import { ESCAPE_RULES } from "../game/engine";
 import { TC_LAWS, maxAtoms, RADIUS_MAX, RADIUS_MIN, type Settings } from "../game/settings";
 
@@ -19,22 +20,41 @@ export interface PageParams {
   replay: string | null;
   /** The language asked for (a shipped one, checked), or null. */
   lang: string | null;
+  /** The trap's start height (px above the cup's bottom), or null: the game's own. */
+  trap: number | null;
+  /** Controls shown but not changeable (link-options.json's lock values). */
+  lock: string[];
+  /** Buttons (and the panels they open) left out. */
+  hide: string[];
+  theme: "dark" | "projector" | null;
+  /** Sound asked on or off, or null: the page's default. */
+  sound: boolean | null;
   notices: string[];
 }
 
 /** Physics' own limit on a count in the browser: beyond this a frame cannot keep up. */
 export const URL_ATOMS_MAX = 100_000;
+/** One option of the address as `link-options.json` lists it (shared with the desktop and
+ * docs/teach.md's table). */
+export interface LinkOption {
+  name: string;
+  kind: "whole" | "number" | "one_of" | "list" | "code" | "locale";
+  low?: number;
+  high?: number;
+  range?: string;
+  unit?: string;
+  values?: string[];
+  key: string;
+}
+export const LINK_OPTIONS = linkOptions.options as LinkOption[];
 /** The options the address knows, in the order the notices name them. */
-export const ADDRESS_OPTIONS = [
-  "atoms",
-  "radius",
-  "seed",
-  "speed",
-  "tc-law",
-  "escape",
-  "replay",
-  "lang",
-] as const;
+export const ADDRESS_OPTIONS: readonly string[] = LINK_OPTIONS.map((o) => o.name);
+/** The values a list or one-of option allows, from the shared file. */
+export function allowedValues(name: string): readonly string[] {
+  const values = LINK_OPTIONS.find((o) => o.name === name)?.values;
+  if (values === undefined) throw new Error(`link-options.json lists no values for ${name}`);
+  return values;
+}
 /** The game's parameter names as the address spells them (for the physics' refusals). */
 export const ADDRESS_NAMES: Readonly<Record<string, string>> = {
   nAtoms: "atoms",
@@ -81,6 +101,11 @@ export function parseParams(search: string, saved: Settings): PageParams {
     speed: 1,
     replay: null,
     lang: null,
+    trap: null,
+    lock: [],
+    hide: [],
+    theme: null,
+    sound: null,
     notices: [],
   };
   const known = new Set<string>(ADDRESS_OPTIONS);
@@ -159,5 +184,42 @@ export function parseParams(search: string, saved: Settings): PageParams {
     if (bestMatch([lang], tags) !== null) out.lang = lang;
     else out.notices.push(refusal("lang", oneOf(tags), lang));
   }
+  parseNew(out, value);
   return out;
+}
+
+/** The options of issue 48: the start height, locks, hidden buttons, theme, sound. */
+function parseNew(out: PageParams, value: (key: string) => string | null): void {
+  const trap = value("trap");
+  if (trap !== null) {
+    const v = decimal(trap);
+    if (v !== null && v >= HEIGHT_MIN && v <= HEIGHT_MAX) out.trap = v;
+    else
+      out.notices.push(
+        refusal(
+          "trap",
+          t("page.allowed_px", { low: `${HEIGHT_MIN}`, high: `${HEIGHT_MAX}` }),
+          trap,
+        ),
+      );
+  }
+  for (const name of ["lock", "hide"] as const) {
+    const raw = value(name);
+    if (raw === null) continue;
+    const allowed = allowedValues(name);
+    const items = raw.split(",").map((x) => x.trim());
+    const list = items.length === 1 && items[0] === "" ? [] : items;
+    if (list.every((x) => allowed.includes(x))) out[name] = [...new Set(list)];
+    else out.notices.push(refusal(name, t("page.allowed_list", { list: allowed.join(", ") }), raw));
+  }
+  const theme = value("theme");
+  if (theme !== null) {
+    if (theme === "dark" || theme === "projector") out.theme = theme;
+    else out.notices.push(refusal("theme", oneOf(allowedValues("theme")), theme));
+  }
+  const sound = value("sound");
+  if (sound !== null) {
+    if (sound === "on" || sound === "off") out.sound = sound === "on";
+    else out.notices.push(refusal("sound", oneOf(allowedValues("sound")), sound));
+  }
 }

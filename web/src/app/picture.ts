@@ -7,6 +7,7 @@
 import type { Game } from "../game/rules";
 import { emptyAtoms, type AtomArrays } from "../game/sim";
 import type { Condensate } from "../view/condensate";
+import * as C from "../view/colors";
 import { PLAY_RECT } from "../view/geometry";
 import { drawNotices, type Target } from "../view/overlays";
 import { drawReadout } from "../view/readout";
@@ -109,7 +110,7 @@ export class Picture {
     this.atoms = sim.trapped();
     charts.record(sim, this.atoms, g.generation);
     ctx.setTransform(1, 0, 0, 1, 0, 0);
-    ctx.fillStyle = "rgb(0,0,0)";
+    ctx.fillStyle = C.PAGE;
     ctx.fillRect(0, 0, this.rooms.canvas.width, this.rooms.canvas.height);
     const dpr = screen.dpr;
     const s = l.scale * dpr;

@@ -64,7 +64,7 @@ export class Replays {
 }
 
 /** The older way to copy: a selected, off-screen text and the copy command. */
-function copyBySelection(text: string): boolean {
+export function copyBySelection(text: string): boolean {
   const area = document.createElement("textarea");
   area.value = text;
   area.setAttribute("readonly", "");

@@ -278,11 +278,20 @@ export function drawSettings(
   footer: string[],
 ): Target[] {
   const targets: Target[] = [];
-  const panel = overlay(ctx, t("settings.title"), 110 + 40 * rows.length + 28 * footer.length + 48);
+  // Rows closer together when many (the page's own preferences, issue 48): all fit the cup.
+  const extra: Array<[string, string]> = [
+    [t("link.copy"), "copylink"],
+    [t("run.save"), "saverun"],
+  ];
+  const wide = extra.reduce((w, [label]) => w + textWidth(ctx, label, 21) + 40, 0);
+  const stacked = wide > PLAY_RECT.w - 24 - 16;
+  const pitch = rows.length <= 6 ? 40 : stacked ? 30 : 32;
+  const high = 110 + pitch * rows.length + 28 * footer.length + 48 + (stacked ? 86 : 48);
+  const panel = overlay(ctx, t("settings.title"), high);
   const rtl = textDirection() === "rtl";
   rows.forEach(([label, value], k) => {
-    const y = panel.y + 60 + 40 * k;
-    const row = rect(panel.x + 8, y - 6, panel.w - 16, 34);
+    const y = panel.y + 60 + pitch * k;
+    const row = rect(panel.x + 8, y - 5, panel.w - 16, pitch - 4);
     if (k === selected) {
       ctx.fillStyle = C.SELECTED_ROW;
       ctx.beginPath();
@@ -308,7 +317,7 @@ export function drawSettings(
     targets.push({ rect: rect(right - half, row.y, half + 8, row.h), action: `inc:${k}` });
     targets.push({ rect: row, action: `row:${k}` });
   });
-  let y = panel.y + 72 + 40 * rows.length;
+  let y = panel.y + 72 + pitch * rows.length;
   for (const line of footer) {
     drawText(ctx, line, 22, C.TEXT, panel.x + panel.w / 2, y, "midtop");
     y += 28;
@@ -323,6 +332,11 @@ export function drawSettings(
     y + 6,
     targets,
   );
+  // What the teacher takes away (issue 48): the setup's link, the run's numbers; one under
+  // the other where the two do not fit side by side.
+  const cx = panel.x + panel.w / 2;
+  if (!stacked) buttonRow(ctx, extra, cx, y + 48, targets, 30);
+  else extra.forEach((b, k) => buttonRow(ctx, [b], cx, y + 48 + 38 * k, targets, 30));
   return targets;
 }
 

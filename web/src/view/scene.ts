@@ -96,12 +96,12 @@ export class Scene {
     ctx.fillRect(PLAY_RECT.x + PLAY_RECT.w, 0, SCENE_W - PLAY_RECT.x - PLAY_RECT.w, sceneHeight);
     // The title shrinks to stay clear of the speed line whatever its language's length.
     const title = t("app.title");
-    const titleSize = fitSize(ctx, title, 40, TITLE_WIDTH, 16);
+    const titleSize = fitSize(ctx, title, 40 * C.TEXT_SCALE, TITLE_WIDTH, 16);
     drawText(ctx, title, titleSize, C.TEXT, SCENE_W / 2, BORDER_TOP / 2 + 1, "center");
     this.drawThermometer(ctx, game.sim);
     // Left of the title whatever the size: the title starts 183 px in at its size of 40.
     const label = t("status.speed", { speed: speedNumber(game.speed) });
-    let size = Math.max(22, minTextSize);
+    let size = Math.max(22 * C.TEXT_SCALE, minTextSize);
     while (size > 12 && textWidth(ctx, label, size) > 170) size -= 1;
     drawText(ctx, label, size, C.DIM_TEXT, 10, BORDER_TOP / 2, "midleft");
   }
@@ -195,8 +195,18 @@ export class Scene {
     ctx.fill();
     const top = scaleRow(mercuryFraction(sim.temperature, sim.initialTemperature));
     ctx.fillRect(THERMO_X - MERCURY_WIDTH / 2, top, MERCURY_WIDTH, BULB_CENTER[1] - top);
-    ctx.strokeStyle = "rgb(90,90,90)";
-    ctx.lineWidth = 1;
+    if (C.GLASS_EDGE) {
+      ctx.strokeStyle = C.GLASS_EDGE;
+      ctx.lineWidth = 3;
+      ctx.beginPath();
+      ctx.roundRect(tubeLeft - 1.5, TUBE_TOP - 1.5, TUBE_WIDTH + 3, tubeH, TUBE_WIDTH / 2 + 1.5);
+      ctx.stroke();
+      ctx.beginPath();
+      ctx.arc(BULB_CENTER[0], BULB_CENTER[1], BULB_RADIUS + 1.5, 0, 2 * Math.PI);
+      ctx.stroke();
+    }
+    ctx.strokeStyle = C.TICK;
+    ctx.lineWidth = C.THEME === "projector" ? 2 : 1;
     const right = tubeLeft + TUBE_WIDTH;
     ctx.beginPath();
     for (let k = 0; k <= 10; k++) {
@@ -207,9 +217,11 @@ export class Scene {
     ctx.stroke();
     const tc = scaleRow(mercuryFraction(sim.criticalTemperature, sim.initialTemperature));
     ctx.fillStyle = C.BLACK;
-    ctx.fillRect(tubeLeft - 6, tc - 1, TUBE_WIDTH + 8, 2);
-    drawText(ctx, "Tc", 26, C.TEXT, tubeLeft - 8, tc, "midright");
-    drawText(ctx, "T", 26, C.TEXT, THERMO_X, TUBE_TOP - 2, "midbottom");
+    const mark = C.THEME === "projector" ? 4 : 2;
+    ctx.fillRect(tubeLeft - 6, tc - mark / 2, TUBE_WIDTH + 8, mark);
+    const size = 26 * C.TEXT_SCALE;
+    drawText(ctx, "Tc", size, C.TEXT, tubeLeft - 8, tc, "midright");
+    drawText(ctx, "T", size, C.TEXT, THERMO_X, TUBE_TOP - 2, "midbottom");
   }
 
   // -- messages over the play area -------------------------------------------------
@@ -221,6 +233,7 @@ export class Scene {
     shadowed(ctx, big, fitSize(ctx, big, 84, width, 40), cx, MESSAGE_Y);
     const line = t("win.condensed");
     const size = fitSize(ctx, line, 30, width, 16);
+    plate(ctx, textWidth(ctx, line, size), size, cx, MESSAGE_Y + 58);
     drawText(ctx, line, size, C.TEXT, cx, MESSAGE_Y + 58, "center", true);
   }
 
@@ -231,17 +244,28 @@ export class Scene {
     shadowed(ctx, title, fitSize(ctx, title, 52, PLAY_RECT.w - 20, 26), cx, MESSAGE_Y);
     const width = PLAY_RECT.w - 40;
     const lines = [...wrap(ctx, reason, 26, width), ...wrap(ctx, retry, 26, width)];
-    lines.forEach((line, k) =>
-      drawText(ctx, line, 26, C.TEXT, cx, MESSAGE_Y + 48 + 30 * k, "center", true),
-    );
+    lines.forEach((line, k) => {
+      plate(ctx, textWidth(ctx, line, 26), 26, cx, MESSAGE_Y + 48 + 30 * k);
+      drawText(ctx, line, 26, C.TEXT, cx, MESSAGE_Y + 48 + 30 * k, "center", true);
+    });
   }
 
   drawStartHint(ctx: CanvasRenderingContext2D, touch: boolean): void {
     const text = t(touch ? "start.tap_play" : "start.press_space");
     const cx = PLAY_RECT.x + PLAY_RECT.w / 2;
     const size = fitSize(ctx, text, 28, PLAY_RECT.w - 20, 16);
+    plate(ctx, textWidth(ctx, text, size), size, cx, PLAY_RECT.y + 40);
     drawText(ctx, text, size, C.TEXT, cx, PLAY_RECT.y + 40, "center", true);
   }
+}
+
+/** A plate behind a line of `size` px and width w centred at (cx, cy): its words stand at
+ * 7:1 against it whatever the atoms or the play area behind (issue 48). */
+function plate(ctx: CanvasRenderingContext2D, w: number, size: number, cx: number, cy: number) {
+  ctx.fillStyle = C.PLATE;
+  ctx.beginPath();
+  ctx.roundRect(cx - w / 2 - 10, cy - size * 0.75, w + 20, size * 1.5, 6);
+  ctx.fill();
 }
 
 export function shadowed(
@@ -251,6 +275,7 @@ export function shadowed(
   cx: number,
   cy: number,
 ): void {
+  plate(ctx, textWidth(ctx, text, size) + 6, size, cx + 1.5, cy + 1.5);
   drawText(ctx, text, size, C.SHADOW, cx + 3, cy + 3, "center", true);
   drawText(ctx, text, size, C.TEXT, cx, cy, "center", true);
 }

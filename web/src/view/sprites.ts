@@ -4,7 +4,7 @@
  * atom in one pass of drawImage calls at whole device pixels.
  * Python's twin: `src/evapcool/view/sprites.py` (docs/twins.md).
  */
-import { ATOM_RGB } from "./colors";
+import * as C from "./colors";
 
 const L = (() => {
   const v = [-0.45, -0.55, 0.7];
@@ -24,7 +24,7 @@ export const spriteKey = (radius: number): number => Math.round(radius * 4) / 4;
 /** RGBA pixels of a sphere of radius r device px on a (ceil(2r)+2)^2 square. */
 export function spherePixels(
   r: number,
-  rgb: readonly [number, number, number] = ATOM_RGB,
+  rgb: readonly [number, number, number] = C.ATOM_RGB,
 ): { size: number; data: Uint8ClampedArray } {
   r = Math.max(r, 0.5);
   const size = Math.ceil(2 * r) + 2;
@@ -61,7 +61,7 @@ const cache = new Map<string, Sprite>();
 
 /** The sprite of a sphere of `radius` logical px drawn at `scale` device px per logical px. */
 export function atomSprite(radius: number, scale: number): Sprite {
-  const key = `${spriteKey(radius)}@${scale.toFixed(4)}`;
+  const key = `${spriteKey(radius)}@${scale.toFixed(4)}@${C.THEME}`;
   let sprite = cache.get(key);
   if (!sprite) {
     const { size, data } = spherePixels(spriteKey(radius) * scale);
@@ -79,7 +79,7 @@ export function atomSprite(radius: number, scale: number): Sprite {
 /** Pixels of the sprite of `radius` at `scale`, as 32-bit RGBA words (little-endian). */
 const wordsCache = new Map<string, { size: number; words: Uint32Array }>();
 function spriteWords(radius: number, scale: number): { size: number; words: Uint32Array } {
-  const key = `${spriteKey(radius)}@${scale.toFixed(4)}`;
+  const key = `${spriteKey(radius)}@${scale.toFixed(4)}@${C.THEME}`;
   let w = wordsCache.get(key);
   if (!w) {
     const { size, data } = spherePixels(spriteKey(radius) * scale);

@@ -71,16 +71,16 @@ export function drawSlider(
   ctx.roundRect(r.x, r.y, r.w, r.h, 3);
   ctx.fill();
   ctx.strokeStyle = C.BLACK;
-  ctx.lineWidth = 1;
+  ctx.lineWidth = C.THEME === "projector" ? 3 : 1;
   ctx.beginPath();
   ctx.roundRect(r.x + 0.5, r.y + 0.5, r.w - 1, r.h - 1, 3);
   ctx.stroke();
   const upright = SliderModel.upright(r);
   if (label && upright) {
-    drawText(ctx, label, labelSize, C.WHITE, r.x + r.w / 2, r.y - knobRadius - 14, "midbottom");
+    drawText(ctx, label, labelSize, C.TEXT, r.x + r.w / 2, r.y - knobRadius - 14, "midbottom");
   } else if (label) {
     // The desktop's slider label is pygame's default font at 24 (no extra weight).
-    drawText(ctx, label, labelSize, C.WHITE, r.x + r.w / 2, r.y + r.h + knobRadius + 4, "midtop");
+    drawText(ctx, label, labelSize, C.TEXT, r.x + r.w / 2, r.y + r.h + knobRadius + 4, "midtop");
   }
   const cx = upright ? r.x + r.w / 2 : model.knobAt(r);
   const cy = upright ? model.knobAt(r) : r.y + r.h / 2;

@@ -427,12 +427,17 @@ describe("address options", () => {
       speed: 2,
       replay: null,
       lang: null,
+      trap: null,
+      lock: [],
+      hide: [],
+      theme: null,
+      sound: null,
       notices: [],
     });
     const q = parseParams("?atoms=2.5&speed=8&escape=door&zoom=2", DEFAULTS);
     expect(q.overrides).toEqual({});
     expect(q.notices).toEqual([
-      'Address: unknown option "zoom"; known: atoms, radius, seed, speed, tc-law, escape, replay, lang.',
+      'Address: unknown option "zoom"; known: atoms, radius, seed, speed, tc-law, escape, replay, lang, trap, lock, hide, theme, sound.',
       'Address: atoms must be a whole number from 1 to 100000 (got "2.5"); ignored.',
       'Address: escape must be one of rim, knife (got "door"); ignored.',
       'Address: speed must be a number from 0.25 to 4 (got "8"); ignored.',

@@ -35,6 +35,11 @@ const ALLOWED = new Set([
   "view/debrief/text.ts|'Hiragino Sans', 'Malgun Gothic', 'Noto Sans Arabic', 'Noto Naskh Arabic', Tahoma, sans-serif",
   "app/main.ts|evapcool physics",
   "app/main.ts|evapcool verify",
+  // A saved run's file header (data a lab reader reads, as lab/io.py writes it; issue 48).
+  "app/runlog.ts|# evapcool lab results",
+  "app/runlog.ts|evapcool page: Save this run",
+  "app/runlog.ts|every frame",
+  "app/runlog.ts|every second",
   // The projector's empty frame (an address, not words).
   "classroom/projector.ts|about:blank",
   // A replay code's and a setting's refusal details, the class server's and the desktop's
