@@ -1,4 +1,5 @@
 /**
+ * Twin of Python's app/runlog.py (docs/twins.md).
  * "Save this run" (issue 48): the numbers of the run on screen as a CSV file a lab plot
  * reads: `evapcool lab`'s format (src/evapcool/lab/io.py: '# key: <json>' lines, then its
  * columns, one row a second of play or one a frame), what the page does not count written

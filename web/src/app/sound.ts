@@ -1,4 +1,5 @@
 /**
+ * Twin of Python's app/sound.py (docs/twins.md).
  * The page's sound (issue 48), synthesized by Web Audio (no audio files): each atom that
  * leaves a short tick whose pitch follows its energy (the m g h it needed to leave over the
  * rim at height h), the thermometer's approach to Tc a slow tone rising as T falls towards

@@ -1,4 +1,5 @@
 /**
+ * Twin of Python's app/teaching.py (docs/twins.md).
  * What a teacher's link and the class add to the page (issue 48), as one room: the setup's
  * locks and hidden buttons, the theme, the sound, the run's numbers ("Save this run"), the
  * scene in one sentence (key D) and the link to what is on screen.
