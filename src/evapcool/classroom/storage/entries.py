@@ -125,14 +125,17 @@ class EntriesStore(SqlBase):
         return {row[0]: place for place, row in enumerate(shown, 1)}
 
     def standing(self, challenge: int, token: str) -> dict[str, int | None]:
-        """A student's games sent and accepted, their best score and place (None if none)."""
+        """A student's games sent and accepted, their best score, its entry (the board's
+        row the page finds itself by, names shown or not) and place (None if none)."""
         rows = self._all(challenge)
         best = [row for row in _best(rows) if row[5] == token]
         places = self._places(rows)
         return {
             "used": sum(1 for row in rows if row[5] == token),
             "best": best[0][2] if best else None,
+            "entry": best[0][0] if best else None,
             "rank": places.get(best[0][0]) if best else None,
+            "count": len(places),
         }
 
     def entry_code(self, entry: int, room: int = DEFAULT_ROOM) -> tuple[str, str, int] | None:
