@@ -58,7 +58,8 @@ class EntriesStore(SqlBase):
         path: str | None = None,
     ) -> int | str:
         """The new entry's id, or the field refusing it: "challenge" (closed), "attempts",
-        "code" (the same moves as another player's entry of this challenge: a copy).
+        "code" (a win with the same moves as another player's entry of this challenge: a
+        copy; lost games, 0 atoms, are never copies).
 
         result: (score, frames, edition, code, moves key); path: the game's path (JSON text).
         One transaction holding the challenge's lock: the checks and the insert cannot
@@ -79,11 +80,13 @@ class EntriesStore(SqlBase):
             ).fetchone()[0]
             if row[0] is not None and used >= row[0]:
                 return "attempts"
-            copied = q(
+            # A lost game (0 atoms) gains nothing copied, and two students may well lose
+            # alike (the trap dropped at once): only wins are checked for copies.
+            copied = score > 0 and q(
                 "SELECT 1 FROM entry WHERE challenge = ? AND moves = ? AND player <> ?",
                 (challenge, moves, token),
             ).fetchone()
-            if copied is not None:
+            if copied:
                 return "code"
             got = q(
                 "INSERT INTO entry (challenge, player, score, frames, edition, code, moves, path) "
