@@ -61,7 +61,7 @@ interface Standing {
   used?: number;
   best?: number | null;
   /** The best game's entry (its row on the board), its place, and students ranked. */
-  entry?: number | null;
+  best_entry?: number | null;
   rank?: number | null;
   count?: number;
 }
@@ -414,7 +414,7 @@ export class ClassMode {
     if (s.challenge !== this.challenge?.id) return;
     this.used = s.used ?? this.used;
     this.best = s.best ?? null;
-    this.bestEntry = s.entry ?? null;
+    this.bestEntry = s.best_entry ?? null;
     this.rank = s.rank ?? null;
     this.ranked = s.count ?? this.ranked;
     this.render();

@@ -111,7 +111,10 @@ async function joinByCode(page, code, lang, name) {
 
 /** The student's token as the page saved it for this class. */
 const savedToken = (page, api) =>
-  page.evaluate((key) => JSON.parse(localStorage.getItem(key)).token, `evapcool.class.player:${api}`);
+  page.evaluate(
+    (key) => JSON.parse(localStorage.getItem(key)).token,
+    `evapcool.class.player:${api}`,
+  );
 
 /** Drop the trap to the floor (the slider's Home key) and play: lost for good. */
 async function loseGame(page) {
@@ -119,7 +122,7 @@ async function loseGame(page) {
   await page.focus(".hit.slider");
   await page.keyboard.press("Home");
   let s = await page.evaluate(() => window.evapcool.state());
-  for (let k = 0; k < 60 && s.nTrapped > 1; k++) {
+  for (let k = 0; k < 60 && s.nTrapped > 1 && !s.won; k++) {
     await page.evaluate(() => window.evapcool.runFrames(25));
     s = await page.evaluate(() => window.evapcool.state());
   }
@@ -127,16 +130,28 @@ async function loseGame(page) {
   return s;
 }
 
-/** Wait until the class bar's result line says `pattern`. */
-const barSays = (page, pattern) =>
-  page.waitForFunction(
-    (source) => new RegExp(source).test(document.getElementById("classbar").textContent),
-    pattern.source,
-    { timeout: 60_000 },
-  );
+/** Wait until the class bar says `pattern` (its text in the failure if it never does). */
+async function barSays(page, pattern) {
+  try {
+    await page.waitForFunction(
+      (source) => new RegExp(source).test(document.getElementById("classbar").textContent),
+      pattern.source,
+      { timeout: 60_000 },
+    );
+  } catch (err) {
+    const said = await page.textContent("#classbar");
+    const state = await page.evaluate(() => window.evapcool.stateNow());
+    await shot(page, "students-failed.png");
+    throw new Error(`the bar never said ${pattern}: "${said}" (${JSON.stringify(state)})`, {
+      cause: err,
+    });
+  }
+}
 
 const me = async (api, token) =>
-  (await fetch(`${server.base}${api}/me`, { headers: { authorization: `Bearer ${token}` } })).json();
+  (
+    await fetch(`${server.base}${api}/me`, { headers: { authorization: `Bearer ${token}` } })
+  ).json();
 
 test(
   "phones in three languages join by code, send a lost and a won game, find their place",
@@ -147,7 +162,7 @@ test(
     const { lecturerToken, room, base } = await departmentClass(server);
     const other = await postJson(server, "/api/classes", lecturerToken, { name: "Heat" });
     const api = `${base}/api`;
-    const body = { n_atoms: 49, radius: 5, escape: "rim", seed: SEED, lost: true };
+    const body = { n_atoms: 49, radius: 12, escape: "rim", seed: SEED, lost: true };
     await postJson(server, `${api}/challenge`, lecturerToken, body);
     await postJson(server, `/c/${other.code}/api/challenge`, lecturerToken, body);
 
@@ -180,11 +195,9 @@ test(
     for (const lang of ["en", "de", "ar"]) {
       const s = await play(phones[lang], floors[lang]);
       assert.equal(s.won, true, `${lang} won`);
-      await phones[lang].waitForFunction(
-        () => window.evapcool.app.classMode.used === 2,
-        null,
-        { timeout: 60_000 },
-      );
+      await phones[lang].waitForFunction(() => window.evapcool.app.classMode.used === 2, null, {
+        timeout: 60_000,
+      });
       await barSays(phones[lang], verified[lang]);
     }
     // Names hidden: the board has no names, and each phone's place is its entry's.
@@ -198,7 +211,7 @@ test(
     };
     for (const lang of ["en", "de", "ar"]) {
       const mine = await me(api, await savedToken(phones[lang], api));
-      const row = board.entries.find((e) => e.entry === mine.entry);
+      const row = board.entries.find((e) => e.entry === mine.best_entry);
       assert.equal(row.rank, mine.rank, `${lang}: the board's row of its entry`);
       await barSays(phones[lang], placeSaid[lang](mine.rank));
       await shot(phones[lang], `students-place-${lang}.png`);
@@ -242,7 +255,10 @@ test(
         }),
       );
       const apart = close.left >= title.right + 8 || close.right <= title.left - 8;
-      assert.ok(apart, `${lang}: the close button touches the title ${JSON.stringify([title, close])}`);
+      assert.ok(
+        apart,
+        `${lang}: the close button touches the title ${JSON.stringify([title, close])}`,
+      );
       if (lang === "ar") assert.ok(close.right <= title.left - 8, "Arabic: close on the left");
       await shot(page, `students-debrief-${lang}.png`);
     }

@@ -136,7 +136,7 @@ class EntriesStore(SqlBase):
         return {
             "used": sum(1 for row in rows if row[5] == token),
             "best": best[0][2] if best else None,
-            "entry": best[0][0] if best else None,
+            "best_entry": best[0][0] if best else None,
             "rank": places.get(best[0][0]) if best else None,
             "count": len(places),
         }

@@ -60,7 +60,7 @@ async def join_page(request: Request) -> Response:
     body = (
         f"<main><h1>{title}</h1>{error}"
         f'<form method="get" action="/"><label for="code">{_e(words, "class.join.code")}'
-        '</label><input id="code" name="code" size="8" maxlength="12" autocomplete="off" '
+        '</label><input id="code" name="code" dir="ltr" size="8" maxlength="12" autocomplete="off" '
         'autocapitalize="characters" spellcheck="false" required autofocus>'
         f"{keep}<button>{_e(words, 'class.join.go')}</button></form></main>"
     )

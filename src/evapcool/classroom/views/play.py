@@ -118,8 +118,8 @@ async def me(request: Request) -> Response:
 
 
 async def _standing(hub: Hub, row: dict[str, Any], token: str) -> dict[str, Any]:
-    """{challenge, attempts (the limit), lost (lost games taken), used, best, entry (the
-    best's, as the board lists it), rank, count (students on the board)} of a student."""
+    """{challenge, attempts (the limit), lost (lost games taken), used, best, best_entry
+    (the best's, as the board lists it), rank, count (students on the board)} of a student."""
     got = await hub.db(hub.store.standing, row["id"], token)
     return {"challenge": row["id"], "attempts": row["attempts"], "lost": bool(row["lost"]), **got}
 
