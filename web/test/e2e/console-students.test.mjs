@@ -237,7 +237,7 @@ test(
     const opticsToken = await savedToken(mia, api);
     assert.notEqual(heatToken, opticsToken);
     await mia.goto(`${server.base}${base}/`);
-    await mia.waitForFunction(() => window.evapcool?.app.classMode?.player !== null);
+    await mia.waitForFunction(() => (window.evapcool?.app.classMode?.player ?? null) !== null);
     assert.equal(await mia.$("#join"), null, "no name asked again in her first class");
     assert.equal(await mia.evaluate(() => window.evapcool.app.classMode.player.name), "Mia");
     await barSays(mia, /place \d of 3/);

@@ -82,10 +82,13 @@ class EntriesStore(SqlBase):
                 return "attempts"
             # A lost game (0 atoms) gains nothing copied, and two students may well lose
             # alike (the trap dropped at once): only wins are checked for copies.
-            copied = score > 0 and q(
-                "SELECT 1 FROM entry WHERE challenge = ? AND moves = ? AND player <> ?",
-                (challenge, moves, token),
-            ).fetchone()
+            copied = (
+                score > 0
+                and q(
+                    "SELECT 1 FROM entry WHERE challenge = ? AND moves = ? AND player <> ?",
+                    (challenge, moves, token),
+                ).fetchone()
+            )
             if copied:
                 return "code"
             got = q(

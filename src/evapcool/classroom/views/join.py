@@ -53,9 +53,7 @@ async def join_page(request: Request) -> Response:
         if room is not None:
             return RedirectResponse(f"/c/{room['code']}/{lang}", status_code=303)
         error = f'<p id="error" role="alert">{_e(words, "class.join.unknown")}</p>'
-    keep = (
-        f'<input type="hidden" name="lang" value="{html.escape(words.locale)}">' if lang else ""
-    )
+    keep = f'<input type="hidden" name="lang" value="{html.escape(words.locale)}">' if lang else ""
     title = _e(words, "class.join.title")
     body = (
         f"<main><h1>{title}</h1>{error}"
