@@ -97,3 +97,43 @@ FORMULA = re.compile(r"[A-Za-z]+\([A-Za-z]*\)")
 def test_cjk_punctuation_is_full_width(tag: str) -> None:
     half = {k: t for k, t in words(tag).items() if HALF_WIDTH.search(FORMULA.sub("", t))}
     assert half == {}
+
+
+# -- one register per language (issue 45): the way each catalog addresses the player --------
+REGISTER: dict[str, Any] = GLOSSARY["register"]
+
+
+def register_findings(tag: str, messages: dict[str, str]) -> list[str]:
+    """Each message addressing the player otherwise than its language's register says."""
+    rule = REGISTER[tag]
+    found: list[str] = []
+    for variant in rule["avoid"]:
+        pattern = re.compile(variant)  # case-sensitive: German's Sie is not sie
+        for key, text in messages.items():
+            if key not in rule.get("except", {}) and pattern.search(text):
+                found.append(f"{key}: '{variant}' is not '{rule['address']}': {text}")
+    return found
+
+
+def test_every_catalog_has_a_register() -> None:
+    assert set(REGISTER) - {"about"} == set(TRANSLATED)
+    assert all(REGISTER[tag]["address"] and REGISTER[tag]["avoid"] for tag in TRANSLATED)
+
+
+@pytest.mark.parametrize("tag", TRANSLATED)
+def test_catalog_keeps_one_register(tag: str) -> None:
+    assert register_findings(tag, words(tag)) == []
+
+
+def test_register_check_finds_the_formal_german_of_the_class_bar() -> None:
+    # The class bar's line before issue 45 ("Ihr"), beside the debrief's "Dein".
+    old = {"page.class_best": "Ihr bestes Spiel: 3 Atome, Platz 2.", "b": "Dein bestes Spiel"}
+    found = register_findings("de", old)
+    assert len(found) == 1 and found[0].startswith("page.class_best: ")
+    # Sie as a pronoun of a thing at a sentence's start is German's "it", not the address.
+    assert register_findings("de", {"a": "Sie gilt nur auf diesem Rechner."}) == []
+    assert register_findings("de", {"a": "Drücken Sie R."}) != []
+    assert register_findings("de", {"a": "Lade Dein Spiel."}) != []
+    assert register_findings("zh-CN", {"a": "您的最佳"}) != []
+    assert register_findings("fr", {"a": "Ta meilleure partie"}) != []
+    assert register_findings("fr", {"a": "Votre meilleure partie"}) == []

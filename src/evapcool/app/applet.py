@@ -326,11 +326,21 @@ class App:
         if self.classroom.news(begun=self.game.sim.time > 0.0):
             self.restart()  # the challenge's atoms, before the game began
             self.classroom.joined()
+        self._send_if_lost()
         if self.scores.name_box is not None:
             self.scores.name_box.update(dt)
         self.charts.observe(self.game.sim)
         self.teaching.observe(self.game)
         return played
+
+    def _send_if_lost(self) -> None:
+        """A player's game lost for good goes to a class that counts lost games (once)."""
+        if not self.classroom.counts_lost or self.replays.recorder is None or self.pilot.flew:
+            return
+        if self.game.lost and self.classroom.challenge is not None:
+            code = self.replays.finish_lost(self.classroom.challenge.max_frames)
+            if code is not None:
+                self.classroom.send_lost(code)
 
     def draw(self) -> None:
         title = t(TITLE)

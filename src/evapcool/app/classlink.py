@@ -2,10 +2,11 @@
 
 Talks to the class server's API with urllib on a thread of its own, so the frame loop
 never waits for the network: it fetches the open challenge and joins with the player's
-name, then sends the replay code of each win. The app reads what came back with `poll()`
-each frame and shows it as notices. Its student token is kept per server in the data
-folder (`remember_in`), so an applet started again joins as the same student (a class
-takes each name once).
+name, then sends the replay code of each win (and of each game lost for good, when the
+challenge counts lost games). The app reads what came back with `poll()` each frame and
+shows it as notices. Its student token is kept per class (the server and the class's code
+in its address, `class_key`) in the data folder (`remember_in`), so an applet started
+again joins as the same student, and a student of two classes is herself in each.
 """
 
 from __future__ import annotations
@@ -22,7 +23,7 @@ from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
-from urllib.parse import urlsplit
+from urllib.parse import urlsplit, urlunsplit
 
 from evapcool.fileio import atomic_write_text, read_user_text
 from evapcool.game.replay import Settings
@@ -32,7 +33,7 @@ TIMEOUT = 20.0
 #: Times a request is sent again while the server answers 503 (a department's database
 #: away for a moment): about two minutes at the server's Retry-After of 5 s.
 STORE_AWAY_RESENDS = 24
-#: The file in the data folder keeping the student token per server: {base url: token}.
+#: The file in the data folder keeping the student token per class: {class_key: token}.
 TOKENS_FILE = "class-tokens.json"
 TOKENS_MAX_BYTES = 1_000_000
 BAD_URL = (
@@ -53,13 +54,32 @@ def check_url(value: str) -> str:
     return value if value.endswith("/") else value + "/"
 
 
+def class_key(base: str) -> str:
+    """The key of a class's kept token: its server (scheme, host and port as written the
+    same way however typed) and its path with a department class's join code as stored
+    (/c/ab-c123 and /c/ABC123 are one class)."""
+    parts = urlsplit(check_url(base))
+    host = (parts.hostname or "").lower()
+    default = {"http": 80, "https": 443}[parts.scheme]
+    netloc = host if parts.port in (None, default) else f"{host}:{parts.port}"
+    if ":" in host:  # an IPv6 address keeps its brackets
+        netloc = f"[{host}]" if parts.port in (None, default) else f"[{host}]:{parts.port}"
+    steps = parts.path.split("/")
+    if len(steps) >= 3 and steps[1] == "c":
+        steps[2] = "".join(ch for ch in steps[2].upper() if ch not in " -")
+    return urlunsplit((parts.scheme, netloc, "/".join(steps), "", ""))
+
+
 @dataclass(frozen=True)
 class Challenge:
-    """The open challenge: its id, the settings and seed every student plays."""
+    """The open challenge: its id, the settings and seed every student plays, whether it
+    counts lost games, and its frame limit (a lost game is cut to it)."""
 
     id: int
     settings: Settings
     seed: int
+    lost: bool = False
+    max_frames: int | None = None
 
     @classmethod
     def from_json(cls, doc: dict[str, Any]) -> Challenge:
@@ -70,7 +90,14 @@ class Challenge:
             escape=str(s["escape"]),
             tc_exponent=float(s["tc_exponent"]),
         )
-        return cls(int(doc["id"]), settings, int(doc["seed"]))
+        limit = doc.get("max_frames")
+        return cls(
+            int(doc["id"]),
+            settings,
+            int(doc["seed"]),
+            bool(doc.get("lost", False)),
+            int(limit) if isinstance(limit, int) else None,
+        )
 
 
 class RefusedError(Exception):
@@ -138,13 +165,15 @@ class ClassLink:
     def _join(self) -> None:
         self.challenge = Challenge.from_json(self._call("GET", "api/challenge"))
         kept = self._kept_tokens()
+        key = class_key(self.base)
         body = {"name": self.name}
-        if isinstance(kept.get(self.base), str):
-            body["token"] = kept[self.base]  # the same student as last time, if still known
+        earlier = kept.get(key, kept.get(self.base))  # the bare address: kept before 45
+        if isinstance(earlier, str):
+            body["token"] = earlier  # the same student as last time, if still known
         joined = self._call("POST", "api/join", body)
         token = str(joined["token"])
-        if self.tokens_file is not None and kept.get(self.base) != token:
-            kept[self.base] = token
+        if self.tokens_file is not None and kept.get(key) != token:
+            kept[key] = token
             try:
                 self.tokens_file.parent.mkdir(parents=True, exist_ok=True)
                 atomic_write_text(self.tokens_file, json.dumps(kept, indent=1))

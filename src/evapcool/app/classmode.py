@@ -32,6 +32,17 @@ class ClassMode:
         if self.link is not None and self.challenge is not None:
             self.link.submit(code)
 
+    @property
+    def counts_lost(self) -> bool:
+        """The challenge being played takes lost games (ranked with 0 atoms)."""
+        return self.link is not None and self.challenge is not None and self.challenge.lost
+
+    def send_lost(self, code: str) -> None:
+        """A game lost for good, when the challenge counts lost games."""
+        if self.counts_lost:
+            self.notices.news(t("desk.class.sending"))
+            self.send(code)
+
     def news(self, begun: bool) -> bool:
         """What the server said since the last frame, as notices. begun: the game has
         started. True if a challenge arrived that the unbegun game should restart into

@@ -8,6 +8,7 @@ file is instead.
 from __future__ import annotations
 
 import time
+from dataclasses import replace
 from pathlib import Path
 
 from evapcool.app.notices import Notices
@@ -70,6 +71,24 @@ class ReplayKeeper:
         self.code = encode(rec.finish(True, game.score))
         self.path = self._save(self.code, game.score or 0, rec.seed)
         return self.code
+
+    def finish_lost(self, max_frames: int | None) -> str | None:
+        """The code of the game just lost for good (its frames so far, at most max_frames:
+        the rest cannot win either); None if not recorded. Not saved: it is no replay to
+        keep, and its recording ends here."""
+        rec = self.recorder
+        if rec is None:
+            return None
+        self.recorder = None
+        lost = rec.finish(False, None)
+        if max_frames is not None and lost.frames > max_frames:
+            left, moves = max_frames, []
+            for h, n in lost.moves:
+                if left > 0:
+                    moves.append((h, min(n, left)))
+                    left -= min(n, left)
+            lost = replace(lost, moves=tuple(moves), frames=max_frames)
+        return encode(lost)
 
     def _save(self, code: str, score: int, seed: int) -> Path | None:
         stamp = time.strftime("%Y%m%d-%H%M%S")

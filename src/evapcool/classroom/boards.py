@@ -39,7 +39,7 @@ def _leaderboard(store: ClassStore, room: int, keyed: bool) -> dict[str, Any]:
         }
     rows = store.leaderboard(int(current["id"]))  # type: ignore[call-overload]
     entries = [
-        {"rank": i, "name": r[1], "score": r[2], "frames": r[3], "edition": r[4]}
+        {"rank": i, "entry": r[0], "name": r[1], "score": r[2], "frames": r[3], "edition": r[4]}
         for i, r in enumerate(rows, 1)
     ]
     return {

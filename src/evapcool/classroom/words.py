@@ -1,4 +1,5 @@
-"""The class server's words in the language a browser asks for (Accept-Language)."""
+"""The class server's words in the language a browser asks for (`?lang=`, else
+Accept-Language)."""
 
 from __future__ import annotations
 
@@ -8,6 +9,8 @@ from evapcool.i18n import FALLBACK, Catalog, best_match, shipped_locales
 
 #: Languages read from one Accept-Language header at most.
 MAX_LANGUAGES = 8
+#: The longest `?lang=` tag read.
+MAX_TAG = 35
 
 
 def wanted_languages(header: str) -> list[str]:
@@ -38,10 +41,16 @@ class Words:
         return self.catalogs[tag]
 
     def of(self, request: Request) -> Catalog:
-        """The catalog best matching the request's Accept-Language (English if none)."""
+        """The catalog of the request's `?lang=` (a page's language carried from link to
+        link), else best matching its Accept-Language (English if none)."""
+        return self.catalog(self.tag_of(request))
+
+    def tag_of(self, request: Request) -> str:
+        """The shipped tag a request asks for: `?lang=` if shipped, else Accept-Language."""
+        given = request.query_params.get("lang", "")[:MAX_TAG]
+        chosen = best_match([given], self.tags) if given else None
         header = request.headers.get("accept-language", "")
-        tag = best_match(wanted_languages(header), self.tags) or FALLBACK
-        return self.catalog(tag)
+        return chosen or best_match(wanted_languages(header), self.tags) or FALLBACK
 
 
 def raw(catalog: Catalog, key: str) -> str:

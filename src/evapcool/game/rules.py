@@ -301,6 +301,21 @@ class Game:
         return self.sim.n_trapped == 0 and not self.sim.won
 
     @property
+    def lost(self) -> bool:
+        """The gas can no longer condense whatever the trap does: a lost game (a class
+        that counts lost games takes it)."""
+        sim = self.sim
+        if sim.won or not sim.win_rule:
+            return False
+        masses = sim.masses
+        lightest = float(masses.min()) if masses.size else 1.0
+        escape = lightest * sim.gravity * HEIGHT_MIN
+        found = out_of_reach(
+            sim.n_trapped, sim.total_energy(), sim.critical_temperature, escape_energy=escape
+        )
+        return found is not None
+
+    @property
     def too_few_atoms(self) -> str | None:
         """Why the gas can no longer condense (say so, offer a restart), or None."""
         sim = self.sim

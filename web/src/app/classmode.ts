@@ -8,6 +8,7 @@
  */
 import { activeTranslator, t } from "../i18n";
 import type { Recording, ReplaySettings } from "../game/replay";
+import { encode } from "../game/replaycode";
 import { gamePath, type GamePath } from "../game/path";
 import type { SimFactory } from "../game/rules";
 import { rect } from "../view/geometry";
@@ -21,6 +22,8 @@ export interface Challenge {
   attempts: number | null;
   /** When the challenge closes (ISO 8601), or null. */
   closes_at: string | null;
+  /** Lost games count too (sent, ranked with 0 atoms). */
+  lost?: boolean;
 }
 
 /** A challenge as the leaderboard's stream tells every page: open or not, seconds left. */
@@ -34,7 +37,14 @@ export interface ChallengeState extends Challenge {
 export interface Board {
   info: ChallengeState | null;
   /** name: null in the debrief's anonymous mode. */
-  entries: Array<{ rank: number; name: string | null; score: number; frames: number }>;
+  entries: Array<{
+    rank: number;
+    /** The entry's id: a student's page finds its own row by it, never by name. */
+    entry?: number;
+    name: string | null;
+    score: number;
+    frames: number;
+  }>;
   debrief?: { anonymous: boolean };
 }
 
@@ -51,7 +61,10 @@ interface Standing {
   attempts?: number | null;
   used?: number;
   best?: number | null;
+  /** The best game's entry (its row on the board), its place, and students ranked. */
+  best_entry?: number | null;
   rank?: number | null;
+  count?: number;
 }
 
 export interface ClassHost {
@@ -61,6 +74,8 @@ export interface ClassHost {
   play(challenge: Challenge): void;
   /** Called with each win's code. */
   readonly onCode: Array<(code: string, rec: Recording) => void>;
+  /** Called with each game lost for good (sent when the challenge counts lost games). */
+  readonly onLost?: Array<(rec: Recording) => void>;
   /** The page's engine: the debrief draws the student's own game's path from it. */
   readonly factory?: SimFactory;
 }
@@ -112,7 +127,11 @@ async function refusal(res: Response): Promise<string> {
 /** The server's refusals in the page's language, not only the browser's. */
 const speaking = (): Record<string, string> => ({ "accept-language": activeTranslator().locale });
 
+/** The saved student, one per class: this origin's class at its API path (a student of two
+ * classes of one server is herself in each). The single class's was kept under the bare key. */
 const TOKEN_KEY = "evapcool.class.player";
+export const tokenKey = (api: string): string =>
+  api === "/api" ? TOKEN_KEY : `${TOKEN_KEY}:${api}`;
 /** Without the stream (refused or gone), the board is asked for this often, ms. */
 const POLL_MS = 3000;
 
@@ -132,10 +151,13 @@ export function clock(seconds: number): string {
 export class ClassMode {
   challenge: ChallengeState | null = null;
   player: { token: string; name: string } | null = null;
-  /** Games of this challenge sent and accepted; the best score and place. */
+  /** Games of this challenge sent and accepted; the best score, its entry and place, of
+   * how many ranked. */
   used = 0;
   best: number | null = null;
+  bestEntry: number | null = null;
   rank: number | null = null;
+  ranked = 0;
   /** The last game's result: [text, "ok" | "bad" | ""]. */
   result: [string, string] = ["", ""];
   private received = 0;
@@ -162,6 +184,7 @@ export class ClassMode {
     private readonly barTop: (height: number) => number = () => 0,
   ) {
     host.onCode.push((code, rec) => void this.submit(code, rec));
+    host.onLost?.push((rec) => void this.submitLost(rec));
     this.bar = document.createElement("div");
     this.bar.id = "classbar";
     this.bar.setAttribute("role", "status");
@@ -216,12 +239,16 @@ export class ClassMode {
     this.challenge = info;
     if (fresh) {
       [this.used, this.best, this.rank, this.result] = [0, null, null, ["", ""]];
+      this.bestEntry = null;
       this.sent.clear();
       this.host.play(info);
       void this.refreshStanding();
     }
-    const mine = this.player && board.entries.find((e) => e.name === this.player?.name);
+    // Found by its entry, never by name: names may be hidden (anonymous) or shared.
+    const mine = board.entries.find((e) => e.entry !== undefined && e.entry === this.bestEntry);
     if (mine) [this.best, this.rank] = [mine.score, mine.rank];
+    else if (this.bestEntry !== null) this.rank = null; // hidden by the lecturer
+    this.ranked = board.entries.length;
     this.render();
     const closed = info !== null && !info.open;
     const key = closed ? `${info.id}:${board.debrief?.anonymous}:${board.entries.length}` : "";
@@ -296,12 +323,15 @@ export class ClassMode {
     close.addEventListener("click", () => this.closeDebrief());
     const title = document.createElement("h2");
     title.textContent = t("page.class_debrief_title");
+    // The title and its close button side by side, a gap between (either direction).
+    const head = document.createElement("header");
+    head.append(title, close);
     const you = document.createElement("p");
     you.id = "debrief-you";
     const canvas = document.createElement("canvas");
     canvas.id = "debrief-paths";
     canvas.setAttribute("role", "img");
-    panel.append(close, title, you, canvas);
+    panel.append(head, you, canvas);
     panel.addEventListener("keydown", (ev) => ev.stopPropagation()); // not the game's keys
     this.root.append(panel);
     this.debrief = panel;
@@ -351,7 +381,9 @@ export class ClassMode {
         ? c === null
           ? ""
           : t("page.class_no_best")
-        : t("page.class_best", { n: this.best, rank: this.rank });
+        : this.ranked > 0
+          ? t("console.student.best_of", { n: this.best, rank: this.rank, count: this.ranked })
+          : t("page.class_best", { n: this.best, rank: this.rank });
     const [text, kind] = this.result;
     this.resultLine.textContent = [text, standing].filter((x) => x).join(" ");
     this.resultLine.className = kind;
@@ -383,13 +415,15 @@ export class ClassMode {
     if (s.challenge !== this.challenge?.id) return;
     this.used = s.used ?? this.used;
     this.best = s.best ?? null;
+    this.bestEntry = s.best_entry ?? null;
     this.rank = s.rank ?? null;
+    this.ranked = s.count ?? this.ranked;
     this.render();
   }
 
   private storedPlayer(): { token: string; name: string } | null {
     try {
-      const doc = JSON.parse(this.storage?.getItem(TOKEN_KEY) ?? "null") as unknown;
+      const doc = JSON.parse(this.storage?.getItem(tokenKey(this.api)) ?? "null") as unknown;
       const p = doc as { token?: unknown; name?: unknown } | null;
       return p && typeof p.token === "string" && typeof p.name === "string"
         ? { token: p.token, name: p.name }
@@ -440,7 +474,7 @@ export class ClassMode {
         return;
       }
       this.player = (await res.json()) as { token: string; name: string };
-      this.storage?.setItem(TOKEN_KEY, JSON.stringify(this.player));
+      this.storage?.setItem(tokenKey(this.api), JSON.stringify(this.player));
       this.form?.remove();
       this.form = null;
       this.host.notify(t("page.class_joined", { name: this.player.name }));
@@ -457,9 +491,27 @@ export class ClassMode {
     this.host.say(this.resultLine.textContent ?? text);
   }
 
-  /** Send a win's code; the server answers once it has replayed and stored it. A game
-   * the challenge cannot take (closed, no attempts left) is not sent, and says so. */
-  async submit(code: string, rec?: Recording): Promise<void> {
+  /** A game lost for good, sent when the challenge counts lost games (cut to its frame
+   * limit: the frames after it cannot win either); else kept to itself. */
+  async submitLost(rec: Recording): Promise<void> {
+    const c = this.challenge;
+    if (!c?.lost || !this.player) return;
+    const limit = c.max_frames;
+    let left = limit;
+    const moves: Array<[number, number]> = [];
+    for (const [h, n] of rec.moves) {
+      if (left <= 0) break;
+      moves.push([h, Math.min(n, left)]);
+      left -= Math.min(n, left);
+    }
+    const cut = { ...rec, moves, frames: limit - left };
+    await this.submit(await encode(cut), cut, true);
+  }
+
+  /** Send a game's code (a win's; `lost`: a game lost for good); the server answers once
+   * it has replayed and stored it. A game the challenge cannot take (closed, no attempts
+   * left) is not sent, and says so. */
+  async submit(code: string, rec?: Recording, lost = false): Promise<void> {
     const c = this.challenge;
     const p = this.player;
     if (!c || !p) return this.tell(t("page.class_join_first"), "bad");
@@ -492,7 +544,10 @@ export class ClassMode {
       const got = (await res.json()) as Standing & { score: number; entry: number };
       if (rec) this.sent.set(got.entry, rec);
       this.takeStanding(got);
-      this.tell(t("page.class_game_verified", { n: got.score }), "ok");
+      this.tell(
+        t(lost ? "console.student.lost_counted" : "page.class_game_verified", { n: got.score }),
+        "ok",
+      );
     } catch {
       this.tell(t("page.class_kept"), "bad");
     }

@@ -152,6 +152,7 @@ function startClass(app: App, api: string): void {
       say: (t) => app.say(t),
       play: (c) => app.playChallenge(c),
       onCode: app.replays.onCode,
+      onLost: app.replays.onLost,
       factory: makeSimulation,
     },
     byId("app"),

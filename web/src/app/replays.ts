@@ -22,6 +22,9 @@ export class Replays {
   private generation = -1;
   /** Called with each new win's code (class mode submits it). */
   readonly onCode: Array<(code: string, rec: Recording) => void> = [];
+  /** Called once per game lost for good (class mode sends it when lost games count). */
+  readonly onLost: Array<(rec: Recording) => void> = [];
+  private lostGeneration = -1;
 
   constructor(private readonly host: ReplayHost) {}
 
@@ -39,6 +42,20 @@ export class Replays {
     // key C are on the win screen and in the help.
     [this.code, this.recording, this.generation] = [code, rec, generation];
     for (const listener of this.onCode) listener(code, rec);
+  }
+
+  /** A game that can no longer win (too few atoms, for good): its recording so far, once
+   * per game. */
+  async onLoss(): Promise<void> {
+    const g = this.host.game;
+    const generation = g.generation;
+    if (generation === this.lostGeneration || g.won) return;
+    this.lostGeneration = generation;
+    const runs = g instanceof RemoteGame ? await g.moves() : (g as Game).moves.runs;
+    const seed = g.config.seed;
+    if (seed === null || g.generation !== generation || g.won) return;
+    const rec = recordingOf(g.config, seed, runs, false, null);
+    for (const listener of this.onLost) listener(rec);
   }
 
   /** The code of the game on screen, if it was won. */

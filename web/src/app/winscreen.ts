@@ -53,6 +53,8 @@ export class WinScreen {
     else if (tooFew !== null) {
       scene.drawTooFew(ctx, t(tooFew), hints.tooFewLine);
       if (tooFew !== this.saidTooFew) this.rooms.say(hints.tooFewSpoken(tooFew));
+      // Lost for good (lowering the trap cannot help): a class may count the game.
+      if (tooFew !== this.saidTooFew && tooFew !== "lose.stuck_here") void replays.onLoss();
     } else if (g.paused && g.sim.time === 0 && !panelOpen) {
       scene.drawStartHint(ctx, coarse);
     }

@@ -58,7 +58,8 @@ class EntriesStore(SqlBase):
         path: str | None = None,
     ) -> int | str:
         """The new entry's id, or the field refusing it: "challenge" (closed), "attempts",
-        "code" (the same moves as another player's entry of this challenge: a copy).
+        "code" (a win with the same moves as another player's entry of this challenge: a
+        copy; lost games, 0 atoms, are never copies).
 
         result: (score, frames, edition, code, moves key); path: the game's path (JSON text).
         One transaction holding the challenge's lock: the checks and the insert cannot
@@ -79,11 +80,16 @@ class EntriesStore(SqlBase):
             ).fetchone()[0]
             if row[0] is not None and used >= row[0]:
                 return "attempts"
-            copied = q(
-                "SELECT 1 FROM entry WHERE challenge = ? AND moves = ? AND player <> ?",
-                (challenge, moves, token),
-            ).fetchone()
-            if copied is not None:
+            # A lost game (0 atoms) gains nothing copied, and two students may well lose
+            # alike (the trap dropped at once): only wins are checked for copies.
+            copied = (
+                score > 0
+                and q(
+                    "SELECT 1 FROM entry WHERE challenge = ? AND moves = ? AND player <> ?",
+                    (challenge, moves, token),
+                ).fetchone()
+            )
+            if copied:
                 return "code"
             got = q(
                 "INSERT INTO entry (challenge, player, score, frames, edition, code, moves, path) "
@@ -125,14 +131,17 @@ class EntriesStore(SqlBase):
         return {row[0]: place for place, row in enumerate(shown, 1)}
 
     def standing(self, challenge: int, token: str) -> dict[str, int | None]:
-        """A student's games sent and accepted, their best score and place (None if none)."""
+        """A student's games sent and accepted, their best score, its entry (the board's
+        row the page finds itself by, names shown or not) and place (None if none)."""
         rows = self._all(challenge)
         best = [row for row in _best(rows) if row[5] == token]
         places = self._places(rows)
         return {
             "used": sum(1 for row in rows if row[5] == token),
             "best": best[0][2] if best else None,
+            "best_entry": best[0][0] if best else None,
             "rank": places.get(best[0][0]) if best else None,
+            "count": len(places),
         }
 
     def entry_code(self, entry: int, room: int = DEFAULT_ROOM) -> tuple[str, str, int] | None:

@@ -5,6 +5,7 @@ language, /c/{code} sent to its slash."""
 from __future__ import annotations
 
 from typing import Any
+from urllib.parse import quote, urlencode
 
 from starlette.exceptions import HTTPException
 from starlette.requests import Request
@@ -25,8 +26,10 @@ DATA_POLICY = "default-src 'none'; frame-ancestors 'none'"
 
 
 async def _to_class(request: Request) -> Response:
-    """/c/{code} without its slash: the class's game page."""
-    return RedirectResponse(f"/c/{request.path_params['code']}/", status_code=308)
+    """/c/{code} without its slash: the class's game page, in the language asked (`?lang=`)."""
+    lang = request.query_params.get("lang")
+    query = "?" + urlencode({"lang": lang[:35]}) if lang else ""
+    return RedirectResponse(f"/c/{quote(request.path_params['code'])}/{query}", status_code=308)
 
 
 async def _refused(request: Request, exc: Exception) -> Response:

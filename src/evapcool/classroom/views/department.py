@@ -14,16 +14,17 @@ from typing import Any
 from urllib.parse import parse_qs, quote
 
 from starlette.requests import Request
-from starlette.responses import HTMLResponse, JSONResponse, RedirectResponse, Response
+from starlette.responses import HTMLResponse, JSONResponse, Response
 from starlette.routing import Route
 
 from evapcool.classroom import pages
 from evapcool.classroom.boards import challenge_info
 from evapcool.classroom.errors import RefusedError, read_json
 from evapcool.classroom.hub import Hub
-from evapcool.classroom.rooms import DEFAULT_ROOM, normal_code
+from evapcool.classroom.rooms import DEFAULT_ROOM
 from evapcool.classroom.tokens import ADMIN_SECRET, digest, matches_digest, room_projector_key
 from evapcool.classroom.views.common import bearer_token, guard, join_url_of
+from evapcool.classroom.views.join import join_page
 from evapcool.i18n import Catalog
 
 #: The longest class or lecturer name kept.
@@ -177,27 +178,6 @@ async def _form(request: Request) -> dict[str, str]:
         raise RefusedError(413, "body", "class.error.too_large", n=FORM_BYTES)
     fields = parse_qs(body.decode("utf-8", "replace"), keep_blank_values=True)
     return {k: v[-1] for k, v in fields.items()}
-
-
-async def join_page(request: Request) -> Response:
-    """The department's root: a box for the join code; a known code goes to its class."""
-    hub = guard(request)
-    words = hub.words.of(request)
-    given = request.query_params.get("code")
-    error = ""
-    if given is not None:
-        code = normal_code(given)
-        room = await hub.db(hub.store.room_by_code, code) if code else None
-        if room is not None:
-            return RedirectResponse(f"/c/{room['code']}/", status_code=303)
-        error = f'<p id="error" role="alert">{_e(words, "class.join.unknown")}</p>'
-    body = (
-        f'{error}<form method="get" action="/"><label for="code">{_e(words, "class.join.code")}'
-        '</label> <input id="code" name="code" class="code" size="8" maxlength="12" '
-        'autocomplete="off" autocapitalize="characters" spellcheck="false" required autofocus> '
-        f"<button>{_e(words, 'class.join.go')}</button></form>"
-    )
-    return _page(words, words.t("class.join.title"), body)
 
 
 def _rows(cells: list[list[str]]) -> str:

@@ -46,7 +46,9 @@ async def join(request: Request) -> Response:
     looking like another student's), within the address's join rate and the class's bound.
 
     With the token of an earlier join ("token"), that student again, by the name the
-    server has (an applet started anew keeps its place and name).
+    server has (an applet started anew keeps its place and name); a token of another class
+    is not known here (each class keeps its own student, the page and the desktop keep one
+    token per class). The answer names the class (its join code) the token is for.
     """
     hub = guard(request)
     room = await room_of(request, hub)
@@ -55,7 +57,7 @@ async def join(request: Request) -> Response:
     if isinstance(earlier, str) and 0 < len(earlier) <= 64:
         known = await hub.db(hub.store.player_name, earlier, room["id"])
         if known is not None:
-            return JSONResponse({"token": earlier, "name": known})
+            return JSONResponse({"token": earlier, "name": known, "class": room["code"]})
     # Per class and address: a lecture hall joins its class at once, whatever other
     # classes behind the same address (a campus's NAT) do.
     where = f"{room['id']}@{address(request)}"
@@ -71,7 +73,7 @@ async def join(request: Request) -> Response:
     except ValueError:
         raise RefusedError(400, "name", "class.error.name", n=NAME_MAX) from None
     name = await hub.db(hub.store.player_name, token, room["id"])
-    return JSONResponse({"token": token, "name": name})
+    return JSONResponse({"token": token, "name": name, "class": room["code"]})
 
 
 async def _student(request: Request, hub: Hub, room: int) -> str:
@@ -116,9 +118,10 @@ async def me(request: Request) -> Response:
 
 
 async def _standing(hub: Hub, row: dict[str, Any], token: str) -> dict[str, Any]:
-    """{challenge, attempts (the limit), used, best, rank} of a student in a challenge."""
+    """{challenge, attempts (the limit), lost (lost games taken), used, best, best_entry
+    (the best's, as the board lists it), rank, count (students on the board)} of a student."""
     got = await hub.db(hub.store.standing, row["id"], token)
-    return {"challenge": row["id"], "attempts": row["attempts"], **got}
+    return {"challenge": row["id"], "attempts": row["attempts"], "lost": bool(row["lost"]), **got}
 
 
 def _game_of(doc: dict[str, Any]) -> tuple[object, str]:
