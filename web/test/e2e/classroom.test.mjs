@@ -131,7 +131,13 @@ test(
     // Started without --lan: the join address is loopback, said in large type.
     const warning = await big.textContent("#loopback");
     assert.match(warning, /Phones cannot reach this address/);
-    assert.match(warning, /evapcool class --lan/);
+    // The fix is this server's own command with --lan added: its port and file kept.
+    const url = new URL(server.base);
+    assert.ok(
+      warning.includes(`evapcool class --port ${url.port} --data ${join(server.dir, "c.sqlite")}`),
+      warning,
+    );
+    assert.match(warning, / --lan$/);
     const warnSize = await big.evaluate(() =>
       parseFloat(getComputedStyle(document.getElementById("loopback")).fontSize),
     );
