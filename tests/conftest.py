@@ -13,6 +13,7 @@ import os
 import ownprocess
 import pytest
 from hypothesis import settings
+from strictskips import pytest_runtest_makereport  # noqa: F401 (test-all.sh: no skip in silence)
 
 # A long local fuzz run (tests/test_fuzz.py): --hypothesis-profile=fuzz, cases per test
 # from $EVAPCOOL_FUZZ_EXAMPLES (default 5000). CI loads Hypothesis's own 'ci' profile
