@@ -104,294 +104,302 @@ async function fits(projector) {
   });
 }
 
-test("a lecture hall's competition, from opening to the final results", async () => {
-  const lecturer = await browser.newPage({ viewport: { width: 1280, height: 900 } });
-  const errors = [];
-  // Script errors, and anything the pages' policies blocked (a console error).
-  const watch = (page) => {
-    page.on("pageerror", (e) => errors.push(e.message));
-    page.on("console", (m) => m.type() === "error" && errors.push(m.text()));
-  };
-  watch(lecturer);
-  await lecturer.goto(`${server.base}/lecturer?token=${server.token}`);
-  const link = await lecturer.getAttribute("#projector", "href");
-  assert.equal(await lecturer.locator("#classes").count(), 0, "one class: no list to go to");
-  const big = await browser.newPage({ viewport: { width: 1920, height: 1080 } });
-  const small = await browser.newPage({ viewport: { width: 1280, height: 720 } });
-  for (const p of [big, small]) {
-    watch(p);
-    await p.goto(`${server.base}${link}`);
-    await p.waitForSelector("#qr svg");
-  }
-  // Started without --lan: the join address is loopback, said in large type.
-  const warning = await big.textContent("#loopback");
-  assert.match(warning, /Phones cannot reach this address/);
-  // The fix is this server's own command with --lan added: its port and file kept.
-  const url = new URL(server.base);
-  assert.ok(
-    warning.includes(`evapcool class --port ${url.port} --data ${join(server.dir, "c.sqlite")}`),
-    warning,
-  );
-  assert.match(warning, / --lan$/);
-  const warnSize = await big.evaluate(() =>
-    parseFloat(getComputedStyle(document.getElementById("loopback")).fontSize),
-  );
-  assert.ok(warnSize >= 32, `the warning's type on 1920 x 1080: ${warnSize} px`);
-  const side = await big.evaluate(() => {
-    const box = document.getElementById("side");
-    return [box.scrollHeight, box.clientHeight];
-  });
-  assert.ok(side[0] <= side[1], `the side column fits: ${side}`);
-  assert.equal(await big.textContent("#state"), "Waiting for the lecturer to open a challenge.");
+test(
+  "a lecture hall's competition, from opening to the final results",
+  { timeout: 600_000 },
+  async () => {
+    const lecturer = await browser.newPage({ viewport: { width: 1280, height: 900 } });
+    const errors = [];
+    // Script errors, and anything the pages' policies blocked (a console error).
+    const watch = (page) => {
+      page.on("pageerror", (e) => errors.push(e.message));
+      page.on("console", (m) => m.type() === "error" && errors.push(m.text()));
+    };
+    watch(lecturer);
+    await lecturer.goto(`${server.base}/lecturer?token=${server.token}`);
+    const link = await lecturer.getAttribute("#projector", "href");
+    assert.equal(await lecturer.locator("#classes").count(), 0, "one class: no list to go to");
+    const big = await browser.newPage({ viewport: { width: 1920, height: 1080 } });
+    const small = await browser.newPage({ viewport: { width: 1280, height: 720 } });
+    for (const p of [big, small]) {
+      watch(p);
+      await p.goto(`${server.base}${link}`);
+      await p.waitForSelector("#qr svg");
+    }
+    // Started without --lan: the join address is loopback, said in large type.
+    const warning = await big.textContent("#loopback");
+    assert.match(warning, /Phones cannot reach this address/);
+    // The fix is this server's own command with --lan added: its port and file kept.
+    const url = new URL(server.base);
+    assert.ok(
+      warning.includes(`evapcool class --port ${url.port} --data ${join(server.dir, "c.sqlite")}`),
+      warning,
+    );
+    assert.match(warning, / --lan$/);
+    const warnSize = await big.evaluate(() =>
+      parseFloat(getComputedStyle(document.getElementById("loopback")).fontSize),
+    );
+    assert.ok(warnSize >= 32, `the warning's type on 1920 x 1080: ${warnSize} px`);
+    const side = await big.evaluate(() => {
+      const box = document.getElementById("side");
+      return [box.scrollHeight, box.clientHeight];
+    });
+    assert.ok(side[0] <= side[1], `the side column fits: ${side}`);
+    assert.equal(await big.textContent("#state"), "Waiting for the lecturer to open a challenge.");
 
-  // The lecturer opens a challenge from the form: the button says what the guide says.
-  await lecturer.fill("#seed", String(SEED));
-  await lecturer.fill("#attempts", "2");
-  await lecturer.fill("#minutes", "30");
-  await lecturer.selectOption("#tc_law", "0.4");
-  await lecturer.selectOption("#tc_law", "0.6666666666666666");
-  await lecturer.getByRole("button", { name: "Open", exact: true }).click();
-  await lecturer.waitForFunction(() =>
-    document.getElementById("current").textContent.includes("Open"),
-  );
-  const settings = await lecturer.textContent("#current-settings");
-  assert.match(settings, /fly over the rim/);
-  assert.match(settings, /attempts per student: 2/);
-  assert.match(await big.textContent("#state"), /^Open · closes in (29:5\d|30:00)$/);
+    // The lecturer opens a challenge from the form: the button says what the guide says.
+    await lecturer.fill("#seed", String(SEED));
+    await lecturer.fill("#attempts", "2");
+    await lecturer.fill("#minutes", "30");
+    await lecturer.selectOption("#tc_law", "0.4");
+    await lecturer.selectOption("#tc_law", "0.6666666666666666");
+    await lecturer.getByRole("button", { name: "Open", exact: true }).click();
+    await lecturer.waitForFunction(() =>
+      document.getElementById("current").textContent.includes("Open"),
+    );
+    const settings = await lecturer.textContent("#current-settings");
+    assert.match(settings, /fly over the rim/);
+    assert.match(settings, /attempts per student: 2/);
+    assert.match(await big.textContent("#state"), /^Open · closes in (29:5\d|30:00)$/);
 
-  const names = ["Zoë", "Ada", "Bo"];
-  const phones = [];
-  for (const name of names) phones.push(await phone(name));
-  for (const p of phones) assert.match(await bar(p), /2 attempts left/);
-  const floors = [100, 150, 80];
-  const scores = [];
-  let refusedOnce = false;
-  for (const [k, p] of phones.entries()) {
-    if (k === 1) {
-      // A department's database away for a moment: the first sending is answered 503.
-      await p.route("**/api/submit", (route) => {
-        if (refusedOnce) return route.continue();
-        refusedOnce = true;
-        return route.fulfill({
-          status: 503,
-          headers: { "retry-after": "2", "content-type": "application/json" },
-          body: JSON.stringify({ error: { field: "store", message: "away" } }),
+    const names = ["Zoë", "Ada", "Bo"];
+    const phones = [];
+    for (const name of names) phones.push(await phone(name));
+    for (const p of phones) assert.match(await bar(p), /2 attempts left/);
+    const floors = [100, 150, 80];
+    const scores = [];
+    let refusedOnce = false;
+    for (const [k, p] of phones.entries()) {
+      if (k === 1) {
+        // A department's database away for a moment: the first sending is answered 503.
+        await p.route("**/api/submit", (route) => {
+          if (refusedOnce) return route.continue();
+          refusedOnce = true;
+          return route.fulfill({
+            status: 503,
+            headers: { "retry-after": "2", "content-type": "application/json" },
+            body: JSON.stringify({ error: { field: "store", message: "away" } }),
+          });
         });
-      });
-    }
-    const s = await play(p, floors[k]);
-    assert.equal(s.won, true, `${names[k]} won`);
-    if (k === 1) {
+      }
+      const s = await play(p, floors[k]);
+      assert.equal(s.won, true, `${names[k]} won`);
+      if (k === 1) {
+        await p.waitForFunction(
+          () => /sending again in 2 s/.test(document.getElementById("classbar").textContent),
+          null,
+          { timeout: 30_000 },
+        );
+        assert.ok(refusedOnce, "the first sending was answered 503");
+      }
       await p.waitForFunction(
-        () => /sending again in 2 s/.test(document.getElementById("classbar").textContent),
+        () => /Verified/.test(document.getElementById("classbar").textContent),
         null,
-        { timeout: 30_000 },
+        {
+          timeout: 30_000,
+        },
       );
-      assert.ok(refusedOnce, "the first sending was answered 503");
+      const said = await bar(p);
+      assert.match(said, new RegExp(`Verified: this game ${s.score} atoms\\.`));
+      assert.match(said, /1 attempt left/, "one attempt counted");
+      assert.doesNotMatch(said, /not accepted|goes to the/, "one message, not two");
+      const kind = await p.getAttribute("#classbar p:last-child", "class");
+      assert.equal(kind, "ok", "a win is a success, not an error");
+      // The bar lies under the scene on a phone upright: never over the cup.
+      const [barTop, sceneBottom] = await p.evaluate(() => {
+        const l = window.evapcool.app.layout;
+        const top = document.getElementById("classbar").getBoundingClientRect().top;
+        return [top, l.offsetY + l.sceneHeight * l.scale];
+      });
+      assert.ok(
+        barTop >= sceneBottom - 1,
+        `class bar at ${barTop}, the scene ends at ${sceneBottom}`,
+      );
+      scores.push(s.score);
+      if (k === 0) await shot(p, "class-phone.png");
     }
-    await p.waitForFunction(
-      () => /Verified/.test(document.getElementById("classbar").textContent),
-      null,
-      {
-        timeout: 30_000,
-      },
+    // Places follow the board: each phone's place is its row's on the projector.
+    await big.waitForFunction(() => document.querySelectorAll("#board tr").length === 4);
+    const board = await big.evaluate(() =>
+      [...document.querySelectorAll("#board tr")].slice(1).map((tr) => tr.children[1].textContent),
     );
-    const said = await bar(p);
-    assert.match(said, new RegExp(`Verified: this game ${s.score} atoms\\.`));
-    assert.match(said, /1 attempt left/, "one attempt counted");
-    assert.doesNotMatch(said, /not accepted|goes to the/, "one message, not two");
-    const kind = await p.getAttribute("#classbar p:last-child", "class");
-    assert.equal(kind, "ok", "a win is a success, not an error");
-    // The bar lies under the scene on a phone upright: never over the cup.
-    const [barTop, sceneBottom] = await p.evaluate(() => {
-      const l = window.evapcool.app.layout;
-      const top = document.getElementById("classbar").getBoundingClientRect().top;
-      return [top, l.offsetY + l.sceneHeight * l.scale];
-    });
-    assert.ok(
-      barTop >= sceneBottom - 1,
-      `class bar at ${barTop}, the scene ends at ${sceneBottom}`,
+    assert.deepEqual([...board].sort(), [...names].sort(), "names as typed");
+    for (const [k, p] of phones.entries()) {
+      const place = board.indexOf(names[k]) + 1;
+      await p.waitForFunction(
+        (n) => document.getElementById("classbar").textContent.includes(`place ${n}.`),
+        place,
+      );
+    }
+    // The lecturer's list: ranks 1, 2, 3 (not entry numbers), and a replay on the projectors.
+    await lecturer.waitForFunction(() => document.querySelectorAll("#entries tr").length === 4);
+    const ranks = await lecturer.evaluate(() =>
+      [...document.querySelectorAll("#entries tr")]
+        .slice(1)
+        .map((tr) => tr.children[0].textContent),
     );
-    scores.push(s.score);
-    if (k === 0) await shot(p, "class-phone.png");
-  }
-  // Places follow the board: each phone's place is its row's on the projector.
-  await big.waitForFunction(() => document.querySelectorAll("#board tr").length === 4);
-  const board = await big.evaluate(() =>
-    [...document.querySelectorAll("#board tr")].slice(1).map((tr) => tr.children[1].textContent),
-  );
-  assert.deepEqual([...board].sort(), [...names].sort(), "names as typed");
-  for (const [k, p] of phones.entries()) {
-    const place = board.indexOf(names[k]) + 1;
-    await p.waitForFunction(
-      (n) => document.getElementById("classbar").textContent.includes(`place ${n}.`),
-      place,
-    );
-  }
-  // The lecturer's list: ranks 1, 2, 3 (not entry numbers), and a replay on the projectors.
-  await lecturer.waitForFunction(() => document.querySelectorAll("#entries tr").length === 4);
-  const ranks = await lecturer.evaluate(() =>
-    [...document.querySelectorAll("#entries tr")].slice(1).map((tr) => tr.children[0].textContent),
-  );
-  assert.deepEqual(ranks, ["1", "2", "3"]);
-  await lecturer.getByRole("button", { name: "Replay on the projector" }).first().click();
-  await lecturer.getByRole("button", { name: "On the projector: take it off" }).waitFor();
-  for (const p of [big, small]) {
-    await p.waitForSelector("#replay-frame:not([hidden])");
-    const frame = p.frame({ url: /\?replay=EC1\./ });
-    await p.waitForFunction(() => document.querySelector("#replay-frame").src.includes("replay="));
-    const inner = await (await p.$("#replay-frame")).contentFrame();
-    await inner.waitForFunction(() => window.evapcool !== undefined, null, { timeout: 30_000 });
-    await inner.waitForFunction(() => !window.evapcool.stateNow().paused, null, {
-      timeout: 10_000,
-    });
-    const t0 = await inner.evaluate(() => window.evapcool.stateNow().time);
-    await inner.waitForFunction((t) => window.evapcool.stateNow().time > t, t0);
-    assert.ok(frame !== undefined);
-    const f = await fits(p);
-    assert.equal(f.scrolls, false, "the projector never scrolls");
-    assert.ok(
-      f.frame[0] >= 0 && f.frame[1] <= f.frame[3] && f.frame[2] >= f.frame[3] * 0.3,
-      `replay frame ${f.frame}`,
-    );
-    assert.equal(f.cut, 0, "no header cut");
-    assert.ok(f.join >= f.board, `join address ${f.join} px, board ${f.board} px`);
-  }
-  await shot(big, "class-projector-replay.png");
-  await shot(lecturer, "class-lecturer.png");
-  // The largest screen the projector is made for: it fits too.
-  const huge = await browser.newPage({ viewport: { width: 3840, height: 2160 } });
-  watch(huge);
-  await huge.goto(`${server.base}${link}`);
-  await huge.waitForSelector("#replay-frame:not([hidden])");
-  const h = await fits(huge);
-  assert.equal(h.scrolls, false, "no scrolling at 3840 x 2160");
-  assert.ok(h.frame[1] <= h.frame[3] && h.cut === 0 && h.join >= h.board, JSON.stringify(h));
-  await huge.close();
-  await shot(small, "class-projector-replay-720.png");
-  // The lecturer takes the replay off; hides a student and undoes it.
-  await lecturer.getByRole("button", { name: "Take the replay off the projector" }).click();
-  await big.waitForSelector("#replay", { state: "hidden" });
-  await lecturer.getByRole("button", { name: "Hide student" }).first().click();
-  await big.waitForFunction(() => document.querySelectorAll("#board tr").length === 3);
-  await lecturer.getByRole("button", { name: "Show again" }).click();
-  await big.waitForFunction(() => document.querySelectorAll("#board tr").length === 4);
+    assert.deepEqual(ranks, ["1", "2", "3"]);
+    await lecturer.getByRole("button", { name: "Replay on the projector" }).first().click();
+    await lecturer.getByRole("button", { name: "On the projector: take it off" }).waitFor();
+    for (const p of [big, small]) {
+      await p.waitForSelector("#replay-frame:not([hidden])");
+      const frame = p.frame({ url: /\?replay=EC1\./ });
+      await p.waitForFunction(() =>
+        document.querySelector("#replay-frame").src.includes("replay="),
+      );
+      const inner = await (await p.$("#replay-frame")).contentFrame();
+      await inner.waitForFunction(() => window.evapcool !== undefined, null, { timeout: 30_000 });
+      await inner.waitForFunction(() => !window.evapcool.stateNow().paused, null, {
+        timeout: 10_000,
+      });
+      const t0 = await inner.evaluate(() => window.evapcool.stateNow().time);
+      await inner.waitForFunction((t) => window.evapcool.stateNow().time > t, t0);
+      assert.ok(frame !== undefined);
+      const f = await fits(p);
+      assert.equal(f.scrolls, false, "the projector never scrolls");
+      assert.ok(
+        f.frame[0] >= 0 && f.frame[1] <= f.frame[3] && f.frame[2] >= f.frame[3] * 0.3,
+        `replay frame ${f.frame}`,
+      );
+      assert.equal(f.cut, 0, "no header cut");
+      assert.ok(f.join >= f.board, `join address ${f.join} px, board ${f.board} px`);
+    }
+    await shot(big, "class-projector-replay.png");
+    await shot(lecturer, "class-lecturer.png");
+    // The largest screen the projector is made for: it fits too.
+    const huge = await browser.newPage({ viewport: { width: 3840, height: 2160 } });
+    watch(huge);
+    await huge.goto(`${server.base}${link}`);
+    await huge.waitForSelector("#replay-frame:not([hidden])");
+    const h = await fits(huge);
+    assert.equal(h.scrolls, false, "no scrolling at 3840 x 2160");
+    assert.ok(h.frame[1] <= h.frame[3] && h.cut === 0 && h.join >= h.board, JSON.stringify(h));
+    await huge.close();
+    await shot(small, "class-projector-replay-720.png");
+    // The lecturer takes the replay off; hides a student and undoes it.
+    await lecturer.getByRole("button", { name: "Take the replay off the projector" }).click();
+    await big.waitForSelector("#replay", { state: "hidden" });
+    await lecturer.getByRole("button", { name: "Hide student" }).first().click();
+    await big.waitForFunction(() => document.querySelectorAll("#board tr").length === 3);
+    await lecturer.getByRole("button", { name: "Show again" }).click();
+    await big.waitForFunction(() => document.querySelectorAll("#board tr").length === 4);
 
-  // Closing: every page says so within 2 s; a game after it is not sent.
-  const since = Date.now();
-  await lecturer.click("#close");
-  const closedIn = await allSee(
-    [
-      [big, () => document.getElementById("state").textContent === "Closed: final results"],
-      [small, () => document.getElementById("state").textContent === "Closed: final results"],
-      [lecturer, () => document.getElementById("current").textContent.includes("(closed)")],
-      ...phones.map((p) => [
-        p,
+    // Closing: every page says so within 2 s; a game after it is not sent.
+    const since = Date.now();
+    await lecturer.click("#close");
+    const closedIn = await allSee(
+      [
+        [big, () => document.getElementById("state").textContent === "Closed: final results"],
+        [small, () => document.getElementById("state").textContent === "Closed: final results"],
+        [lecturer, () => document.getElementById("current").textContent.includes("(closed)")],
+        ...phones.map((p) => [
+          p,
+          () =>
+            document
+              .getElementById("classbar")
+              .textContent.startsWith("Challenge closed: final results."),
+        ]),
+      ],
+      null,
+      since,
+    );
+    assert.ok(closedIn <= SEEN_WITHIN, `the close seen everywhere in ${closedIn} ms`);
+    for (const p of phones) {
+      const said = await bar(p);
+      assert.doesNotMatch(said, /\.\./, "no double full stop");
+      assert.doesNotMatch(said, /[Rr]estart/, "restarting is not offered as a way in");
+      assert.match(said, /Your best: \d+ atoms, place \d\./, "the final place");
+    }
+    await shot(big, "class-projector-closed.png");
+    for (const p of [big, small]) assert.equal((await fits(p)).scrolls, false);
+    const sideNow = await small.evaluate(() => {
+      const box = document.getElementById("side");
+      return [box.scrollHeight, box.clientHeight];
+    });
+    assert.ok(sideNow[0] <= sideNow[1], `the side column fits on 1280 x 720: ${sideNow}`);
+    const late = await play(phones[0], 100);
+    assert.equal(late.won, true);
+    await phones[0].waitForFunction(() =>
+      document.getElementById("classbar").textContent.includes("not sent"),
+    );
+
+    // A window that ends: opened for 6 s, closed by the server itself on every page.
+    const opened = await fetch(`${server.base}/api/challenge`, {
+      method: "POST",
+      headers: { authorization: `Bearer ${server.token}`, "content-type": "application/json" },
+      body: JSON.stringify({ n_atoms: 49, radius: 12, escape: "rim", seed: SEED, minutes: 0.1 }),
+    });
+    assert.equal(opened.status, 200);
+    const ends = Date.parse((await opened.json()).closes_at);
+    for (const p of phones)
+      await p.waitForFunction(() =>
+        /Challenge open/.test(document.getElementById("classbar").textContent),
+      );
+    await big.waitForFunction(() =>
+      document.getElementById("state").textContent.startsWith("Open · closes in 0:0"),
+    );
+    const endedIn = await allSee(
+      [
+        [big, () => document.getElementById("state").textContent === "Closed: final results"],
+        [small, () => document.getElementById("state").textContent === "Closed: final results"],
+        [lecturer, () => document.getElementById("current").textContent.includes("(closed)")],
+        ...phones.map((p) => [
+          p,
+          () => document.getElementById("classbar").textContent.startsWith("Challenge closed"),
+        ]),
+      ],
+      null,
+      ends,
+    );
+    assert.ok(endedIn <= SEEN_WITHIN, `the window's end seen everywhere ${endedIn} ms after it`);
+    console.log(`close seen everywhere in ${closedIn} ms; window's end in ${endedIn} ms`);
+
+    // A gas that cannot condense as the trap stands is named at once, with what to do.
+    // Every text the live region is given, kept: on a loaded machine the page's "slow
+    // motion" note may be said just after and take the region's place (CI, load 6).
+    await phones[1].evaluate(() => {
+      const live = document.getElementById("live");
+      window.liveSaid = [];
+      new MutationObserver(() => window.liveSaid.push(live.textContent)).observe(live, {
+        childList: true,
+        subtree: true,
+        characterData: true,
+      });
+    });
+    const few = await fetch(`${server.base}/api/challenge`, {
+      method: "POST",
+      headers: { authorization: `Bearer ${server.token}`, "content-type": "application/json" },
+      body: JSON.stringify({ n_atoms: 3, radius: 12, escape: "rim", seed: SEED }),
+    });
+    assert.equal(few.status, 200);
+    await phones[1].waitForFunction(() => window.evapcool.app.game.config.nAtoms === 3);
+    await phones[1].evaluate(() => window.evapcool.runFrames(2));
+    await phones[1]
+      .waitForFunction(
         () =>
-          document
-            .getElementById("classbar")
-            .textContent.startsWith("Challenge closed: final results."),
-      ]),
-    ],
-    null,
-    since,
-  );
-  assert.ok(closedIn <= SEEN_WITHIN, `the close seen everywhere in ${closedIn} ms`);
-  for (const p of phones) {
-    const said = await bar(p);
-    assert.doesNotMatch(said, /\.\./, "no double full stop");
-    assert.doesNotMatch(said, /[Rr]estart/, "restarting is not offered as a way in");
-    assert.match(said, /Your best: \d+ atoms, place \d\./, "the final place");
-  }
-  await shot(big, "class-projector-closed.png");
-  for (const p of [big, small]) assert.equal((await fits(p)).scrolls, false);
-  const sideNow = await small.evaluate(() => {
-    const box = document.getElementById("side");
-    return [box.scrollHeight, box.clientHeight];
-  });
-  assert.ok(sideNow[0] <= sideNow[1], `the side column fits on 1280 x 720: ${sideNow}`);
-  const late = await play(phones[0], 100);
-  assert.equal(late.won, true);
-  await phones[0].waitForFunction(() =>
-    document.getElementById("classbar").textContent.includes("not sent"),
-  );
+          window.liveSaid.some((said) =>
+            /No atom can leave at this trap height.*lower the trap, or restart/.test(said),
+          ),
+        null,
+        // Counted in frames (two, stepped above), not in time: the margin is for a loaded
+        // machine, where a 1 s wait failed twice at load 5-8 with the notice on its way.
+        { timeout: 5000 },
+      )
+      .catch(async (e) => {
+        const seen = await phones[1].evaluate(() => [
+          window.evapcool.app.game.tooFewAtoms(),
+          window.liveSaid,
+          window.evapcool.stateNow().notices,
+        ]);
+        throw new Error(`${e.message}: ${JSON.stringify(seen)}`);
+      });
 
-  // A window that ends: opened for 6 s, closed by the server itself on every page.
-  const opened = await fetch(`${server.base}/api/challenge`, {
-    method: "POST",
-    headers: { authorization: `Bearer ${server.token}`, "content-type": "application/json" },
-    body: JSON.stringify({ n_atoms: 49, radius: 12, escape: "rim", seed: SEED, minutes: 0.1 }),
-  });
-  assert.equal(opened.status, 200);
-  const ends = Date.parse((await opened.json()).closes_at);
-  for (const p of phones)
-    await p.waitForFunction(() =>
-      /Challenge open/.test(document.getElementById("classbar").textContent),
-    );
-  await big.waitForFunction(() =>
-    document.getElementById("state").textContent.startsWith("Open · closes in 0:0"),
-  );
-  const endedIn = await allSee(
-    [
-      [big, () => document.getElementById("state").textContent === "Closed: final results"],
-      [small, () => document.getElementById("state").textContent === "Closed: final results"],
-      [lecturer, () => document.getElementById("current").textContent.includes("(closed)")],
-      ...phones.map((p) => [
-        p,
-        () => document.getElementById("classbar").textContent.startsWith("Challenge closed"),
-      ]),
-    ],
-    null,
-    ends,
-  );
-  assert.ok(endedIn <= SEEN_WITHIN, `the window's end seen everywhere ${endedIn} ms after it`);
-  console.log(`close seen everywhere in ${closedIn} ms; window's end in ${endedIn} ms`);
-
-  // A gas that cannot condense as the trap stands is named at once, with what to do.
-  // Every text the live region is given, kept: on a loaded machine the page's "slow
-  // motion" note may be said just after and take the region's place (CI, load 6).
-  await phones[1].evaluate(() => {
-    const live = document.getElementById("live");
-    window.liveSaid = [];
-    new MutationObserver(() => window.liveSaid.push(live.textContent)).observe(live, {
-      childList: true,
-      subtree: true,
-      characterData: true,
-    });
-  });
-  const few = await fetch(`${server.base}/api/challenge`, {
-    method: "POST",
-    headers: { authorization: `Bearer ${server.token}`, "content-type": "application/json" },
-    body: JSON.stringify({ n_atoms: 3, radius: 12, escape: "rim", seed: SEED }),
-  });
-  assert.equal(few.status, 200);
-  await phones[1].waitForFunction(() => window.evapcool.app.game.config.nAtoms === 3);
-  await phones[1].evaluate(() => window.evapcool.runFrames(2));
-  await phones[1]
-    .waitForFunction(
-      () =>
-        window.liveSaid.some((said) =>
-          /No atom can leave at this trap height.*lower the trap, or restart/.test(said),
-        ),
-      null,
-      // Counted in frames (two, stepped above), not in time: the margin is for a loaded
-      // machine, where a 1 s wait failed twice at load 5-8 with the notice on its way.
-      { timeout: 5000 },
-    )
-    .catch(async (e) => {
-      const seen = await phones[1].evaluate(() => [
-        window.evapcool.app.game.tooFewAtoms(),
-        window.liveSaid,
-        window.evapcool.stateNow().notices,
-      ]);
-      throw new Error(`${e.message}: ${JSON.stringify(seen)}`);
-    });
-
-  // The CSV holds every game accepted of the first challenge (here: one each).
-  const csv = await (await fetch(`${server.base}/api/export.csv?token=${server.token}`)).text();
-  assert.equal(csv.trim().split("\n").length, 1, "the new challenge has no games yet");
-  for (const p of phones) assert.deepEqual(p.errors, []);
-  assert.deepEqual(errors, []);
-  for (const p of phones) await p.context().close();
-  await Promise.all([big.close(), small.close(), lecturer.close()]);
-});
+    // The CSV holds every game accepted of the first challenge (here: one each).
+    const csv = await (await fetch(`${server.base}/api/export.csv?token=${server.token}`)).text();
+    assert.equal(csv.trim().split("\n").length, 1, "the new challenge has no games yet");
+    for (const p of phones) assert.deepEqual(p.errors, []);
+    assert.deepEqual(errors, []);
+    for (const p of phones) await p.context().close();
+    await Promise.all([big.close(), small.close(), lecturer.close()]);
+  },
+);
