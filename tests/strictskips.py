@@ -44,11 +44,8 @@ def skip_reason(report: pytest.TestReport) -> str:
     return reason.removeprefix("Skipped: ")
 
 
-@pytest.hookimpl(hookwrapper=True)
-def pytest_runtest_makereport(item: pytest.Item, call: pytest.CallInfo[None]) -> object:
+def _judge(report: pytest.TestReport | pytest.CollectReport, nodeid: str) -> None:
     """A skip under test-all: noted if optional, else turned into a failure saying why."""
-    outcome = yield
-    report: pytest.TestReport = outcome.get_result()
     if not os.environ.get(STRICT_ENV) or not report.skipped or hasattr(report, "wasxfail"):
         return
     reason = skip_reason(report)
@@ -60,7 +57,21 @@ def pytest_runtest_makereport(item: pytest.Item, call: pytest.CallInfo[None]) ->
         return
     report.outcome = "failed"
     report.longrepr = (
-        f"{item.nodeid} cannot run here: {reason}\n"
+        f"{nodeid} cannot run here: {reason}\n"
         "scripts/test-all.sh skips only the optional parts the README names "
         "(the proxies nginx and caddy; another kind of machine): install what is missing"
     )
+
+
+@pytest.hookimpl(hookwrapper=True)
+def pytest_runtest_makereport(item: pytest.Item, call: pytest.CallInfo[None]) -> object:
+    """A test's skip (in its setup or its call)."""
+    outcome = yield
+    _judge(outcome.get_result(), item.nodeid)
+
+
+@pytest.hookimpl(hookwrapper=True)
+def pytest_make_collect_report(collector: pytest.Collector) -> object:
+    """A whole module's skip (pytest.importorskip at its top, pytestmark's skip)."""
+    outcome = yield
+    _judge(outcome.get_result(), collector.nodeid)

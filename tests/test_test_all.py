@@ -23,7 +23,7 @@ HERE = Path(__file__).resolve().parent
 SAMPLE = """
 import sys
 sys.path.insert(0, {tests!r})
-from strictskips import pytest_runtest_makereport  # noqa: F401
+from strictskips import pytest_make_collect_report, pytest_runtest_makereport  # noqa: F401
 """
 
 TESTS = """
@@ -102,6 +102,20 @@ def test_a_test_lacking_what_it_needs_fails_the_run(tmp_path):
     assert "test_a_database cannot run here: PostgreSQL's initdb" in done.stdout
     assert "e2e with" not in done.stdout  # stopped at the first failing part
     assert "passed;" not in done.stdout.strip().splitlines()[-1]
+
+
+def test_a_module_skipped_whole_fails_the_run(tmp_path):
+    suite = _suite(tmp_path, TESTS)
+    (suite / "test_lacking.py").write_text(
+        "import pytest\nnumpy_twin = pytest.importorskip('evapcool_no_such_module')\n"
+        "def test_never():\n    pass\n",
+        encoding="utf-8",
+    )
+    done = _run_script(tmp_path, suite)
+    assert done.returncode != 0
+    assert "test_lacking.py cannot run here: could not import 'evapcool_no_such_module'" in (
+        done.stdout
+    )
 
 
 def test_outside_test_all_a_skip_stays_a_skip(tmp_path):
