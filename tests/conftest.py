@@ -13,6 +13,10 @@ import os
 import ownprocess
 import pytest
 from hypothesis import settings
+from strictskips import (  # noqa: F401 (scripts/test-all.sh: no skip in silence)
+    pytest_make_collect_report,
+    pytest_runtest_makereport,
+)
 
 # A long local fuzz run (tests/test_fuzz.py): --hypothesis-profile=fuzz, cases per test
 # from $EVAPCOOL_FUZZ_EXAMPLES (default 5000). CI loads Hypothesis's own 'ci' profile

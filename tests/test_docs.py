@@ -7,10 +7,16 @@ frames and exits). Blocks that must not run here say so in their tag: ```text fo
 and listings, and `not-run` after the language (```sh not-run) for commands that install
 the package, run this very suite or build the executable (CI runs packaging/check_exe.sh
 for that one). An untagged block fails this test: nothing is skipped silently.
+
+A ```text output block right after a block that runs is what that block's last command
+prints: its lines must come, in a row, in what the command wrote (stdout or stderr), so a
+worked example's numbers that drift fail here. Commands run in the scratch folder, so an
+example writes nothing over the repository's files.
 """
 
 from __future__ import annotations
 
+import itertools
 import os
 import re
 import shlex
@@ -18,6 +24,7 @@ import subprocess
 import sys
 from pathlib import Path
 
+import numpy as np
 import pytest
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -45,6 +52,12 @@ def blocks(path: Path) -> list[tuple[int, str, str]]:
 
 
 ALL = [(p, n, info, code) for p in DOCS for n, info, code in blocks(p)]
+#: The printed output a block's last command must give: (file, line) -> the text block after.
+OUTPUT = {
+    (a[0], a[1]): b[3]
+    for a, b in itertools.pairwise(ALL)
+    if a[0] == b[0] and b[2].split() == ["text", "output"]
+}
 
 
 def _id(block) -> str:
@@ -65,6 +78,11 @@ def test_every_block_is_tagged():
         assert words[0] in (*RUN, "text"), f"{_id(block)}: unknown language {words[0]!r}"
         if "not-run" in words:
             assert words[0] in RUN, f"{_id(block)}: only code is marked not-run"
+    for before, block in itertools.pairwise(ALL):
+        if block[2].split() == ["text", "output"]:
+            assert before[0] == block[0] and _runs(before[2]), (
+                f"{_id(block)}: an output block follows a block that runs"
+            )
 
 
 def commands(code: str) -> list[list[str]]:
@@ -136,6 +154,23 @@ def test_block_runs(block, scratch):
             argv, cwd=folder, env=env, capture_output=True, text=True, timeout=600
         )
         assert proc.returncode == 0, f"{shlex.join(argv)}\n{proc.stdout}\n{proc.stderr}"
+    expected = OUTPUT.get((block[0], block[1]))
+    if expected is not None:
+        said = printed(expected, proc.stdout, proc.stderr)
+        assert said, (
+            f"{_id(block)}: the docs say it prints\n{expected}\n"
+            f"it printed\n{proc.stdout}{proc.stderr}"
+        )
+
+
+def printed(expected: str, *outputs: str) -> bool:
+    """The expected lines come, in a row, in one of the outputs (trailing spaces aside)."""
+    want = [line.rstrip() for line in expected.strip().splitlines()]
+    for out in outputs:
+        lines = [line.rstrip() for line in out.splitlines()]
+        if any(lines[k : k + len(want)] == want for k in range(len(lines) - len(want) + 1)):
+            return True
+    return False
 
 
 def test_the_executable_is_where_the_readme_says():
@@ -304,3 +339,27 @@ def test_teach_activities_print_as_pdfs_in_chromium(tmp_path):
         others = [t for j, t in enumerate(titles) if j != k]
         assert not any(t in text for t in others)
         assert "What the model is" not in text
+
+
+def test_the_lab_worked_examples_words_are_its_run():
+    """docs/lab.md's words on the worked example (the printed line is compared above): the
+    knife's span, the slope of the path, the atoms lost, the frame and m g H at the win."""
+    from evapcool.lab import run_experiment
+
+    text = " ".join((ROOT / "docs" / "lab.md").read_text(encoding="utf-8").split())
+    r = run_experiment(
+        n_atoms=120, radius=6.0, escape="knife", schedule="450@0,100@2400", frames=2400,
+        every=30, seed=1,
+    )  # fmt: skip
+    mg = float(r.parameters["gravity"])  # m = 1
+    slope = np.polyfit(np.log(r.n_trapped.astype(float)), np.log(r.temperature), 1)[0]
+    won = r.metadata["won_frame"]
+    said = (
+        f"from m g H = {450 * mg:.0f} to {100 * mg:.0f} over {2400 / 30:.0f} s",
+        f"T ~ N^{slope:.1f} here",
+        f"the two meet after {120 - r.n_trapped[-1]} atoms are lost, at frame {won} "
+        f"(m g H = {mg * r.trap_height[-1]:.0f} by then)",
+    )
+    assert r.frame[-1] == won  # the run stops at the win: its last record
+    for words in said:
+        assert words in text, words

@@ -40,14 +40,17 @@ def class_app(tmp_path: Path) -> Iterator[list[App]]:
         a.close()
 
 
-def join_app(apps: list[App], tmp_path: Path, url: str, name: str = "Ada") -> App:
-    """An App with --class url --name name, as the command line makes it."""
+def join_app(
+    apps: list[App], tmp_path: Path, url: str, name: str = "Ada", named: bool = True
+) -> App:
+    """An App with --class url --name name (named=False: the login's name, no --name),
+    as the command line makes it."""
     app = App(
         Game(GameConfig()),
         data_dir=tmp_path / "data",
         config_dir=tmp_path / "config",
         screen=(1600, 1000),
-        classroom=ClassLink(url, name, timeout=10),
+        classroom=ClassLink(url, name, timeout=10, named=named),
     )
     apps.append(app)
     return app
@@ -77,6 +80,18 @@ def test_the_applet_joins_plays_the_challenge_and_its_win_is_ranked(server, clas
     [entry] = board["entries"]
     assert (entry["name"], entry["score"], entry["edition"]) == ("Ada", app.game.score, "desktop")
     assert f"rank 1, {app.game.score} atoms" in app.visible_notices[-1]
+    # --name was given: the local table takes it, no "Type your name" (issue 49.8).
+    assert app.scores.name_box is None and app.scores.ready_for_next
+    assert [(e.name, e.score) for e in app.scores.table.entries] == [("Ada", app.game.score)]
+
+
+def test_without_a_name_given_the_win_asks_for_one(server, class_app, tmp_path):
+    open_challenge(server)
+    app = join_app(class_app, tmp_path, server.base + "/", "login", named=False)
+    frames_until(app, lambda: app.challenge is not None)
+    key(app, pygame.K_r)
+    play_ramp(app)
+    assert app.game.won and app.scores.name_box is not None
 
 
 def test_started_again_the_applet_is_the_same_student(server, class_app, tmp_path):

@@ -70,3 +70,25 @@ def test_the_links_printed_show_the_public_address(given: str) -> None:
     lines = class_cli.links(Catalog("en"), args.public_url, "TOKEN", "c.sqlite")
     assert "https://class.example.edu/lecturer?token=TOKEN" in lines[0]
     assert "https://class.example.edu/" in lines[1] and "//" not in lines[1].split("edu", 1)[1]
+
+
+def test_the_lan_command_is_this_one_with_lan_added() -> None:
+    """The projector's fix for a loopback address keeps the port, the store and the mode;
+    it drops --new-link (the lecturer's link holds) and a database's password."""
+    argv = ["--port", "8766", "--db", "postgresql://ada:secret@db.example/class"]
+    argv += ["--department", "--new-link", "--max-students", "300"]
+    assert class_cli.lan_command(argv) == (
+        "evapcool class --port 8766 --db postgresql://ada@db.example/class --department "
+        "--max-students 300 --lan"
+    )
+    assert class_cli.lan_command(["--data", "my class.sqlite", "--lan"]) == (
+        "evapcool class --data 'my class.sqlite' --lan"
+    )
+
+
+def test_help_lists_the_admin_command(capsys: pytest.CaptureFixture[str]) -> None:
+    with pytest.raises(SystemExit) as ended:
+        main(["class", "--help"])
+    assert ended.value.code == 0
+    out = " ".join(capsys.readouterr().out.split())
+    assert "evapcool class admin ..." in out and "evapcool class admin --help" in out

@@ -4,8 +4,10 @@ every page by the server itself, a student's attempts and standing, the projecto
 from __future__ import annotations
 
 import asyncio
+import html
 import http.client
 import json
+import shlex
 import time
 from urllib.parse import urlsplit
 
@@ -13,6 +15,7 @@ import httpx
 import pytest
 from classhelp import SEED, Server, code, join, open_challenge, variant
 
+from evapcool.classroom.class_cli import _shown_store
 from evapcool.classroom.pages import loopback
 
 
@@ -122,8 +125,16 @@ def test_lecturer_sees_ranks_and_the_replay_on_the_projector(server: Server) -> 
 
 
 def test_the_projector_warns_of_a_loopback_join_address(server: Server) -> None:
+    """Its fix is the command that started the server with --lan added: the same port and
+    store (issue 49.6: `evapcool class --lan` alone made a new file and lecturer link)."""
     page = httpx.get(server.base + "/projector").text
-    assert 'id="loopback"' in page and "evapcool class --lan" in page
+    assert 'id="loopback"' in page
+    port = server.base.rsplit(":", 1)[1]
+    option = "--db" if isinstance(server.data, str) else "--data"
+    store = html.escape(shlex.quote(_shown_store(str(server.data))))
+    words = [("", "evapcool class"), ("", "--port"), (" value", port), ("", option)]
+    words += [(" value", store), ("", "--workers"), (" value", "1"), ("", "--lan")]
+    assert " ".join(f'<span class="command{k}">{w}</span>' for k, w in words) in page
     german = httpx.get(server.base + "/projector", headers={"Accept-Language": "de"}).text
     assert "Telefone erreichen diese Adresse nicht" in german
 

@@ -39,3 +39,24 @@ def test_a_value_from_a_file_names_the_file(tmp_path, capsys):
     assert cli.main(["--from", str(run), "--frames", "2"]) == 2
     line = capsys.readouterr().err.strip()
     assert line.startswith(f"evapcool lab: error: --from {run}: tc_law must be one of"), line
+
+
+def test_help_lists_the_engines(capsys):
+    with pytest.raises(SystemExit):
+        cli.main(["--help"])
+    text = " ".join(capsys.readouterr().out.split())
+    assert "physics engine: auto, reference, fast (default auto)" in text
+
+
+@pytest.mark.parametrize("theory", [False, True])
+def test_the_last_line_names_every_file_written(tmp_path, capsys, theory):
+    """The summary comes last and names the CSV and the figure (issue 49.9)."""
+    pytest.importorskip("matplotlib")
+    out, plot = tmp_path / "run.csv", tmp_path / "run.png"
+    argv = ["--atoms", "20", "--frames", "60", "--every", "10", "--seed", "1"]
+    argv += ["--out", str(out), "--plot", str(plot)] + (["--theory"] if theory else [])
+    assert cli.main(argv) in (0, cli.EXIT_NO_THEORY)
+    last = capsys.readouterr().err.strip().splitlines()[-1]
+    assert last.startswith("evapcool lab: 7 records, N 20 -> "), last
+    assert last.endswith(f"; wrote {out} and {plot}"), last
+    assert out.is_file() and plot.is_file()

@@ -75,3 +75,27 @@ def test_a_given_baseline_replaces_the_linear_ramps() -> None:
         "400@0,140@1800",
         1,
     )
+
+
+def test_no_legend_of_the_figure_covers_a_point() -> None:
+    """Each panel's legend sits beside its plot (issue 49.9: it covered trials 6 and 7)."""
+    pytest.importorskip("matplotlib")
+    from evapcool.optimize.evaluate import Summary
+
+    rows = [
+        {"trial": k, "family": "linear", "score_mean": 2.0 + k, "time_mean_s": 30.0 + k}
+        for k in range(8)
+    ]
+    hold = Summary((1, 2, 3), (30, 28, 27), (1200, 1300, 1250), 1800)
+    base = Summary((1, 2, 3), (29, 28, 25), (1100, 1300, 1250), 1800)
+    best = report.Choice("linear", "400@0,140@1800", 7, None, holdout=hold)
+    baseline = report.Choice("linear", "425@0,162@1788", 6, None, holdout=base)
+    fig = report.draw_figure(rows, report.fronts(rows), best, baseline, PROBLEM)
+    fig.draw_without_rendering()  # lays the panels out
+    panels = [a for a in fig.axes if a.get_legend() is not None]
+    assert len(panels) == 4
+    legends = [a.get_legend().get_window_extent() for a in panels]
+    for a in panels:
+        box = a.get_window_extent()
+        for legend in legends:
+            assert not box.overlaps(legend), (a.get_title(), legend, box)

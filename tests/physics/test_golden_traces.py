@@ -77,6 +77,8 @@ def test_script_check_passes_and_reports_a_changed_trace(tmp_path, capsys) -> No
     for name in ("resting", "grazing"):
         (tmp_path / f"{name}.json").write_bytes((GOLDEN / f"{name}.json").read_bytes())
     assert script.main(["check", "--out", str(tmp_path), "resting", "grazing"]) == 0
+    said = capsys.readouterr().out.strip().splitlines()
+    assert said == [f"golden_traces: all 2 traces in {tmp_path} match the engines"]
     victim = tmp_path / "resting.json"
     victim.write_text(victim.read_text(encoding="utf-8").replace('"wall", 0', '"wall", 1', 1))
     assert script.main(["check", "--out", str(tmp_path), "resting", "grazing"]) == 1

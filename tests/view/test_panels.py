@@ -426,3 +426,23 @@ def test_one_symbol_for_the_temperature() -> None:
     energy = EnergyPanel()
     assert "T = " in i18n.t(energy.readout_template, n=1, t="1")
     assert "T" in i18n.t(energy.legend_items[1].text)
+
+
+def test_after_the_win_both_charts_show_the_wins_temperature() -> None:
+    """The energy chart holds the win's frame as the path chart does: while the atoms
+    settle (T of the settling gas falls to ~0.4) both say the T of the win (issue 49.7)."""
+    sim = _sim()
+    energy, path = EnergyPanel(), PathPanel()
+    sim.advance(1.0)
+    energy.record(sim), path.record(sim)
+    sim.force_win()
+    energy.record(sim), path.record(sim)
+    t_win, heights = sim.temperature, energy.heights.copy()
+    for _ in range(240):
+        sim.advance(1.0)
+        energy.record(sim), path.record(sim)
+    assert sim.temperature < 0.5 * t_win  # the atoms did settle
+    assert energy.temperature == path.points[-1][1] == t_win
+    np.testing.assert_array_equal(energy.heights, heights)
+    energy.record(_sim())  # a new game records again
+    assert energy.temperature == _sim().temperature

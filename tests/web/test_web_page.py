@@ -35,6 +35,18 @@ def test_copy_to_a_folder_and_to_a_missing_one(tmp_path, capsys) -> None:
     assert err == [f"evapcool web: error: --copy: folder {str(tmp_path / 'nope')!r} does not exist"]
 
 
+def test_copy_to_a_missing_folder_written_as_one_writes_nothing(tmp_path, capsys) -> None:
+    """`--copy DIR/` names a folder: one that does not exist is refused, never a file DIR."""
+    assert main(["web", "--copy", f"{tmp_path / 'course'}/"]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    folder = str(tmp_path / "course")
+    assert err == [f"evapcool web: error: --copy: folder {folder!r} does not exist"]
+    assert list(tmp_path.iterdir()) == []
+    (tmp_path / "course").mkdir()
+    assert main(["web", "--copy", f"{tmp_path / 'course'}/"]) == 0
+    assert (tmp_path / "course" / "evapcool.html").read_bytes() == page_path().read_bytes()
+
+
 def test_opens_the_file_in_the_default_browser(monkeypatch, capsys) -> None:
     opened: list[str] = []
     monkeypatch.setattr(webbrowser, "open", lambda url: opened.append(url) or True)

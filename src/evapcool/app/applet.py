@@ -282,6 +282,7 @@ class App:
             watched=self.watching.score if self.watching is not None else None,
             pilot=autopilot.table_name if autopilot is not None and autopilot.flew else None,
             in_class=self.classroom.challenge is not None,
+            name=self.classroom.player_name,
         )
         if won.send is not None:
             self.classroom.send(won.send)

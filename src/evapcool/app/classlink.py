@@ -117,9 +117,13 @@ class Event:
 class ClassLink:
     """The applet's connection to one class server; every request runs on its thread."""
 
-    def __init__(self, base: str, name: str, timeout: float = TIMEOUT) -> None:
+    def __init__(
+        self, base: str, name: str, timeout: float = TIMEOUT, *, named: bool = True
+    ) -> None:
         self.base = check_url(base)
         self.name = name
+        #: The player gave the name (--name), rather than the login's being taken.
+        self.named = named
         self.timeout = timeout
         self.token: str | None = None
         self.challenge: Challenge | None = None

@@ -80,5 +80,11 @@ class ClassMode:
         self.notices.news(self._joined)
 
     @property
+    def player_name(self) -> str | None:
+        """The name the player gave (--name), known before any win; None if not given."""
+        link = self.link
+        return link.name if link is not None and link.named else None
+
+    @property
     def link_timeout(self) -> float:
         return self.link.timeout if self.link is not None else 0.0

@@ -308,7 +308,7 @@ def _class_link(args: argparse.Namespace) -> tuple[ClassLink | None, str | None]
             f"shows it (got {len(' '.join(args.name.split()))})"
         )
     try:
-        return ClassLink(args.class_url, name), None
+        return ClassLink(args.class_url, name, named=args.name is not None), None
     except ValueError as exc:
         return None, str(exc)
 

@@ -48,9 +48,15 @@ class Scoreboard:
         self.stored_rank = None
         self.ready_for_next = False
 
-    def win(self, score: int, seconds: float) -> bool:
-        """The gas condensed: True if the score makes the table (the name box opens)."""
+    def win(self, score: int, seconds: float, name: str | None = None) -> bool:
+        """The gas condensed: True if the score makes the table and the name box opens.
+        name: the player's name known already (a class's --name): stored under it, unasked."""
         self._win = (score, seconds)
+        if self.table.qualifies(score, seconds) and name is not None:
+            self.stored_rank = self.table.add(name, score, seconds)
+            self._pass_on_notices()
+            self.ready_for_next = True
+            return False
         if self.table.qualifies(score, seconds):
             self.name_box = TextInput(max_length=NAME_MAX)
             pygame.key.start_text_input()  # the IME / on-screen keyboard, if any

@@ -33,10 +33,19 @@ class WinScreen:
         self.replays = replays
         self.notices = notices
 
-    def settle(self, game: Game, *, watched: int | None, pilot: str | None, in_class: bool) -> Won:
+    def settle(
+        self,
+        game: Game,
+        *,
+        watched: int | None,
+        pilot: str | None,
+        in_class: bool,
+        name: str | None = None,
+    ) -> Won:
         """The game just won. watched: the claimed score of a replay being watched (its
         win is nobody's); pilot: the autopilot's table name if it flew this game;
-        in_class: a class challenge is on (a player's code goes to it)."""
+        in_class: a class challenge is on (a player's code goes to it); name: the class
+        player's own name (--name), stored in the table without asking."""
         score, seconds = game.score or 0, game.won_at or 0.0
         if watched is not None:
             self.notices.news(t("desk.replay.won", n=score, claimed=watched))
@@ -50,7 +59,7 @@ class WinScreen:
         send = code if in_class else None
         if send is not None:
             self.notices.news(t("desk.class.sending"))
-        return Won(self.scores.win(score, seconds), send)
+        return Won(self.scores.win(score, seconds, name if in_class else None), send)
 
     def offered(self, game: Game) -> bool:
         """The win screen shows the replay strip (a won game that was recorded)."""

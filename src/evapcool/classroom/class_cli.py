@@ -6,6 +6,7 @@ from __future__ import annotations
 
 import argparse
 import os
+import shlex
 import socket
 import sys
 import urllib.parse
@@ -106,6 +107,8 @@ def build_parser() -> OneLineParser:
         "class",
         prog="evapcool class",
         description="Run the class competition server (docs/class.md).",
+        epilog="command: evapcool class admin ... (a department's administrator, lecturers "
+        "and classes; evapcool class admin --help)",
     )
     parser.add_argument("--port", type=port, default=DEFAULT_PORT, help="TCP port (8765)")
     parser.add_argument(
@@ -211,7 +214,16 @@ def main(argv: list[str] | None = None) -> int:
         print(error_line("class", f"argument {option}: {data}: {exc}"), file=sys.stderr)
         return EXIT_USAGE
     base = args.public_url or f"http://{lan_address() if args.lan else host}:{args.port}"
-    return serve(sock, data, args.workers, base, token, args.max_students, args.department)
+    return serve(
+        sock, data, args.workers, base, token, args.max_students, args.department, lan_command(argv)
+    )
+
+
+def lan_command(argv: list[str]) -> str:
+    """This very command with --lan added (the projector's fix for a loopback address):
+    the same port, store and mode; only --new-link dropped, so the lecturer's link holds."""
+    kept = [_shown_store(a) for a in argv if a not in ("--new-link", "--lan")]  # no password
+    return shlex.join(["evapcool", "class", *kept, "--lan"])
 
 
 def first_token(data: Path | str, new: bool, department: bool = False) -> str | None:
@@ -277,6 +289,7 @@ def serve(
     token: str | None,
     max_students: int = DEFAULT_STUDENTS,
     department: bool = False,
+    relaunch: str | None = None,
 ) -> int:
     """Run the server on a bound socket; print the links (on `base`, the students' address
     without the trailing /) once it answers."""
@@ -297,6 +310,7 @@ def serve(
 
     limits = Limits(students=max_students)
     app = create_app(data, pool_workers, limits, join_url=f"{base}/", department=department)
+    app.state.lan_command = relaunch  # the projector's words for a loopback address
     config = uvicorn.Config(
         app, log_level="warning", timeout_graceful_shutdown=2, timeout_keep_alive=KEEP_ALIVE_SECONDS
     )

@@ -17,6 +17,7 @@ import html
 import ipaddress
 import json
 import re
+import shlex
 from collections.abc import Callable
 from importlib import resources
 from string import Template
@@ -233,6 +234,20 @@ def loopback(url: str) -> bool:
         return host == "localhost" or host.endswith(".localhost")
 
 
+def command_html(command: str) -> str:
+    """A shell command for the projector: "evapcool class" and each option whole (no break
+    splits "--lan"), a value (a long path, an address) free to wrap anywhere."""
+    words = shlex.split(command)
+
+    def piece(word: str, value: bool) -> str:
+        kind = "command value" if value else "command"
+        return f'<span class="{kind}">{html.escape(shlex.quote(word))}</span>'
+
+    head = f'<span class="command">{html.escape(shlex.join(words[:2]))}</span>'
+    rest = [piece(w, not w.startswith("-")) for w in words[2:]]
+    return " ".join([head, *rest])
+
+
 def projector_page(
     raw: Callable[[str], str],
     lang: str,
@@ -240,16 +255,17 @@ def projector_page(
     join_url: str,
     qr_svg: str,
     base: str = "",
+    lan_command: str | None = None,
 ) -> str:
     """The projector: join address and QR code (a warning in large type if phones cannot
-    reach it), the challenge's state, the live leaderboard and the replay playing (base:
-    the class's path, "" for the single class)."""
+    reach it, with lan_command, the command that started the server with --lan added), the
+    challenge's state, the live leaderboard and the replay playing (base: the class's path,
+    "" for the single class)."""
     words = {k: raw(v) for k, v in PAGE_WORDS.items()}
     join = raw("class.projector.join").replace("{url}", join_url)
     warning = ""
     if loopback(join_url):
-        # The command on one line (a break inside "--lan" would mislead).
-        command = '<span class="command">evapcool class --lan</span>'
+        command = command_html(lan_command or "evapcool class --lan")
         fix = html.escape(raw("class.projector.loopback_fix")).replace("{command}", command)
         said = html.escape(raw("class.projector.loopback"))
         warning = f'<p id="loopback" role="alert">{said}<br>{fix}</p>'

@@ -58,7 +58,11 @@ def build_parser() -> argparse.ArgumentParser:
         type=ranged(limits.SEED),
         help=f"random seed, {limits.SEED.span()} (default: drawn, recorded)",
     )
-    p.add_argument("--engine", type=choice(ENGINES), help="physics engine (default auto)")
+    p.add_argument(
+        "--engine",
+        type=choice(ENGINES),
+        help=f"physics engine: {', '.join(ENGINES)} (default auto)",
+    )
     p.add_argument(
         "--frames",
         type=ranged(limits.FRAMES),
@@ -202,12 +206,15 @@ def main(argv: list[str] | None = None) -> int:
         return _fail(f"could not write output: {exc}")
     if args.out is None:
         sys.stdout.write(to_csv_text(result.metadata, result.columns, result.final_energies))
-    print(_summary(result, args.out), file=sys.stderr)
     if not result.completed:
         if args.theory and args.plot:
             result.plot(args.plot)
+        print(_summary(result, args.out, args.plot), file=sys.stderr)
         return EXIT_INTERRUPTED
-    return _theory(result, args) if args.theory else 0
+    if args.theory:
+        return _theory(result, args)
+    print(_summary(result, args.out, args.plot), file=sys.stderr)
+    return 0
 
 
 def _too_few_records(params: dict) -> str | None:
@@ -225,8 +232,8 @@ def _too_few_records(params: dict) -> str | None:
     )
 
 
-def _summary(result, out: str | None) -> str:
-    """One line: records, N and T from first to last, when T fell below Tc."""
+def _summary(result, out: object, plot: object = None) -> str:
+    """One line: records, N and T from first to last, when T fell below Tc, the files written."""
     n = result.n_trapped
     t = result.temperature
     won = result.metadata.get("won_frame")
@@ -241,25 +248,31 @@ def _summary(result, out: str | None) -> str:
         )
     summary = (
         f"evapcool lab: {len(result)} records, N {n[0]} -> {n[-1]}, "
-        f"T {t[0]:.4g} -> {t[-1]:.4g}" + below + (f"; wrote {out}" if out else "")
+        f"T {t[0]:.4g} -> {t[-1]:.4g}" + below
     )
+    written = [str(f) for f in (out, plot) if f]
+    if written:
+        summary += "; wrote " + " and ".join(written)
     if not result.completed:
         summary += f" (interrupted at frame {result.metadata['frames_done']})"
     return summary
 
 
 def _theory(result, args) -> int:
-    """Print the comparison with the model (stdout if the CSV went to a file) and plot it."""
+    """Print the comparison with the model (stdout if the CSV went to a file) and plot it;
+    the summary, naming what was written, comes last (before a refusal, which ends it)."""
     try:
         report = result.theory()
     except ValueError as exc:
-        print(error_line("lab", f"--theory: {exc}"), file=sys.stderr)
         if args.plot:
             result.plot(args.plot)
+        print(_summary(result, args.out, args.plot), file=sys.stderr)
+        print(error_line("lab", f"--theory: {exc}"), file=sys.stderr)
         return EXIT_NO_THEORY
     print(report, file=sys.stdout if args.out else sys.stderr)
     if args.plot:
         result.plot(args.plot, theory=report)
+    print(_summary(result, args.out, args.plot), file=sys.stderr)
     return 0
 
 

@@ -18,6 +18,7 @@ import math
 from collections.abc import Sequence
 from dataclasses import dataclass
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 from evapcool.fileio import atomic_write_bytes, atomic_write_text
 from evapcool.game.autopilot import GameSetup, parse_strategy, play, save_strategy
@@ -25,6 +26,9 @@ from evapcool.lab.cluster import Engine, StopRequest, TaskError, run_tasks
 from evapcool.optimize.evaluate import Paired, Summary, chunks, play_seeds
 from evapcool.optimize.families import params_of
 from evapcool.optimize.study import Problem, completed_trials, result_of
+
+if TYPE_CHECKING:
+    from matplotlib.figure import Figure
 
 RERANK_START = 2_000_000
 HOLDOUT_START = 1_000_000
@@ -317,20 +321,30 @@ def figure(
     and the held-out paired differences."""
     import io
 
+    buf = io.BytesIO()
+    draw_figure(rows, fr, best, baseline, problem).savefig(buf, format="png", dpi=110)
+    atomic_write_bytes(path, buf.getvalue())
+
+
+def draw_figure(
+    rows: list[dict], fr: dict, best: Choice, baseline: Choice, problem: Problem
+) -> Figure:
+    """The report's four panels, each legend beside its plot (never over a point)."""
     import matplotlib
 
     matplotlib.use("Agg", force=False)
     from matplotlib.figure import Figure
 
-    fig = Figure(figsize=(11, 8.5), layout="constrained")
+    fig = Figure(figsize=(13, 8.5), layout="constrained")
     ax = fig.subplots(2, 2)
     _panel_trials(ax[0, 0], rows, problem)
     _panel_front(ax[0, 1], rows, fr)
     _panel_heights(ax[1, 0], best, baseline, problem)
     _panel_holdout(ax[1, 1], best, baseline)
-    buf = io.BytesIO()
-    fig.savefig(buf, format="png", dpi=110)
-    atomic_write_bytes(path, buf.getvalue())
+    for a in ax.flat:
+        if a.get_legend_handles_labels()[0]:
+            a.legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.01, 1.0), borderaxespad=0)
+    return fig
 
 
 def _panel_trials(ax, rows: list[dict], problem: Problem) -> None:
@@ -348,7 +362,6 @@ def _panel_trials(ax, rows: list[dict], problem: Problem) -> None:
     ax.set_xlabel("trial")
     ax.set_ylabel(f"mean score on {problem.seeds} search seeds")
     ax.set_title("Search")
-    ax.legend(fontsize=7, loc="lower right")
 
 
 def _panel_front(ax, rows: list[dict], fr: dict) -> None:
@@ -363,7 +376,6 @@ def _panel_front(ax, rows: list[dict], fr: dict) -> None:
     ax.set_xlabel("mean time to win, s (no win counts the whole budget)")
     ax.set_ylabel("mean score")
     ax.set_title("Score against time to win (Pareto front)")
-    ax.legend(fontsize=7, loc="lower right")
 
 
 def _heights(text: str, seed: int, problem: Problem) -> tuple[list[float], list[float]]:
@@ -384,7 +396,6 @@ def _panel_heights(ax, best: Choice, baseline: Choice, problem: Problem) -> None
     ax.set_xlabel("time, s (until the win)")
     ax.set_ylabel("trap height H, px")
     ax.set_title("Strategies" + (" (one line per held-out seed)" if closed else ""))
-    ax.legend(fontsize=7)
 
 
 def _panel_holdout(ax, best: Choice, baseline: Choice) -> None:
@@ -401,4 +412,3 @@ def _panel_holdout(ax, best: Choice, baseline: Choice) -> None:
     ax.set_xlabel("score difference, best - linear (same seed)")
     ax.set_ylabel("held-out seeds")
     ax.set_title(f"Held-out validation, {p.a.n} paired seeds")
-    ax.legend(fontsize=7)

@@ -291,6 +291,9 @@ class EnergyPanel(_Panel):
         self.cut_energy = math.inf
         self._y_max = 1.0
         self._static = None
+        #: The gas condensed: the chart holds the win's frame, as the path chart does (the
+        #: settling after it is the condensate's picture, not a temperature: issue 49.7).
+        self.held = False
 
     # -- data -------------------------------------------------------------------
     def _choose_bins(self, sim: SimLike, energies: np.ndarray) -> np.ndarray:
@@ -323,6 +326,9 @@ class EnergyPanel(_Panel):
         if sim is not self._sim:
             self.reset()
             self._sim = sim
+        if self.held:
+            return
+        self.held = bool(sim.won)
         energies = np.asarray(sim.energies(), dtype=float)
         if self.bin_edges is None:
             self.bin_edges = self._choose_bins(sim, energies)

@@ -8,6 +8,7 @@ network: a lecturer can send the file on or put it on a course page.
 from __future__ import annotations
 
 import argparse
+import os
 import shutil
 import sys
 import webbrowser
@@ -36,12 +37,19 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--print-path", action="store_true", help="print the page's path and exit")
     p.add_argument(
         "--copy",
-        type=Path,
+        type=str,
         default=None,
         metavar="DEST",
         help="copy the page to DEST (file, folder)",
     )
     return p
+
+
+def _copy_destination(given: str) -> Path:
+    """The file --copy writes: DEST itself, or the page's name inside DEST if DEST is a
+    folder or is written as one (a trailing slash: a folder, even one that does not exist)."""
+    folder = given.endswith(("/", os.sep)) or Path(given).is_dir()
+    return Path(given) / PAGE_NAME if folder else Path(given)
 
 
 def main(argv: list[str] | None = None) -> int:
@@ -55,7 +63,7 @@ def main(argv: list[str] | None = None) -> int:
         print(page)
         return 0
     if args.copy is not None:
-        dest = args.copy / PAGE_NAME if args.copy.is_dir() else args.copy
+        dest = _copy_destination(args.copy)
         if not dest.parent.is_dir():
             print(
                 error_line("web", f"--copy: folder {str(dest.parent)!r} does not exist"),

@@ -197,11 +197,16 @@ export class EnergyPanel {
 
   constructor(readonly windowFrames = 30) {}
 
+  /** The gas condensed: the chart holds the win's frame, as the path chart does (the
+   * settling after it is the condensate's picture, not a temperature). */
+  held = false;
+
   reset(): void {
     this.edges = null;
     this.history = [];
     this.gen = -1;
     this.yMax = 1;
+    this.held = false;
   }
 
   private chooseBins(sim: SimLike, e: Float64Array, n: number, cut: number): Float64Array {
@@ -220,6 +225,8 @@ export class EnergyPanel {
       this.reset();
       this.gen = generation;
     }
+    if (this.held) return;
+    this.held = sim.won;
     if (this.buf.length < atoms.count) this.buf = new Float64Array(atoms.count);
     const e = energies(atoms, sim.gravity, this.buf);
     let m = 0;
@@ -287,10 +294,9 @@ export class EnergyPanel {
     const fs = fontSize(r);
     const small = Math.floor(fs * 0.85);
     const readout = this.edges
-      ? t("page.readout_energy", {
+      ? t("chart.readout_energy", {
           n: formatNumber(this.nTrapped),
           t: tickText(this.temperature),
-          kt: tickText(this.kt),
         })
       : "";
     const head = header(ctx, r, ENERGY_LEGEND, readout, fs, small);

@@ -10,7 +10,9 @@ import {
 import { cupOutline, mercuryFraction, scaleRow } from "../../src/view/scene";
 import { spherePixels } from "../../src/view/sprites";
 import { packetSize } from "../../src/view/condensate";
-import { logTicks, niceStep } from "../../src/view/panels";
+import { EnergyPanel, logTicks, niceStep, PathPanel } from "../../src/view/panels";
+import { forceWin, makeSimulation } from "../../src/game/engine";
+import { DEFAULT_CONFIG } from "../../src/game/rules";
 import { SliderModel } from "../../src/view/widgets";
 import { actionFor, BINDINGS, helpRows } from "../../src/app/bindings";
 import { t } from "../../src/i18n";
@@ -211,5 +213,35 @@ describe("a phone on its side (issue 27.3)", () => {
       expect((450 - 25) / (l.slider.h * l.scale)).toBeLessThan(charts.energy ? 1.6 : 1.4);
     }
     expect(layoutFor(1280, 800, none).buttons.help.y).toBe(6);
+  });
+});
+
+describe("one temperature in the charts (issue 49.7)", () => {
+  test("after the win the energy chart holds the win's T, as the path chart does", () => {
+    const sim = makeSimulation({ ...DEFAULT_CONFIG, seed: 7 });
+    const [energy, path] = [new EnergyPanel(), new PathPanel()];
+    const record = () => {
+      energy.record(sim, sim.trapped(), 1);
+      path.record(sim, 1);
+    };
+    sim.advance(1);
+    record();
+    forceWin(sim);
+    record();
+    const tWin = sim.temperature;
+    for (let k = 0; k < 240; k++) {
+      sim.advance(1);
+      record();
+    }
+    expect(sim.temperature).toBeLessThan(0.5 * tWin); // the atoms settled meanwhile
+    expect(energy.temperature).toBe(tWin);
+    expect(path.t[path.t.length - 1]).toBe(tWin);
+    energy.record(sim, sim.trapped(), 2); // a new game records again
+    expect(energy.temperature).toBe(sim.temperature);
+  });
+
+  test("the energy chart's readout is the desktop's: N and T, no second scale", () => {
+    expect(t("chart.readout_energy", { n: 49, t: "36.4" })).toBe("N = 49   T = 36.4");
+    expect(t("page.readout_energy", { n: 49, t: "36.4", kt: "14.6" })).toBe("page.readout_energy");
   });
 });

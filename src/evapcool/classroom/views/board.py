@@ -30,7 +30,13 @@ async def projector(request: Request) -> Response:
     join_url = join_url_of(request, room)
     svg = _qr_svg(join_url)
     text = pages.projector_page(
-        lambda k: raw(words, k), words.locale, words.meta["direction"], join_url, svg, _base(room)
+        lambda k: raw(words, k),
+        words.locale,
+        words.meta["direction"],
+        join_url,
+        svg,
+        _base(room),
+        getattr(request.app.state, "lan_command", None),
     )
     headers = {"Content-Security-Policy": pages.PROJECTOR_POLICY, "Cache-Control": "no-store"}
     return HTMLResponse(text, headers=headers)
