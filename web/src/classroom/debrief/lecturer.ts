@@ -26,6 +26,7 @@ export class LecturerDebrief {
   readonly anonymous: HTMLInputElement;
   readonly pairA: HTMLSelectElement;
   readonly pairB: HTMLSelectElement;
+  readonly pair: HTMLElement;
   readonly view: DebriefView;
   doc: Debrief | null = null;
 
@@ -56,6 +57,8 @@ export class LecturerDebrief {
     this.early = made("p", this.box, "debrief-early");
     this.picks = made("p", this.box, "debrief-picks");
     const pair = made("p", this.box, "debrief-pair-pick");
+    pair.hidden = true; // until the debrief has two games to set side by side
+    this.pair = pair;
     const labelA = made("label", pair);
     labelA.append(tr("console.lecturer.pair_left"), " ");
     this.pairA = made("select", labelA, "debrief-pair-a");
@@ -114,6 +117,7 @@ export class LecturerDebrief {
       }
       if (was) select.value = was;
     }
+    this.pair.hidden = doc.games.length < 2;
     if (!this.pairB.value || this.pairB.value === this.pairA.value)
       this.pairB.selectedIndex = Math.min(1, doc.games.length - 1);
     this.view.show(doc, doc.showing?.pick ?? null);
