@@ -148,8 +148,8 @@ def test_the_admin_page_relinks_renames_retires_and_archives(department: Server)
             what="rename_class", **{"class": str(_room_id(department, made["code"]))}, name="Optik"
         )
         form(what="archive", **{"class": str(_room_id(department, made["code"]))})
-        page = browser.get("/admin").text
-        assert "Ada L." in page and "Optik" in page and "Archived" in page
+        text = browser.get("/admin").text
+        assert "Ada L." in text and "Optik" in text and "Archived" in text
         form(what="retire", lecturer="1")
     assert httpx.get(department.base + "/lecturer", params={"token": new}).status_code == 403
     classes = httpx.get(

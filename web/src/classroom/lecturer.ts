@@ -76,7 +76,11 @@ function button(text: string, action: () => void, cls = ""): HTMLButtonElement {
 function tick(): void {
   const c = challenge.info;
   const [kind, text] = challenge.state(words);
-  byId("current").textContent = c ? fill(words.open_now, { id: c.id, seed: c.seed }) : words.none;
+  // The round's line as before (its state after it), the countdown large below it.
+  const state = kind === "open" ? " · " + words.open : " (" + words.closed + ")";
+  byId("current").textContent = c
+    ? fill(words.open_now, { id: c.id, seed: c.seed }) + state
+    : words.none;
   const countdown = byId("countdown");
   countdown.textContent = c ? (kind === "open" ? text : words.closed) : "";
   countdown.className = kind;

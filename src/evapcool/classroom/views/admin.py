@@ -103,36 +103,38 @@ def _id(form: dict[str, str], field: str, known: set[int]) -> int:
 
 async def _act(hub: Hub, what: str, form: dict[str, str]) -> str:
     """Do what a form asks; the note for the next page ("" for none)."""
-    db, store = hub.db, hub.store
-    lecturers = {row["id"] for row in await db(store.lecturers)}
+    store = hub.store
+    lecturers = {row["id"] for row in await hub.db(store.lecturers)}
     if what == "lecturer":
         secret = new_token()
-        made = await db(store.add_lecturer, clean_title(form.get("name"), "name"), digest(secret))
+        made = await hub.db(
+            store.add_lecturer, clean_title(form.get("name"), "name"), digest(secret)
+        )
         return f"L{made}.{secret}"
     if what == "relink":
         who, secret = _id(form, "lecturer", lecturers), new_token()
-        await db(store.set_lecturer_digest, who, digest(secret))
+        await hub.db(store.set_lecturer_digest, who, digest(secret))
         return f"L{who}.{secret}"
     if what == "admin_link":
         secret = new_token()
-        await db(store.set_secret, ADMIN_SECRET, digest(secret))
+        await hub.db(store.set_secret, ADMIN_SECRET, digest(secret))
         return f"A.{secret}"
     if what == "rename_lecturer":
         name = clean_title(form.get("name"), "name")
-        await db(store.rename_lecturer, _id(form, "lecturer", lecturers), name)
+        await hub.db(store.rename_lecturer, _id(form, "lecturer", lecturers), name)
     elif what == "retire":
-        await db(store.retire_lecturer, _id(form, "lecturer", lecturers))
+        await hub.db(store.retire_lecturer, _id(form, "lecturer", lecturers))
     elif what == "class":
         name = clean_title(form.get("name"), "name")
-        room = await db(store.add_room, name, _id(form, "lecturer", lecturers))
-        return f"C{room['id']}"
+        new_room = await hub.db(store.add_room, name, _id(form, "lecturer", lecturers))
+        return f"C{new_room['id']}"
     elif what in ("rename_class", "archive", "unarchive"):
-        rooms = {r["id"] for r in await db(store.rooms)}
+        rooms = {r["id"] for r in await hub.db(store.rooms)}
         room = _id(form, "class", rooms)
         if what == "rename_class":
-            await db(store.rename_room, room, clean_title(form.get("name"), "name"))
+            await hub.db(store.rename_room, room, clean_title(form.get("name"), "name"))
         else:
-            await db(store.set_archived, room, what == "archive")
+            await hub.db(store.set_archived, room, what == "archive")
     else:
         raise RefusedError(400, "what", "class.error.value", allowed="lecturer, class, ...")
     return ""
