@@ -8,6 +8,7 @@
 // administrator's and the lecturer's page at 1280 x 800 go to EVAPCOOL_SHOTS (or a
 // temporary folder) to be looked at.
 import assert from "node:assert/strict";
+import { execFileSync } from "node:child_process";
 import { existsSync, mkdtempSync } from "node:fs";
 import { tmpdir } from "node:os";
 import { join, resolve } from "node:path";
@@ -21,6 +22,7 @@ const PYTHON =
 const SKIP = !existsSync(PYTHON) && "no Python with evapcool (set EVAPCOOL_PYTHON)";
 const SHOTS = process.env.EVAPCOOL_SHOTS ?? mkdtempSync(join(tmpdir(), "evapcool-console-"));
 const LAPTOP = { width: 1280, height: 800 };
+const ROOT = resolve(import.meta.dirname, "../../..");
 
 let server;
 let browser;
@@ -44,6 +46,33 @@ after(async () => {
   await browser?.close();
   await stopClassServer(server);
 });
+
+/** Students join a class by its API and send ramp games of `seed` (tests/classhelp.py). */
+async function sendGames(base, seed, names) {
+  const out = execFileSync(
+    PYTHON,
+    [join(ROOT, "tests/classhelp.py"), "ramps", String(names.length), String(seed)],
+    { env: { ...process.env }, maxBuffer: 16 << 20 },
+  );
+  const games = JSON.parse(String(out));
+  const json = { "content-type": "application/json" };
+  const board = await (await fetch(`${server.base}${base}/api/leaderboard`)).json();
+  for (const [k, g] of games.entries()) {
+    const joined = await fetch(`${server.base}${base}/api/join`, {
+      method: "POST",
+      headers: json,
+      body: JSON.stringify({ name: names[k] }),
+    });
+    assert.equal(joined.status, 200, await joined.clone().text());
+    const { token } = await joined.json();
+    const sent = await fetch(`${server.base}${base}/api/submit`, {
+      method: "POST",
+      headers: { ...json, authorization: `Bearer ${token}` },
+      body: JSON.stringify({ challenge: board.challenge, code: g.code }),
+    });
+    assert.equal(sent.status, 200, await sent.clone().text());
+  }
+}
 
 /** A person's own browser (cookies of their own), its pages watched for script errors. */
 async function person(errors, options = {}) {
@@ -155,6 +184,29 @@ test(
       (was) => document.getElementById("current").textContent !== was,
       first,
     );
+    // Two students' games: one row each, ranked, with their games counted.
+    await sendGames(`/c/${codeA}`, 77, ["Mia", "Finn"]);
+    await ada.waitForFunction(
+      () => document.querySelectorAll("#entries tbody tr[data-entry]").length === 2,
+    );
+    const columns = await ada.locator("#entries th").allTextContents();
+    assert.ok(columns.includes("Games"), columns.join("|"));
+    const firstRow = ada.locator("#entries tbody tr").first();
+    const before = await firstRow.locator("td").nth(1).textContent();
+    // Rename in place (Enter saves), then hide and undo, by keyboard and pointer.
+    await firstRow.getByRole("button", { name: "Rename" }).click();
+    await ada.keyboard.press("Control+a");
+    await ada.keyboard.type("Mia K.");
+    await ada.keyboard.press("Enter");
+    await ada.waitForFunction(() =>
+      document.getElementById("entries").textContent.includes("Mia K."),
+    );
+    assert.notEqual(before, "Mia K.");
+    const renamed = ada.locator("#entries tbody tr", { hasText: "Mia K." });
+    await renamed.getByRole("button", { name: "Hide student" }).click();
+    await ada.locator("#entries tbody tr.hidden", { hasText: "Mia K." }).waitFor();
+    await renamed.getByRole("button", { name: "Show again" }).click();
+    await ada.locator("#entries tbody tr.hidden").waitFor({ state: "detached" });
     await ada.evaluate(() => window.scrollTo(0, 0));
     await ada.screenshot({ path: join(SHOTS, "console-lecturer.png") });
     await ada.screenshot({ path: join(SHOTS, "console-lecturer-full.png"), fullPage: true });
