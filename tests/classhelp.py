@@ -242,11 +242,18 @@ def join(server: Server, name: str) -> dict[str, str]:
     return {"Authorization": f"Bearer {answer.json()['token']}"}
 
 
-def projector_key(server: Server) -> str:
-    """The projector's key, from the link on the lecturer's page."""
+def browse(base: str, path: str, token: str) -> httpx.Response:
+    """A page opened from its link as a browser does (issue 45): the ?token= answered by a
+    redirect keeping it in a cookie, followed; the page as the browser then sees it."""
     import httpx
 
-    page = httpx.get(server.base + "/lecturer", params={"token": server.token}).text
+    with httpx.Client(base_url=base, follow_redirects=True) as client:
+        return client.get(path, params={"token": token})
+
+
+def projector_key(server: Server) -> str:
+    """The projector's key, from the link on the lecturer's page."""
+    page = browse(server.base, "/lecturer", server.token).text
     found = re.search(r'href="/projector\?key=([0-9a-f]+)"', page)
     assert found, "no projector link on the lecturer's page"
     return found.group(1)

@@ -13,7 +13,7 @@ from pathlib import Path
 
 import httpx
 import pytest
-from classhelp import SEED, SETTINGS, Server, code, start_server
+from classhelp import SEED, SETTINGS, Server, browse, code, start_server
 
 from evapcool.classroom import rooms
 from evapcool.classroom.server import digest, new_lecturer_token, open_store
@@ -29,6 +29,16 @@ def department(store_at: Path | str) -> Iterator[Server]:
 
 def admin(server: Server) -> dict[str, str]:
     return {"Authorization": f"Bearer {server.token}"}
+
+
+def admin_form(server: Server, fields: dict[str, str]) -> httpx.Response:
+    """One form of the administrator's page posted as a browser does (its link opened,
+    the CSRF token read from the page), the page it is sent back to."""
+    with httpx.Client(base_url=server.base, follow_redirects=True) as browser:
+        page = browser.get("/admin", params={"token": server.token})
+        csrf = re.search(r'name="csrf" value="([0-9a-f]+)"', page.text)
+        assert csrf, page.text
+        return browser.post("/admin", data={"csrf": csrf.group(1), **fields})
 
 
 def new_lecturer(server: Server, name: str) -> str:
@@ -157,7 +167,7 @@ def test_the_terms_history_and_streams_per_class(department: Server) -> None:
         ).status_code
         == 404
     )  # a challenge of another class
-    page = httpx.get(department.base + "/lecturer", params={"token": ada}).text
+    page = browse(department.base, "/lecturer", ada).text
     assert one["code"] in page and two["code"] in page and f"challenge={first}" in page
     third = open_in(department, b, ada)
 
@@ -208,19 +218,20 @@ def test_join_by_code_admin_page_and_class_pages(department: Server) -> None:
     assert f'{{"api":"/c/{made["code"]}/api","name_max":' in game
     assert httpx.get(department.base + "/admin", params={"token": ada}).status_code == 403
     assert httpx.get(department.base + "/api/admin/classes", headers=bearer(ada)).status_code == 403
-    page = httpx.get(department.base + "/admin", params={"token": department.token})
+    page = browse(department.base, "/admin", department.token)
     assert page.status_code == 200 and made["code"] in page.text and "Ada" in page.text
     listed = httpx.get(department.base + "/api/admin/classes", headers=admin(department)).json()
     assert [c["code"] for c in listed["classes"]] == [made["code"]]  # not the empty single class
-    posted = httpx.post(
-        department.base + "/admin",
-        data={"token": department.token, "what": "lecturer", "name": "Cy"},
-    )
+    posted = admin_form(department, {"what": "lecturer", "name": "Cy"})
     link = re.search(r"/lecturer\?token=([\w-]+)", posted.text)
     assert posted.status_code == 200 and link, posted.text
     cy = link.group(1)
-    mine = httpx.post(department.base + "/lecturer", data={"token": cy, "name": "Cy's class"})
-    assert mine.status_code == 200
+    with httpx.Client(base_url=department.base, follow_redirects=True) as browser:
+        listed = browser.get("/lecturer", params={"token": cy})
+        csrf = re.search(r'name="csrf" value="([0-9a-f]+)"', listed.text)
+        assert csrf, listed.text
+        mine = browser.post("/lecturer", data={"csrf": csrf.group(1), "name": "Cy's class"})
+    assert mine.status_code == 200 and "Cy&#x27;s class" in mine.text
     classes = httpx.get(department.base + "/api/classes", headers=bearer(cy)).json()["classes"]
     assert [c["name"] for c in classes] == ["Cy's class"]
     projector = httpx.get(department.base + classes[0]["projector"])
@@ -252,18 +263,18 @@ def test_a_class_page_links_back_to_its_lecturers_classes(store_at: Path | str) 
     try:
         ada = new_lecturer(running, "Ada")
         made = new_class(running, ada, "Optics")
-        page = httpx.get(running.base + made["lecturer_page"], params={"token": ada})
-        assert page.status_code == 200
-        href = _back_link(page.text)
-        assert href == f"/lecturer?token={ada}"  # where the list's own links carry it
-        listed = httpx.get(running.base + href)
+        with httpx.Client(base_url=running.base, follow_redirects=True) as browser:
+            page = browser.get(made["lecturer_page"], params={"token": ada})
+            assert page.status_code == 200 and str(page.url).endswith(made["lecturer_page"])
+            href = _back_link(page.text)
+            assert href == "/lecturer"  # the cookie the link left carries the token there
+            listed = browser.get(href)
         assert listed.status_code == 200 and made["code"] in listed.text
-        # a token given as Bearer only is not written into the page
+        # a token given as Bearer only is never written into the page
         bearer_only = httpx.get(running.base + made["lecturer_page"], headers=bearer(ada))
-        assert bearer_only.status_code == 200 and _back_link(bearer_only.text) is None
-        assert ada not in bearer_only.text
+        assert bearer_only.status_code == 200 and ada not in bearer_only.text
         # the single class's token is no department lecturer's: no list to go back to
-        old = httpx.get(running.base + f"/c/{single_code}/lecturer", params={"token": single})
+        old = browse(running.base, f"/c/{single_code}/lecturer", single)
         assert old.status_code == 200 and _back_link(old.text) is None
         assert httpx.get(running.base + "/lecturer", params={"token": single}).status_code == 403
     finally:
@@ -279,10 +290,10 @@ def test_a_single_class_server_has_no_list_to_link_to(store_at: Path | str) -> N
         store.close()
     running = start_server(store_at)
     try:
-        page = httpx.get(running.base + "/lecturer", params={"token": running.token})
+        page = browse(running.base, "/lecturer", running.token)
         assert page.status_code == 200 and 'id="projector"' in page.text
         assert _back_link(page.text) is None
-        theirs = httpx.get(running.base + f"/c/{made['code']}/lecturer", params={"token": ada})
+        theirs = browse(running.base, f"/c/{made['code']}/lecturer", ada)
         assert theirs.status_code == 200 and _back_link(theirs.text) is None
     finally:
         running.stop()

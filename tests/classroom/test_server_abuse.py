@@ -18,6 +18,7 @@ from classhelp import (
     SEED,
     SETTINGS,
     Server,
+    browse,
     code,
     join,
     open_challenge,
@@ -320,7 +321,7 @@ def test_every_page_has_a_tight_content_security_policy(server: Server) -> None:
     pages = [
         httpx.get(server.base + "/"),
         httpx.get(server.base + "/projector"),
-        httpx.get(server.base + "/lecturer", params={"token": server.token}),
+        browse(server.base, "/lecturer", server.token),
     ]
     for k, page in enumerate(pages):
         policy = page.headers["content-security-policy"]

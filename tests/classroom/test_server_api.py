@@ -8,7 +8,16 @@ import io
 import json
 
 import httpx
-from classhelp import SEED, Server, code, join, open_challenge, projector_key, variant
+from classhelp import (
+    SEED,
+    Server,
+    browse,
+    code,
+    join,
+    open_challenge,
+    projector_key,
+    variant,
+)
 
 from evapcool.classroom.names import NAME_MAX
 
@@ -35,7 +44,7 @@ def test_pages_and_challenge(server: Server) -> None:
     projector = httpx.get(server.base + "/projector").text
     assert "<svg" in projector and "/api/stream" in projector
     assert f"{server.base}/" in projector  # the students' link printed at start
-    assert httpx.get(server.base + f"/lecturer?token={server.token}").status_code == 200
+    assert browse(server.base, "/lecturer", server.token).status_code == 200
 
 
 def test_students_rank_stream_export_hide(server: Server) -> None:

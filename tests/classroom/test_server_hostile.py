@@ -7,7 +7,7 @@ import json
 import unicodedata
 
 import httpx
-from classhelp import SEED, Server, code, join, open_challenge, variant
+from classhelp import SEED, Server, browse, code, join, open_challenge, variant
 
 from evapcool.classroom.store import NAME_MAX
 from evapcool.game.replay import encode
@@ -47,7 +47,7 @@ def test_hostile_names_are_cleaned_and_never_markup(server: Server) -> None:
         assert not any(unicodedata.category(c).startswith("C") for c in name), name
     assert "long" * 6 in names
     pages = [httpx.get(server.base + "/projector").text]
-    pages.append(httpx.get(server.base + "/lecturer", params={"token": server.token}).text)
+    pages.append(browse(server.base, "/lecturer", server.token).text)
     for page in pages:
         for bad in RAW_MARKUP:
             assert bad not in page

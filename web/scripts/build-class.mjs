@@ -11,7 +11,7 @@ const WEB = resolve(import.meta.dirname, "..");
 /** Where the Python package keeps them (package data, see pyproject.toml). */
 export const CLASS_DIR = resolve(WEB, "../src/evapcool/web/class");
 /** The pages' entries: src/classroom/NAME.ts, each importing its NAME.css. */
-export const ENTRIES = ["projector", "lecturer"];
+export const ENTRIES = ["projector", "lecturer", "console"];
 
 /** The built script and stylesheet of one entry. */
 async function bundle(name) {

@@ -29,7 +29,7 @@ from evapcool.classroom.hub import (
     open_store,
 )
 from evapcool.classroom.store import StoreAwayError
-from evapcool.classroom.views import department
+from evapcool.classroom.views import admin, department
 from evapcool.classroom.views.answers import (
     _no_route,
     _refused,
@@ -84,7 +84,7 @@ def routes(for_department: bool = False) -> list[Route]:
     out = [Route(path, fn, methods=methods) for path, fn, methods in CLASS_ROUTES]
     out += [Route("/c/{code}" + path, fn, methods=methods) for path, fn, methods in CLASS_ROUTES]
     first = department.ROOT_ROUTES if for_department else []
-    return [*first, *out, Route("/c/{code}", _to_class), *department.ROUTES]
+    return [*first, *out, Route("/c/{code}", _to_class), *admin.ROUTES, *department.ROUTES]
 
 
 def create_app(

@@ -3,6 +3,7 @@ lecturers' calls and pages, joining by code); its names stay importable from her
 
 from __future__ import annotations
 
+from evapcool.classroom.views.admin import admin_page, admin_post
 from evapcool.classroom.views.department import (
     FORM_BYTES,
     POLICY,
@@ -12,8 +13,6 @@ from evapcool.classroom.views.department import (
     TITLE_MAX,
     admin_classes,
     admin_lecturers,
-    admin_page,
-    admin_post,
     class_doc,
     classes_page,
     classes_post,

@@ -106,6 +106,10 @@ STYLE_PROJECTOR = built("projector.css")
 STYLE_LECTURER = built("lecturer.css")
 SCRIPT_PROJECTOR = built("projector.js")
 SCRIPT_LECTURER = built("lecturer.js")
+#: The administrator's and lecturer's list pages and the refusal pages (web/src/classroom/
+#: console.ts: copy buttons, confirmations; console.css: the console's design language).
+STYLE_CONSOLE = built("console.css")
+SCRIPT_CONSOLE = built("console.js")
 
 PAGE = Template("""<!doctype html>
 <html lang="$lang" dir="$dir"><head><meta charset="utf-8">
@@ -124,14 +128,19 @@ $loopback<div id="qr">$qr</div><p id="join">$join</p>
 <div id="replay" hidden><div id="replay-head"></div><code id="replay-code"></code>
 <iframe id="replay-frame" title="$replay" hidden></iframe></div></div></div>""")
 
-LECTURER_BODY = Template("""<h1>$title</h1>
-<p>$classes<a id="projector" href="$base/projector?key=$key" target="_blank">$projector</a> ·
-<a id="export" download>$export</a></p>
-<p id="current"></p><p id="current-settings"></p>
-<p><button id="close">$close</button> <button id="stop">$stop</button></p>
-<p id="status" role="status"></p><p id="rejected"></p>
-<h2>$entries</h2><table id="entries"></table>
-<h2>$heading</h2>
+LECTURER_BODY = Template("""<header id="top"><div id="top-name">$classes
+<h1 id="class-name">$name</h1></div>$code<nav id="top-links">
+<a id="projector" class="button" href="$base/projector?key=$key" target="_blank">$projector</a>
+<a id="export" class="button" download>$export</a>
+<button id="print" type="button">$print</button></nav></header>
+<main><section id="round" aria-labelledby="round-head"><h2 id="round-head">$round</h2>
+<p id="current"></p><p id="countdown" aria-live="off"></p><p id="current-settings"></p>
+<p class="actions"><button id="close" type="button">$close</button>
+<button id="stop" type="button">$stop</button></p>
+<p id="status" role="status"></p><p id="rejected"></p></section>
+<div id="debrief-slot"></div>
+<section id="table-box"><h2>$entries</h2><table id="entries"></table></section>
+<section id="new-round"><h2>$heading</h2>
 <form id="open">
 <label for="n_atoms">$atoms</label><input id="n_atoms" type="number" min="2" max="400" value="49">
 <label for="radius">$radius</label><input id="radius" type="number" min="1" max="40" step="any"
@@ -144,7 +153,7 @@ LECTURER_BODY = Template("""<h1>$title</h1>
 <label for="minutes">$minutes</label><input id="minutes" type="number" min="0.1" step="any">
 <label for="attempts">$attempts</label><input id="attempts" type="number" min="1">
 <label for="lost">$lost</label><input id="lost" type="checkbox">
-<span></span><button>$open</button></form>""")
+<span></span><button class="primary">$open</button></form></section></main>""")
 
 
 def source_hash(text: str) -> str:
@@ -164,6 +173,9 @@ def page_policy(script: str, style: str, frames: str = "'none'") -> str:
 
 PROJECTOR_POLICY = page_policy(SCRIPT_PROJECTOR, STYLE_PROJECTOR, frames="'self'")
 LECTURER_POLICY = page_policy(SCRIPT_LECTURER, STYLE_LECTURER)
+CONSOLE_POLICY = page_policy(SCRIPT_CONSOLE, STYLE_CONSOLE).replace(
+    "form-action 'none'", "form-action 'self'"
+)
 #: The built page's policy (a meta element) and its inline scripts.
 META_POLICY = re.compile(r'(http-equiv="Content-Security-Policy"\s+content=")([^"]*)(")')
 INLINE_SCRIPT = re.compile(r"<script(?![^>]*application/json)[^>]*>(.*?)</script>", re.S)
@@ -305,6 +317,8 @@ LECTURER_LABELS = (
     "entries",
     "lost",
 )
+#: The console's own words on the lecturer's page (issue 45).
+CONSOLE_LABELS = {"print": "console.lecturer.print", "round": "console.lecturer.round"}
 
 
 #: The lecturer's form's words shared with the game's settings panel (one translation).
@@ -315,6 +329,21 @@ GAME_LABELS = {
     "law_seed": "law_seed",
     "law_cup": "law_cup",
 }
+#: The words of the lecturer's script added by the console (issue 45).
+CONSOLE_WORDS = (
+    "console.lecturer.attempts",
+    "console.lecturer.save",
+    "console.lecturer.cancel",
+    "console.lecturer.confirm_title",
+    "console.lecturer.confirm_text",
+    "console.lecturer.confirm_go",
+    "console.lecturer.pick_named",
+    "console.lecturer.no_games",
+    "console.lecturer.debrief_head",
+    "console.lecturer.pair_left",
+    "console.lecturer.pair_right",
+    "console.lecturer.pair_option",
+)
 
 
 def lecturer_page(
@@ -324,28 +353,48 @@ def lecturer_page(
     key: str,
     base: str = "",
     classes: str = "",
+    name: str = "",
+    code: str = "",
+    csrf: str = "",
 ) -> str:
-    """The lecturer's page: open and close a challenge, the entries, hide, rename, replay,
-    export, and the projector's link with its key (base: the class's path, "" for the
+    """The lecturer's page: the class's name and join code at the top, open and close a
+    challenge, the debrief's controls, the entries (hide, rename, replay), export and
+    print, and the projector's link with its key (base: the class's path, "" for the
     single class; classes: the address of the department lecturer's list of classes, ""
-    for none)."""
+    for none; csrf: the token its calls carry)."""
     words = {k: raw(v) for k, v in PAGE_WORDS.items()}
+    words.update({k: raw(k) for k in CONSOLE_WORDS})
     labels = {k: html.escape(raw(f"class.lecturer.{k}")) for k in LECTURER_LABELS}
+    labels.update({k: html.escape(raw(v)) for k, v in CONSOLE_LABELS.items()})
     shared = {k: html.escape(raw(f"settings.{v}")) for k, v in GAME_LABELS.items()}
     back = ""
     if classes:
         said = html.escape(raw("class.lecturer.classes"))
-        back = f'<a id="classes" href="{html.escape(classes)}">{said}</a> ·\n'
+        back = f'<p id="crumbs"><a id="classes" href="{html.escape(classes)}">{said}</a></p>\n'
+    code_box = ""
+    if code:
+        label = html.escape(raw("console.lecturer.join_code"))
+        code_box = (
+            f'<p id="code-box"><span class="label">{label}</span> '
+            f'<span id="join-code" class="code">{html.escape(code)}</span></p>'
+        )
     body = LECTURER_BODY.substitute(
-        labels, **shared, key=html.escape(key), base=html.escape(base), classes=back
+        labels,
+        **shared,
+        key=html.escape(key),
+        base=html.escape(base),
+        classes=back,
+        name=html.escape(name or raw("class.lecturer.title")),
+        code=code_box,
     )
-    return page(
+    text = page(
         lang,
         direction,
-        raw("class.lecturer.title"),
+        f"{name} · {raw('class.lecturer.title')}" if name else raw("class.lecturer.title"),
         body,
         words_json(words),
         STYLE_LECTURER,
         SCRIPT_LECTURER,
         base,
     )
+    return text.replace("<body", f'<body data-csrf="{html.escape(csrf)}"', 1)

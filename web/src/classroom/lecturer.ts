@@ -1,12 +1,15 @@
 /**
- * The lecturer's page: open and close a challenge, the entries (hide, rename, put on the
- * projector), the export link; refreshed on every message of the event stream.
+ * The lecturer's page: the round (open, its countdown, close), the debrief's controls,
+ * the students as a live ranked table (attempts, best, hide and undo, rename inline, put
+ * on the projector), a new round (confirmed when it would close an open one), export and
+ * print; refreshed on every message of the event stream.
+ *
+ * The page signs its calls with the session's cookie and the CSRF token the server wrote in
+ * the page (data-csrf); the token itself never appears in the page or its address.
  */
 import "./lecturer.css";
 import {
   ChallengeClock,
-  entryCells,
-  entryClass,
   rejectedText,
   row,
   settingsText,
@@ -21,11 +24,11 @@ import {
   listen,
   pageWords,
   postJson,
-  queryParam,
   refusalText,
   type Refusal,
 } from "./common";
 import { LecturerDebrief } from "./debrief/lecturer";
+import { studentRows, type StudentRow } from "./students";
 
 /** The lecturer's list as /api/entries sends it. */
 interface Entries {
@@ -39,17 +42,20 @@ interface Entries {
 const words = pageWords();
 const base = classBase();
 const challenge = new ChallengeClock();
-const token = queryParam("token") || "";
-const auth = { Authorization: "Bearer " + token, "Content-Type": "application/json" };
+const csrf = document.body.dataset["csrf"] ?? "";
+const auth = { "Content-Type": "application/json", "X-Evapcool-CSRF": csrf };
+/** The entry whose name is being edited (the table is not redrawn under the lecturer). */
+let renaming: number | null = null;
 
 function say(text: string): void {
   byId("status").textContent = text;
 }
 
-async function post(path: string, body: unknown): Promise<void> {
+async function post(path: string, body: unknown): Promise<boolean> {
   const answer = await postJson<Refusal>(base + path, body, auth);
   say(answer.ok ? "" : refusalText(answer.body));
   await refresh();
+  return answer.ok;
 }
 
 /** A number box's value, or null when empty. */
@@ -58,9 +64,11 @@ function num(id: string): number | null {
   return v === "" ? null : Number(v);
 }
 
-function button(text: string, action: () => void): HTMLButtonElement {
+function button(text: string, action: () => void, cls = ""): HTMLButtonElement {
   const b = document.createElement("button");
+  b.type = "button";
   b.textContent = text;
+  if (cls) b.className = cls;
   b.onclick = action;
   return b;
 }
@@ -68,33 +76,71 @@ function button(text: string, action: () => void): HTMLButtonElement {
 function tick(): void {
   const c = challenge.info;
   const [kind, text] = challenge.state(words);
-  const state = kind === "open" ? " · " + text : " (" + words.closed + ")";
+  // The round's line as before (its state after it), the countdown large below it.
+  const state = kind === "open" ? " · " + words.open : " (" + words.closed + ")";
   byId("current").textContent = c
     ? fill(words.open_now, { id: c.id, seed: c.seed }) + state
     : words.none;
+  const countdown = byId("countdown");
+  countdown.textContent = c ? (kind === "open" ? text : words.closed) : "";
+  countdown.className = kind;
   byId("current-settings").textContent = c ? settingsText(words, c) : "";
 }
 
-/** An entry's buttons: hide or unhide, show or take off the projector, rename. */
-function actions(e: LecturerEntry, showing: number | null | undefined): HTMLElement {
+/** A student's buttons: hide or undo, show on or take off the projector, rename. */
+function actions(r: StudentRow, showing: number | null | undefined): HTMLElement {
+  const e = r.best;
   const acts = document.createElement("span");
+  acts.className = "row-actions";
   acts.appendChild(
     e.hidden
-      ? button(words.unhide, () => post("/api/hide", { entry: e.entry, hidden: false }))
-      : button(words.hide, () => post("/api/hide", { entry: e.entry })),
+      ? button(words.unhide, () => void post("/api/hide", { entry: e.entry, hidden: false }))
+      : button(words.hide, () => void post("/api/hide", { entry: e.entry })),
   );
   acts.appendChild(
     e.entry === showing
-      ? button(words.on_projector, () => post("/api/show", { entry: null }))
-      : button(words.show, () => post("/api/show", { entry: e.entry })),
+      ? button(words.on_projector, () => void post("/api/show", { entry: null }), "on")
+      : button(words.show, () => void post("/api/show", { entry: e.entry })),
   );
   acts.appendChild(
     button(words.rename, () => {
-      const name = prompt(words.rename_prompt, e.name);
-      if (name !== null) void post("/api/rename", { entry: e.entry, name });
+      renaming = e.entry;
+      void refresh();
     }),
   );
   return acts;
+}
+
+/** The name cell: the name, or while renaming a box with Save and Cancel (Enter, Escape). */
+function nameCell(e: LecturerEntry): HTMLElement {
+  const box = document.createElement("span");
+  if (renaming !== e.entry) {
+    box.textContent = e.name;
+    return box;
+  }
+  const form = document.createElement("form");
+  form.className = "rename";
+  const input = document.createElement("input");
+  input.value = e.name;
+  input.setAttribute("aria-label", words.rename_prompt);
+  const done = (): void => {
+    renaming = null;
+    void refresh();
+  };
+  form.onsubmit = (ev) => {
+    ev.preventDefault();
+    renaming = null;
+    void post("/api/rename", { entry: e.entry, name: input.value });
+  };
+  input.onkeydown = (ev) => {
+    if (ev.key === "Escape") done();
+  };
+  const save = button(words["console.lecturer.save"], () => form.requestSubmit(), "primary");
+  save.type = "submit";
+  form.append(input, save, button(words["console.lecturer.cancel"], done));
+  box.append(form);
+  queueMicrotask(() => input.focus());
+  return box;
 }
 
 async function refresh(): Promise<void> {
@@ -104,23 +150,33 @@ async function refresh(): Promise<void> {
   challenge.take(d.challenge);
   tick();
   byId<HTMLButtonElement>("close").disabled = !(challenge.info && challenge.info.open);
-  byId<HTMLButtonElement>("stop").disabled = d.showing === null;
+  byId<HTMLButtonElement>("stop").disabled = d.showing === null || d.showing === undefined;
   byId("rejected").textContent = rejectedText(words, d.rejected);
   const table = byId("entries");
   table.replaceChildren();
-  const head = ["rank", "name", "score", "frames", "edition"].map((k) => words[k]);
-  row(table, [...head, ""], "th");
-  for (const e of d.entries) {
-    const tr = row(table, [...entryCells(e), actions(e, d.showing)]);
+  const heads = ["rank", "name", "score", "console.lecturer.attempts", "frames", "edition"];
+  const head = document.createElement("thead");
+  table.append(head);
+  row(head, [...heads.map((k) => words[k]), ""], "th");
+  const body = document.createElement("tbody");
+  table.append(body);
+  for (const r of studentRows(d.entries)) {
+    const e = r.best;
+    const cells = [e.rank ?? "", nameCell(e), e.score, r.attempts, e.frames, e.edition];
+    const tr = row(body, [...cells, actions(r, d.showing)]);
     tr.dataset.entry = String(e.entry);
-    tr.className = entryClass(e, d.showing);
+    tr.className = [e.hidden ? "hidden" : "", e.entry === d.showing ? "showing" : ""].join(" ");
     if (e.hidden) tr.title = words.hidden;
+  }
+  if (d.entries.length === 0) {
+    const td = row(body, [words["console.lecturer.no_games"]]).firstElementChild;
+    td?.setAttribute("colspan", "7");
   }
 }
 
-byId<HTMLFormElement>("open").onsubmit = (ev) => {
-  ev.preventDefault();
-  void post("/api/challenge", {
+/** The new round's settings from the form. */
+function newRound(): unknown {
+  return {
     n_atoms: num("n_atoms"),
     radius: num("radius"),
     escape: byId<HTMLSelectElement>("escape").value,
@@ -129,27 +185,69 @@ byId<HTMLFormElement>("open").onsubmit = (ev) => {
     minutes: num("minutes"),
     attempts: num("attempts"),
     lost: byId<HTMLInputElement>("lost").checked,
-  });
+  };
+}
+
+/** The confirmation asked before a new round closes the open one. */
+function confirmDialog(): HTMLDialogElement {
+  const dialog = document.createElement("dialog");
+  dialog.id = "confirm";
+  const title = document.createElement("h2");
+  title.textContent = words["console.lecturer.confirm_title"];
+  const text = document.createElement("p");
+  text.textContent = words["console.lecturer.confirm_text"];
+  const form = document.createElement("form");
+  form.method = "dialog";
+  const go = document.createElement("button");
+  go.value = "go";
+  go.className = "primary danger";
+  go.id = "confirm-go";
+  go.textContent = words["console.lecturer.confirm_go"];
+  const cancel = document.createElement("button");
+  cancel.value = "cancel";
+  cancel.id = "confirm-cancel";
+  cancel.textContent = words["console.lecturer.cancel"];
+  form.append(cancel, go);
+  dialog.append(title, text, form);
+  dialog.setAttribute("aria-labelledby", "confirm-title");
+  title.id = "confirm-title";
+  document.body.append(dialog);
+  return dialog;
+}
+
+const confirm = confirmDialog();
+byId<HTMLFormElement>("open").onsubmit = (ev) => {
+  ev.preventDefault();
+  const body = newRound();
+  if (!(challenge.info && challenge.info.open)) {
+    void post("/api/challenge", body);
+    return;
+  }
+  confirm.returnValue = "";
+  confirm.onclose = () => {
+    if (confirm.returnValue === "go") void post("/api/challenge", body);
+  };
+  confirm.showModal();
 };
-// The debrief's controls (issue 36), under the entries.
-const debriefBox = document.createElement("div");
-byId("entries").after(debriefBox);
+// The debrief's controls above the table, its charts below it (issue 45).
 const debrief = new LecturerDebrief(
-  debriefBox,
+  byId("debrief-slot"),
   (k, args = {}) => fill(words[k] ?? k, args),
   document.documentElement.lang,
   auth,
   post,
+  byId("table-box"),
 );
 
-byId("close").onclick = () => post("/api/challenge/close", {});
-byId("stop").onclick = () => post("/api/show", { entry: null });
-byId<HTMLAnchorElement>("export").href =
-  base + "/api/export.csv?token=" + encodeURIComponent(token);
+byId("close").onclick = () => void post("/api/challenge/close", {});
+byId("stop").onclick = () => void post("/api/show", { entry: null });
+byId("print").onclick = () => window.print();
+byId<HTMLAnchorElement>("export").href = base + "/api/export.csv";
 setInterval(tick, 1000);
 // The projector's key (in its link) lets this page's stream past the students' streams.
 const projectorLink = byId<HTMLAnchorElement>("projector");
 listen(base + "/api/stream" + new URL(projectorLink.href).search, () => {
+  if (renaming !== null) return; // the box being typed in stays; the next message redraws
   // Once closed, or once the lecturer has looked early: the debrief kept current.
   void refresh().then(() => {
     if (debrief.doc || (challenge.info && !challenge.info.open)) void debrief.refresh();

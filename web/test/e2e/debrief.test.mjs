@@ -252,7 +252,8 @@ test(
 
 /** The projector's key, from the link on the lecturer's page. */
 async function projectorKey() {
-  const page = await (await fetch(`${server.base}/lecturer?token=${server.token}`)).text();
+  const headers = { authorization: `Bearer ${server.token}` }; // a link's ?token= redirects
+  const page = await (await fetch(`${server.base}/lecturer`, { headers })).text();
   return /href="\/projector\?key=([0-9a-f]+)"/.exec(page)[1];
 }
 

@@ -12,6 +12,11 @@ from typing import Any
 from evapcool.classroom.rooms import DEFAULT_ROOM, new_code
 from evapcool.classroom.storage.base import ROOM_KEYS, SqlBase
 
+#: A retired lecturer's digest starts so (no SHA-256 hex digest does).
+RETIRED = "retired:"
+#: The mark of an archived class among the secrets: this and its id.
+ARCHIVED = "archived:"
+
 
 class ClassesStore(SqlBase):
     """Secrets, lecturers and classes."""
@@ -37,10 +42,42 @@ class ClassesStore(SqlBase):
 
     def lecturers(self) -> list[dict[str, Any]]:
         rows = self._rows(
-            "SELECT l.id, l.name, COUNT(r.id) FROM lecturer l LEFT JOIN room r "
-            "ON r.lecturer = l.id GROUP BY l.id, l.name ORDER BY l.id"
+            "SELECT l.id, l.name, COUNT(r.id), l.digest FROM lecturer l LEFT JOIN room r "
+            "ON r.lecturer = l.id GROUP BY l.id, l.name, l.digest ORDER BY l.id"
         )
-        return [{"id": r[0], "name": r[1], "classes": r[2]} for r in rows]
+        return [
+            {"id": r[0], "name": r[1], "classes": r[2], "retired": r[3].startswith(RETIRED)}
+            for r in rows
+        ]
+
+    def rename_lecturer(self, lecturer: int, name: str) -> bool:
+        """A lecturer's new name; False if no such lecturer."""
+        return self._write("UPDATE lecturer SET name = ? WHERE id = ?", (name, lecturer)) > 0
+
+    def retire_lecturer(self, lecturer: int) -> bool:
+        """A lecturer's link stops working (a digest no token has); their classes and
+        records stay. A relink brings them back. False if no such lecturer."""
+        return self.set_lecturer_digest(lecturer, f"{RETIRED}{lecturer}")
+
+    def rename_room(self, room: int, name: str) -> bool:
+        """A class's new name; False if no such class."""
+        return self._write("UPDATE room SET name = ? WHERE id = ?", (name, room)) > 0
+
+    def archived(self, room: int) -> bool:
+        """Whether a class is archived (no new round; its records stay)."""
+        return self.secret(f"{ARCHIVED}{room}") is not None
+
+    def archived_rooms(self) -> set[int]:
+        """Every archived class's id."""
+        rows = self._rows("SELECT name FROM secret WHERE name LIKE ?", (ARCHIVED + "%",))
+        return {int(r[0][len(ARCHIVED) :]) for r in rows}
+
+    def set_archived(self, room: int, archived: bool) -> None:
+        """Archive a class or bring it back (a mark beside the secrets: no new column)."""
+        if archived:
+            self.set_secret(f"{ARCHIVED}{room}", "1")
+        else:
+            self._write("DELETE FROM secret WHERE name = ?", (f"{ARCHIVED}{room}",))
 
     def lecturer_by_digest(self, digest: str) -> dict[str, Any] | None:
         row = self._one("SELECT id, name FROM lecturer WHERE digest = ?", (digest,))

@@ -1,6 +1,7 @@
 """What every answer carries and how refusals are answered: safe headers on every answer, a
-refusal (or an unknown path or method, or the database away) as JSON in the reader's
-language, /c/{code} sent to its slash."""
+refusal (or an unknown path or method, or the database away) in the reader's language, as
+a page saying what to do for a browser reading a page, as JSON for API clients; /c/{code}
+sent to its slash."""
 
 from __future__ import annotations
 
@@ -11,9 +12,11 @@ from starlette.exceptions import HTTPException
 from starlette.requests import Request
 from starlette.responses import RedirectResponse, Response
 
+from evapcool.classroom.console_pages import refusal_page
 from evapcool.classroom.errors import RefusedError, refused_response
 from evapcool.classroom.hub import STORE_RETRY
 from evapcool.classroom.views.common import hub_of
+from evapcool.classroom.words import raw
 
 #: Headers on every answer: no referrer (the lecturer's link holds the token), no sniffing.
 SAFE_HEADERS = {
@@ -32,16 +35,43 @@ async def _to_class(request: Request) -> Response:
     return RedirectResponse(f"/c/{quote(request.path_params['code'])}/{query}", status_code=308)
 
 
+def wants_page(request: Request) -> bool:
+    """Whether a browser reads the answer as a page: asked for HTML, not at an API path
+    (the API's clients, the page's own scripts and the desktop, get JSON)."""
+    if "/api/" in request.url.path:
+        return False
+    return "text/html" in request.headers.get("accept", "")
+
+
+def _answer(request: Request, refusal: RefusedError) -> Response:
+    """A refusal as a page or as JSON (see wants_page), in the reader's language."""
+    words = hub_of(request).words.of(request)
+    if not wants_page(request):
+        return refused_response(refusal, words)
+    message = words.t(refusal.key, **refusal.args_)
+    page = refusal_page(
+        lambda k: raw(words, k),
+        words.locale,
+        words.meta["direction"],
+        refusal.status,
+        refusal.key,
+        message,
+    )
+    if refusal.retry_after:
+        page.headers["Retry-After"] = str(refusal.retry_after)
+    return page
+
+
 async def _refused(request: Request, exc: Exception) -> Response:
-    """The JSON answer of a RefusedError."""
+    """The answer of a RefusedError."""
     assert isinstance(exc, RefusedError)
-    return refused_response(exc, hub_of(request).words.of(request))
+    return _answer(request, exc)
 
 
 async def _store_away(request: Request, exc: Exception) -> Response:
     """503 while the database does not answer (a department's PostgreSQL away)."""
     refusal = RefusedError(503, "store", "class.error.store_away", retry_after=STORE_RETRY)
-    return refused_response(refusal, hub_of(request).words.of(request))
+    return _answer(request, refusal)
 
 
 async def _no_route(request: Request, exc: Exception) -> Response:
@@ -51,7 +81,7 @@ async def _no_route(request: Request, exc: Exception) -> Response:
         refusal = RefusedError(405, "method", "class.error.method", method=request.method)
     else:
         refusal = RefusedError(404, "path", "class.error.not_found")
-    answer = refused_response(refusal, hub_of(request).words.of(request))
+    answer = _answer(request, refusal)
     answer.headers.update(exc.headers or {})  # Allow, for a 405
     return answer
 

@@ -14,6 +14,7 @@ from evapcool.classroom.debrief import Showing
 from evapcool.classroom.errors import RefusedError
 from evapcool.classroom.hub import Hub
 from evapcool.classroom.rooms import DEFAULT_ROOM, normal_code
+from evapcool.classroom.session import CSRF_HEADER, LECTURER_COOKIE, check_csrf
 from evapcool.classroom.tokens import (
     LECTURER_SECRET,
     PROJECTOR_SECRET,
@@ -73,17 +74,23 @@ async def _lecturer_digest(hub: Hub, room: dict[str, Any]) -> str | None:
 
 async def lecturer(request: Request, query: bool = False) -> tuple[Hub, dict[str, Any]]:
     """The Hub and the class if the request carries the class's lecturer's token, else
-    403 (another lecturer's token too)."""
+    403 (another lecturer's token too); a token from the cookie alone must come with the
+    page's CSRF token on anything but a GET."""
     hub = guard(request)
     room = await room_of(request, hub)
-    if not matches_digest(_lecturer_token(request, query), await _lecturer_digest(hub, room)):
+    token = _lecturer_token(request, query)
+    if not matches_digest(token, await _lecturer_digest(hub, room)):
         raise RefusedError(403, "token", "class.error.lecturer")
+    if request.method not in ("GET", "HEAD") and not bearer_token(request):
+        check_csrf(token, request.headers.get(CSRF_HEADER, ""))
     return hub, room
 
 
 def _lecturer_token(request: Request, query: bool) -> str:
-    """The token a request gives: as Bearer, or (query=True, the pages) in ?token=."""
-    return bearer_token(request) or (request.query_params.get("token", "") if query else "")
+    """The token a request gives: as Bearer, or (query=True, the pages) in ?token=, or
+    the cookie its link left in the browser."""
+    given = bearer_token(request) or (request.query_params.get("token", "") if query else "")
+    return given or request.cookies.get(LECTURER_COOKIE, "")
 
 
 async def keyed(request: Request, hub: Hub, room: dict[str, Any]) -> bool:

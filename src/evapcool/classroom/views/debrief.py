@@ -17,6 +17,7 @@ from evapcool.classroom.tokens import matches_digest
 from evapcool.classroom.views.common import (
     _entry_id,
     _lecturer_digest,
+    _lecturer_token,
     _show,
     bearer_token,
     debrief_state,
@@ -33,7 +34,9 @@ async def _debrief_challenge(
     open, unless the lecturer asks (their early look; the projector and students wait for
     the close)."""
     room = await room_of(request, hub)
-    is_lecturer = matches_digest(bearer_token(request), await _lecturer_digest(hub, room))
+    # The lecturer's token as Bearer or in the cookie their link left (issue 45).
+    token = _lecturer_token(request, False)
+    is_lecturer = matches_digest(token, await _lecturer_digest(hub, room))
     row = await hub.db(hub.store.latest, room["id"])
     if row is None:
         raise RefusedError(404, "challenge", "class.error.no_challenge")

@@ -2,8 +2,9 @@
 
 The administrator (a token of their own, kept as a digest) makes lecturers and classes; a
 lecturer (a token each, kept as a digest) makes and sees their own classes only, each with
-its join code, its pages and its past challenges. These pages have no script: plain forms
-posted to this server, each answered by the page again.
+its join code, its pages and its past challenges. These pages are forms posted to this server, each
+answered by a redirect to the page (post/redirect/get); the lecturer's link's token is kept
+in a cookie (session.py). The administrator's page is views/admin.py.
 """
 
 from __future__ import annotations
@@ -11,7 +12,7 @@ from __future__ import annotations
 import html
 import secrets
 from typing import Any
-from urllib.parse import parse_qs, quote
+from urllib.parse import parse_qs
 
 from starlette.requests import Request
 from starlette.responses import HTMLResponse, JSONResponse, Response
@@ -19,12 +20,22 @@ from starlette.routing import Route
 
 from evapcool.classroom import pages
 from evapcool.classroom.boards import challenge_info
+from evapcool.classroom.console_pages import console_page
 from evapcool.classroom.errors import RefusedError, read_json
 from evapcool.classroom.hub import Hub
 from evapcool.classroom.rooms import DEFAULT_ROOM
+from evapcool.classroom.session import (
+    CSRF_FIELD,
+    LECTURER_COOKIE,
+    adopt,
+    back,
+    check_csrf,
+    csrf_token,
+)
 from evapcool.classroom.tokens import ADMIN_SECRET, digest, matches_digest, room_projector_key
 from evapcool.classroom.views.common import bearer_token, guard, join_url_of
 from evapcool.classroom.views.join import join_page
+from evapcool.classroom.words import raw
 from evapcool.i18n import Catalog
 
 #: The longest class or lecturer name kept.
@@ -171,7 +182,7 @@ def _e(words: Catalog, key: str, **args: Any) -> str:
     return html.escape(words.t(key, **args))
 
 
-async def _form(request: Request) -> dict[str, str]:
+async def form_of(request: Request) -> dict[str, str]:
     """A posted form's fields (urlencoded, at most FORM_BYTES; the last of a repeated one)."""
     body = await request.body()
     if len(body) > FORM_BYTES:
@@ -180,134 +191,106 @@ async def _form(request: Request) -> dict[str, str]:
     return {k: v[-1] for k, v in fields.items()}
 
 
-def _rows(cells: list[list[str]]) -> str:
-    return "".join("<tr>" + "".join(f"<td>{c}</td>" for c in row) + "</tr>" for row in cells)
+def table(heads: list[str], rows: list[list[str]], ident: str) -> str:
+    """A table with its column headers (cells already escaped HTML)."""
+    head = "".join(f'<th scope="col">{h}</th>' for h in heads)
+    body = "".join("<tr>" + "".join(f"<td>{c}</td>" for c in row) + "</tr>" for row in rows)
+    return (
+        f'<div class="table-wrap"><table id="{ident}"><thead><tr>{head}</tr></thead>'
+        f"<tbody>{body}</tbody></table></div>"
+    )
+
 
 
 async def classes_page(request: Request) -> Response:
-    """A department's lecturer's page (?token=): their classes with links and past
-    challenges, and a form for a new class."""
-    token = request.query_params.get("token", "")
+    """A department's lecturer's page: their classes with links and past rounds, and a
+    form for a new class (a link's ?token= is taken into the cookie first)."""
+    given = request.query_params.get("token")
+    if given:
+        await _lecturer_of(request, given)
+        return adopt(request, LECTURER_COOKIE, given)
+    token = request.cookies.get(LECTURER_COOKIE, "")
     hub, who = await _lecturer_of(request, token)
-    return await _classes(request, hub, who, token, "")
+    return await _classes(request, hub, who, token)
 
 
 async def classes_post(request: Request) -> Response:
-    """A new class from the lecturer's page's form (name, token)."""
-    form = await _form(request)
-    token = form.get("token", "")
+    """A new class from the lecturer's page's form (name, csrf); then the list by GET (a
+    reload makes no second class)."""
+    form = await form_of(request)
+    token = request.cookies.get(LECTURER_COOKIE, "")
     hub, who = await _lecturer_of(request, token)
-    room = await hub.db(hub.store.add_room, clean_title(form.get("name"), "name"), who["id"])
-    words = hub.words.of(request)
-    made = _e(words, "class.classes.made", name=room["name"], code=room["code"])
-    note = f'<p class="note">{made}</p>'
-    return await _classes(request, hub, who, token, note)
+    check_csrf(token, form.get(CSRF_FIELD, ""))
+    await hub.db(hub.store.add_room, clean_title(form.get("name"), "name"), who["id"])
+    return back(request, "/lecturer")
 
 
-async def _classes(
-    request: Request, hub: Hub, who: dict[str, Any], token: str, note: str
-) -> Response:
+async def _classes(request: Request, hub: Hub, who: dict[str, Any], token: str) -> Response:
     words = hub.words.of(request)
-    parts = [note]
-    q = "?token=" + quote(token)
+    archived = await hub.db(hub.store.archived_rooms)
+    title = _e(words, "class.classes.title", name=who["name"])
+    parts = [f'<header id="top"><h1>{title}</h1></header><main>']
     for room in await hub.db(hub.store.rooms, who["id"]):
-        doc = class_doc(request, room)
-        parts.append(
-            f'<h2>{html.escape(room["name"])} · <span class="code">{room["code"]}</span></h2>'
-            f'<p><a href="{html.escape(doc["lecturer_page"] + q)}">'
-            f"{_e(words, 'class.classes.page')}</a> · "
-            f'<a href="{html.escape(doc["projector"])}">{_e(words, "class.lecturer.projector")}'
-            f"</a> · {html.escape(doc['join'])}</p>"
-        )
-        past = await hub.db(hub.store.challenges, room["id"])
-        if not past:
-            parts.append(f"<p>{_e(words, 'class.classes.none')}</p>")
-            continue
-        rows = []
-        for c in past:
-            csv_link = f"/c/{room['code']}/api/export.csv{q}&challenge={c['id']}"
-            info = challenge_info(c)
-            rows.append(
-                [
-                    str(c["id"]),
-                    html.escape(str(info["closes_at"] or "")),
-                    _e(words, "class.classes.games", n=c["games"], students=c["students"]),
-                    f'<a href="{html.escape(csv_link)}">CSV</a>',
-                ]
-            )
-        parts.append(f"<table>{_rows(rows)}</table>")
+        parts.append(await _class_section(request, hub, words, room, room["id"] in archived))
+    csrf = csrf_token(token)
     parts.append(
-        f'<form method="post" action="/lecturer"><input type="hidden" name="token" '
-        f'value="{html.escape(token)}"><label for="name">{_e(words, "class.admin.new_class")}'
-        f'</label> <input id="name" name="name" maxlength="{TITLE_MAX}" required> '
-        f"<button>{_e(words, 'class.admin.create')}</button></form>"
+        f'<section id="new-class"><form method="post" action="/lecturer" class="inline">'
+        f'<input type="hidden" name="{CSRF_FIELD}" value="{csrf}">'
+        f'<label for="name">{_e(words, "class.admin.new_class")}</label> '
+        f'<input id="name" name="name" maxlength="{TITLE_MAX}" required> '
+        f'<button class="primary">{_e(words, "class.admin.create")}</button></form>'
+        "</section></main>"
     )
-    return _page(words, words.t("class.classes.title", name=who["name"]), "".join(parts))
+    title = words.t("class.classes.title", name=who["name"])
+    return console_page(
+        lambda k: raw(words, k), words.locale, words.meta["direction"], title, "".join(parts)
+    )
 
 
-async def admin_page(request: Request) -> Response:
-    """The administrator's page (?token=): lecturers, classes, and forms for new ones."""
-    token = request.query_params.get("token", "")
-    hub = await _admin(request, token)
-    return await _admin_view(request, hub, token, "")
-
-
-async def admin_post(request: Request) -> Response:
-    """A new lecturer (what=lecturer, name) or class (what=class, name, lecturer) from the
-    administrator's page; the new lecturer's link is shown once."""
-    form = await _form(request)
-    token = form.get("token", "")
-    hub = await _admin(request, token)
-    words = hub.words.of(request)
-    name = clean_title(form.get("name"), "name")
-    root = (request.app.state.join_url or str(request.base_url)).rstrip("/")
-    if form.get("what") == "lecturer":
-        secret = new_token()
-        await hub.db(hub.store.add_lecturer, name, digest(secret))
-        url = f"{root}/lecturer?token={secret}"
-        note = _e(words, "class.admin.made_lecturer", name=name, url=url)
-    else:
-        lecturer = form.get("lecturer", "")
-        known = {row["id"] for row in await hub.db(hub.store.lecturers)}
-        if not lecturer.isdigit() or int(lecturer) not in known:
-            raise RefusedError(400, "lecturer", "class.error.no_lecturer")
-        room = await hub.db(hub.store.add_room, name, int(lecturer))
-        note = _e(words, "class.classes.made", name=room["name"], code=room["code"])
-    return await _admin_view(request, hub, token, f'<p class="note">{note}</p>')
-
-
-async def _admin_view(request: Request, hub: Hub, token: str, note: str) -> Response:
-    words = hub.words.of(request)
-    lecturers = await hub.db(hub.store.lecturers)
-    rooms = await listed_rooms(hub)
-    names = {row["id"]: row["name"] for row in lecturers}
-    hidden = f'<input type="hidden" name="token" value="{html.escape(token)}">'
-    lecturer_rows = [[str(r["id"]), html.escape(r["name"]), str(r["classes"])] for r in lecturers]
-    class_rows = [
-        [
-            f'<span class="code">{r["code"]}</span>',
-            html.escape(r["name"]),
-            html.escape(names.get(r["lecturer"], "—")),
-        ]
-        for r in rooms
+async def _class_section(
+    request: Request, hub: Hub, words: Catalog, room: dict[str, Any], archived: bool
+) -> str:
+    """One class of the lecturer's list: name, join code, links, its past rounds."""
+    doc = class_doc(request, room)
+    mark = f' <span class="tag">{_e(words, "console.admin.archived")}</span>' if archived else ""
+    head = (
+        f'<section class="class-card" data-code="{room["code"]}"><h2>{html.escape(room["name"])}'
+        f'{mark}</h2><p><span class="label">{_e(words, "console.lecturer.join_code")}</span> '
+        f'<span class="code">{room["code"]}</span></p>'
+        f'<p class="links"><a class="button primary" href="{html.escape(doc["lecturer_page"])}">'
+        f"{_e(words, 'class.classes.page')}</a> "
+        f'<a class="button" href="{html.escape(doc["projector"])}">'
+        f"{_e(words, 'class.lecturer.projector')}</a> "
+        f'<input class="link" readonly value="{html.escape(doc["join"])}" size="36" '
+        f'aria-label="{_e(words, "console.admin.join")}"> <button type="button" class="copy" '
+        f'data-copy="{html.escape(doc["join"])}">{_e(words, "console.copy")}</button></p>'
+    )
+    past = await hub.db(hub.store.challenges, room["id"])
+    if not past:
+        return head + f"<p>{_e(words, 'class.classes.none')}</p></section>"
+    rows = []
+    for c in past:
+        csv_link = f"/c/{room['code']}/api/export.csv?challenge={c['id']}"
+        info = challenge_info(c)
+        when = info["closes_at"]
+        rows.append(
+            [
+                str(c["id"]),
+                html.escape(str(when or "—")),
+                _e(words, "class.classes.games", n=c["games"], students=c["students"]),
+                f'<a href="{html.escape(csv_link)}" download>CSV</a>',
+            ]
+        )
+    heads = [
+        _e(words, k)
+        for k in (
+            "console.lecturer.round",
+            "console.lecturer.closes",
+            "console.lecturer.played",
+            "class.lecturer.export",
+        )
     ]
-    options = "".join(
-        f'<option value="{r["id"]}">{html.escape(r["name"])}</option>' for r in lecturers
-    )
-    body = (
-        f"{note}<h2>{_e(words, 'class.admin.lecturers')}</h2><table>{_rows(lecturer_rows)}</table>"
-        f'<form method="post" action="/admin">{hidden}<input type="hidden" name="what" '
-        f'value="lecturer"><label for="lname">{_e(words, "class.admin.new_lecturer")}</label> '
-        f'<input id="lname" name="name" maxlength="{TITLE_MAX}" required> '
-        f"<button>{_e(words, 'class.admin.create')}</button></form>"
-        f"<h2>{_e(words, 'class.admin.classes')}</h2><table>{_rows(class_rows)}</table>"
-        f'<form method="post" action="/admin">{hidden}<input type="hidden" name="what" '
-        f'value="class"><label for="cname">{_e(words, "class.admin.new_class")}</label> '
-        f'<input id="cname" name="name" maxlength="{TITLE_MAX}" required> '
-        f'<select name="lecturer" aria-label="{_e(words, "class.admin.lecturer")}">{options}'
-        f"</select> <button>{_e(words, 'class.admin.create')}</button></form>"
-    )
-    return _page(words, words.t("class.admin.title"), body)
+    return head + table(heads, rows, f"rounds-{room['code']}") + "</section>"
 
 
 #: A department's root and lecturer's page (before the single class's at the same paths).
@@ -316,8 +299,6 @@ ROOT_ROUTES = [
     Route("/lecturer", classes_page, methods=["GET"]),
 ]
 ROUTES = [
-    Route("/admin", admin_page, methods=["GET"]),
-    Route("/admin", admin_post, methods=["POST"]),
     Route("/lecturer", classes_post, methods=["POST"]),
     Route("/api/admin/lecturers", admin_lecturers, methods=["GET", "POST"]),
     Route("/api/admin/classes", admin_classes, methods=["GET", "POST"]),

@@ -5,7 +5,6 @@ from __future__ import annotations
 
 import asyncio
 from typing import Any
-from urllib.parse import quote
 
 from starlette.requests import Request
 from starlette.responses import HTMLResponse, JSONResponse, Response
@@ -15,8 +14,9 @@ from evapcool.classroom.boards import _replay_seen, challenge_info
 from evapcool.classroom.challenge import challenge_doc, parse_challenge
 from evapcool.classroom.debrief import Showing
 from evapcool.classroom.errors import RefusedError, read_json
+from evapcool.classroom.session import LECTURER_COOKIE, adopt, csrf_token
 from evapcool.classroom.store import NAME_MAX, NameTakenError
-from evapcool.classroom.tokens import matches_digest, projector_key, room_projector_key
+from evapcool.classroom.tokens import projector_key, room_projector_key
 from evapcool.classroom.verifier import reference_frames
 from evapcool.classroom.views.common import (
     _base,
@@ -32,43 +32,44 @@ from evapcool.classroom.words import raw
 
 
 async def lecturer_page(request: Request) -> Response:
-    """The lecturer's page (403 without the token in ?token=); a department's lecturers get
-    the list of their classes at /lecturer instead (department.py)."""
+    """The lecturer's page (403 without the lecturer's token); a link's ?token= is taken
+    into the cookie and the browser sent here without it (session.adopt). A department's
+    lecturers get the list of their classes at /lecturer instead (department.py)."""
     hub, room = await lecturer(request, query=True)
-    words = hub.words.of(request)
     token = _lecturer_token(request, query=True)
+    if request.query_params.get("token"):
+        return adopt(request, LECTURER_COOKIE, token)
+    words = hub.words.of(request)
     if room["lecturer"] is None:
         key = projector_key(token)
     else:
         key = room_projector_key(room["digest"], room["code"])
+    department = bool(request.app.state.department) and room["lecturer"] is not None
     text = pages.lecturer_page(
         lambda k: raw(words, k),
         words.locale,
         words.meta["direction"],
         key,
         _base(room),
-        _classes_link(request, room),
+        "/lecturer" if department else "",
+        name=str(room["name"] or ""),
+        code=str(room["code"]) if department else "",
+        csrf=csrf_token(token),
     )
     headers = {"Content-Security-Policy": pages.LECTURER_POLICY, "Cache-Control": "no-store"}
     return HTMLResponse(text, headers=headers)
 
 
-def _classes_link(request: Request, room: dict[str, Any]) -> str:
-    """The department lecturer's list of classes (/lecturer?token=, as that list links
-    here), or "": a single-class server has no list, the single class's token (its room has
-    no lecturer) is no department lecturer's, and a token given only as Bearer stays out of
-    the page."""
-    if not request.app.state.department or room["lecturer"] is None:
-        return ""
-    token = request.query_params.get("token", "")
-    if not matches_digest(token, str(room["digest"])):
-        return ""
-    return "/lecturer?token=" + quote(token)
+async def _open_class(hub: Any, room: dict[str, Any]) -> None:
+    """409 if the class is archived (its records stay; no new round)."""
+    if await hub.db(hub.store.archived, room["id"]):
+        raise RefusedError(409, "class", "console.error.archived")
 
 
 async def open_challenge(request: Request) -> Response:
     """Open a challenge (closing the one open); the lecturer's."""
     hub, room = await lecturer(request)
+    await _open_class(hub, room)
     new = parse_challenge(await read_json(request, hub.limits.body_bytes))
     max_frames = new.max_frames
     if max_frames is None:  # a real game's length on these settings, with a margin

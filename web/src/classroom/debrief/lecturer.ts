@@ -1,10 +1,11 @@
 /**
  * The lecturer's debrief controls: look at the debrief early (while the challenge is open,
- * on this page only), hide the names, pick an archetype (its curve highlighted and its
- * replay on the projector), set two entries side by side.
+ * on this page only), hide the names, pick an archetype (its button names the student it
+ * will project: its curve highlighted and its replay on the projector), set two entries
+ * side by side (pickers listing names and atoms).
  */
 import { classBase } from "../common";
-import { archetypeList, nameOf, type Debrief, type Tr } from "../../view/debrief/model";
+import { archetypeList, gameOf, nameOf, type Debrief, type Tr } from "../../view/debrief/model";
 import { DebriefView } from "../../view/debrief/view";
 
 function made<K extends keyof HTMLElementTagNameMap>(
@@ -25,6 +26,7 @@ export class LecturerDebrief {
   readonly anonymous: HTMLInputElement;
   readonly pairA: HTMLSelectElement;
   readonly pairB: HTMLSelectElement;
+  readonly pair: HTMLElement;
   readonly view: DebriefView;
   doc: Debrief | null = null;
 
@@ -34,10 +36,15 @@ export class LecturerDebrief {
     locale: string,
     private readonly headers: Record<string, string>,
     /** POST to the server (the page says any refusal and refreshes). */
-    private readonly post: (path: string, body: unknown) => Promise<void>,
+    private readonly post: (path: string, body: unknown) => Promise<unknown>,
+    /** Where the charts go (after the controls when not given). */
+    viewParent: HTMLElement | null = null,
   ) {
     this.box = made("section", parent, "debrief-controls");
+    const head = made("h2", this.box);
+    head.textContent = tr("console.lecturer.debrief_head");
     const show = made("button", this.box, "debrief-show");
+    show.type = "button";
     show.textContent = tr("debrief.show");
     show.onclick = () => void this.refresh();
     const label = made("label", this.box);
@@ -50,17 +57,23 @@ export class LecturerDebrief {
     this.early = made("p", this.box, "debrief-early");
     this.picks = made("p", this.box, "debrief-picks");
     const pair = made("p", this.box, "debrief-pair-pick");
-    this.pairA = made("select", pair, "debrief-pair-a");
-    this.pairB = made("select", pair, "debrief-pair-b");
-    for (const select of [this.pairA, this.pairB])
-      select.setAttribute("aria-label", tr("debrief.side_by_side"));
+    pair.hidden = true; // until the debrief has two games to set side by side
+    this.pair = pair;
+    const labelA = made("label", pair);
+    labelA.append(tr("console.lecturer.pair_left"), " ");
+    this.pairA = made("select", labelA, "debrief-pair-a");
+    const labelB = made("label", pair);
+    labelB.append(tr("console.lecturer.pair_right"), " ");
+    this.pairB = made("select", labelB, "debrief-pair-b");
     const go = made("button", pair, "debrief-pair-go");
+    go.type = "button";
     go.textContent = tr("debrief.pair");
     go.onclick = () =>
       void this.post("/api/debrief", {
         pair: [Number(this.pairA.value), Number(this.pairB.value)],
       });
-    this.view = new DebriefView(this.box, { tr, locale });
+    const charts = made("section", viewParent ?? this.box, "debrief-view");
+    this.view = new DebriefView(charts, { tr, locale });
   }
 
   /** The debrief as the lecturer sees it (names always; early while the challenge is open). */
@@ -78,9 +91,16 @@ export class LecturerDebrief {
     this.picks.replaceChildren();
     for (const a of archetypeList(doc, this.tr)) {
       const b = made("button", this.picks);
+      const game = gameOf(doc, a.entry);
+      b.type = "button";
       b.dataset.kind = a.kind;
       b.dataset.entry = String(a.entry);
-      b.textContent = a.label;
+      b.textContent = this.tr("console.lecturer.pick_named", {
+        kind: a.label,
+        name: game ? nameOf(game, this.tr) : "?",
+        score: game ? game.score : "",
+      });
+      if (doc.showing?.pick === a.entry) b.className = "on";
       b.onclick = () => void this.post("/api/debrief", { pick: a.entry });
     }
     for (const select of [this.pairA, this.pairB]) {
@@ -89,10 +109,15 @@ export class LecturerDebrief {
       for (const g of doc.games) {
         const o = made("option", select);
         o.value = String(g.entry);
-        o.textContent = `${g.rank}. ${nameOf(g, this.tr)} (${g.score})`;
+        o.textContent = this.tr("console.lecturer.pair_option", {
+          rank: g.rank,
+          name: nameOf(g, this.tr),
+          score: g.score,
+        });
       }
       if (was) select.value = was;
     }
+    this.pair.hidden = doc.games.length < 2;
     if (!this.pairB.value || this.pairB.value === this.pairA.value)
       this.pairB.selectedIndex = Math.min(1, doc.games.length - 1);
     this.view.show(doc, doc.showing?.pick ?? null);
