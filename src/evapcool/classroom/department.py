@@ -17,12 +17,12 @@ from evapcool.classroom.views.department import (
     classes_page,
     classes_post,
     clean_title,
-    join_page,
     listed_rooms,
     my_classes,
     new_admin_token,
     new_token,
 )
+from evapcool.classroom.views.join import join_page
 
 __all__ = [
     "FORM_BYTES",
