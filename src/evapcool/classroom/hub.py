@@ -90,6 +90,8 @@ class Hub:
     #: once per process (the same in every process: they follow from the games).
     laws: dict[int, Law] = field(default_factory=dict)
     pair_paths: dict[int, dict[str, Any]] = field(default_factory=dict)
+    #: Requests whose client left mid-body (logged once, at the stop).
+    cut_uploads: int = 0
 
     def __post_init__(self) -> None:
         # Requests per address are one process's flood guard; submissions and joins are

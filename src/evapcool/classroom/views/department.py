@@ -11,7 +11,7 @@ from __future__ import annotations
 import html
 import secrets
 from typing import Any
-from urllib.parse import parse_qs, quote
+from urllib.parse import quote
 
 from starlette.requests import Request
 from starlette.responses import HTMLResponse, JSONResponse, RedirectResponse, Response
@@ -19,8 +19,10 @@ from starlette.routing import Route
 
 from evapcool.classroom import pages
 from evapcool.classroom.boards import challenge_info
+from evapcool.classroom.bodies import read_form
 from evapcool.classroom.errors import RefusedError, read_json
 from evapcool.classroom.hub import Hub
+from evapcool.classroom.numbers import whole_number
 from evapcool.classroom.rooms import DEFAULT_ROOM, normal_code
 from evapcool.classroom.tokens import ADMIN_SECRET, digest, matches_digest, room_projector_key
 from evapcool.classroom.views.common import bearer_token, guard, join_url_of
@@ -172,11 +174,7 @@ def _e(words: Catalog, key: str, **args: Any) -> str:
 
 async def _form(request: Request) -> dict[str, str]:
     """A posted form's fields (urlencoded, at most FORM_BYTES; the last of a repeated one)."""
-    body = await request.body()
-    if len(body) > FORM_BYTES:
-        raise RefusedError(413, "body", "class.error.too_large", n=FORM_BYTES)
-    fields = parse_qs(body.decode("utf-8", "replace"), keep_blank_values=True)
-    return {k: v[-1] for k, v in fields.items()}
+    return await read_form(request, FORM_BYTES)
 
 
 async def join_page(request: Request) -> Response:
@@ -287,11 +285,11 @@ async def admin_post(request: Request) -> Response:
         url = f"{root}/lecturer?token={secret}"
         note = _e(words, "class.admin.made_lecturer", name=name, url=url)
     else:
-        lecturer = form.get("lecturer", "")
+        lecturer = whole_number(form.get("lecturer"), "lecturer")
         known = {row["id"] for row in await hub.db(hub.store.lecturers)}
-        if not lecturer.isdigit() or int(lecturer) not in known:
+        if lecturer not in known:
             raise RefusedError(400, "lecturer", "class.error.no_lecturer")
-        room = await hub.db(hub.store.add_room, name, int(lecturer))
+        room = await hub.db(hub.store.add_room, name, lecturer)
         note = _e(words, "class.classes.made", name=room["name"], code=room["code"])
     return await _admin_view(request, hub, token, f'<p class="note">{note}</p>')
 
