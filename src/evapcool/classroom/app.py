@@ -31,6 +31,7 @@ from evapcool.classroom.hub import (
 )
 from evapcool.classroom.numbers import digits_value
 from evapcool.classroom.store import StoreAwayError
+from evapcool.classroom.streamkeys import watch_keys
 from evapcool.classroom.views import department
 from evapcool.classroom.views.answers import (
     _cut_upload,
@@ -121,7 +122,11 @@ def create_app(
         pages.game_page()  # read and hashed once, before the first student asks
         loop = asyncio.get_running_loop()
         await asyncio.gather(*(loop.run_in_executor(hub.pool, _ready) for _ in range(pool_workers)))
-        tasks = [asyncio.create_task(_close_on_time(hub)), asyncio.create_task(hub.forward())]
+        tasks = [
+            asyncio.create_task(_close_on_time(hub)),
+            asyncio.create_task(hub.forward()),
+            asyncio.create_task(watch_keys(hub)),
+        ]
         stop = threading.Event()
         listening = _listen(hub, loop, stop) if store.shared else None
         try:

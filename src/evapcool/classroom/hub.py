@@ -21,6 +21,7 @@ from evapcool.classroom.fairqueue import FairQueue
 from evapcool.classroom.ratelimit import Rate, RateLimiter
 from evapcool.classroom.rooms import DEFAULT_ROOM
 from evapcool.classroom.store import ClassStore, Store, StoreAwayError, is_url
+from evapcool.classroom.streamkeys import drop_stale
 from evapcool.classroom.verifier import warm
 from evapcool.classroom.words import Words
 
@@ -71,6 +72,16 @@ class Listener:
     address: str
     keyed: bool
     room: int = DEFAULT_ROOM
+    #: The key it was opened with (checked for the stream's life), and whether it ended.
+    key: str | None = None
+    closed: bool = False
+
+    def close(self) -> None:
+        """End the stream: its generator returns at its next look (an empty text wakes it)."""
+        self.closed = True
+        if self.queue.full():
+            self.queue.get_nowait()
+        self.queue.put_nowait("")
 
 
 @dataclass
@@ -124,7 +135,8 @@ class Hub:
     async def send(self, room: int) -> None:
         """Send a room's leaderboard to this process's streams of it; a slow one keeps only
         the newest."""
-        here = [s for s in self.listeners if s.room == room]
+        await drop_stale(self, [s for s in self.listeners if s.room == room and s.keyed])
+        here = [s for s in self.listeners if s.room == room and not s.closed]
         texts = {}
         for keyed in {s.keyed for s in here}:
             texts[keyed] = json.dumps(await self.board(room, keyed))
