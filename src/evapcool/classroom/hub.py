@@ -101,6 +101,8 @@ class Hub:
     #: once per process (the same in every process: they follow from the games).
     laws: dict[int, Law] = field(default_factory=dict)
     pair_paths: dict[int, dict[str, Any]] = field(default_factory=dict)
+    #: Each room's count of announced changes (what this process built from it is stale).
+    generation: dict[int, int] = field(default_factory=dict)
     #: Requests whose client left mid-body (logged once, at the stop).
     cut_uploads: int = 0
 
@@ -124,6 +126,7 @@ class Hub:
     async def publish(self, room: int) -> None:
         """A room's board changed: tell every process sharing the store, or (one process)
         send it to this one's streams now."""
+        self.generation[room] = self.generation.get(room, 0) + 1  # stale here at once
         if self.store.shared:
             # if the database is away, every process sends all its boards anew once it hears
             # from the database again
@@ -135,6 +138,7 @@ class Hub:
     async def send(self, room: int) -> None:
         """Send a room's leaderboard to this process's streams of it; a slow one keeps only
         the newest."""
+        self.generation[room] = self.generation.get(room, 0) + 1
         await drop_stale(self, [s for s in self.listeners if s.room == room and s.keyed])
         here = [s for s in self.listeners if s.room == room and not s.closed]
         texts = {}
