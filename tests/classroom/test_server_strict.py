@@ -127,3 +127,15 @@ def test_uploads_cut_mid_body_leave_no_traceback(single: Server, department: Ser
         log = _log_after_stop(server)
         assert "Traceback" not in log and "Exception in ASGI" not in log, log
         assert "uploads cut mid-body: 6" in log, log
+
+
+def test_the_guide_states_these_limits() -> None:
+    from evapcool.classroom.streamkeys import KEY_CHECK
+    from evapcool.classroom.views.department import FORM_BYTES
+
+    guide = " ".join(
+        (Path(__file__).resolve().parents[2] / "docs" / "class.md").read_text().split()
+    )
+    assert f"past {FORM_BYTES // 1024} KB" in guide
+    assert f"within {KEY_CHECK:g} s when nothing changes" in guide
+    assert "ASCII digits only, 1 to 2^63 - 1" in guide
