@@ -14,7 +14,7 @@ from evapcool.classroom.debrief import Showing
 from evapcool.classroom.errors import RefusedError
 from evapcool.classroom.hub import Hub
 from evapcool.classroom.numbers import whole_number
-from evapcool.classroom.rooms import DEFAULT_ROOM, normal_code
+from evapcool.classroom.rooms import DEFAULT_ROOM
 from evapcool.classroom.tokens import (
     LECTURER_SECRET,
     PROJECTOR_SECRET,
@@ -54,11 +54,12 @@ async def room_of(request: Request, hub: Hub) -> dict[str, Any]:
     """The class a request is for: /c/{code}/... names it, the other paths are the single
     class's (404 naming "class" for an unknown code)."""
     given = request.path_params.get("code")
-    code = normal_code(given) if isinstance(given, str) else None
     if given is None:
         room = await hub.db(hub.store.room, DEFAULT_ROOM)
     else:
-        room = await hub.db(hub.store.room_by_code, code) if code else None
+        from evapcool.classroom.guessing import room_by_given_code
+
+        room = await room_by_given_code(hub, address(request), str(given))
     if room is None:
         raise RefusedError(404, "class", "class.error.no_class")
     return room

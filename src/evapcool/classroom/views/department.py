@@ -21,9 +21,10 @@ from evapcool.classroom import pages
 from evapcool.classroom.boards import challenge_info
 from evapcool.classroom.bodies import read_form
 from evapcool.classroom.errors import RefusedError, read_json
+from evapcool.classroom.guessing import room_for
 from evapcool.classroom.hub import Hub
 from evapcool.classroom.numbers import whole_number
-from evapcool.classroom.rooms import DEFAULT_ROOM, normal_code
+from evapcool.classroom.rooms import DEFAULT_ROOM
 from evapcool.classroom.tokens import ADMIN_SECRET, digest, matches_digest, room_projector_key
 from evapcool.classroom.views.common import bearer_token, guard, join_url_of
 from evapcool.i18n import Catalog
@@ -184,8 +185,7 @@ async def join_page(request: Request) -> Response:
     given = request.query_params.get("code")
     error = ""
     if given is not None:
-        code = normal_code(given)
-        room = await hub.db(hub.store.room_by_code, code) if code else None
+        room = await room_for(request, hub, given)  # wrong codes limited (issue 46)
         if room is not None:
             return RedirectResponse(f"/c/{room['code']}/", status_code=303)
         error = f'<p id="error" role="alert">{_e(words, "class.join.unknown")}</p>'
