@@ -6,6 +6,7 @@ for `uvicorn --factory` configured by the environment."""
 from __future__ import annotations
 
 import asyncio
+import logging
 import threading
 from collections.abc import AsyncIterator, Callable
 from concurrent.futures import ThreadPoolExecutor
@@ -14,7 +15,7 @@ from pathlib import Path
 from typing import Any
 
 from starlette.applications import Starlette
-from starlette.requests import Request
+from starlette.requests import ClientDisconnect, Request
 from starlette.routing import Route
 
 from evapcool.classroom import pages
@@ -28,9 +29,12 @@ from evapcool.classroom.hub import (
     _ready,
     open_store,
 )
+from evapcool.classroom.numbers import digits_value
 from evapcool.classroom.store import StoreAwayError
+from evapcool.classroom.streamkeys import watch_keys
 from evapcool.classroom.views import admin, department
 from evapcool.classroom.views.answers import (
+    _cut_upload,
     _no_route,
     _refused,
     _SafeHeaders,
@@ -118,12 +122,20 @@ def create_app(
         pages.game_page()  # read and hashed once, before the first student asks
         loop = asyncio.get_running_loop()
         await asyncio.gather(*(loop.run_in_executor(hub.pool, _ready) for _ in range(pool_workers)))
-        tasks = [asyncio.create_task(_close_on_time(hub)), asyncio.create_task(hub.forward())]
+        tasks = [
+            asyncio.create_task(_close_on_time(hub)),
+            asyncio.create_task(hub.forward()),
+            asyncio.create_task(watch_keys(hub)),
+        ]
         stop = threading.Event()
         listening = _listen(hub, loop, stop) if store.shared else None
         try:
             yield
         finally:
+            if hub.cut_uploads:  # one line, not one traceback per phone that left
+                logging.getLogger("uvicorn.error").warning(
+                    "uploads cut mid-body: %d", hub.cut_uploads
+                )
             stop.set()
             for task in tasks:
                 task.cancel()
@@ -136,6 +148,7 @@ def create_app(
     handlers = {
         RefusedError: _refused,
         StoreAwayError: _store_away,
+        ClientDisconnect: _cut_upload,
         404: _no_route,
         405: _no_route,
     }
@@ -196,6 +209,7 @@ def _env_int(name: str, low: int, high: int, default: int) -> int:
     text = os.environ.get(name)
     if text is None:
         return default
-    if not text.isdigit() or not low <= int(text) <= high:
+    value = digits_value(text, low, high)
+    if value is None:
         raise ValueError(f"{name}: must be a whole number {low}..{high} (got {text!r})")
-    return int(text)
+    return value

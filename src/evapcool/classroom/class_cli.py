@@ -36,21 +36,21 @@ DATA_ENV = "EVAPCOOL_DATA_DIR"
 
 def port(text: str) -> int:
     """A TCP port 1..65535."""
-    if not text.isdigit() or not 1 <= int(text) <= 65535:
+    if not (text.isascii() and text.isdigit()) or not 1 <= int(text) <= 65535:
         raise argparse.ArgumentTypeError(f"must be a whole number 1..65535 (got {text!r})")
     return int(text)
 
 
 def students(text: str) -> int:
     """A bound on the players of a class file, 1..100000."""
-    if not text.isdigit() or not 1 <= int(text) <= MAX_STUDENTS:
+    if not (text.isascii() and text.isdigit()) or not 1 <= int(text) <= MAX_STUDENTS:
         raise argparse.ArgumentTypeError(f"must be a whole number 1..{MAX_STUDENTS} (got {text!r})")
     return int(text)
 
 
 def workers(text: str) -> int:
     """A number of verifying processes 1..64."""
-    if not text.isdigit() or not 1 <= int(text) <= 64:
+    if not (text.isascii() and text.isdigit()) or not 1 <= int(text) <= 64:
         raise argparse.ArgumentTypeError(f"must be a whole number 1..64 (got {text!r})")
     return int(text)
 

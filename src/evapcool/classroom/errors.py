@@ -47,7 +47,7 @@ async def read_json(request: Request, limit: int) -> dict[str, Any]:
     if not is_json(request):
         raise RefusedError(415, "content-type", "class.error.content_type")
     length = request.headers.get("content-length", "")
-    if length.isdigit() and int(length) > limit:
+    if length.isascii() and length.isdigit() and int(length) > limit:
         raise RefusedError(413, "body", "class.error.too_large", n=limit)
     chunks: list[bytes] = []
     size = 0

@@ -21,6 +21,7 @@ from evapcool.classroom.fairqueue import FairQueue
 from evapcool.classroom.ratelimit import Rate, RateLimiter
 from evapcool.classroom.rooms import DEFAULT_ROOM
 from evapcool.classroom.store import ClassStore, Store, StoreAwayError, is_url
+from evapcool.classroom.streamkeys import drop_stale
 from evapcool.classroom.verifier import warm
 from evapcool.classroom.words import Words
 
@@ -71,6 +72,16 @@ class Listener:
     address: str
     keyed: bool
     room: int = DEFAULT_ROOM
+    #: The key it was opened with (checked for the stream's life), and whether it ended.
+    key: str | None = None
+    closed: bool = False
+
+    def close(self) -> None:
+        """End the stream: its generator returns at its next look (an empty text wakes it)."""
+        self.closed = True
+        if self.queue.full():
+            self.queue.get_nowait()
+        self.queue.put_nowait("")
 
 
 @dataclass
@@ -90,6 +101,10 @@ class Hub:
     #: once per process (the same in every process: they follow from the games).
     laws: dict[int, Law] = field(default_factory=dict)
     pair_paths: dict[int, dict[str, Any]] = field(default_factory=dict)
+    #: Each room's count of announced changes (what this process built from it is stale).
+    generation: dict[int, int] = field(default_factory=dict)
+    #: Requests whose client left mid-body (logged once, at the stop).
+    cut_uploads: int = 0
 
     def __post_init__(self) -> None:
         # Requests per address are one process's flood guard; submissions and joins are
@@ -111,6 +126,7 @@ class Hub:
     async def publish(self, room: int) -> None:
         """A room's board changed: tell every process sharing the store, or (one process)
         send it to this one's streams now."""
+        self.generation[room] = self.generation.get(room, 0) + 1  # stale here at once
         if self.store.shared:
             # if the database is away, every process sends all its boards anew once it hears
             # from the database again
@@ -122,7 +138,9 @@ class Hub:
     async def send(self, room: int) -> None:
         """Send a room's leaderboard to this process's streams of it; a slow one keeps only
         the newest."""
-        here = [s for s in self.listeners if s.room == room]
+        self.generation[room] = self.generation.get(room, 0) + 1
+        await drop_stale(self, [s for s in self.listeners if s.room == room and s.keyed])
+        here = [s for s in self.listeners if s.room == room and not s.closed]
         texts = {}
         for keyed in {s.keyed for s in here}:
             texts[keyed] = json.dumps(await self.board(room, keyed))

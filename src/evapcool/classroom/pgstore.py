@@ -77,8 +77,12 @@ CREATE INDEX entry_moves ON entry(challenge, moves);
 CREATE INDEX entry_player ON entry(challenge, player);
 """,
     ),
+    # The copy check across the whole server (storage/copies.py) looks games up by moves.
+    (2, "CREATE INDEX entry_moves_any ON entry(moves);"),
 )
 SCHEMA_VERSION = MIGRATIONS[-1][0]
+#: The first key of the advisory locks on a game's moves (the copy check).
+MOVES_LOCK = 46
 NOW = "extract(epoch from clock_timestamp())::float8"
 
 
@@ -137,6 +141,7 @@ class PostgresStore(SqlStore):
             for version, statements in MIGRATIONS:
                 if version > have:
                     conn.execute(statements)
+                    conn.execute("DELETE FROM schema_version")  # one row: the version
                     conn.execute("INSERT INTO schema_version VALUES (%s)", (version,))
 
     def close(self) -> None:
@@ -188,6 +193,11 @@ class PostgresStore(SqlStore):
     def _lock(self, q: Query, table: str, key: int) -> None:
         q(f"SELECT 1 FROM {table} WHERE id = ? FOR UPDATE", (key,))
 
+    def _lock_moves(self, q: Query, moves: str) -> None:
+        # moves is a SHA-256 hex: its first 28 bits name the lock (two-int keys: apart
+        # from the schema's bigint one)
+        q("SELECT pg_advisory_xact_lock(?, ?)", (MOVES_LOCK, int(moves[:7], 16)))
+
     def take(self, kind: str, key: str, rate: Rate) -> int:
         """0 if `key` may go now, else seconds to wait: one bucket for every process, on
         the database's clock."""
@@ -227,6 +237,10 @@ class PostgresStore(SqlStore):
                     changed(None)
                     while not stop.is_set():
                         for notice in conn.notifies(timeout=0.5):
-                            changed(int(notice.payload) if notice.payload.isdigit() else None)
+                            changed(
+                                int(notice.payload)
+                                if notice.payload.isascii() and notice.payload.isdigit()
+                                else None
+                            )
             except psycopg.Error:
                 time.sleep(0.5)  # the database restarting: connect again

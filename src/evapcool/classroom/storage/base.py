@@ -69,6 +69,9 @@ class SqlBase:
     def _lock(self, q: Query, table: str, key: int) -> None:
         """Hold a row's lock to the transaction's end (SQLite holds the whole file)."""
 
+    def _lock_moves(self, q: Query, moves: str) -> None:
+        """Hold a lock on a game's moves to the transaction's end (SQLite: the file's)."""
+
     def close(self) -> None:
         raise NotImplementedError
 

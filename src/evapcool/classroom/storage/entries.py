@@ -8,6 +8,7 @@ import io
 
 from evapcool.classroom.rooms import DEFAULT_ROOM
 from evapcool.classroom.storage.base import ENTRY_KEYS, HIDDEN, IN_ROOM, EntryRow, SqlBase
+from evapcool.classroom.storage.copies import is_copy
 
 #: A CSV cell starting with one of these is a formula in spreadsheets.
 FORMULA_START = ("=", "+", "-", "@", "\t", "\r")
@@ -58,8 +59,8 @@ class EntriesStore(SqlBase):
         path: str | None = None,
     ) -> int | str:
         """The new entry's id, or the field refusing it: "challenge" (closed), "attempts",
-        "code" (a win with the same moves as another player's entry of this challenge: a
-        copy; lost games, 0 atoms, are never copies).
+        "code" (a win with the same moves as a verified game from the same start: a copy,
+        copies.py; lost games, 0 atoms, are never copies).
 
         result: (score, frames, edition, code, moves key); path: the game's path (JSON text).
         One transaction holding the challenge's lock: the checks and the insert cannot
@@ -82,14 +83,8 @@ class EntriesStore(SqlBase):
                 return "attempts"
             # A lost game (0 atoms) gains nothing copied, and two students may well lose
             # alike (the trap dropped at once): only wins are checked for copies.
-            copied = (
-                score > 0
-                and q(
-                    "SELECT 1 FROM entry WHERE challenge = ? AND moves = ? AND player <> ?",
-                    (challenge, moves, token),
-                ).fetchone()
-            )
-            if copied:
+            self._lock_moves(q, moves)  # two classes' same copy at once: one waits
+            if score > 0 and is_copy(q, challenge, token, moves):
                 return "code"
             got = q(
                 "INSERT INTO entry (challenge, player, score, frames, edition, code, moves, path) "

@@ -32,6 +32,7 @@ CREATE TABLE IF NOT EXISTS secret (name TEXT PRIMARY KEY, digest TEXT NOT NULL);
 INDEXES = """
 CREATE INDEX IF NOT EXISTS player_skeleton ON player(skeleton);
 CREATE INDEX IF NOT EXISTS entry_moves ON entry(challenge, moves);
+CREATE INDEX IF NOT EXISTS entry_moves_any ON entry(moves);
 """
 #: Columns added after the first schema: (table, column, declaration); added when missing.
 ADDED_COLUMNS = (

@@ -19,6 +19,7 @@ from starlette.routing import Route
 from evapcool.classroom.console_pages import console_page
 from evapcool.classroom.errors import RefusedError
 from evapcool.classroom.hub import Hub
+from evapcool.classroom.numbers import ID_MAX, digits_value, whole_number
 from evapcool.classroom.session import (
     ADMIN_COOKIE,
     CSRF_FIELD,
@@ -94,11 +95,11 @@ async def admin_post(request: Request) -> Response:
 
 def _id(form: dict[str, str], field: str, known: set[int]) -> int:
     """A lecturer's or class's id from a form (400 naming the field if unknown)."""
-    text = form.get(field, "")
-    if not text.isdigit() or int(text) not in known:
+    value = whole_number(form.get(field), field)  # ASCII digits only (issue 46)
+    if value not in known:
         key = "class.error.no_lecturer" if field == "lecturer" else "class.error.no_class"
         raise RefusedError(400, field, key)
-    return int(text)
+    return value
 
 
 async def _act(hub: Hub, what: str, form: dict[str, str]) -> str:
@@ -173,11 +174,11 @@ async def _note(request: Request, hub: Hub, words: Catalog, note: str) -> str:
         return link_box(
             words, _e(words, "console.admin.admin_link"), f"{_root(request)}/admin?token={secret}"
         )
-    if kind.startswith("L") and kind[1:].isdigit() and secret:
+    if kind.startswith("L") and digits_value(kind[1:], 1, ID_MAX) and secret:
         names = {r["id"]: r["name"] for r in await hub.db(hub.store.lecturers)}
         label = _e(words, "console.admin.lecturer_link", name=names.get(int(kind[1:]), "?"))
         return link_box(words, label, f"{_root(request)}/lecturer?token={secret}")
-    if kind.startswith("C") and kind[1:].isdigit():
+    if kind.startswith("C") and digits_value(kind[1:], 1, ID_MAX):
         room = await hub.db(hub.store.room, int(kind[1:]))
         if room:
             made = _e(words, "class.classes.made", name=room["name"], code=room["code"])

@@ -74,6 +74,13 @@ async def _store_away(request: Request, exc: Exception) -> Response:
     return _answer(request, refusal)
 
 
+async def _cut_upload(request: Request, exc: Exception) -> Response:
+    """A client that left mid-body (Starlette's ClientDisconnect): counted, no traceback;
+    the answer goes nowhere."""
+    hub_of(request).cut_uploads += 1
+    return Response(status_code=400)
+
+
 async def _no_route(request: Request, exc: Exception) -> Response:
     """The JSON answer of an unknown path (404) or method (405), as any refusal."""
     assert isinstance(exc, HTTPException)

@@ -90,6 +90,7 @@ async def stream(request: Request) -> Response:
     if refused:
         raise refused
     listener = Listener(asyncio.Queue(maxsize=4), address(request), with_key, room["id"])
+    listener.key = request.query_params.get("key") if with_key else None
     hub.listeners.append(listener)
     first = json.dumps(await hub.board(room["id"], with_key))
     return StreamingResponse(
@@ -109,6 +110,8 @@ async def _events(hub: Hub, listener: Listener, first: str) -> AsyncIterator[str
             except asyncio.TimeoutError:
                 yield ": keep-alive\n\n"
                 continue
+            if listener.closed:  # its key went stale (streamkeys)
+                return
             yield f"data: {text}\n\n"
     finally:
         hub.listeners.remove(listener)

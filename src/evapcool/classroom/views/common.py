@@ -13,7 +13,8 @@ from evapcool.classroom.boards import showing_of
 from evapcool.classroom.debrief import Showing
 from evapcool.classroom.errors import RefusedError
 from evapcool.classroom.hub import Hub
-from evapcool.classroom.rooms import DEFAULT_ROOM, normal_code
+from evapcool.classroom.numbers import whole_number
+from evapcool.classroom.rooms import DEFAULT_ROOM
 from evapcool.classroom.session import CSRF_HEADER, LECTURER_COOKIE, check_csrf
 from evapcool.classroom.tokens import (
     LECTURER_SECRET,
@@ -54,11 +55,12 @@ async def room_of(request: Request, hub: Hub) -> dict[str, Any]:
     """The class a request is for: /c/{code}/... names it, the other paths are the single
     class's (404 naming "class" for an unknown code)."""
     given = request.path_params.get("code")
-    code = normal_code(given) if isinstance(given, str) else None
     if given is None:
         room = await hub.db(hub.store.room, DEFAULT_ROOM)
     else:
-        room = await hub.db(hub.store.room_by_code, code) if code else None
+        from evapcool.classroom.guessing import room_by_given_code
+
+        room = await room_by_given_code(hub, address(request), str(given))
     if room is None:
         raise RefusedError(404, "class", "class.error.no_class")
     return room
@@ -134,13 +136,11 @@ def _entry_id(doc: dict[str, Any]) -> int:
 
 async def _challenge_asked(request: Request, hub: Hub, room: dict[str, Any]) -> Any:
     """The challenge ?challenge= names (a past one of the class's), else the current one
-    (None if the class has none); 404 for one not of this class."""
+    (None if the class has none); 400 for what is not an id, 404 for one not of this class."""
     asked = request.query_params.get("challenge")
     if asked is None:
         return await hub.db(hub.store.latest, room["id"])
-    if not asked.isdigit() or not 0 < int(asked) < 2**63:
-        raise RefusedError(404, "challenge", "class.error.no_challenge")
-    row = await hub.db(hub.store.challenge, int(asked), room["id"])
+    row = await hub.db(hub.store.challenge, whole_number(asked, "challenge"), room["id"])
     if row is None:
         raise RefusedError(404, "challenge", "class.error.no_challenge")
     return row

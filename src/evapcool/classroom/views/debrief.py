@@ -10,7 +10,8 @@ from starlette.requests import Request
 from starlette.responses import JSONResponse, Response
 
 from evapcool.classroom.boards import _is_open
-from evapcool.classroom.debrief import Law, Showing, debrief_doc, every_frame, law_of
+from evapcool.classroom.debrief import Law, Showing, every_frame, law_of
+from evapcool.classroom.debrief_cache import cached_debrief
 from evapcool.classroom.errors import RefusedError, read_json
 from evapcool.classroom.hub import Hub
 from evapcool.classroom.tokens import matches_digest
@@ -19,7 +20,6 @@ from evapcool.classroom.views.common import (
     _lecturer_digest,
     _lecturer_token,
     _show,
-    bearer_token,
     debrief_state,
     guard,
     lecturer,
@@ -59,13 +59,7 @@ async def debrief(request: Request) -> Response:
     student's token) `you`. Names left out in anonymous mode, except for the lecturer."""
     hub = guard(request)
     room, row, is_lecturer = await _debrief_challenge(request, hub)
-    games = await hub.db(hub.store.best_games, row["id"])
-    law = await _law(hub, row)
-    viewer = None if is_lecturer else bearer_token(request) or None
-    state = await debrief_state(hub, room["id"])
-    doc = debrief_doc(row, games, law, state.anonymous and not is_lecturer, viewer)
-    doc["showing"] = state.to_json()
-    return JSONResponse(doc, headers={"Cache-Control": "no-store"})
+    return await cached_debrief(request, hub, room, row, is_lecturer, _law)  # issue 46
 
 
 async def debrief_pair(request: Request) -> Response:

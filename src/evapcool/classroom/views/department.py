@@ -12,7 +12,6 @@ from __future__ import annotations
 import html
 import secrets
 from typing import Any
-from urllib.parse import parse_qs
 
 from starlette.requests import Request
 from starlette.responses import HTMLResponse, JSONResponse, Response
@@ -20,6 +19,7 @@ from starlette.routing import Route
 
 from evapcool.classroom import pages
 from evapcool.classroom.boards import challenge_info
+from evapcool.classroom.bodies import read_form
 from evapcool.classroom.console_pages import console_page
 from evapcool.classroom.errors import RefusedError, read_json
 from evapcool.classroom.hub import Hub
@@ -184,11 +184,7 @@ def _e(words: Catalog, key: str, **args: Any) -> str:
 
 async def form_of(request: Request) -> dict[str, str]:
     """A posted form's fields (urlencoded, at most FORM_BYTES; the last of a repeated one)."""
-    body = await request.body()
-    if len(body) > FORM_BYTES:
-        raise RefusedError(413, "body", "class.error.too_large", n=FORM_BYTES)
-    fields = parse_qs(body.decode("utf-8", "replace"), keep_blank_values=True)
-    return {k: v[-1] for k, v in fields.items()}
+    return await read_form(request, FORM_BYTES)  # bounded as it arrives (issue 46)
 
 
 def table(heads: list[str], rows: list[list[str]], ident: str) -> str:
@@ -199,7 +195,6 @@ def table(heads: list[str], rows: list[list[str]], ident: str) -> str:
         f'<div class="table-wrap"><table id="{ident}"><thead><tr>{head}</tr></thead>'
         f"<tbody>{body}</tbody></table></div>"
     )
-
 
 
 async def classes_page(request: Request) -> Response:

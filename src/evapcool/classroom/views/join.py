@@ -10,7 +10,7 @@ from starlette.requests import Request
 from starlette.responses import HTMLResponse, RedirectResponse, Response
 
 from evapcool.classroom import pages
-from evapcool.classroom.rooms import normal_code
+from evapcool.classroom.guessing import room_for
 from evapcool.classroom.views.common import guard
 from evapcool.i18n import Catalog
 
@@ -48,8 +48,7 @@ async def join_page(request: Request) -> Response:
     lang = _lang_query(request, words)
     error = ""
     if given is not None:
-        code = normal_code(given)
-        room = await hub.db(hub.store.room_by_code, code) if code else None
+        room = await room_for(request, hub, given)  # wrong codes limited (issue 46)
         if room is not None:
             return RedirectResponse(f"/c/{room['code']}/{lang}", status_code=303)
         error = f'<p id="error" role="alert">{_e(words, "class.join.unknown")}</p>'
