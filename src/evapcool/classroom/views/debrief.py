@@ -15,6 +15,7 @@ from evapcool.classroom.errors import RefusedError, read_json
 from evapcool.classroom.hub import Hub
 from evapcool.classroom.tokens import matches_digest
 from evapcool.classroom.views.common import (
+    _challenge_asked,
     _entry_id,
     _lecturer_digest,
     _show,
@@ -29,17 +30,26 @@ from evapcool.classroom.views.common import (
 async def _debrief_challenge(
     request: Request, hub: Hub
 ) -> tuple[dict[str, Any], dict[str, Any], bool]:
-    """The class, the challenge debriefed and whether its lecturer asks: 409 while it is
-    open, unless the lecturer asks (their early look; the projector and students wait for
-    the close)."""
+    """The class, the challenge debriefed (the current one, or a past round's by
+    ?challenge=: every closed round keeps its debrief) and whether its lecturer asks: 409
+    while it is open, unless the lecturer asks (their early look; the projector and
+    students wait for the close)."""
     room = await room_of(request, hub)
     is_lecturer = matches_digest(bearer_token(request), await _lecturer_digest(hub, room))
-    row = await hub.db(hub.store.latest, room["id"])
+    row = await _challenge_asked(request, hub, room)
     if row is None:
         raise RefusedError(404, "challenge", "class.error.no_challenge")
     if _is_open(row) and not is_lecturer:
         raise RefusedError(409, "challenge", "class.error.debrief_open")
     return room, row, is_lecturer
+
+
+async def _state_of(hub: Hub, room: dict[str, Any], row: dict[str, Any]) -> Showing:
+    """What the lecturer set the debrief to show; for a past round only its names hidden
+    or not (the game picked and the pair are the latest round's)."""
+    state = await debrief_state(hub, room["id"])
+    latest = await hub.db(hub.store.latest, room["id"])
+    return state if latest and latest["id"] == row["id"] else Showing(state.anonymous)
 
 
 async def _law(hub: Hub, row: dict[str, Any]) -> Law:
@@ -59,7 +69,7 @@ async def debrief(request: Request) -> Response:
     games = await hub.db(hub.store.best_games, row["id"])
     law = await _law(hub, row)
     viewer = None if is_lecturer else bearer_token(request) or None
-    state = await debrief_state(hub, room["id"])
+    state = await _state_of(hub, room, row)
     doc = debrief_doc(row, games, law, state.anonymous and not is_lecturer, viewer)
     doc["showing"] = state.to_json()
     return JSONResponse(doc, headers={"Cache-Control": "no-store"})
@@ -69,7 +79,7 @@ async def debrief_pair(request: Request) -> Response:
     """The two games the lecturer set side by side: their paths at every frame, codes."""
     hub = guard(request)
     room, row, is_lecturer = await _debrief_challenge(request, hub)
-    state = await debrief_state(hub, room["id"])
+    state = await _state_of(hub, room, row)
     if state.pair is None:
         raise RefusedError(404, "pair", "class.error.no_entry")
     loop = asyncio.get_running_loop()
