@@ -50,7 +50,7 @@ async def _paths_and_kinds(
     stored = await hub.db(hub.store.entry_paths, row["id"])
     paths = {e: json.loads(p) if p else None for e, p in stored.items()}
     games = [
-        {**g, "path": paths.get(int(g["entry"]))}
+        {**g, "path": paths.get(g["entry"])}  # type: ignore[call-overload]
         for g in await hub.db(hub.store.best_games, row["id"])
     ]
     kinds: dict[int, list[str]] = {}
@@ -92,9 +92,10 @@ async def export_json(request: Request) -> Response:
     the archetypes it is and its path."""
     hub, room, row = await _round(request)
     paths, kinds = await _paths_and_kinds(hub, row)
-    entries = [
-        {**e, "archetypes": kinds.get(int(e["entry"]), []), "path": paths.get(int(e["entry"]))}
-        for e in await hub.db(hub.store.entries, row["id"])
-    ]
+    entries = []
+    for e in await hub.db(hub.store.entries, row["id"]):
+        entry = e["entry"]
+        assert isinstance(entry, int)
+        entries.append({**e, "archetypes": kinds.get(entry, []), "path": paths.get(entry)})
     doc = {"challenge": challenge_doc(row), "class": room["code"], "entries": entries}
     return JSONResponse(doc, headers=_headers(_file_name(room, row, "json")))
