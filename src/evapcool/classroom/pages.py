@@ -118,16 +118,16 @@ PAGE = Template("""<!doctype html>
 PROJECTOR_BODY = Template("""<div id="page"><div id="side"><h1>$title</h1>
 $loopback<div id="join-box"><div id="qr">$qr</div><div id="join-words">$code
 <p id="join">$join</p></div></div>
-<p id="rejected"></p>
-<p id="tools"><button id="theme" type="button" aria-pressed="false">$theme</button>
-<button id="history" type="button">$history</button></p></div>
+<p id="rejected"></p></div>
 <div id="main"><h2 id="round-head" hidden></h2><p id="state"></p><p id="settings"></p>
 <p id="players"></p><ol id="podium" hidden></ol>
 <div id="board-box"><table id="board"></table></div><p id="board-page"></p>
 <div id="replay" hidden><h2 id="replay-head"></h2>
 <div id="replay-stage"><iframe id="replay-frame" title="$replay" hidden></iframe></div></div>
 <section id="rounds" hidden><h2 id="rounds-head">$history</h2><ol id="rounds-list"></ol>
-</section></div></div>""")
+</section></div></div>
+<p id="tools"><button id="theme" type="button" aria-pressed="false">$theme</button>
+<button id="history" type="button">$history</button></p>""")
 #: The projector's own words (issue 45), beside PAGE_WORDS.
 PROJECTOR_WORDS = (
     "console.projector.players",
