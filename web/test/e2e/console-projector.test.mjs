@@ -128,6 +128,63 @@ async function projectorAt(watch, link, [width, height]) {
   return page;
 }
 
+/** The game buttons of the framed pages (`selector`) that show inside their stage, and
+ * the notices they draw (a presented replay shows none of either). */
+async function framedControls(page, selector) {
+  await page.waitForFunction(
+    (sel) => {
+      const frames = [...document.querySelectorAll(sel)];
+      return frames.length && frames.every((f) => f.dataset.presented === "1");
+    },
+    selector,
+    { timeout: 30_000 },
+  );
+  return page.evaluate((sel) => {
+    const out = { buttons: [], notices: [] };
+    for (const frame of document.querySelectorAll(sel)) {
+      const stage = frame.parentElement.getBoundingClientRect();
+      const app = frame.contentWindow.evapcool.app;
+      const l = app.layout;
+      const style = getComputedStyle(frame);
+      const m = new DOMMatrix(style.transform);
+      // The part of the page left visible: its clip (inset, in its own px), then the stage.
+      const [top, right, bottom, left] = (style.clipPath.match(/[\d.]+px/g) ?? []).map(parseFloat);
+      const clip = [
+        left ?? 0,
+        top ?? 0,
+        frame.clientWidth - (right ?? 0),
+        frame.clientHeight - (bottom ?? 0),
+      ];
+      const inStage = (r) => {
+        const a = Math.max(l.offsetX + r.x * l.scale, clip[0]);
+        const b = Math.max(l.offsetY + r.y * l.scale, clip[1]);
+        const c = Math.min(l.offsetX + (r.x + r.w) * l.scale, clip[2]);
+        const d = Math.min(l.offsetY + (r.y + r.h) * l.scale, clip[3]);
+        if (c - a < 1 || d - b < 1) return false; // clipped away
+        const [x0, y0, x1, y1] = [m.a * a + m.e, m.d * b + m.f, m.a * c + m.e, m.d * d + m.f];
+        return x1 > 1 && y1 > 1 && x0 < stage.width - 1 && y0 < stage.height - 1;
+      };
+      for (const [n, r] of Object.entries(l.buttons)) if (inStage(r)) out.buttons.push(n);
+      out.notices.push(...app.notices.visible);
+    }
+    return out;
+  }, selector);
+}
+
+/** Ids of the elements reaching past the screen's edge. */
+function outside(page, ids) {
+  return page.evaluate(
+    (list) =>
+      list.filter((id) => {
+        const el = document.getElementById(id);
+        if (!el || !el.getClientRects().length) return false;
+        const r = el.getBoundingClientRect();
+        return r.bottom > window.innerHeight + 1 || r.right > window.innerWidth + 1;
+      }),
+    ids,
+  );
+}
+
 /** WCAG contrast of two sRGB colours. */
 function contrast(a, b) {
   const lum = ([r, g, bb]) => {
@@ -290,12 +347,7 @@ test(
       assert.deepEqual(sizes.small, [], `closed, ${size.join("x")}: >= ${sizes.least} px`);
       assert.deepEqual(await cutHeadings(p), [], `closed, ${size.join("x")}: nothing cut`);
       // The podium, the charts and the state all inside the screen.
-      const out = await p.evaluate(() =>
-        ["podium", "debrief-paths", "debrief-heights", "state"].filter((id) => {
-          const r = document.getElementById(id).getBoundingClientRect();
-          return r.bottom > window.innerHeight + 1 || r.right > window.innerWidth + 1;
-        }),
-      );
+      const out = await outside(p, ["podium", "debrief-paths", "debrief-heights", "state"]);
       assert.deepEqual(out, [], `closed, ${size.join("x")}: inside the screen`);
       await shot(p, `console-projector-podium-${size[1]}.png`);
       closedPages.push(p);
@@ -307,35 +359,13 @@ test(
     await lecturer("/api/debrief", { pick: best });
     for (const [i, p] of closedPages.entries()) {
       await p.waitForFunction(() => !document.getElementById("replay").hidden);
-      await p.waitForFunction(
-        () => document.getElementById("replay-frame").dataset.presented === "1",
-        null,
-        { timeout: 30_000 },
-      );
-      const seenOf = await p.evaluate(() => {
-        const frame = document.getElementById("replay-frame");
-        const stage = frame.parentElement.getBoundingClientRect();
-        const app = frame.contentWindow.evapcool.app;
-        const l = app.layout;
-        const m = new DOMMatrix(getComputedStyle(frame).transform);
-        const inStage = (r) => {
-          const x0 = m.a * (l.offsetX + r.x * l.scale) + m.e;
-          const y0 = m.d * (l.offsetY + r.y * l.scale) + m.f;
-          const x1 = x0 + m.a * r.w * l.scale;
-          const y1 = y0 + m.d * r.h * l.scale;
-          return x1 > 1 && y1 > 1 && x0 < stage.width - 1 && y0 < stage.height - 1;
-        };
-        return {
-          buttons: Object.entries(l.buttons)
-            .filter(([, r]) => inStage(r))
-            .map(([n]) => n),
-          notices: app.notices.visible,
-          text: document.body.innerText,
-          codes: [...document.querySelectorAll("code, #replay-code")].length,
-        };
-      });
-      assert.deepEqual(seenOf.buttons, [], `no game button shows (${SIZES[i].join("x")})`);
-      assert.deepEqual(seenOf.notices, [], "no key's hint");
+      const framed = await framedControls(p, "#replay-frame");
+      assert.deepEqual(framed.buttons, [], `no game button shows (${SIZES[i].join("x")})`);
+      assert.deepEqual(framed.notices, [], "no key's hint");
+      const seenOf = await p.evaluate(() => ({
+        text: document.body.innerText,
+        codes: [...document.querySelectorAll("code, #replay-code")].length,
+      }));
       assert.equal(seenOf.codes, 0, "no replay code element");
       assert.ok(!/[A-Za-z0-9_.-]{80,}/.test(seenOf.text), "no replay code on the projector");
       assert.deepEqual(await cutHeadings(p), [], "the replay's heading whole");
@@ -353,6 +383,10 @@ test(
       `Side by side: ${a.name} · ${b.name}`,
     );
     await live.waitForFunction(() => document.getElementById("debrief-pair").dataset.minText);
+    const pairFramed = await framedControls(live, "#debrief-replays iframe");
+    assert.deepEqual(pairFramed.buttons, [], "no game button in the pair's frames");
+    assert.deepEqual(pairFramed.notices, [], "no key's hint in the pair's frames");
+    assert.deepEqual(await outside(live, ["debrief-pair", "debrief-replays"]), []);
     const pairSizes = await textSizes(live);
     assert.deepEqual(pairSizes.small, [], "the pair's numbers >= 24 px at 1080p");
     await shot(live, "console-projector-pair-1080.png");
@@ -362,8 +396,15 @@ test(
     await live.waitForFunction(
       () => document.querySelector("#podium li .who")?.textContent === "Student 1",
     );
-    const shown = await live.evaluate(() => document.body.innerText);
-    for (const n of names) assert.ok(!shown.includes(n), `${n} hidden`);
+    // Once the debrief's document is read again (without names), no name anywhere.
+    await live
+      .waitForFunction((list) => !list.some((n) => document.body.innerText.includes(n)), names, {
+        timeout: 30_000,
+      })
+      .catch(async () => {
+        const text = await live.evaluate(() => document.body.innerText);
+        assert.fail(`a name still shows: ${names.filter((n) => text.includes(n))}`);
+      });
     assert.deepEqual(await live.$$eval("#podium li .who", (els) => els.map((e) => e.textContent)), [
       "Student 1",
       "Student 2",
@@ -394,6 +435,7 @@ test(
       names.length,
     );
     assert.ok(second.id !== first.id);
+    assert.deepEqual(await outside(live, ["podium", "debrief-paths", "debrief-heights"]), []);
     await shot(live, "console-projector-history-1080.png");
 
     // Exports of the first round, read back.

@@ -36,6 +36,9 @@ export function present(frame: HTMLIFrameElement): void {
     const dx = (stage.clientWidth - w * k) / 2 - x * k;
     const dy = (stage.clientHeight - h * k) / 2 - y * k;
     frame.style.transform = `translate(${dx}px, ${dy}px) scale(${k})`;
+    // Nothing beside the play area either (a wide stage would show the controls' strip).
+    const [fw, fh] = [frame.clientWidth, frame.clientHeight];
+    frame.style.clipPath = `inset(${y}px ${fw - x - w}px ${fh - y - h}px ${x}px)`;
     frame.dataset.presented = "1";
   };
   frame.addEventListener("load", crop);
