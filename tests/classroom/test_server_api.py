@@ -43,7 +43,8 @@ def test_pages_and_challenge(server: Server) -> None:
     assert set(got["settings"]) == {"n_atoms", "radius", "escape", "tc_exponent"}
     projector = httpx.get(server.base + "/projector").text
     assert "<svg" in projector and "/api/stream" in projector
-    assert f"{server.base}/" in projector  # the students' link printed at start
+    # the students' link printed at start, said short (no scheme: issue 45)
+    assert f"Join: {server.base.split('://')[1]}<" in projector
     assert browse(server.base, "/lecturer", server.token).status_code == 200
 
 

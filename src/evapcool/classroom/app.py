@@ -41,9 +41,9 @@ from evapcool.classroom.views.answers import (
     _store_away,
     _to_class,
 )
-from evapcool.classroom.views.board import leaderboard, projector, stream
+from evapcool.classroom.views.board import leaderboard, projector, rounds, stream
 from evapcool.classroom.views.debrief import debrief, debrief_pair, set_debrief
-from evapcool.classroom.views.exports import export_csv
+from evapcool.classroom.views.exports import export_csv, export_json
 from evapcool.classroom.views.lecturer import (
     challenges,
     close_challenge,
@@ -79,6 +79,8 @@ CLASS_ROUTES: list[tuple[str, Callable[[Request], Any], list[str] | None]] = [
     ("/api/debrief/pair", debrief_pair, None),
     ("/api/stream", stream, None),
     ("/api/export.csv", export_csv, None),
+    ("/api/export.json", export_json, None),
+    ("/api/rounds", rounds, None),
 ]
 
 

@@ -24,16 +24,20 @@ def _replay_seen(store: ClassStore, room: int, keyed: bool) -> Any:
     return {k: v for k, v in showing.items() if k not in hidden}
 
 
-def _leaderboard(store: ClassStore, room: int, keyed: bool) -> dict[str, Any]:
-    """The leaderboard of a room's current challenge (see docs/class.md)."""
-    current = store.latest(room)
-    replay = _replay_seen(store, room, keyed)
+def _leaderboard(
+    store: ClassStore, room: int, keyed: bool, past: int | None = None
+) -> dict[str, Any]:
+    """The leaderboard of a room's current challenge, or of its past round `past` (kept with
+    its board: issue 45; no replay playing in it) (see docs/class.md)."""
+    current = store.latest(room) if past is None else store.challenge(past, room)
+    replay = _replay_seen(store, room, keyed) if past is None else None
     if current is None:
         return {
             "challenge": None,
             "open": False,
             "info": None,
             "entries": [],
+            "players": 0,
             "rejected": 0,
             "replay": replay,
         }
@@ -47,18 +51,34 @@ def _leaderboard(store: ClassStore, room: int, keyed: bool) -> dict[str, Any]:
         "open": _is_open(current),
         "info": challenge_info(current),
         "entries": entries,
+        "players": len(entries),  # one row a student: how many played (the board says it)
         "rejected": current["rejected"],
         "replay": replay,
     }
 
 
-def _board(store: ClassStore, room: int, keyed: bool) -> dict[str, Any]:
+def _board(store: ClassStore, room: int, keyed: bool, past: int | None = None) -> dict[str, Any]:
     """The leaderboard document with the debrief's state (see docs/class.md); no names
-    in the debrief's anonymous mode."""
-    board = _leaderboard(store, room, keyed)
+    in the debrief's anonymous mode. past: a past round's (its debrief with no game picked
+    nor paired: those are the current round's)."""
+    board = _leaderboard(store, room, keyed, past)
     state = showing_of(store.debrief_state(room))
+    if past is not None and board["challenge"] != _latest_id(store, room):
+        state = Showing(state.anonymous)
     board["debrief"] = state.to_json()
     return without_names(board) if state.anonymous else board
+
+
+def _latest_id(store: ClassStore, room: int) -> object:
+    latest = store.latest(room)
+    return None if latest is None else latest["id"]
+
+
+def rounds_of(store: ClassStore, room: int) -> list[dict[str, Any]]:
+    """The class's closed rounds, newest first: id, settings, seed, students and games
+    (the history the projector reopens)."""
+    keep = ("id", "settings", "seed", "lost", "students", "games", "closes_at")
+    return [{k: c.get(k) for k in keep} for c in store.challenges(room) if not _is_open(c)]
 
 
 def challenge_info(row: dict[str, Any], now: float | None = None) -> dict[str, Any]:

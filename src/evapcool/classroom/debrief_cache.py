@@ -20,9 +20,9 @@ from starlette.requests import Request
 from starlette.responses import Response
 
 from evapcool.classroom.boards import _is_open
-from evapcool.classroom.debrief import Law, debrief_doc
+from evapcool.classroom.debrief import Law, Showing, debrief_doc
 from evapcool.classroom.hub import Hub
-from evapcool.classroom.views.common import bearer_token, debrief_state
+from evapcool.classroom.views.common import bearer_token
 
 #: Debriefs kept per process (a room's, per challenge and names shown or not).
 KEPT = 64
@@ -104,10 +104,10 @@ async def cached_debrief(
     row: dict[str, Any],
     is_lecturer: bool,
     law_of: Callable[[Hub, dict[str, Any]], Awaitable[Law]],
+    state: Showing,
 ) -> Response:
     """The debrief's answer: built once per change of the room (never while the challenge
     is open: the lecturer's early look is built each time), `you` for a student's token."""
-    state = await debrief_state(hub, room["id"])
     anonymous = state.anonymous and not is_lecturer
 
     async def make() -> Built:

@@ -121,12 +121,30 @@ PAGE = Template("""<!doctype html>
 """)
 
 PROJECTOR_BODY = Template("""<div id="page"><div id="side"><h1>$title</h1>
-$loopback<div id="qr">$qr</div><p id="join">$join</p>
+$loopback<div id="join-box"><div id="qr">$qr</div><div id="join-words">$code
+<p id="join">$join</p></div></div>
 <p id="rejected"></p></div>
-<div id="main"><p id="state"></p><p id="settings"></p>
-<div id="board-box"><table id="board"></table></div>
-<div id="replay" hidden><div id="replay-head"></div><code id="replay-code"></code>
-<iframe id="replay-frame" title="$replay" hidden></iframe></div></div></div>""")
+<div id="main"><h2 id="round-head" hidden></h2><p id="state"></p><p id="settings"></p>
+<p id="players"></p><ol id="podium" hidden></ol>
+<div id="board-box"><table id="board"></table></div><p id="board-page"></p>
+<div id="replay" hidden><h2 id="replay-head"></h2>
+<div id="replay-stage"><iframe id="replay-frame" title="$replay" hidden></iframe></div></div>
+<section id="rounds" hidden><h2 id="rounds-head">$history</h2><ol id="rounds-list"></ol>
+</section></div></div>
+<p id="tools"><button id="theme" type="button" aria-pressed="false">$theme</button>
+<button id="history" type="button">$history</button></p>""")
+#: The projector's own words (issue 45), beside PAGE_WORDS.
+PROJECTOR_WORDS = (
+    "console.projector.players",
+    "console.projector.page",
+    "console.projector.podium",
+    "console.projector.atoms",
+    "console.projector.round",
+    "console.projector.round_line",
+    "console.projector.live",
+    "console.projector.history",
+    "console.projector.none",
+)
 
 LECTURER_BODY = Template("""<header id="top"><div id="top-name">$classes
 <h1 id="class-name">$name</h1></div>$code<nav id="top-links">
@@ -268,26 +286,39 @@ def projector_page(
     qr_svg: str,
     base: str = "",
     lan_command: str | None = None,
+    join: tuple[str | None, str] | None = None,
 ) -> str:
-    """The projector: join address and QR code (a warning in large type if phones cannot
-    reach it, with lan_command, the command that started the server with --lan added), the
-    challenge's state, the live leaderboard and the replay playing (base: the class's path,
-    "" for the single class)."""
+    """The projector: join code in the largest type beside the QR code and the short
+    address (a warning in large type if phones cannot reach it, with lan_command, the
+    command that started the server with --lan added), the challenge's state, the live
+    leaderboard and the replay playing, the podium, the past rounds (base: the class's
+    path, "" for the single class; join: (the class's code or None, the short address))."""
     words = {k: raw(v) for k, v in PAGE_WORDS.items()}
-    join = raw("class.projector.join").replace("{url}", join_url)
+    words.update({k: raw(k) for k in PROJECTOR_WORDS})
+    code, short = join or (None, join_url)
+    said = raw("class.projector.join").replace("{url}", short)
+    code_html = ""
+    if code:
+        label = html.escape(raw("class.join.code"))
+        code_html = f'<p id="join-label">{label}</p><p id="join-code">{html.escape(code)}</p>'
+    # Without a code the address is what students type: it takes the largest type.
+    join_class = "" if code else ' class="alone"'
     warning = ""
     if loopback(join_url):
         command = command_html(lan_command or "evapcool class --lan")
         fix = html.escape(raw("class.projector.loopback_fix")).replace("{command}", command)
-        said = html.escape(raw("class.projector.loopback"))
-        warning = f'<p id="loopback" role="alert">{said}<br>{fix}</p>'
+        alert = html.escape(raw("class.projector.loopback"))
+        warning = f'<p id="loopback" role="alert">{alert}<br>{fix}</p>'
     body = PROJECTOR_BODY.substitute(
         title=html.escape(raw("class.projector.title")),
         qr=qr_svg,
-        join=html.escape(join),
+        code=code_html,
+        join=html.escape(said),
         loopback=warning,
         replay=html.escape(raw("class.projector.replay")),
-    )
+        theme=html.escape(raw("console.projector.theme")),
+        history=html.escape(raw("console.projector.history")),
+    ).replace('<p id="join">', f'<p id="join"{join_class}>')
     return page(
         lang,
         direction,

@@ -126,6 +126,10 @@ async function main(): Promise<void> {
     // In the class projector's frame the replay plays by itself, again after each end,
     // unless the projector holds its clock (two games in step, issue 36).
     if (window.parent !== window) playOnItsOwn(app, followParent(app));
+    // The projector presents it (issue 45): no "Space plays it" for a room without keys.
+    if (window.parent !== window && /^#(present|in-step)$/.test(location.hash)) {
+      app.notices.clear();
+    }
   }
   const api = classApi(document);
   // A replay watched from the projector's link is not a student's game.

@@ -55,6 +55,12 @@ export class Notices {
     this.list.push([text, from, from + NOTICE_SECONDS]);
   }
 
+  /** Forget every notice (a replay presented on the projector shows none). */
+  clear(): void {
+    [this.list, this.summary, this.dropped] = [[], null, 0];
+    this.changed();
+  }
+
   /** The notices showing now, oldest first, and a line counting those still to come. */
   get visible(): string[] {
     const now = this.clock();

@@ -57,6 +57,8 @@ export interface Board {
   open: boolean;
   info: ChallengeInfo | null;
   entries: BoardEntry[];
+  /** How many students played (one row each). */
+  players?: number;
   rejected: number;
   replay: Replay | null;
   /** What the lecturer set the debrief to show (issue 36). */

@@ -1,13 +1,13 @@
 /**
- * The projector: the challenge's state, the live leaderboard and the replay playing, from
- * the server's event stream (the page's join address and QR code are the server's HTML).
+ * The projector: the challenge's state, how many played, the live leaderboard a page at a
+ * time, the replay playing, and on the close the podium and the debrief, from the server's
+ * event stream; or a past round (?round=), reopened from the history (issue 45). The join
+ * code, address and QR code are the server's HTML.
  */
 import "./projector.css";
 import {
   BOARD_COLUMNS,
   ChallengeClock,
-  boardCells,
-  boardRows,
   rejectedText,
   replayHeading,
   row,
@@ -15,23 +15,36 @@ import {
   type Board,
   type Replay,
 } from "./board";
-import { byId, classBase, fill, listen, pageWords, queryParam } from "./common";
+import { byId, classBase, fill, getJson, listen, pageWords, queryParam } from "./common";
 import { ProjectorDebrief } from "./debrief/projector";
+import { present } from "./debrief/replays";
+import { BoardPager, drawPodium } from "./podium";
 import { gameOf } from "../view/debrief/model";
+
+/** Seconds each page of a long board stays up. */
+const PAGE_SECONDS = 6;
 
 const words = pageWords();
 const base = classBase();
 const challenge = new ChallengeClock();
 const key = queryParam("key");
-let open = false;
+/** A past round reopened (its id), or null for the live board. */
+const round = /^\d+$/.test(queryParam("round") ?? "") ? queryParam("round") : null;
 let playing: string | null = null;
-const query = key ? "?key=" + encodeURIComponent(key) : "";
-// After the close: the class's paths (issue 36), in the main column above the replay.
+const keyQuery = key ? "?key=" + encodeURIComponent(key) : "";
+const roundQuery = round ? (keyQuery ? "&" : "?") + "challenge=" + round : "";
+// After the close: the class's paths (issue 36), in the main column under the podium.
 const debrief = new ProjectorDebrief(
   byId("main"),
   (k, args = {}) => fill(words[k] ?? k, args),
   document.documentElement.lang,
-  query,
+  keyQuery + roundQuery,
+);
+const pager = new BoardPager(
+  byId("board-box"),
+  byId<HTMLTableElement>("board"),
+  byId("board-page"),
+  words,
 );
 
 function tick(): void {
@@ -41,10 +54,11 @@ function tick(): void {
   box.className = kind;
 }
 
-/** The game page replaying a code, in the projector's language. */
+/** The game page replaying a code, in the projector's language, as a presentation (no
+ * buttons, no keys: "#present"). */
 function replayAddress(code: string): string {
   const lang = encodeURIComponent(document.documentElement.lang);
-  return base + "/?replay=" + encodeURIComponent(code) + "&lang=" + lang;
+  return base + "/?replay=" + encodeURIComponent(code) + "&lang=" + lang + "#present";
 }
 
 function showReplay(replay: Replay | null): void {
@@ -58,17 +72,11 @@ function showReplay(replay: Replay | null): void {
   frame.hidden = !src;
   if (!replay) return;
   const rank = debrief.doc ? (gameOf(debrief.doc, replay.entry)?.rank ?? null) : null;
+  // The code itself is never printed on the projector (the lecturer's page exports it).
   byId("replay-head").textContent = replayHeading(words, replay, rank);
-  // The code comes only with the projector's key while the challenge is open; it is
-  // printed on the screen only once the challenge is closed.
-  byId("replay-code").textContent = replay.code && !open ? replay.code : "";
 }
 
-function render(board: Board): void {
-  open = board.open;
-  challenge.take(board.info);
-  tick();
-  byId("settings").textContent = board.info ? settingsText(words, board.info) : "";
+function drawBoard(board: Board): void {
   const table = byId("board");
   table.replaceChildren();
   const cols = document.createElement("colgroup");
@@ -83,11 +91,95 @@ function render(board: Board): void {
     BOARD_COLUMNS.map((c) => words[c]),
     "th",
   );
-  for (const e of boardRows(board)) row(table, boardCells(e, words));
-  byId("rejected").textContent = rejectedText(words, board.rejected);
-  showReplay(board.replay);
-  debrief.take(board);
+  pager.take(board.entries, (cells) => row(table, cells));
 }
 
-setInterval(tick, 1000);
-listen(base + "/api/stream" + query, (doc) => render(doc as Board));
+function render(board: Board): void {
+  challenge.take(board.info);
+  tick();
+  const head = byId("round-head");
+  head.hidden = !round;
+  head.textContent = round ? fill(words["console.projector.round"], { n: round }) : "";
+  byId("settings").textContent = board.info ? settingsText(words, board.info) : "";
+  const n = board.players ?? board.entries.length;
+  byId("players").textContent = fill(words["console.projector.players"], { n });
+  const closed = board.challenge != null && !board.open;
+  const podium = byId("podium");
+  podium.hidden = !closed || board.entries.length === 0;
+  drawPodium(podium, closed ? board.entries : [], words);
+  byId("rejected").textContent = rejectedText(words, board.rejected);
+  debrief.take(board);
+  drawBoard(board);
+  showReplay(board.replay);
+}
+
+/** The past rounds, each a link reopening it here; the live board's link first. */
+async function showRounds(): Promise<void> {
+  const box = byId("rounds");
+  if (!box.hidden) {
+    box.hidden = true;
+    return;
+  }
+  const got = await getJson<{ rounds: { id: number; students: number; games: number }[] }>(
+    base + "/api/rounds" + keyQuery,
+  );
+  const list = byId("rounds-list");
+  list.replaceChildren();
+  const link = (text: string, href: string) => {
+    const li = document.createElement("li");
+    const a = document.createElement("a");
+    a.textContent = text;
+    a.href = href;
+    li.append(a);
+    list.append(li);
+    return a;
+  };
+  link(words["console.projector.live"], base + "/projector" + keyQuery).id = "round-live";
+  const rounds = got.ok ? got.body.rounds : [];
+  for (const r of rounds) {
+    const text = fill(words["console.projector.round_line"], { n: r.id, ...r });
+    const sep = keyQuery ? "&" : "?";
+    link(text, base + "/projector" + keyQuery + sep + "round=" + r.id).dataset.round = String(r.id);
+  }
+  if (!rounds.length) {
+    const li = document.createElement("li");
+    li.textContent = words["console.projector.none"];
+    list.append(li);
+  }
+  box.hidden = false;
+}
+
+/** The light high-contrast theme (a bright room), remembered on this computer. */
+function setTheme(light: boolean): void {
+  document.body.classList.toggle("light", light);
+  byId("theme").setAttribute("aria-pressed", String(light));
+  try {
+    localStorage.setItem("evapcool-projector-theme", light ? "light" : "dark");
+  } catch {
+    /* no storage: this visit only */
+  }
+}
+
+function savedLight(): boolean {
+  try {
+    return localStorage.getItem("evapcool-projector-theme") === "light";
+  } catch {
+    return false;
+  }
+}
+
+present(byId<HTMLIFrameElement>("replay-frame"));
+setTheme(savedLight());
+byId("theme").addEventListener("click", () => setTheme(!document.body.classList.contains("light")));
+byId("history").addEventListener("click", () => void showRounds());
+window.addEventListener("resize", () => pager.layout());
+setInterval(() => pager.next(), PAGE_SECONDS * 1000);
+if (round) {
+  document.body.classList.add("past");
+  void getJson<Board>(base + "/api/leaderboard" + keyQuery + roundQuery).then((got) => {
+    if (got.ok) render(got.body);
+  });
+} else {
+  setInterval(tick, 1000);
+  listen(base + "/api/stream" + keyQuery, (doc) => render(doc as Board));
+}

@@ -89,7 +89,8 @@ async function allSee(pages, check, since) {
 async function fits(projector) {
   return projector.evaluate(() => {
     const root = document.documentElement;
-    const frame = document.getElementById("replay-frame").getBoundingClientRect();
+    // The replay's stage: what the room sees of its (scaled, clipped) frame (issue 45).
+    const frame = document.getElementById("replay-stage").getBoundingClientRect();
     const heads = [...document.querySelectorAll("#board th")].map((th) => [
       th.scrollWidth,
       th.clientWidth,

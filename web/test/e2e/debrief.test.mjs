@@ -453,13 +453,14 @@ async function checkProjector(doc, names, games, ada) {
 
   // Anonymous: no name in a projector's page nor in anything it receives.
   await lecturerPage.click("#debrief-anonymous");
-  await projector.waitForFunction(() =>
-    /^Student \d+:/.test(document.getElementById("debrief-pick").textContent),
-  );
+  // The pair still shows: its line names its two games, by place (issue 45).
+  const pairLine = () =>
+    /^Side by side: Student \d+ · Student \d+$/.test(
+      document.getElementById("debrief-pick").textContent,
+    );
+  await projector.waitForFunction(pairLine);
   const fresh = await projectorPage(key);
-  await fresh.waitForFunction(() =>
-    /^Student \d+:/.test(document.getElementById("debrief-pick").textContent),
-  );
+  await fresh.waitForFunction(pairLine);
   for (const page of [projector, fresh]) {
     const text = await page.evaluate(() => document.body.innerText);
     const events = await page.evaluate(() => window.__events);

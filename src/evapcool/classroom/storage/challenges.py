@@ -87,6 +87,12 @@ class ChallengesStore(SqlBase):
             out.append({**doc, "games": int(row[-2]), "students": int(row[-1])})
         return out
 
+    def entry_paths(self, challenge: int) -> dict[int, str | None]:
+        """Every entry of a challenge -> its stored path (JSON text, None if stored before
+        paths were): the round's exports."""
+        rows = self._rows("SELECT id, path FROM entry WHERE challenge = ?", (challenge,))
+        return {int(r[0]): r[1] for r in rows}
+
     def _challenge(self, where: str, params: Sequence[Any]) -> dict[str, object] | None:
         found = self._one(f"SELECT {', '.join(CHALLENGE_KEYS)} FROM challenge {where}", params)
         return None if found is None else self._challenge_doc(found)

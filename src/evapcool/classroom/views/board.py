@@ -11,9 +11,20 @@ from starlette.requests import Request
 from starlette.responses import HTMLResponse, JSONResponse, Response, StreamingResponse
 
 from evapcool.classroom import pages
+from evapcool.classroom.boards import _board, _is_open, rounds_of
 from evapcool.classroom.errors import RefusedError
 from evapcool.classroom.hub import Hub, Listener
-from evapcool.classroom.views.common import _base, address, guard, join_url_of, keyed, room_of
+from evapcool.classroom.rooms import DEFAULT_ROOM
+from evapcool.classroom.views.common import (
+    _base,
+    _challenge_asked,
+    address,
+    guard,
+    join_url_of,
+    keyed,
+    lecturer,
+    room_of,
+)
 from evapcool.classroom.words import raw
 
 #: Seconds between keep-alive comments on an idle event stream.
@@ -29,6 +40,9 @@ async def projector(request: Request) -> Response:
     words = hub.words.of(request)
     join_url = join_url_of(request, room)
     svg = _qr_svg(join_url)
+    # A department's class: its join code, typed on the join page at the short address.
+    code = room["code"] if room["id"] != DEFAULT_ROOM else None
+    short = _short(join_url if code is None else join_url.removesuffix(f"{_base(room)}/"))
     text = pages.projector_page(
         lambda k: raw(words, k),
         words.locale,
@@ -37,9 +51,15 @@ async def projector(request: Request) -> Response:
         svg,
         _base(room),
         getattr(request.app.state, "lan_command", None),
+        join=(code, short),
     )
     headers = {"Content-Security-Policy": pages.PROJECTOR_POLICY, "Cache-Control": "no-store"}
     return HTMLResponse(text, headers=headers)
+
+
+def _short(url: str) -> str:
+    """An address as said aloud: no scheme, no trailing slash."""
+    return url.split("://", 1)[-1].rstrip("/")
 
 
 def _qr_svg(url: str) -> str:
@@ -54,10 +74,27 @@ def _qr_svg(url: str) -> str:
 
 
 async def leaderboard(request: Request) -> Response:
-    """The current challenge's leaderboard (the replay's code as for the stream)."""
+    """The current challenge's leaderboard (the replay's code as for the stream), or a
+    closed past round's (?challenge=: its board kept; 409 while open, 404 not the class's)."""
     hub = guard(request)
     room = await room_of(request, hub)
-    return JSONResponse(await hub.board(room["id"], await keyed(request, hub, room)))
+    with_key = await keyed(request, hub, room)
+    if request.query_params.get("challenge") is None:
+        return JSONResponse(await hub.board(room["id"], with_key))
+    row = await _challenge_asked(request, hub, room)
+    if _is_open(row):
+        raise RefusedError(409, "challenge", "class.error.debrief_open")
+    return JSONResponse(await hub.db(_board, hub.store, room["id"], with_key, row["id"]))
+
+
+async def rounds(request: Request) -> Response:
+    """The class's closed rounds, newest first, for the projector's history (its key, or
+    the lecturer's token as Bearer: 403 otherwise)."""
+    hub = guard(request)
+    room = await room_of(request, hub)
+    if not await keyed(request, hub, room):
+        await lecturer(request)
+    return JSONResponse({"rounds": await hub.db(rounds_of, hub.store, room["id"])})
 
 
 def _stream_refusal(hub: Hub, request: Request, with_key: bool, room: int) -> RefusedError | None:

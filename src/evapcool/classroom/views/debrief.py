@@ -16,6 +16,7 @@ from evapcool.classroom.errors import RefusedError, read_json
 from evapcool.classroom.hub import Hub
 from evapcool.classroom.tokens import matches_digest
 from evapcool.classroom.views.common import (
+    _challenge_asked,
     _entry_id,
     _lecturer_digest,
     _lecturer_token,
@@ -30,19 +31,28 @@ from evapcool.classroom.views.common import (
 async def _debrief_challenge(
     request: Request, hub: Hub
 ) -> tuple[dict[str, Any], dict[str, Any], bool]:
-    """The class, the challenge debriefed and whether its lecturer asks: 409 while it is
-    open, unless the lecturer asks (their early look; the projector and students wait for
-    the close)."""
+    """The class, the challenge debriefed (the current one, or a past round's by
+    ?challenge=: every closed round keeps its debrief) and whether its lecturer asks: 409
+    while it is open, unless the lecturer asks (their early look; the projector and
+    students wait for the close)."""
     room = await room_of(request, hub)
     # The lecturer's token as Bearer or in the cookie their link left (issue 45).
     token = _lecturer_token(request, False)
     is_lecturer = matches_digest(token, await _lecturer_digest(hub, room))
-    row = await hub.db(hub.store.latest, room["id"])
+    row = await _challenge_asked(request, hub, room)
     if row is None:
         raise RefusedError(404, "challenge", "class.error.no_challenge")
     if _is_open(row) and not is_lecturer:
         raise RefusedError(409, "challenge", "class.error.debrief_open")
     return room, row, is_lecturer
+
+
+async def _state_of(hub: Hub, room: dict[str, Any], row: dict[str, Any]) -> Showing:
+    """What the lecturer set the debrief to show; for a past round only its names hidden
+    or not (the game picked and the pair are the latest round's)."""
+    state = await debrief_state(hub, room["id"])
+    latest = await hub.db(hub.store.latest, room["id"])
+    return state if latest and latest["id"] == row["id"] else Showing(state.anonymous)
 
 
 async def _law(hub: Hub, row: dict[str, Any]) -> Law:
@@ -59,14 +69,15 @@ async def debrief(request: Request) -> Response:
     student's token) `you`. Names left out in anonymous mode, except for the lecturer."""
     hub = guard(request)
     room, row, is_lecturer = await _debrief_challenge(request, hub)
-    return await cached_debrief(request, hub, room, row, is_lecturer, _law)  # issue 46
+    state = await _state_of(hub, room, row)
+    return await cached_debrief(request, hub, room, row, is_lecturer, _law, state)  # issue 46
 
 
 async def debrief_pair(request: Request) -> Response:
     """The two games the lecturer set side by side: their paths at every frame, codes."""
     hub = guard(request)
     room, row, is_lecturer = await _debrief_challenge(request, hub)
-    state = await debrief_state(hub, room["id"])
+    state = await _state_of(hub, room, row)
     if state.pair is None:
         raise RefusedError(404, "pair", "class.error.no_entry")
     loop = asyncio.get_running_loop()

@@ -5,7 +5,13 @@
  * box) and playing two games' replays side by side, in step, when the lecturer sets a pair.
  */
 import { classBase } from "../common";
-import type { Debrief, PairDoc, Showing, Tr } from "../../view/debrief/model";
+import {
+  nameOf,
+  type Debrief,
+  type PairDoc,
+  type Showing,
+  type Tr,
+} from "../../view/debrief/model";
 import { frameAt } from "../../view/debrief/pair";
 import { DebriefView } from "../../view/debrief/view";
 import { PairReplays } from "./replays";
@@ -21,9 +27,11 @@ export interface BoardForDebrief {
 export class ProjectorDebrief {
   readonly view: DebriefView;
   readonly replays: PairReplays;
+  private readonly tr: Tr;
   private docKey = "";
   private pairKey = "";
   doc: Debrief | null = null;
+  pair: PairDoc | null = null;
   /** performance.now() when the last debrief document was asked for, and first drawn. */
   asked = 0;
   firstDrawn = 0;
@@ -40,6 +48,7 @@ export class ProjectorDebrief {
     // Two games' numbers follow their replays' shared clock (the page's, without them).
     const pairFrame = (pair: PairDoc, ms: number) => this.replays.step() ?? frameAt(pair, ms);
     this.view = new DebriefView(parent, { tr, locale, minSmall, pairFrame });
+    this.tr = tr;
     this.replays = new PairReplays(this.view.pairCanvas, tr, locale);
     window.addEventListener("resize", () => this.view.draw());
   }
@@ -49,7 +58,7 @@ export class ProjectorDebrief {
     const shown = board.challenge !== null && board.challenge !== undefined && !board.open;
     document.body.classList.toggle("debriefing", shown);
     if (!shown) {
-      [this.docKey, this.pairKey, this.doc] = ["", "", null];
+      [this.docKey, this.pairKey, this.doc, this.pair] = ["", "", null, null];
       this.view.hide();
       this.replays.set(null);
       return false;
@@ -59,7 +68,10 @@ export class ProjectorDebrief {
     if (key !== this.docKey) {
       this.docKey = key;
       void this.load(s);
-    } else if (this.doc && s.pick !== this.view.highlight) this.view.show(this.doc, s.pick);
+    } else if (this.doc && s.pick !== this.view.highlight) {
+      this.view.show(this.doc, s.pick);
+      this.headPair();
+    }
     const pairKey = s.pair ? `${key}:${s.pair.join(",")}` : "";
     if (pairKey !== this.pairKey) {
       this.pairKey = pairKey;
@@ -75,18 +87,31 @@ export class ProjectorDebrief {
     if (!res.ok || key !== this.docKey) return;
     this.doc = (await res.json()) as Debrief;
     this.view.show(this.doc, this.doc.showing?.pick ?? s.pick);
+    this.headPair();
     if (!this.firstDrawn) this.firstDrawn = performance.now();
   }
 
   private async loadPair(key: string): Promise<void> {
     if (!key) {
+      this.pair = null;
       this.replays.set(null);
-      return this.view.setPair(null);
+      this.view.setPair(null);
+      return this.headPair();
     }
     const res = await fetch(classBase() + "/api/debrief/pair" + this.query, { cache: "no-store" });
     if (!res.ok || key !== this.pairKey) return;
     const pair = (await res.json()) as PairDoc;
+    this.pair = pair;
     this.replays.set(pair);
     this.view.setPair(pair);
+    this.headPair();
+  }
+
+  /** With a pair shown, the line over the charts names the two games played (not the
+   * game picked before): the heading true to what is shown. */
+  private headPair(): void {
+    if (!this.pair || !this.doc) return;
+    const names = this.pair.games.map((g) => nameOf(g, this.tr)).join(" · ");
+    this.view.picked.textContent = this.tr("debrief.side_by_side") + ": " + names;
   }
 }

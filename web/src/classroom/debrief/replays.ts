@@ -6,6 +6,47 @@
 import { classBase } from "../common";
 import { nameOf, type PairDoc, type Tr } from "../../view/debrief/model";
 import { nextFrame, type Shown } from "../../view/debrief/pair";
+import { PLAY_RECT } from "../../view/geometry";
+
+/** What the projector reads of the game page in a frame: its layout (same origin). */
+interface FramedApp {
+  layout: { scale: number; offsetX: number; offsetY: number };
+}
+
+/**
+ * A replay presented (issue 45): the game page in `frame` shown only through its play
+ * area (the cup and its atoms), scaled to fill the frame's stage, so that no button, no
+ * slider and no key's hint of the page reaches the projector. Kept as the page lays out.
+ */
+export function present(frame: HTMLIFrameElement): void {
+  const crop = () => {
+    let app: FramedApp | undefined;
+    try {
+      app = (frame.contentWindow as unknown as { evapcool?: { app?: FramedApp } } | null)?.evapcool
+        ?.app;
+    } catch {
+      return; // not ours (cannot happen: same origin)
+    }
+    const stage = frame.parentElement;
+    if (!app?.layout || !stage) return;
+    const l = app.layout;
+    const [x, y] = [l.offsetX + PLAY_RECT.x * l.scale, l.offsetY + PLAY_RECT.y * l.scale];
+    const [w, h] = [PLAY_RECT.w * l.scale, PLAY_RECT.h * l.scale];
+    const k = Math.min(stage.clientWidth / w, stage.clientHeight / h);
+    const dx = (stage.clientWidth - w * k) / 2 - x * k;
+    const dy = (stage.clientHeight - h * k) / 2 - y * k;
+    frame.style.transform = `translate(${dx}px, ${dy}px) scale(${k})`;
+    // Nothing beside the play area either (a wide stage would show the controls' strip).
+    const [fw, fh] = [frame.clientWidth, frame.clientHeight];
+    frame.style.clipPath = `inset(${y}px ${fw - x - w}px ${fh - y - h}px ${x}px)`;
+    frame.dataset.presented = "1";
+  };
+  frame.addEventListener("load", crop);
+  const timer = window.setInterval(() => {
+    if (!frame.isConnected) window.clearInterval(timer);
+    else crop();
+  }, 500);
+}
 
 /** What the game page in a replay's frame offers its parent (app/main.ts: followParent). */
 type FrameHook = (k: number) => { frame: number; ended: boolean };
@@ -35,11 +76,15 @@ export class PairReplays {
     this.box.hidden = !pair || codes.some((c) => !c);
     if (!pair || this.box.hidden) return;
     pair.games.forEach((g, i) => {
+      const stage = document.createElement("div");
+      stage.className = "stage";
       const frame = document.createElement("iframe");
       frame.title = nameOf(g, this.tr);
       frame.src = this.address(codes[i]);
-      this.box.append(frame);
+      stage.append(frame);
+      this.box.append(stage);
       this.frames.push(frame);
+      present(frame);
     });
   }
 

@@ -75,6 +75,8 @@ export function drawPair(
   k: number,
   tr: Tr,
   locale: string,
+  /** The least size of its words, px (a projector's: readable at the back). */
+  minSmall = 0,
 ): PairDrawn {
   const words: DrawnWord[] = [];
   const shown: number[] = [];
@@ -85,7 +87,7 @@ export function drawPair(
     const box = { x: r.x + i * half, y: r.y, w: half, h: r.h };
     const s = stateAt(g.path, law, k);
     shown.push(s.k);
-    one(ctx, box, words, nameOf(g, tr), s, law, tr, locale);
+    one(ctx, box, words, nameOf(g, tr), s, law, tr, locale, minSmall);
   });
   ctx.fillStyle = INK;
   for (let i = 1; i < pair.games.length; i++) ctx.fillRect(r.x + i * half - 1, r.y, 2, r.h);
@@ -101,21 +103,23 @@ function one(
   law: Law,
   tr: Tr,
   locale: string,
+  minSmall: number,
 ): void {
-  const fs = Math.max(textSize(r), Math.floor(r.h / 9));
+  const floor = Math.max(14, Math.ceil(minSmall));
+  const fs = Math.max(textSize(r), Math.floor(r.h / 9), Math.ceil(floor / 0.8));
   const pad = fs / 2;
   const title = `${name} · ${tr("debrief.frame", { k: s.k })}`;
-  const size = fitted(ctx, title, fs, r.w - 2 * pad, 14);
+  const size = fitted(ctx, title, fs, r.w - 2 * pad, floor);
   word(ctx, words, title, size, INK, r.x + pad, r.y + fs * 0.8, "left");
   const readout = tr("chart.readout_path", {
     n: s.n,
     t: numberText(s.t, locale),
     tc: numberText(s.tc, locale),
   });
-  const small = fitted(ctx, readout, Math.floor(0.8 * fs), r.w - 2 * pad - 2 * fs, 14);
+  const small = fitted(ctx, readout, Math.floor(0.8 * fs), r.w - 2 * pad - 2 * fs, floor);
   word(ctx, words, readout, small, INK, r.x + pad, r.y + 2.1 * fs, "left");
   const height = `${tr("debrief.axis_height")} = ${Math.round(s.h)}`;
-  const hs = fitted(ctx, height, Math.floor(0.8 * fs), r.w - 2 * pad - 2 * fs, 14);
+  const hs = fitted(ctx, height, Math.floor(0.8 * fs), r.w - 2 * pad - 2 * fs, floor);
   word(ctx, words, height, hs, INK, r.x + pad, r.y + 3.2 * fs, "left");
   // The atoms, big: the score the class compares.
   word(ctx, words, String(s.n), Math.floor(2.2 * fs), INK, r.x + pad, r.y + r.h - 1.4 * fs, "left");

@@ -181,7 +181,9 @@ export class DebriefView {
       k,
       this.o.tr,
       this.o.locale,
+      this.o.minSmall?.() ?? 0,
     );
+    this.pairCanvas.dataset.minText = String(Math.min(...this.pairDrawn.words.map((x) => x.size)));
     this.pairCanvas.dataset.frames = this.pairDrawn.shown.join(",");
     this.pairCanvas.dataset.frame = String(k);
     const last = Math.max(...pair.games.map((g) => g.path.frames));
