@@ -16,7 +16,7 @@ import pytest
 from classhelp import SEED, Server, code, join, open_challenge, variant
 
 from evapcool.classroom.class_cli import _shown_store
-from evapcool.classroom.pages import loopback
+from evapcool.classroom.joinaddress import loopback
 
 
 async def _boards(server: Server, until: object, budget: float) -> list[dict[str, object]]:

@@ -74,7 +74,7 @@ async def room_by_given_code(hub: Hub, who: str, given: str) -> dict[str, Any] |
 
 
 async def room_for(request: Request, hub: Hub, given: str) -> dict[str, Any] | None:
-    """`room_by_given_code` for a request's client address."""
-    from evapcool.classroom.views.common import address
-
-    return await room_by_given_code(hub, address(request), given)
+    """`room_by_given_code` for a request's client address (a hall behind one NAT address
+    shares it)."""
+    client = request.client.host if request.client else "?"
+    return await room_by_given_code(hub, client, given)

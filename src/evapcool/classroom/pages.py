@@ -10,19 +10,17 @@ it talk to this server only.
 
 from __future__ import annotations
 
-import base64
 import functools
-import hashlib
 import html
-import ipaddress
 import json
 import re
-import shlex
 from collections.abc import Callable
 from importlib import resources
 from string import Template
-from urllib.parse import urlsplit
 
+from evapcool.classroom.csp import page_policy as page_policy
+from evapcool.classroom.csp import source_hash as source_hash
+from evapcool.classroom.joinaddress import command_html, loopback
 from evapcool.classroom.names import NAME_MAX
 
 #: What the game page reads to enter class mode: the API's base path, and the longest
@@ -174,21 +172,6 @@ LECTURER_BODY = Template("""<header id="top"><div id="top-name">$classes
 <span></span><button class="primary">$open</button></form></section></main>""")
 
 
-def source_hash(text: str) -> str:
-    """A script's or style's CSP source: 'sha256-<base64 of its SHA-256>'."""
-    return "'sha256-" + base64.b64encode(hashlib.sha256(text.encode()).digest()).decode() + "'"
-
-
-def page_policy(script: str, style: str, frames: str = "'none'") -> str:
-    """The policy of a page: its one script and one style, talking to this server only
-    (frames: what it may show in a frame; the projector, this server's game page)."""
-    return (
-        f"default-src 'none'; script-src {source_hash(script)}; "
-        f"style-src {source_hash(style)}; connect-src 'self'; frame-src {frames}; "
-        "base-uri 'none'; form-action 'none'; frame-ancestors 'none'"
-    )
-
-
 PROJECTOR_POLICY = page_policy(SCRIPT_PROJECTOR, STYLE_PROJECTOR, frames="'self'")
 LECTURER_POLICY = page_policy(SCRIPT_LECTURER, STYLE_LECTURER)
 CONSOLE_POLICY = page_policy(SCRIPT_CONSOLE, STYLE_CONSOLE).replace(
@@ -252,30 +235,6 @@ def game_page(api: str = "/api") -> tuple[str, str]:
     text = text[: meta.start(2)] + policy + text[meta.end(2) : at] + class_marker(api) + text[at:]
     # Framed by this server's projector only (it plays replays in the game page).
     return text, f"{policy}; base-uri 'none'; frame-ancestors 'self'"
-
-
-def loopback(url: str) -> bool:
-    """Whether a join address is this computer's own (127.x, ::1, localhost): no phone
-    reaches it."""
-    host = (urlsplit(url).hostname or "").lower()
-    try:
-        return ipaddress.ip_address(host).is_loopback
-    except ValueError:
-        return host == "localhost" or host.endswith(".localhost")
-
-
-def command_html(command: str) -> str:
-    """A shell command for the projector: "evapcool class" and each option whole (no break
-    splits "--lan"), a value (a long path, an address) free to wrap anywhere."""
-    words = shlex.split(command)
-
-    def piece(word: str, value: bool) -> str:
-        kind = "command value" if value else "command"
-        return f'<span class="{kind}">{html.escape(shlex.quote(word))}</span>'
-
-    head = f'<span class="command">{html.escape(shlex.join(words[:2]))}</span>'
-    rest = [piece(w, not w.startswith("-")) for w in words[2:]]
-    return " ".join([head, *rest])
 
 
 def projector_page(

@@ -6,13 +6,10 @@ from __future__ import annotations
 
 import asyncio
 import secrets
-from typing import TYPE_CHECKING
+from typing import Any
 
 from evapcool.classroom.store import StoreAwayError
 from evapcool.classroom.tokens import PROJECTOR_SECRET, matches_digest, room_projector_key
-
-if TYPE_CHECKING:
-    from evapcool.classroom.hub import Hub, Listener
 
 #: Seconds between looks at the keys of the open keyed streams (a relink by
 #: `evapcool class admin` in another process tells no one).
@@ -31,7 +28,7 @@ def key_holds(store: object, room_id: int, key: str) -> bool:
     return secrets.compare_digest(key, room_projector_key(room["digest"], room["code"]))
 
 
-async def drop_stale(hub: Hub, listeners: list[Listener]) -> None:
+async def drop_stale(hub: Any, listeners: list[Any]) -> None:  # hub.Hub: it imports us
     """Close the keyed streams among `listeners` whose key no longer holds (one store
     look per room and key)."""
     verdicts: dict[tuple[int, str], bool] = {}
@@ -45,7 +42,7 @@ async def drop_stale(hub: Hub, listeners: list[Listener]) -> None:
             listener.close()
 
 
-async def watch_keys(hub: Hub) -> None:
+async def watch_keys(hub: Any) -> None:
     """Every KEY_CHECK seconds, close the keyed streams whose key went stale."""
     while True:
         await asyncio.sleep(KEY_CHECK)

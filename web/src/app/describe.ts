@@ -3,7 +3,7 @@
  * trap height, and what is happening (atoms leaving, close to condensing, condensed...).
  */
 import { formatFixed, t } from "../i18n";
-import type { GameLike } from "./remote";
+import type { GameLike } from "../runtime/remote";
 
 /** "Leaving" means an atom left within this much play (frames: two seconds). */
 const RECENT_FRAMES = 60;

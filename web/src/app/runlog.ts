@@ -9,7 +9,7 @@ import { recordingOf } from "../game/replay";
 import { encode } from "../game/replaycode";
 import type { Game } from "../game/rules";
 import { FPS } from "../game/engine";
-import { RemoteGame, type GameLike } from "./remote";
+import { RemoteGame, type GameLike } from "../runtime/remote";
 
 /** evapcool lab's columns, in its order (lab/io.py COLUMNS). */
 export const LAB_COLUMNS = [

@@ -11,7 +11,7 @@ import type { Action } from "./bindings";
 import { SceneWatch } from "./describe";
 import type { SettingsEditor } from "./options";
 import type { PagePrefs } from "./prefs";
-import type { GameLike } from "./remote";
+import type { GameLike } from "../runtime/remote";
 import { codeSoFar, download, RunLog } from "./runlog";
 import { copyLink, linkFor, Setup } from "./setup";
 import { Sound, type Heard } from "./sound";

@@ -9,7 +9,7 @@ import { SceneWatch } from "../../src/app/describe";
 import { tickPitch } from "../../src/app/sound";
 import { linkFor, Setup } from "../../src/app/setup";
 import { parseParams } from "../../src/app/params";
-import type { GameLike } from "../../src/app/remote";
+import type { GameLike } from "../../src/runtime/remote";
 
 test("preferences: stored, and anything unusable falls back per field", () => {
   const kv = new MemoryStore();
