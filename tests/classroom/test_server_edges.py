@@ -64,9 +64,12 @@ def test_closing_is_pushed_and_a_student_knows_their_standing(server: Server) ->
         "name": "Ada",
         "challenge": challenge,
         "attempts": 3,
+        "lost": False,
         "used": 0,
         "best": None,
+        "best_entry": None,
         "rank": None,
+        "count": 0,
     }
     games = sorted(
         (k for k in range(6) if variant(SEED, k).won), key=lambda k: -variant(SEED, k).score
