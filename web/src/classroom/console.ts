@@ -26,7 +26,7 @@ async function copy(button: HTMLButtonElement): Promise<void> {
   }, 2000);
 }
 
-for (const b of document.querySelectorAll<HTMLButtonElement>("button.copy"))
+for (const b of document.querySelectorAll<HTMLButtonElement>("button[data-copy]"))
   b.onclick = () => void copy(b);
 for (const f of document.querySelectorAll<HTMLFormElement>("form[data-confirm]"))
   f.onsubmit = (ev) => {

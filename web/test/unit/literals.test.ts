@@ -42,6 +42,9 @@ const ALLOWED = new Set([
   "app/runlog.ts|every second",
   // The projector's empty frame (an address, not words).
   "classroom/projector.ts|about:blank",
+  // A presented replay's placement: CSS values, not words (issue 45).
+  "classroom/debrief/replays.ts|translate( px,  px) scale( )",
+  "classroom/debrief/replays.ts|inset( px  px  px  px)",
   // A replay code's and a setting's refusal details, the class server's and the desktop's
   // words for them (shown only as a translated notice's {problem}, like the desktop's).
   ...[
