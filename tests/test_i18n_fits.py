@@ -90,6 +90,15 @@ SAMPLE = dict.fromkeys(_NAMES, 2) | SAMPLE
 #: The page's own words (the browser's boxes): measured by web/test/i18n.fits.test.ts.
 PAGE_ONLY = ("page.", "hint.", "button.", "control.", "verify.", "reason.", "help.autopilot_page")
 PAGE_ONLY += ("help.verify", "help.escape_page", "help.mouse_page", "settings.language_browser")
+#: The console's paragraphs (what to do on a refusal page, a confirmation's question, a
+#: link shown once): HTML text the browser wraps in its column, not one-line boxes.
+PAGE_ONLY += (
+    "console.todo.",
+    "console.error.archived",
+    "console.admin.confirm_retire",
+    "console.admin.once",
+    "console.lecturer.confirm_text",
+)
 
 
 def overflows(locale: str) -> list[tuple[str, int, int]]:

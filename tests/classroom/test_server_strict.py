@@ -13,6 +13,8 @@ import httpx
 import pytest
 from classhelp import Server, join, open_challenge, start_server
 
+from evapcool.classroom.session import csrf_token
+
 #: Not ASCII digits, or out of bounds: each 400 naming the parameter.
 NOT_NUMBERS = ["%C2%B2", "%E2%91%A0", "%D9%A3", "-1", "+1", "%201", "1.0", "0", "", "9" * 30]
 
@@ -47,7 +49,10 @@ def test_a_challenge_number_is_ascii_digits_or_400(single: Server) -> None:
 
 
 def _admin_form(server: Server, **fields: str) -> httpx.Response:
-    return httpx.post(server.base + "/admin", data={"token": server.token, **fields})
+    """The admin page's form as a browser sends it: the link's cookie, the CSRF token."""
+    with httpx.Client(base_url=server.base, follow_redirects=True) as browser:
+        browser.get("/admin", params={"token": server.token})
+        return browser.post("/admin", data={"csrf": csrf_token(server.token), **fields})
 
 
 def test_the_admin_form_lecturer_number_is_strict(department: Server) -> None:

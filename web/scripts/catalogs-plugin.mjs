@@ -15,6 +15,14 @@ const RESOLVED = "\0evapcool-catalogs";
 export const LOCALES_FOLDER = "../src/evapcool/locales";
 /** Keys the page never shows: the desktop's own screens and the class server's pages. */
 export const NOT_ON_THE_PAGE = ["class.", "desk.", "progress.", "debrief."];
+// The class server's console (issue 45) gets its words from the server; a student's own
+// lines (`console.student.`) are the page's.
+NOT_ON_THE_PAGE.push(
+  ...["admin.", "lecturer.", "projector.", "todo.", "error.", "refused", "home", "copy"].map(
+    (k) => `console.${k}`,
+  ),
+  ...["console.copied", "console.sure", "console.rename"],
+);
 
 /** The message keys the page's code names (as quoted literals in src/**\/*.ts). */
 export function keysInSource(srcDir) {
