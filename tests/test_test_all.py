@@ -20,6 +20,11 @@ SCRIPT = ROOT / "scripts" / "test-all.sh"
 E2E = ROOT / "web" / "test" / "e2e"
 HERE = Path(__file__).resolve().parent
 
+#: This module checks the repository itself (web/ beside src/): not in the sdist.
+pytestmark = pytest.mark.skipif(
+    not (ROOT / "web" / "package.json").exists(), reason="web/ is not in the sdist"
+)
+
 SAMPLE = """
 import sys
 sys.path.insert(0, {tests!r})

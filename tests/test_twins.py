@@ -13,6 +13,12 @@ from pathlib import Path
 
 import pytest
 
+#: This module checks the repository itself (web/ beside src/): not in the sdist.
+pytestmark = pytest.mark.skipif(
+    not (Path(__file__).resolve().parents[1] / "web" / "package.json").exists(),
+    reason="web/ is not in the sdist",
+)
+
 ROOT = Path(__file__).resolve().parents[1]
 PY = ROOT / "src" / "evapcool"
 TS = ROOT / "web" / "src"

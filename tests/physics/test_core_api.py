@@ -20,6 +20,12 @@ import pytest
 
 from evapcool.physics import core, coresource, model, world
 
+#: This module checks the repository itself (web/ beside src/): not in the sdist.
+pytestmark = pytest.mark.skipif(
+    not (Path(__file__).resolve().parents[2] / "web" / "package.json").exists(),
+    reason="web/ is not in the sdist",
+)
+
 ROOT = Path(__file__).resolve().parents[2]
 
 

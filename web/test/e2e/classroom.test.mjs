@@ -229,7 +229,10 @@ test(
     for (const [k, p] of phones.entries()) {
       const place = board.indexOf(names[k]) + 1;
       await p.waitForFunction(
-        (n) => document.getElementById("classbar").textContent.includes(`place ${n}.`),
+        (n) =>
+          new RegExp(`place ${n}( of \\d+)?\\.`).test(
+            document.getElementById("classbar").textContent,
+          ),
         place,
       );
     }
@@ -309,7 +312,7 @@ test(
       const said = await bar(p);
       assert.doesNotMatch(said, /\.\./, "no double full stop");
       assert.doesNotMatch(said, /[Rr]estart/, "restarting is not offered as a way in");
-      assert.match(said, /Your best: \d+ atoms, place \d\./, "the final place");
+      assert.match(said, /Your best: \d+ atoms, place \d( of \d+)?\./, "the final place");
     }
     await shot(big, "class-projector-closed.png");
     for (const p of [big, small]) assert.equal((await fits(p)).scrolls, false);

@@ -215,7 +215,9 @@ test(
       max_frames: 6000,
     });
     const page = await (
-      await fetch(`${server.base}${base}/lecturer?token=${lecturerToken}`)
+      await fetch(`${server.base}${base}/lecturer`, {
+        headers: { authorization: `Bearer ${lecturerToken}` },
+      })
     ).text();
     const link = /href="([^"]*\/projector\?key=[0-9a-f]+)"/.exec(page)[1];
     const key = /key=([0-9a-f]+)/.exec(link)[1];
