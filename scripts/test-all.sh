@@ -22,9 +22,11 @@ SKIPPED=$(mktemp)
 trap 'rm -f "$SKIPPED"' EXIT
 export EVAPCOOL_PYTHON EVAPCOOL_STRICT_SKIPS=1 EVAPCOOL_SKIP_LOG="$SKIPPED"
 echo "test-all: Python $EVAPCOOL_PYTHON"
+# The browser edition's packages first: some Python tests drive Chromium through them
+# (the teaching activities printed as PDFs by web/scripts/teach-pdf.mjs).
+(cd web && npm ci --no-audit --no-fund)
 "$EVAPCOOL_PYTHON" -m pytest -m "slow or not slow" "$@"
 cd web
-npm ci --no-audit --no-fund
 npm run build
 npm test
 npm run test:e2e

@@ -118,29 +118,52 @@ function nameCell(e: LecturerEntry): HTMLElement {
     box.textContent = e.name;
     return box;
   }
+  // One box per rename, moved into each redrawn table (two refreshes may overlap):
+  // what the lecturer typed, and the focus, survive the redraw.
+  const fresh = renameBox?.entry !== e.entry;
+  if (fresh) renameBox = renameForm(e);
+  const { form, input } = renameBox as RenameBox;
+  const focused = document.activeElement === input;
+  const [from, to] = [input.selectionStart, input.selectionEnd];
+  box.append(form);
+  queueMicrotask(() => {
+    if (!fresh && !focused) return;
+    input.focus();
+    if (!fresh) input.setSelectionRange(from, to);
+  });
+  return box;
+}
+
+interface RenameBox {
+  readonly entry: number;
+  readonly form: HTMLFormElement;
+  readonly input: HTMLInputElement;
+}
+let renameBox: RenameBox | null = null;
+
+function renameForm(e: LecturerEntry): RenameBox {
   const form = document.createElement("form");
   form.className = "rename";
   const input = document.createElement("input");
   input.value = e.name;
   input.setAttribute("aria-label", words.rename_prompt);
   const done = (): void => {
-    renaming = null;
+    renaming = renameBox = null;
     void refresh();
   };
   form.onsubmit = (ev) => {
     ev.preventDefault();
-    renaming = null;
+    renaming = renameBox = null;
     void post("/api/rename", { entry: e.entry, name: input.value });
   };
   input.onkeydown = (ev) => {
     if (ev.key === "Escape") done();
   };
-  const save = button(words["console.lecturer.save"], () => form.requestSubmit(), "primary");
+  // A submit button alone: Enter and a click each submit once (no second post).
+  const save = button(words["console.lecturer.save"], () => undefined, "primary");
   save.type = "submit";
   form.append(input, save, button(words["console.lecturer.cancel"], done));
-  box.append(form);
-  queueMicrotask(() => input.focus());
-  return box;
+  return { entry: e.entry, form, input };
 }
 
 async function refresh(): Promise<void> {

@@ -187,6 +187,9 @@ test("the administrator, two lecturers, a class each, refusals as pages", async 
   const before = await firstRow.locator("td").nth(1).textContent();
   // Rename in place (Enter saves), then hide and undo, by keyboard and pointer.
   await firstRow.getByRole("button", { name: "Rename" }).click();
+  // The box comes with the table's next drawing, focused: type only then.
+  await ada.locator("form.rename input").waitFor();
+  await ada.waitForFunction(() => document.activeElement?.matches("form.rename input"));
   await ada.keyboard.press("Control+a");
   await ada.keyboard.type("Mia K.");
   await ada.keyboard.press("Enter");

@@ -126,9 +126,18 @@ test("the link written from the screen opens the same setup; the control copies 
   assert.match(link, /lock=atoms,radius,escape,tc-law,speed,trap/);
   // The settings screen's control: a notice that it was copied (or the link to copy by hand).
   await page.keyboard.press("o");
+  // The settings screen's targets exist once it has been drawn (the next frame).
+  await page.waitForFunction(() =>
+    window.evapcool.app.targets.some((x) => x.action === "copylink"),
+  );
   const [x, y] = await targetAt(page, "copylink");
   await page.mouse.click(x, y);
-  const notices = (await state(page)).notices;
+  // The clipboard answers asynchronously: the notice comes when it has.
+  let notices = [];
+  for (let look = 0; look < 100 && notices.length === 0; look++) {
+    notices = (await state(page)).notices;
+    if (notices.length === 0) await page.waitForTimeout(50);
+  }
   assert.ok(
     notices.some((n) => n.startsWith("Link kopiert") || n.includes(link)),
     notices.join("|"),
