@@ -1,18 +1,24 @@
 /**
  * The message catalogs for the page (issue 23): `import "virtual:evapcool-catalogs"` gives
- * English as an object (the words the page can always show) and the other locales as one
- * deflate-raw stream in base64 (unpacked by src/i18n.ts with DecompressionStream), each cut to
- * the keys the page's code names: the desktop's and the class server's own words stay out.
- * Used by vite.config.ts, vitest.config.ts and scripts/run.mjs (plain JavaScript).
+ * every locale, English first, each cut to the keys the page's code names (the desktop's and
+ * the class server's own words stay out). They travel packed (scripts/packing.mjs) as one
+ * table: the locales' headers, the keys once, then each locale's messages in the keys' order;
+ * the module unpacks them at import. Used by vite.config.ts, vitest.config.ts and
+ * scripts/run.mjs (plain JavaScript).
  */
 import { readdirSync, readFileSync } from "node:fs";
 import { join, resolve } from "node:path";
-import { deflateRawSync } from "node:zlib";
+import { pack, UNPACK, unpackModule } from "./packing.mjs";
 
 const VIRTUAL = "virtual:evapcool-catalogs";
 const RESOLVED = "\0evapcool-catalogs";
 /** The catalogs' folder seen from web/ (the Vite root): one JSON file per locale. */
 export const LOCALES_FOLDER = "../src/evapcool/locales";
+/**
+ * English words the page shows where nothing unpacks (no DecompressionStream): it cannot
+ * start there, and says so (src/app/main.ts).
+ */
+export const WITHOUT_UNPACKING = ["page.fatal"];
 /** Keys the page never shows: the desktop's own screens and the class server's pages. */
 export const NOT_ON_THE_PAGE = ["class.", "desk.", "progress.", "debrief."];
 // The class server's console (issue 45) gets its words from the server; a student's own
@@ -78,19 +84,42 @@ export function catalogs({ allKeys = false } = {}) {
       dir = resolve(config.root, LOCALES_FOLDER);
       src = resolve(config.root, "src");
     },
-    resolveId: (id) => (id === VIRTUAL ? RESOLVED : null),
+    resolveId: (id) => (id === VIRTUAL ? RESOLVED : unpackModule.resolveId(id)),
     load(id) {
-      if (id !== RESOLVED) return null;
+      if (id !== RESOLVED) return unpackModule.load(id);
       for (const f of readdirSync(dir)) this.addWatchFile(join(dir, f));
       // The page's own keys only: the desktop's words stay out of its file.
-      const [english, ...others] = pageCatalogs(dir, allKeys ? null : keysInSource(src));
-      const plain = JSON.stringify(english);
-      const raw = Buffer.from(JSON.stringify(others));
-      const packed = deflateRawSync(raw, { level: 9 }).toString("base64");
+      const all = pageCatalogs(dir, allKeys ? null : keysInSource(src));
+      const keys = [...new Set(all.flatMap((c) => Object.keys(c.messages)))];
+      // A key a locale lacks is null: the page then shows it in English (src/i18n.ts).
+      const table = [
+        all.map((c) => c.meta),
+        keys,
+        ...all.map((c) => keys.map((k) => c.messages[k] ?? null)),
+      ];
+      const raw = Buffer.from(JSON.stringify(table));
+      const packed = pack(raw);
+      const [english] = all;
+      const fallback = {
+        meta: english.meta,
+        messages: Object.fromEntries(WITHOUT_UNPACKING.map((k) => [k, english.messages[k]])),
+      };
       cost =
-        `evapcool: the page's ${others.length + 1} message catalogs inlined: English ${Buffer.byteLength(plain)} bytes,` +
-        ` the other ${others.length} ${raw.length} bytes packed to ${packed.length} (deflate, base64)`;
-      return `export const english = ${plain};\nexport const packed = ${JSON.stringify(packed)};`;
+        `evapcool: the page's ${all.length} message catalogs inlined: ${keys.length} keys,` +
+        ` ${raw.length} bytes packed to ${packed.length} (deflate, base 85)`;
+      return `import { unpack } from "${UNPACK}";
+async function read() {
+  try {
+    const [metas, keys, ...locales] = JSON.parse(new TextDecoder().decode(await unpack(${JSON.stringify(packed)})));
+    return metas.map((meta, c) => ({
+      meta,
+      messages: Object.fromEntries(keys.map((k, i) => [k, locales[c][i]]).filter(([, m]) => m !== null)),
+    }));
+  } catch {
+    return [${JSON.stringify(fallback)}];
+  }
+}
+export const catalogs = await read();`;
     },
     // Without JavaScript nothing can choose a language: the page says so in every one.
     transformIndexHtml(html) {

@@ -6,5 +6,5 @@ export const CORE_FOLDER: string;
 export const CLANG_FLAGS: string[];
 /** The core's bytes, freshly compiled from the C sources in folder `dir`. */
 export function compileCore(dir: string): Uint8Array;
-/** The Vite plugin: `virtual:evapcool-wasm` is the compiled core as base64 text. */
+/** The Vite plugin: `virtual:evapcool-wasm` is the compiled core's bytes (packed in the page). */
 export function wasmCore(options?: { fromPage?: boolean }): Plugin;

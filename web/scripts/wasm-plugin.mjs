@@ -1,8 +1,9 @@
 /**
  * The WebAssembly engine core's build (issues 24, 32): compiles the one physics core, core/*.c
  * at the top of the repository (the Python package builds the same files natively,
- * setup.py), with Debian's clang and lld for wasm32 and serves the module as base64 text to `import "virtual:evapcool-wasm"`
- * (src/physics/wasm.ts), so the page stays one file. Used by vite.config.ts,
+ * setup.py), with Debian's clang and lld for wasm32 and serves the module packed as text
+ * (scripts/packing.mjs) to `import "virtual:evapcool-wasm"` (src/physics/wasm.ts), so the page
+ * stays one file. Used by vite.config.ts,
  * vitest.config.ts and the scripts' own builds (plain JavaScript: scripts/run.mjs loads it
  * in Node 20; types in wasm-plugin.d.mts).
  */
@@ -10,7 +11,7 @@ import { spawnSync } from "node:child_process";
 import { mkdtempSync, readdirSync, readFileSync, rmSync } from "node:fs";
 import { tmpdir } from "node:os";
 import { join, resolve } from "node:path";
-import { deflateRawSync } from "node:zlib";
+import { pack, UNPACK, unpackModule } from "./packing.mjs";
 
 const VIRTUAL = "virtual:evapcool-wasm";
 const RESOLVED = "\0evapcool-wasm";
@@ -19,7 +20,9 @@ export const CORE_FOLDER = "../core";
 
 /**
  * IEEE arithmetic as written: no contraction into fused multiply-adds, no fast-math; link-time
- * optimisation so the kernels inline across the room files; no libc (-nostdlib).
+ * optimisation so the kernels inline across the room files; no libc (-nostdlib). The linker
+ * leaves out the function names and the target features (--strip-all): the page calls the
+ * core by its exports only.
  */
 export const CLANG_FLAGS = [
   "--target=wasm32",
@@ -35,6 +38,7 @@ export const CLANG_FLAGS = [
   "-Werror",
   "-Wl,--no-entry",
   "-Wl,--lto-O3",
+  "-Wl,--strip-all",
 ];
 
 /** The compiler: `clang`, or another name (e.g. clang-14) from EVAPCOOL_CLANG. */
@@ -94,23 +98,10 @@ export function compileCore(dir) {
 }
 
 /**
- * Unpacks deflate-raw base64 at import (top-level await); a browser without
- * DecompressionStream gets no bytes, and the page says it cannot start (src/app/main.ts).
- */
-const UNPACK = `async function unpack(text) {
-  try {
-    const packed = Uint8Array.from(atob(text), (c) => c.charCodeAt(0));
-    const stream = new Blob([packed]).stream().pipeThrough(new DecompressionStream("deflate-raw"));
-    return new Uint8Array(await new Response(stream).arrayBuffer());
-  } catch {
-    return new Uint8Array(0);
-  }
-}`;
-
-/**
- * The Vite plugin: `virtual:evapcool-wasm` is the compiled core's bytes (packed in the page
- * with deflate), or none with `fromPage` (the physics worker's bundle: the page hands it
- * the core's bytes).
+ * The Vite plugin: `virtual:evapcool-wasm` is the compiled core's bytes (packed in the page,
+ * unpacked at import), or none with `fromPage` (the physics worker's bundle: the page hands
+ * it the core's bytes). A browser without DecompressionStream gets no bytes, and the page says
+ * it cannot start (src/app/main.ts).
  */
 export function wasmCore({ fromPage = false } = {}) {
   let dir = "";
@@ -127,21 +118,26 @@ export function wasmCore({ fromPage = false } = {}) {
         process.exit(1);
       }
     },
-    resolveId: (id) => (id === VIRTUAL ? RESOLVED : null),
+    resolveId: (id) => (id === VIRTUAL ? RESOLVED : unpackModule.resolveId(id)),
     load(id) {
-      if (id !== RESOLVED) return null;
+      if (id !== RESOLVED) return unpackModule.load(id);
       if (fromPage) return `export default new Uint8Array(0);`;
       for (const f of readdirSync(dir)) this.addWatchFile(join(dir, f));
       const core = compileCore(dir);
       bytes = core.length;
-      const packed = deflateRawSync(core, { level: 9 }).toString("base64");
+      const packed = pack(core);
       packedLength = packed.length;
-      return `${UNPACK}\nexport default await unpack(${JSON.stringify(packed)});`;
+      return [
+        `import { unpack } from "${UNPACK}";`,
+        `let core;`,
+        `try { core = await unpack(${JSON.stringify(packed)}); } catch { core = new Uint8Array(0); }`,
+        `export default core;`,
+      ].join("\n");
     },
     generateBundle() {
       if (bytes > 0)
         console.log(
-          `evapcool: the WebAssembly core inlined: ${bytes} bytes, packed to ${packedLength} (deflate, base64)`,
+          `evapcool: the WebAssembly core inlined: ${bytes} bytes, packed to ${packedLength} (deflate, base 85)`,
         );
     },
   };

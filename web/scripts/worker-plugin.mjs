@@ -1,12 +1,13 @@
 /**
  * The page's workers packed (issue 37: the verify panel's worker kept the page under its
  * 300 KB): `import code from "./NAME.worker?packed"` is the worker bundled on its own
- * (minified, one script), deflated and inlined as base64 text, about a third of its
- * JavaScript; the page unpacks it once (src/app/main.ts) and starts each worker from it.
+ * (minified, one script), packed as text (scripts/packing.mjs), about a third of its
+ * JavaScript; the page unpacks it once (src/app/main.ts, with `virtual:evapcool-unpack`) and
+ * starts each worker from it.
  * Plain JavaScript like the other plugins; types in worker-plugin.d.mts.
  */
-import { deflateRawSync } from "node:zlib";
 import { build } from "vite";
+import { pack, unpackModule } from "./packing.mjs";
 
 const SUFFIX = "?packed";
 
@@ -20,12 +21,12 @@ export function packedWorkers({ plugins = () => [] } = {}) {
       root = config.root;
     },
     async resolveId(id, importer) {
-      if (!id.endsWith(SUFFIX)) return null;
+      if (!id.endsWith(SUFFIX)) return unpackModule.resolveId(id);
       const entry = await this.resolve(id.slice(0, -SUFFIX.length), importer);
       return entry ? `\0${entry.id}${SUFFIX}` : null;
     },
     async load(id) {
-      if (!id.startsWith("\0") || !id.endsWith(SUFFIX)) return null;
+      if (!id.startsWith("\0") || !id.endsWith(SUFFIX)) return unpackModule.load(id);
       const entry = id.slice(1, -SUFFIX.length);
       this.addWatchFile(entry);
       const result = await build({
@@ -42,8 +43,7 @@ export function packedWorkers({ plugins = () => [] } = {}) {
       });
       const out = Array.isArray(result) ? result[0] : result;
       const code = out.output[0].code;
-      const packed = deflateRawSync(Buffer.from(code), { level: 9 }).toString("base64");
-      return `export default ${JSON.stringify(packed)};`;
+      return `export default ${JSON.stringify(pack(Buffer.from(code)))};`;
     },
   };
 }

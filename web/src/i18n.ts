@@ -4,7 +4,7 @@
  * categories and number formats from Intl so both editions print the same words.
  * Python's twin: `src/evapcool/i18n.py` (docs/twins.md).
  */
-import { english, packed } from "virtual:evapcool-catalogs";
+import { catalogs } from "virtual:evapcool-catalogs";
 
 /** One catalog file: who wrote it, its direction, and the messages by stable dotted id. */
 export interface CatalogFile {
@@ -16,20 +16,10 @@ export const FALLBACK = "en";
 export const PSEUDO = "en-XA";
 export const STORAGE_KEY = "evapcool.lang";
 
-const en: CatalogFile = english;
-
-/** The other locales, unpacked once (a browser without DecompressionStream shows English). */
-async function unpack(base64: string): Promise<CatalogFile[]> {
-  try {
-    const bytes = Uint8Array.from(atob(base64), (c) => c.charCodeAt(0));
-    const stream = new Blob([bytes]).stream().pipeThrough(new DecompressionStream("deflate-raw"));
-    return JSON.parse(await new Response(stream).text()) as CatalogFile[];
-  } catch {
-    return [];
-  }
-}
-
-const SHIPPED: CatalogFile[] = [en, ...(await unpack(packed))];
+/** English first; a browser without DecompressionStream has only the line that says the
+ * page cannot start there (scripts/catalogs-plugin.mjs). */
+const SHIPPED: CatalogFile[] = catalogs;
+const en: CatalogFile = SHIPPED[0];
 export const CATALOGS: Record<string, CatalogFile> = Object.fromEntries(
   SHIPPED.map((c) => [c.meta.tag, c]),
 );

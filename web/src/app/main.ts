@@ -8,6 +8,7 @@ import { classApi, ClassMode, classNameMax } from "./classmode";
 import { exposeApi } from "./api";
 import { parseParams } from "./params";
 import physicsWorkerCode from "../runtime/physics.worker?packed";
+import { unpack } from "virtual:evapcool-unpack";
 import { pageStorage, ReadOnly } from "./storage";
 import { chooseLocale, onLocaleChange, STORAGE_KEY, t, useLocale, type Translator } from "../i18n";
 
@@ -22,9 +23,7 @@ function byId<T extends HTMLElement>(id: string): T {
 async function workerUrl(): Promise<string | null> {
   try {
     if (typeof Worker !== "function") return null;
-    const packed = Uint8Array.from(atob(physicsWorkerCode), (c) => c.charCodeAt(0));
-    const stream = new Blob([packed]).stream().pipeThrough(new DecompressionStream("deflate-raw"));
-    const code = await new Response(stream).blob();
+    const code = await unpack(physicsWorkerCode);
     return URL.createObjectURL(new Blob([code], { type: "text/javascript" }));
   } catch (err) {
     console.warn(

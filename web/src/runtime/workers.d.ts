@@ -4,8 +4,13 @@ declare module "*?worker&inline" {
   export default WorkerConstructor;
 }
 
-/** A worker's script packed by scripts/worker-plugin.mjs: deflate-raw, as base64 text. */
+/** A worker's script packed by scripts/worker-plugin.mjs: `unpack` gives its bytes back. */
 declare module "*?packed" {
   const packed: string;
   export default packed;
+}
+
+/** Bytes packed as text by the build (scripts/packing.mjs); throws without DecompressionStream. */
+declare module "virtual:evapcool-unpack" {
+  export function unpack(text: string): Promise<Uint8Array<ArrayBuffer>>;
 }
