@@ -1,7 +1,7 @@
 /**
  * The engine: the one physics core (core/*.c at the top of the repository, the same C the
- * Python package builds natively), compiled by clang for wasm32 and inlined by the build as
- * base64 (scripts/wasm-plugin.mjs). It processes the events of Python's ReferenceEngine in
+ * Python package builds natively), compiled by clang for wasm32 and inlined by the build
+ * packed (deflate, base 85: scripts/wasm-plugin.mjs). It processes the events of Python's ReferenceEngine in
  * the same order with the same arithmetic, so the golden traces replay bit for bit.
  *
  * One WebAssembly instance per engine, holding one `Core` (core_new): its memory holds that
