@@ -91,11 +91,29 @@ def test_no_legend_of_the_figure_covers_a_point() -> None:
     best = report.Choice("linear", "400@0,140@1800", 7, None, holdout=hold)
     baseline = report.Choice("linear", "425@0,162@1788", 6, None, holdout=base)
     fig = report.draw_figure(rows, report.fronts(rows), best, baseline, PROBLEM)
-    fig.draw_without_rendering()  # lays the panels out
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+
+    fig.set_dpi(110)  # as the report saves it
+    renderer = FigureCanvasAgg(fig).get_renderer()
+    fig.draw(renderer)  # lays the panels out
     panels = [a for a in fig.axes if a.get_legend() is not None]
     assert len(panels) == 4
-    legends = [a.get_legend().get_window_extent() for a in panels]
+    legends = [a.get_legend().get_window_extent(renderer) for a in panels]
+    points = 0
     for a in panels:
-        box = a.get_window_extent()
+        box = a.get_window_extent(renderer)
         for legend in legends:
             assert not box.overlaps(legend), (a.get_title(), legend, box)
+        # Every point drawn (markers, lines' vertices, the histogram's bars) outside every legend.
+        for line in a.get_lines():
+            for x, y in line.get_transform().transform(line.get_xydata()):
+                points += 1
+                assert not any(lg.contains(x, y) for lg in legends), (a.get_title(), x, y)
+        for bar in a.patches:
+            corners = bar.get_window_extent(renderer).corners()
+            assert not any(lg.contains(x, y) for lg in legends for x, y in corners)
+    assert points > 2 * len(rows), "the trials were drawn"
+    whole = fig.bbox
+    for legend in legends:  # and no legend cut off by the figure's edge
+        assert whole.x0 <= legend.x0 and legend.x1 <= whole.x1, (legend, whole)
+        assert whole.y0 <= legend.y0 and legend.y1 <= whole.y1, (legend, whole)

@@ -351,7 +351,8 @@ def _panel_trials(ax, rows: list[dict], problem: Problem) -> None:
     for fam in problem.families:
         pts = [(r["trial"], r["score_mean"]) for r in rows if r["family"] == fam]
         if pts:
-            ax.plot(*zip(*pts, strict=True), ".", ms=3, label=fam, alpha=0.7)
+            # Over the "best so far" line, which would hide the trials that set it.
+            ax.plot(*zip(*pts, strict=True), ".", ms=4, label=fam, alpha=0.8, zorder=3)
     best = -math.inf
     run = []
     for r in sorted(rows, key=lambda r: r["trial"]):
@@ -411,4 +412,5 @@ def _panel_holdout(ax, best: Choice, baseline: Choice) -> None:
     ax.axvline(0.0, color="k", lw=0.8)
     ax.set_xlabel("score difference, best - linear (same seed)")
     ax.set_ylabel("held-out seeds")
+    ax.yaxis.get_major_locator().set_params(integer=True)  # counts of seeds: no 2.5
     ax.set_title(f"Held-out validation, {p.a.n} paired seeds")

@@ -1,9 +1,19 @@
-// `npm run screenshots`: the README's pictures of the browser edition into docs/
-// (the classic start, a win, a phone in portrait), from the built page in headless Chromium.
+// `npm run screenshots`: the README's pictures of the browser edition into docs/ (the classic
+// start, a win, a phone upright and on its side, the help on a 1080p projector), from the built
+// page in headless Chromium. The same pictures every run (but for the condensate's glow).
 import { resolve } from "node:path";
 import { launch, openPage } from "./browser.mjs";
 
 const DOCS = resolve(import.meta.dirname, "../../../docs");
+
+/** Only `runFrames` plays from here: the page's own loop would add frames of wall clock
+ * between the script's calls, as many as the machine's load allows, and the pictures would
+ * differ from run to run. */
+async function scripted(page) {
+  await page.waitForFunction(() => window.evapcool.stateNow().engine === "worker");
+  await page.evaluate(() => window.evapcool.app.loop.stop());
+  await page.evaluate(() => window.evapcool.state()); // the worker has every input so far
+}
 const browser = await launch();
 try {
   let { page } = await openPage(browser, {
@@ -11,6 +21,7 @@ try {
     query: "?seed=1",
   });
   await page.screenshot({ path: `${DOCS}/web-start.png` });
+  await scripted(page);
   // A ramp that wins: 5 px lower every 25 frames down to 100, then wait for the condensate.
   await page.keyboard.press("Space");
   for (let k = 0; k < 200; k++) {
@@ -29,9 +40,10 @@ try {
     touch: true,
     query: "?seed=2",
   }));
+  await scripted(page);
   await page.evaluate(() => {
     window.evapcool.app.game.setTrapHeight(250);
-    window.evapcool.runFrames(90);
+    return window.evapcool.runFrames(90); // awaited: the picture after all 90 frames
   });
   await page.screenshot({ path: `${DOCS}/web-phone.png` });
   await page.close();
@@ -43,9 +55,10 @@ try {
     touch: true,
     query: "?seed=2",
   }));
+  await scripted(page);
   await page.evaluate(() => {
     window.evapcool.app.game.setTrapHeight(250);
-    window.evapcool.runFrames(90);
+    return window.evapcool.runFrames(90); // awaited: the picture after all 90 frames
   });
   await page.screenshot({ path: `${DOCS}/web-landscape.png` });
   await page.close();
@@ -53,9 +66,8 @@ try {
     viewport: { width: 1920, height: 1080 },
     query: "?seed=2",
   }));
-  await page.keyboard.press("Space");
-  await page.waitForTimeout(1200);
-  await page.keyboard.press("Space");
+  // The help before any play: after some, its last line is the display rate this machine
+  // kept, which on a busy one says "too slow" (a picture of the machine, not of the page).
   await page.keyboard.press("h");
   await page.waitForTimeout(300);
   await page.screenshot({ path: `${DOCS}/web-projector-help.png` });
