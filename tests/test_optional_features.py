@@ -6,6 +6,8 @@ makes importlib.util.find_spec return None and `import name` fail.
 
 from __future__ import annotations
 
+import html
+import re
 import sys
 import warnings
 
@@ -13,7 +15,7 @@ import pytest
 
 from evapcool import Simulation
 from evapcool.cli import main
-from evapcool.extras import CoreMissingWarning, MissingExtraError, SlowEngineWarning
+from evapcool.extras import CoreMissingWarning, MissingExtraError, SlowEngineWarning, install_hint
 from evapcool.lab import run_experiment
 
 
@@ -26,7 +28,7 @@ def _one_error_line(text: str, prefix: str, extra: str) -> None:
     lines = text.strip().splitlines()
     assert len(lines) == 1, text
     assert lines[0].startswith(prefix), text
-    assert f"pip install 'evapcool[{extra}]'" in lines[0]
+    assert install_hint(extra) in lines[0]
     assert "Traceback" not in text
 
 
@@ -67,7 +69,9 @@ def test_lab_plot_without_matplotlib_is_refused_before_the_run(monkeypatch, caps
         err = capsys.readouterr().err
         _one_error_line(err, "evapcool lab: error: --plot needs matplotlib", "lab")
         assert not out.exists() and not png.exists()
-    with pytest.raises(MissingExtraError, match=r"^plot needs matplotlib.*evapcool\[lab\]"):
+    with pytest.raises(
+        MissingExtraError, match="^plot needs matplotlib.*" + re.escape(install_hint("lab"))
+    ):
         run_experiment(frames=1_000_000, plot=png)
 
 
@@ -137,9 +141,37 @@ def test_python_api_raises_missing_extra_error(monkeypatch):
 def test_result_plot_and_pandas_without_their_packages(monkeypatch):
     result = run_experiment(n_atoms=12, radius=8.0, frames=4, every=2, seed=1, engine="reference")
     _without(monkeypatch, "matplotlib", "pandas")
-    with pytest.raises(MissingExtraError, match=r"evapcool\[lab\]"):
+    with pytest.raises(MissingExtraError, match=re.escape(install_hint("lab"))):
         result.plot()
     with pytest.raises(MissingExtraError, match=r"pip install pandas"):
         result.to_pandas()
     page = result._repr_html_()  # the table still shows, with the line instead of the plot
-    assert "<table>" in page and "evapcool[lab]" in page and "<img" not in page
+    assert "<table>" in page and html.escape(install_hint("lab")) in page and "<img" not in page
+
+
+@pytest.mark.parametrize(
+    ("direct_url", "hint"),
+    [
+        (
+            '{"url": "file:///home/mia/evapcool", "dir_info": {"editable": true}}',
+            "pip install -e '/home/mia/evapcool[lab]'",
+        ),
+        (
+            '{"url": "file:///tmp/dist/evapcool-0.9-cp311-linux_x86_64.whl", "archive_info": {}}',
+            "pip install '/tmp/dist/evapcool-0.9-cp311-linux_x86_64.whl[lab]'",
+        ),
+        (None, "pip install 'evapcool[lab]'"),
+    ],
+)
+def test_the_install_hint_follows_where_evapcool_came_from(
+    monkeypatch: pytest.MonkeyPatch, direct_url: str | None, hint: str
+) -> None:
+    """A clone, a wheel file or an index (PEP 610's direct_url.json): the line that works."""
+    from importlib import metadata
+
+    class Installed:
+        def read_text(self, name: str) -> str | None:
+            return direct_url if name == "direct_url.json" else None
+
+    monkeypatch.setattr(metadata, "distribution", lambda name: Installed())
+    assert install_hint("lab") == hint

@@ -42,7 +42,35 @@ class SlowEngineWarning(UserWarning):
 
 
 def install_hint(extra: str) -> str:
+    """The pip line that adds `extra` to this install, wherever it came from: a clone
+    (editable), a wheel file, or an index (no release is on PyPI yet: docs/releasing.md)."""
+    source = _installed_from()
+    if source is not None and source[0] == "editable":
+        return f"pip install -e '{source[1]}[{extra}]'"
+    if source is not None:
+        return f"pip install '{source[1]}[{extra}]'"
     return f"pip install 'evapcool[{extra}]'"
+
+
+def _installed_from() -> tuple[str, str] | None:
+    """("editable", folder) or ("file", wheel) from the install's direct_url.json (PEP 610);
+    None for an install from an index or when it cannot be read."""
+    import json
+    from importlib import metadata
+    from urllib.parse import unquote, urlparse
+
+    try:
+        text = metadata.distribution("evapcool").read_text("direct_url.json")
+        doc = json.loads(text) if text else {}
+    except (metadata.PackageNotFoundError, ValueError):
+        return None
+    url = urlparse(str(doc.get("url", "")))
+    if url.scheme != "file":
+        return None
+    path = unquote(url.path)
+    if doc.get("dir_info", {}).get("editable"):
+        return ("editable", path)
+    return ("file", path) if path.endswith(".whl") else None
 
 
 def available(module: str) -> bool:

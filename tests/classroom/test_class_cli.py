@@ -10,6 +10,7 @@ from classhelp import free_port
 
 from evapcool.classroom import class_cli
 from evapcool.cli import main
+from evapcool.extras import install_hint
 from evapcool.i18n import Catalog
 
 
@@ -60,7 +61,7 @@ def test_missing_extra_is_named(
     monkeypatch.setattr(class_cli, "available", lambda module: module != "segno")
     assert main(["class"]) == 2
     assert capsys.readouterr().err.strip() == (
-        "evapcool class needs the class extra: pip install 'evapcool[class]'"
+        f"evapcool class needs the class extra: {install_hint('class')}"
     )
 
 

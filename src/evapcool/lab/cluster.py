@@ -26,8 +26,9 @@ from dataclasses import dataclass
 
 from evapcool.about import error_line
 from evapcool.argtypes import UsageError, whole
+from evapcool.extras import install_hint
 
-INSTALL_HINT = "pip install 'evapcool[cluster]'"
+INSTALL_HINT = install_hint("cluster")
 #: What each command needs from the extra (import names).
 NEEDS = {
     "sweep": ("dask", "distributed", "pandas", "pyarrow", "tqdm"),

@@ -230,11 +230,14 @@ export class Scene {
     const cx = PLAY_RECT.x + PLAY_RECT.w / 2;
     const width = PLAY_RECT.w - 20;
     const big = t("win.score_big", { n: score });
-    shadowed(ctx, big, fitSize(ctx, big, 84, width, 40), cx, MESSAGE_Y);
+    const bigSize = fitSize(ctx, big, 84, width, 40);
+    shadowed(ctx, big, bigSize, cx, MESSAGE_Y);
     const line = t("win.condensed");
     const size = fitSize(ctx, line, 30, width, 16);
-    plate(ctx, textWidth(ctx, line, size), size, cx, MESSAGE_Y + 58);
-    drawText(ctx, line, size, C.TEXT, cx, MESSAGE_Y + 58, "center", true);
+    // Under the score's plate (each plate reaches 0.75 of its size from its centre), not on it.
+    const y = MESSAGE_Y + 0.75 * (bigSize + size) + 2;
+    plate(ctx, textWidth(ctx, line, size), size, cx, y);
+    drawText(ctx, line, size, C.TEXT, cx, y, "center", true);
   }
 
   /** The gas can no longer condense: say why and offer a restart. */
