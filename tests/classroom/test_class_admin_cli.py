@@ -1,8 +1,8 @@
 """`evapcool class admin` does everything the administrator's page does (issue 45): rename,
 retire and relink a lecturer, rename, archive and bring back a class (named by its join
-code or its number), each run as its own process on the data file a running department server uses; the store and the server's
-administrator's page then show it. Bad input: one line naming the parameter, exit 2, the
-store unchanged."""
+code or its number), each run as its own process on the data file a running department
+server uses; the store and the server's administrator's page then show it. Bad input: one
+line naming the parameter, exit 2, the store unchanged."""
 
 from __future__ import annotations
 

@@ -188,11 +188,18 @@ async def form_of(request: Request) -> dict[str, str]:
 
 
 def table(heads: list[str], rows: list[list[str]], ident: str) -> str:
-    """A table with its column headers (cells already escaped HTML)."""
+    """A table with its column headers (headers and cells already escaped HTML)."""
     head = "".join(f'<th scope="col">{h}</th>' for h in heads)
-    body = "".join("<tr>" + "".join(f"<td>{c}</td>" for c in row) + "</tr>" for row in rows)
+    # Each cell names its column (data-label): a phone shows a row as a card of labelled
+    # lines (console.css).
+    body = "".join(
+        "<tr>"
+        + "".join(f'<td data-label="{h}">{c}</td>' for h, c in zip(heads, row, strict=True))
+        + "</tr>"
+        for row in rows
+    )
     return (
-        f'<div class="table-wrap"><table id="{ident}"><thead><tr>{head}</tr></thead>'
+        f'<div class="table-wrap"><table id="{ident}" class="cards"><thead><tr>{head}</tr></thead>'
         f"<tbody>{body}</tbody></table></div>"
     )
 
