@@ -27,7 +27,18 @@ const SEED = 77;
 const PHONE = { width: 390, height: 844 };
 const SHOTS = process.env.EVAPCOOL_SHOTS;
 /** The names of the first round's students (Arabic ones too: the board's text runs both ways). */
-const NAMES = ["Mia", "Finn", "ليلى", "Priya", "Elif", "عمر", "Jonas", "Sofía", "Kenji", "Ana"];
+const NAMES = [
+  "Mia",
+  "Finn",
+  "ليلى",
+  "Priya",
+  "Elif",
+  "عمر",
+  "Konstantinos",
+  "Sofía",
+  "Kenji",
+  "Ana",
+];
 /** Weekday, day, month and minute, as times.ts writes them. */
 const SHORT = {
   weekday: "short",
@@ -308,6 +319,7 @@ async function pastBoard(page, id) {
     top,
   );
   const seen = new Set();
+  const cut = [];
   const pages = Number((await page.getAttribute("#board-page", "data-pages")) ?? 1);
   for (let p = 0; p < pages; p++) {
     await page.waitForFunction(
@@ -321,8 +333,16 @@ async function pastBoard(page, id) {
       trs.filter((tr) => tr.checkVisibility()).map((tr) => [...tr.cells].map((c) => c.textContent)),
     );
     for (const cells of rows.slice(1)) seen.add(cells[1]);
+    cut.push(
+      ...(await page.$$eval("#board td, #board th, #podium .who", (els) =>
+        els
+          .filter((el) => el.checkVisibility() && el.scrollWidth > el.clientWidth + 1)
+          .map((el) => el.textContent),
+      )),
+    );
   }
   assert.deepEqual([...seen].sort(), world.board.entries.map((e) => e.name).sort());
+  assert.deepEqual(cut, [], "no name or number cut, on any page");
   const box = await page.evaluate(() => {
     const r = document.getElementById("board-box").getBoundingClientRect();
     const p = document.getElementById("debrief-paths").getBoundingClientRect();
