@@ -285,6 +285,9 @@ test(
       new RegExp(`/c/${world.room.code}/projector\\?key=[0-9a-f]+&round=${id}$`),
     );
     assert.doesNotMatch(openRow[0][1], /round=/, "the open round's link is the live board");
+    await shot(page, "console-lecturer-list-390.png");
+    await page.setViewportSize({ width: 1280, height: 800 });
+    await shot(page, "console-lecturer-list-1280.png");
     // The exports with the browser's own cookie (the page's link, as a click fetches it).
     const csv = await context.request.get(server.base + pastRow[1][1]);
     assert.equal(csv.status(), 200);
