@@ -155,7 +155,7 @@ LECTURER_BODY = Template("""<header id="top"><div id="top-name">$classes
 <button id="stop" type="button">$stop</button></p>
 <p id="status" role="status"></p><p id="rejected"></p></section>
 <div id="debrief-slot"></div>
-<section id="table-box"><h2>$entries</h2><table id="entries"></table></section>
+<section id="table-box"><h2>$entries</h2><table id="entries" class="cards"></table></section>
 <section id="new-round"><h2>$heading</h2>
 <form id="open">
 <label for="n_atoms">$atoms</label><input id="n_atoms" type="number" min="2" max="400" value="49">

@@ -1,10 +1,12 @@
 /**
  * The console's list pages (the administrator's, a department lecturer's classes): copy
  * buttons for links, and a confirmation before a form that cannot be undone (data-confirm).
- * Everything works without it but the copying; it only adds.
+ * Times (past rounds) are written in the reader's language and time zone. Everything works
+ * without it but the copying; it only adds.
  */
 import "./console.css";
 import { pageWords } from "./common";
+import { localizeTimes, readerLocale } from "./times";
 
 const words = pageWords();
 
@@ -32,3 +34,4 @@ for (const f of document.querySelectorAll<HTMLFormElement>("form[data-confirm]")
   f.onsubmit = (ev) => {
     if (!window.confirm(f.dataset["confirm"] ?? words["console.sure"] ?? "")) ev.preventDefault();
   };
+localizeTimes(document, readerLocale(document.documentElement.lang, navigator.languages));

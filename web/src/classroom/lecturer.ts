@@ -180,7 +180,8 @@ async function refresh(): Promise<void> {
   const heads = ["rank", "name", "score", "console.lecturer.attempts", "frames", "edition"];
   const head = document.createElement("thead");
   table.append(head);
-  row(head, [...heads.map((k) => words[k]), ""], "th");
+  const labels = [...heads.map((k) => words[k]), ""];
+  row(head, labels, "th");
   const body = document.createElement("tbody");
   table.append(body);
   for (const r of studentRows(d.entries)) {
@@ -188,6 +189,8 @@ async function refresh(): Promise<void> {
     const cells = [e.rank ?? "", nameCell(e), e.score, r.attempts, e.frames, e.edition];
     const tr = row(body, [...cells, actions(r, d.showing)]);
     tr.dataset.entry = String(e.entry);
+    // Each cell names its column: a phone shows the row as a card (console.css).
+    [...tr.cells].forEach((td, i) => (td.dataset.label = labels[i] ?? ""));
     tr.className = [e.hidden ? "hidden" : "", e.entry === d.showing ? "showing" : ""].join(" ");
     if (e.hidden) tr.title = words.hidden;
   }

@@ -5,6 +5,7 @@
  * code, address and QR code are the server's HTML.
  */
 import "./projector.css";
+import "./projector-debrief.css";
 import {
   BOARD_COLUMNS,
   ChallengeClock,
@@ -28,8 +29,10 @@ const words = pageWords();
 const base = classBase();
 const challenge = new ChallengeClock();
 const key = queryParam("key");
-/** A past round reopened (its id), or null for the live board. */
-const round = /^\d+$/.test(queryParam("round") ?? "") ? queryParam("round") : null;
+/** A past round reopened (its id: ?round=, or ?challenge= as the API names it), or null
+ * for the live board. */
+const asked = queryParam("round") ?? queryParam("challenge");
+const round = asked !== null && /^\d+$/.test(asked) ? asked : null;
 let playing: string | null = null;
 const keyQuery = key ? "?key=" + encodeURIComponent(key) : "";
 const roundQuery = round ? (keyQuery ? "&" : "?") + "challenge=" + round : "";

@@ -296,9 +296,11 @@ async def _classes(
         gone = r["id"] in archived
         what = "unarchive" if gone else "archive"
         arch = _form(csrf, what, ident, _e(words, f"console.admin.{what}"))
-        links = (
-            f'<a href="{html.escape(doc["join"])}">{_e(words, "console.admin.join")}</a> · '
-            f'<a href="{html.escape(doc["projector"])}">{_e(words, "class.lecturer.projector")}</a>'
+        links = (  # buttons: a finger's 44 px
+            f'<a class="button" href="{html.escape(doc["join"])}">'
+            f"{_e(words, 'console.admin.join')}</a> "
+            f'<a class="button" href="{html.escape(doc["projector"])}">'
+            f"{_e(words, 'class.lecturer.projector')}</a>"
         )
         state = _e(words, "console.admin.archived" if gone else "console.admin.active")
         rows.append(

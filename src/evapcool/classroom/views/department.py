@@ -188,11 +188,18 @@ async def form_of(request: Request) -> dict[str, str]:
 
 
 def table(heads: list[str], rows: list[list[str]], ident: str) -> str:
-    """A table with its column headers (cells already escaped HTML)."""
+    """A table with its column headers (headers and cells already escaped HTML)."""
     head = "".join(f'<th scope="col">{h}</th>' for h in heads)
-    body = "".join("<tr>" + "".join(f"<td>{c}</td>" for c in row) + "</tr>" for row in rows)
+    # Each cell names its column (data-label): a phone shows a row as a card of labelled
+    # lines (console.css).
+    body = "".join(
+        "<tr>"
+        + "".join(f'<td data-label="{h}">{c}</td>' for h, c in zip(heads, row, strict=True))
+        + "</tr>"
+        for row in rows
+    )
     return (
-        f'<div class="table-wrap"><table id="{ident}"><thead><tr>{head}</tr></thead>'
+        f'<div class="table-wrap"><table id="{ident}" class="cards"><thead><tr>{head}</tr></thead>'
         f"<tbody>{body}</tbody></table></div>"
     )
 
@@ -265,15 +272,17 @@ async def _class_section(
         return head + f"<p>{_e(words, 'class.classes.none')}</p></section>"
     rows = []
     for c in past:
-        csv_link = f"/c/{room['code']}/api/export.csv?challenge={c['id']}"
         info = challenge_info(c)
         when = info["closes_at"]
+        # The ISO time stays in datetime=; console.ts writes it in the reader's language
+        # and time zone.
+        shown = f'<time datetime="{html.escape(when)}">{html.escape(when)}</time>' if when else "—"
         rows.append(
             [
                 str(c["id"]),
-                html.escape(str(when or "—")),
+                shown,
                 _e(words, "class.classes.games", n=c["games"], students=c["students"]),
-                f'<a href="{html.escape(csv_link)}" download>CSV</a>',
+                _round_links(words, room, doc, int(info["id"]), bool(info["open"])),
             ]
         )
     heads = [
@@ -282,10 +291,28 @@ async def _class_section(
             "console.lecturer.round",
             "console.lecturer.closes",
             "console.lecturer.played",
-            "class.lecturer.export",
+            "console.admin.links",
         )
     ]
     return head + table(heads, rows, f"rounds-{room['code']}") + "</section>"
+
+
+def _round_links(
+    words: Catalog, room: dict[str, Any], doc: dict[str, Any], challenge: int, live: bool
+) -> str:
+    """A round's links: reopened on the projector (the live board while it is open), its
+    CSV and JSON exports."""
+    projector = doc["projector"]
+    if not live:
+        projector += ("&" if "?" in projector else "?") + f"round={challenge}"
+    api = f"/c/{room['code']}/api/export"
+    parts = [
+        f'<a class="button" href="{html.escape(projector)}" target="_blank" '
+        f'data-round="{challenge}">{_e(words, "console.lecturer.round_projector")}</a>',
+        f'<a class="button" href="{api}.csv?challenge={challenge}" download>CSV</a>',
+        f'<a class="button" href="{api}.json?challenge={challenge}" download>JSON</a>',
+    ]
+    return f'<span class="round-links">{" ".join(parts)}</span>'
 
 
 #: A department's root and lecturer's page (before the single class's at the same paths).
