@@ -44,7 +44,7 @@ def test_pages_and_challenge(server: Server) -> None:
     projector = httpx.get(server.base + "/projector").text
     assert "<svg" in projector and "/api/stream" in projector
     # the students' link printed at start, said short (no scheme: issue 45)
-    assert f"Join: {server.base.split('://')[1]}<" in projector
+    assert f'Join: <span class="address">{server.base.split("://")[1]}</span><' in projector
     assert browse(server.base, "/lecturer", server.token).status_code == 200
 
 

@@ -255,7 +255,10 @@ def projector_page(
     words = {k: raw(v) for k, v in PAGE_WORDS.items()}
     words.update({k: raw(k) for k in PROJECTOR_WORDS})
     code, short = join or (None, join_url)
-    said = raw("class.projector.join").replace("{url}", short)
+    # The address is one piece: it shrinks to fit its line (projector.ts), never breaks inside.
+    said = html.escape(raw("class.projector.join")).replace(
+        "{url}", f'<span class="address">{html.escape(short)}</span>'
+    )
     code_html = ""
     if code:
         label = html.escape(raw("class.join.code"))
@@ -272,7 +275,7 @@ def projector_page(
         title=html.escape(raw("class.projector.title")),
         qr=qr_svg,
         code=code_html,
-        join=html.escape(said),
+        join=said,
         loopback=warning,
         replay=html.escape(raw("class.projector.replay")),
         theme=html.escape(raw("console.projector.theme")),

@@ -114,6 +114,12 @@ export class ChallengeClock {
     this.at = now;
   }
 
+  /** Seconds left in the window, or null when it has none. */
+  secondsLeft(now: number = Date.now()): number | null {
+    const c = this.info;
+    return c && c.closes_in !== null ? c.closes_in - (now - this.at) / 1000 : null;
+  }
+
   state(words: Words, now: number = Date.now()): [StateKind, string] {
     return stateText(words, this.info, (now - this.at) / 1000);
   }

@@ -10,6 +10,7 @@
 import "./lecturer.css";
 import {
   ChallengeClock,
+  clock,
   rejectedText,
   row,
   settingsText,
@@ -75,14 +76,17 @@ function button(text: string, action: () => void, cls = ""): HTMLButtonElement {
 
 function tick(): void {
   const c = challenge.info;
-  const [kind, text] = challenge.state(words);
-  // The round's line as before (its state after it), the countdown large below it.
+  const [kind] = challenge.state(words);
+  // The round's line with its state; below it, large, only what the line does not say:
+  // the time left, or the final results.
   const state = kind === "open" ? " · " + words.open : " (" + words.closed + ")";
   byId("current").textContent = c
     ? fill(words.open_now, { id: c.id, seed: c.seed }) + state
     : words.none;
   const countdown = byId("countdown");
-  countdown.textContent = c ? (kind === "open" ? text : words.closed) : "";
+  const left = challenge.secondsLeft();
+  const time = left === null ? "" : fill(words.closes_in, { time: clock(Math.max(0, left)) });
+  countdown.textContent = c ? (kind === "open" ? time : words.final) : "";
   countdown.className = kind;
   byId("current-settings").textContent = c ? settingsText(words, c) : "";
 }

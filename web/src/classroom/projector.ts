@@ -175,7 +175,28 @@ present(byId<HTMLIFrameElement>("replay-frame"));
 setTheme(savedLight());
 byId("theme").addEventListener("click", () => setTheme(!document.body.classList.contains("light")));
 byId("history").addEventListener("click", () => void showRounds());
-window.addEventListener("resize", () => pager.layout());
+/** The join address on one line: its type shrinks to fit (down to the projector's least
+ * size, 24 px at 1080p), and only an address longer than that still breaks. */
+function fitAddress(): void {
+  const address = document.querySelector<HTMLElement>("#join .address");
+  const line = address?.parentElement;
+  if (!address || !line) return;
+  address.style.fontSize = "";
+  address.classList.remove("wraps");
+  const small = getComputedStyle(document.documentElement).getPropertyValue("--small").trim();
+  const least = parseFloat(small) * (small.endsWith("vh") ? innerHeight / 100 : 1) || 0;
+  let size = parseFloat(getComputedStyle(address).fontSize);
+  while (address.offsetWidth > line.clientWidth && size * 0.95 >= least) {
+    size *= 0.95;
+    address.style.fontSize = `${size}px`;
+  }
+  if (address.offsetWidth > line.clientWidth) address.classList.add("wraps");
+}
+fitAddress();
+window.addEventListener("resize", () => {
+  pager.layout();
+  fitAddress();
+});
 setInterval(() => pager.next(), PAGE_SECONDS * 1000);
 if (round) {
   document.body.classList.add("past");

@@ -100,7 +100,7 @@ async function fits(projector) {
       scrolls: root.scrollHeight > innerHeight + 1 || root.scrollWidth > innerWidth + 1,
       frame: [frame.top, frame.bottom, frame.height, innerHeight],
       cut: heads.filter(([need, have]) => need > have).length,
-      join: parseFloat(getComputedStyle(document.getElementById("join")).fontSize),
+      join: parseFloat(getComputedStyle(document.querySelector("#join .address")).fontSize),
       board: parseFloat(getComputedStyle(document.getElementById("board")).fontSize),
     };
   });
@@ -268,8 +268,15 @@ test(
       );
       assert.equal(f.cut, 0, "no header cut");
       assert.ok(f.join >= f.board, `join address ${f.join} px, board ${f.board} px`);
+      // The address on one line (its type fitted), never broken inside the port.
+      const pieces = await p.evaluate(
+        () => document.querySelector("#join .address").getClientRects().length,
+      );
+      assert.equal(pieces, 1, "the join address in one piece");
     }
     await shot(big, "class-projector-replay.png");
+    // The lecturer's page from its top (the replay's button scrolled it).
+    await lecturer.evaluate(() => window.scrollTo(0, 0));
     await shot(lecturer, "class-lecturer.png");
     // The largest screen the projector is made for: it fits too.
     const huge = await browser.newPage({ viewport: { width: 3840, height: 2160 } });
@@ -297,6 +304,10 @@ test(
         [big, () => document.getElementById("state").textContent === "Closed: final results"],
         [small, () => document.getElementById("state").textContent === "Closed: final results"],
         [lecturer, () => document.getElementById("current").textContent.includes("(closed)")],
+        [
+          lecturer,
+          () => document.getElementById("countdown").textContent === "Closed: final results",
+        ],
         ...phones.map((p) => [
           p,
           () =>

@@ -163,7 +163,9 @@ test("the administrator, two lecturers, a class each, refusals as pages", async 
   await ada.fill("#seed", "77");
   await ada.fill("#minutes", "20");
   await ada.getByRole("button", { name: "Open", exact: true }).click();
-  await ada.waitForFunction(() => /Open/.test(document.getElementById("countdown").textContent));
+  await ada.waitForFunction(() => /Open$/.test(document.getElementById("current").textContent));
+  // The state once, on the round's line; the large line below only counts down.
+  assert.match(await ada.textContent("#countdown"), /^closes in (19:5\d|20:00)$/);
   const first = await ada.textContent("#current");
   // A new round while one is open: asked first; Escape (the keyboard) keeps the open one.
   await ada.getByRole("button", { name: "Open", exact: true }).focus();
