@@ -63,7 +63,7 @@ export class Input {
     if (scores.nameBoxOpen) return false; // the input field has the keyboard
     if (app.panels.open === "settings") {
       app.options.key(key);
-      return true;
+      return key !== "tab"; // Tab moves between the screen's rows and buttons (panelkeys.ts)
     }
     const action = actionFor(rawKey);
     if (!action) return false;
@@ -171,8 +171,8 @@ export class Input {
     }
   }
 
-  /** A drawn panel's target ("name" or "name:row") was tapped. */
-  private target(action: string): void {
+  /** A drawn panel's target ("name" or "name:row") was tapped (or its element pressed). */
+  target(action: string): void {
     const app = this.host;
     const [name, arg] = action.split(":");
     const row = Number(arg);

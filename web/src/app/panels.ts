@@ -5,7 +5,7 @@
  */
 import { formatFixed, t } from "../i18n";
 import { MIN_TARGET_CSS } from "../view/geometry";
-import { drawHelp, drawSettings, drawTable, drawVerify } from "../view/overlays";
+import { drawFocusRing, drawHelp, drawSettings, drawTable, drawVerify } from "../view/overlays";
 import type { TableCell, Target } from "../view/overlays";
 import { helpRows } from "./bindings";
 import type { Screen } from "./layout";
@@ -19,7 +19,7 @@ export type Overlay = null | "help" | "table" | "settings" | "verify";
 export type Panel = Exclude<Overlay, null>;
 
 /** Each panel's title, spoken when it opens. */
-const TITLES: Record<Panel, string> = {
+export const TITLES: Record<Panel, string> = {
   help: "help.title",
   table: "scores.title",
   settings: "settings.title",
@@ -45,6 +45,8 @@ export class Panels {
   helpSize = 0;
   /** The score table's words and where they were drawn (the last table drawn). */
   tableCells: TableCell[] = [];
+  /** The target whose element has the keyboard's visible focus (panelkeys.ts), ringed. */
+  focused: string | null = null;
 
   constructor(private readonly rooms: PanelRooms) {}
 
@@ -65,6 +67,7 @@ export class Panels {
       const box = screen.visibleBox(12);
       const help = drawHelp(ctx, helpRows(), this.rateLines(), box, 16 / scale);
       this.helpSize = help.size;
+      this.ring(ctx, help.targets);
       return { targets: help.targets, zoomed: false };
     }
     const zoom = screen.overlayZoom();
@@ -92,8 +95,13 @@ export class Panels {
     } else {
       targets = drawSettings(ctx, options.rows(), options.row, options.footer());
     }
+    this.ring(ctx, targets);
     ctx.restore();
     return { targets, zoomed: true };
+  }
+
+  private ring(ctx: CanvasRenderingContext2D, targets: Target[]): void {
+    if (this.focused !== null) drawFocusRing(ctx, targets, this.focused);
   }
 
   /** The display rate while playing (paused frames are not counted) and the game's pace. */

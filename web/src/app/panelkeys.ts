@@ -1,0 +1,152 @@
+/**
+ * The open panel by keyboard (issue 48): a transparent element over each target the panel
+ * drew (a settings row, a button, the help's close) gives it a place in the Tab order, a
+ * role, its words in the reader's language and a row's value; the focused target is ringed
+ * on the canvas (Panels.focused). Focus enters the panel when it opens and goes back to what
+ * opened it when it closes. Pointer events pass through to the canvas, whose taps pick
+ * the targets as before.
+ */
+import { t } from "../i18n";
+import type { ControlName } from "../view/geometry";
+import type { Target } from "../view/overlays";
+import { setIfChanged } from "./controls";
+import type { Screen } from "./layout";
+import { SOUND_ROW, type SettingsEditor } from "./options";
+import { TITLES, type Overlay, type Panels } from "./panels";
+
+export interface PanelKeysHost {
+  readonly screen: Screen;
+  readonly panels: Panels;
+  readonly options: SettingsEditor;
+  readonly targets: Target[];
+  readonly targetsZoomed: boolean;
+  /** Do what a tap on the target does. */
+  tapTarget(action: string): void;
+  /** Focus a control of the scene (where focus goes back to). */
+  focusControl(name: ControlName): void;
+  redraw(): void;
+}
+
+export class PanelKeys {
+  private readonly layer = document.createElement("div");
+  private readonly els = new Map<string, HTMLElement>();
+  private order = "";
+  private open: Overlay = null;
+  /** What had the focus when the panel opened. */
+  private back: Element | null = null;
+
+  constructor(
+    private readonly host: PanelKeysHost,
+    root: HTMLElement,
+  ) {
+    const layer = this.layer;
+    layer.setAttribute("role", "dialog");
+    layer.hidden = true;
+    layer.addEventListener("focusin", (ev) => {
+      const el = ev.target as HTMLElement;
+      const action = el.dataset.action ?? "";
+      // Tab onto a row selects it: the arrows change the row that has the focus.
+      if (action.startsWith("row:")) host.options.row = Number(action.slice(4));
+      host.panels.focused = el.matches(":focus-visible") ? action : null;
+      host.redraw();
+    });
+    layer.addEventListener("focusout", () => {
+      host.panels.focused = null;
+      host.redraw();
+    });
+    root.append(layer);
+  }
+
+  /** After each drawn frame: the elements follow the open panel's targets. */
+  sync(): void {
+    const { panels, options } = this.host;
+    const open = panels.open;
+    const items = open ? this.host.targets.filter((x) => x.label) : [];
+    const before = document.activeElement;
+    const free = !before || before === document.body;
+    const inside = free || this.layer.contains(before);
+    for (const [action, el] of this.els)
+      if (!items.some((x) => x.action === action)) {
+        el.remove();
+        this.els.delete(action);
+      }
+    const order = items.map((x) => x.action).join();
+    if (order !== this.order) {
+      this.order = order;
+      for (const x of items) this.layer.append(this.els.get(x.action) ?? this.make(x.action));
+    }
+    items.forEach((x) => this.update(x));
+    this.layer.hidden = !open;
+    if (open) this.layer.setAttribute("aria-label", t(TITLES[open]));
+    if (open !== this.open) {
+      const was = this.open;
+      if (!was) this.back = before;
+      this.open = open;
+      // Not when the panel put the focus elsewhere itself (the verify panel's paste box).
+      if (!inside && before !== this.back) return;
+      if (open) this.focus(this.first());
+      else this.restore(was!);
+    } else if (open && (free || (before as HTMLElement).dataset.action?.startsWith("row:"))) {
+      // The arrows moved the selected row (or the focused element went): the focus follows.
+      this.focus(this.els.get(`row:${options.row}`) ?? (free ? this.first() : undefined));
+    }
+  }
+
+  private first(): HTMLElement | undefined {
+    return this.els.get(`row:${this.host.options.row}`) ?? this.els.values().next().value;
+  }
+
+  private focus(el: HTMLElement | undefined): void {
+    if (el && document.activeElement !== el) el.focus({ preventScroll: true });
+  }
+
+  /** Back to what opened the panel; else to the panel's own button. */
+  private restore(was: Exclude<Overlay, null>): void {
+    const back = this.back;
+    if (back instanceof HTMLElement && back !== document.body && back.isConnected && !back.hidden)
+      back.focus({ preventScroll: true });
+    else this.host.focusControl(was === "verify" ? "table" : was);
+  }
+
+  private make(action: string): HTMLElement {
+    const el = document.createElement("div");
+    el.className = "hit pk";
+    el.tabIndex = 0;
+    el.dataset.action = action;
+    const row = action.startsWith("row:");
+    // A row's activation steps its value (a box turns over); a button does what a tap does.
+    const activate = () => this.host.tapTarget(row ? `inc:${action.slice(4)}` : action);
+    el.addEventListener("click", activate);
+    el.addEventListener("keydown", (ev) => {
+      // Enter on a row is left to the screen's keys: it saves, as the footer says.
+      if (ev.key === " " || (ev.key === "Enter" && !row)) {
+        ev.preventDefault();
+        ev.stopPropagation();
+        activate();
+        this.host.redraw();
+      }
+    });
+    this.els.set(action, el);
+    return el;
+  }
+
+  /** Place the element over its target; its role, name and value as drawn. */
+  private update(x: Target): void {
+    const el = this.els.get(x.action)!;
+    const { screen, targetsZoomed } = this.host;
+    const z = targetsZoomed ? screen.overlayZoom() : { k: 1, cx: 0, cy: 0, x: 0, y: 0 };
+    const r = x.rect;
+    screen.place(el, {
+      x: z.x + (r.x - z.cx) * z.k,
+      y: z.y + (r.y - z.cy) * z.k,
+      w: r.w * z.k,
+      h: r.h * z.k,
+    });
+    const box = x.action === `row:${SOUND_ROW}`;
+    const role = x.value === undefined ? "button" : box ? "checkbox" : "spinbutton";
+    setIfChanged(el, "role", role);
+    setIfChanged(el, "aria-label", x.label!);
+    if (box) setIfChanged(el, "aria-checked", String(this.host.options.soundDraftOn));
+    else if (x.value !== undefined) setIfChanged(el, "aria-valuetext", x.value);
+  }
+}
