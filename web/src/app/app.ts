@@ -175,7 +175,10 @@ export class App
       say,
       quiet: () => this.play.quietHeight(),
       focusNext: () => this.controls.focus("restart"),
-      showTable: (shown) => (this.panels.open = shown ? "table" : null),
+      showTable: (shown) => {
+        this.panels.open = shown ? "table" : null;
+        this.panelKeys.stay(); // the restart button keeps the focus (issue 27.12)
+      },
     });
     this.scores.openTable(this.options.runSettings());
     this.win = new WinScreen(this);

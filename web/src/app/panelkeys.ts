@@ -92,6 +92,12 @@ export class PanelKeys {
     }
   }
 
+  /** The game opened the panel itself (the table after a name): the focus stays put. */
+  stay(): void {
+    this.open = this.host.panels.open;
+    this.back = document.activeElement;
+  }
+
   private first(): HTMLElement | undefined {
     return this.els.get(`row:${this.host.options.row}`) ?? this.els.values().next().value;
   }
@@ -100,11 +106,11 @@ export class PanelKeys {
     if (el && document.activeElement !== el) el.focus({ preventScroll: true });
   }
 
-  /** Back to what opened the panel; else to the panel's own button. */
+  /** Back to what had the focus when the panel opened (a key with the focus nowhere: nowhere). */
   private restore(was: Exclude<Overlay, null>): void {
     const back = this.back;
-    if (back instanceof HTMLElement && back !== document.body && back.isConnected && !back.hidden)
-      back.focus({ preventScroll: true });
+    if (!(back instanceof HTMLElement) || back === document.body) return;
+    if (back.isConnected && !back.hidden) back.focus({ preventScroll: true });
     else this.host.focusControl(was === "verify" ? "table" : was);
   }
 

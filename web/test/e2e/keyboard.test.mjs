@@ -289,12 +289,22 @@ for (const tag of TAGS) {
 
 test("help and the score table by keyboard: focus in, named buttons, focus back", async () => {
   const { page, cdp, log } = await openPage(browser, { viewport: { width: 1000, height: 720 } });
+  // H with the focus nowhere: the help's Close has it; closed, it is nowhere again.
   await page.keyboard.press("h");
   await page.waitForFunction(() => document.activeElement?.dataset.action === "close");
   assert.deepEqual(await focusedNode(cdp), { role: "button", name: "Close", checked: undefined });
   await page.keyboard.press("Enter");
   assert.equal((await state(page)).overlay, null);
+  assert.equal(await focusedControl(page), undefined);
+  // Tab to the help's button, Enter: closed by Space, the focus is back on that button.
+  while ((await page.evaluate(() => document.activeElement?.dataset.control)) !== "help")
+    await page.keyboard.press("Tab");
+  await page.keyboard.press("Enter");
+  await page.waitForFunction(() => document.activeElement?.dataset.action === "close");
+  await page.keyboard.press("Space");
+  assert.equal((await state(page)).overlay, null);
   assert.equal(await focusedControl(page), "help");
+  // T from there: the table's buttons in the Tab order, named; closed, back to the help's.
   await page.keyboard.press("t");
   await page.waitForFunction(() => document.activeElement?.dataset.action !== undefined);
   const wanted = await panelTargets(page);
@@ -309,7 +319,6 @@ test("help and the score table by keyboard: focus in, named buttons, focus back"
   while ((await action(page)) !== "tableclose") await page.keyboard.press("Shift+Tab");
   await page.keyboard.press("Space");
   assert.equal((await state(page)).overlay, null);
-  // Back where the focus was when T opened the table: the help's button.
   assert.equal(await focusedControl(page), "help");
   assert.deepEqual(log.errors, []);
   await page.close();
