@@ -43,7 +43,7 @@ export interface InputHost {
 }
 
 /** Targets drawn on the scene itself (the name box's buttons) are not zoomed. */
-const NO_ZOOM = { k: 1, cx: 0, cy: 0, x: 0, y: 0 };
+export const NO_ZOOM = { k: 1, cx: 0, cy: 0, x: 0, y: 0 };
 
 export class Input {
   private pausedByHiding = false;

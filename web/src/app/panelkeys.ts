@@ -10,6 +10,7 @@ import { t } from "../i18n";
 import type { ControlName } from "../view/geometry";
 import type { Target } from "../view/overlays";
 import { setIfChanged } from "./controls";
+import { NO_ZOOM } from "./input";
 import type { Screen } from "./layout";
 import { SOUND_ROW, type SettingsEditor } from "./options";
 import { TITLES, type Overlay, type Panels } from "./panels";
@@ -29,8 +30,6 @@ export interface PanelKeysHost {
 
 export class PanelKeys {
   private readonly layer = document.createElement("div");
-  private readonly els = new Map<string, HTMLElement>();
-  private order = "";
   private open: Overlay = null;
   /** What had the focus when the panel opened. */
   private back: Element | null = null;
@@ -44,9 +43,9 @@ export class PanelKeys {
     layer.hidden = true;
     layer.addEventListener("focusin", (ev) => {
       const el = ev.target as HTMLElement;
-      const action = el.dataset.action ?? "";
+      const action = el.dataset.action!;
       // Tab onto a row selects it: the arrows change the row that has the focus.
-      if (action.startsWith("row:")) host.options.row = Number(action.slice(4));
+      if (action.startsWith("row:")) host.options.row = +action.slice(4);
       host.panels.focused = el.matches(":focus-visible") ? action : null;
       host.redraw();
     });
@@ -60,35 +59,36 @@ export class PanelKeys {
   /** After each drawn frame: the elements follow the open panel's targets. */
   sync(): void {
     const { panels, options } = this.host;
+    const layer = this.layer;
     const open = panels.open;
     const items = open ? this.host.targets.filter((x) => x.label) : [];
     const before = document.activeElement;
-    const free = !before || before === document.body;
-    const inside = free || this.layer.contains(before);
-    for (const [action, el] of this.els)
-      if (!items.some((x) => x.action === action)) {
-        el.remove();
-        this.els.delete(action);
-      }
-    const order = items.map((x) => x.action).join();
-    if (order !== this.order) {
-      this.order = order;
-      for (const x of items) this.layer.append(this.els.get(x.action) ?? this.make(x.action));
-    }
-    items.forEach((x) => this.update(x));
-    this.layer.hidden = !open;
-    if (open) this.layer.setAttribute("aria-label", t(TITLES[open]));
+    const inside = !before || before === document.body || layer.contains(before);
+    const els = [...layer.children] as HTMLElement[];
+    const actions = items.map((x) => x.action);
+    if (els.map((el) => el.dataset.action).join() !== actions.join())
+      layer.replaceChildren(...actions.map((a) => this.make(a)));
+    items.forEach((x, k) => this.update(layer.children[k] as HTMLElement, x));
+    layer.hidden = !open;
+    if (open) setIfChanged(layer, "aria-label", t(TITLES[open]));
+    const now = document.activeElement as HTMLElement | null;
+    const want = layer.querySelector<HTMLElement>(`[data-action="row:${options.row}"]`);
+    const first = want ?? (layer.firstElementChild as HTMLElement | null);
     if (open !== this.open) {
       const was = this.open;
       if (!was) this.back = before;
       this.open = open;
       // Not when the panel put the focus elsewhere itself (the verify panel's paste box).
       if (!inside && before !== this.back) return;
-      if (open) this.focus(this.first());
+      if (open) first?.focus();
       else this.restore(was!);
-    } else if (open && (free || (before as HTMLElement).dataset.action?.startsWith("row:"))) {
+    } else if (
+      open &&
+      inside &&
+      (now === document.body || now?.dataset.action?.startsWith("row:"))
+    ) {
       // The arrows moved the selected row (or the focused element went): the focus follows.
-      this.focus(this.els.get(`row:${options.row}`) ?? (free ? this.first() : undefined));
+      if (now !== want) first?.focus();
     }
   }
 
@@ -98,19 +98,11 @@ export class PanelKeys {
     this.back = document.activeElement;
   }
 
-  private first(): HTMLElement | undefined {
-    return this.els.get(`row:${this.host.options.row}`) ?? this.els.values().next().value;
-  }
-
-  private focus(el: HTMLElement | undefined): void {
-    if (el && document.activeElement !== el) el.focus({ preventScroll: true });
-  }
-
   /** Back to what had the focus when the panel opened (a key with the focus nowhere: nowhere). */
   private restore(was: Exclude<Overlay, null>): void {
     const back = this.back;
     if (!(back instanceof HTMLElement) || back === document.body) return;
-    if (back.isConnected && !back.hidden) back.focus({ preventScroll: true });
+    if (back.isConnected && !back.hidden) back.focus();
     else this.host.focusControl(was === "verify" ? "table" : was);
   }
 
@@ -121,38 +113,31 @@ export class PanelKeys {
     el.dataset.action = action;
     const row = action.startsWith("row:");
     // A row's activation steps its value (a box turns over); a button does what a tap does.
-    const activate = () => this.host.tapTarget(row ? `inc:${action.slice(4)}` : action);
-    el.addEventListener("click", activate);
-    el.addEventListener("keydown", (ev) => {
+    const activate = () => {
+      this.host.tapTarget(row ? "inc" + action.slice(3) : action);
+      this.host.redraw();
+    };
+    el.onclick = activate;
+    el.onkeydown = (ev) => {
       // Enter on a row is left to the screen's keys: it saves, as the footer says.
       if (ev.key === " " || (ev.key === "Enter" && !row)) {
         ev.preventDefault();
         ev.stopPropagation();
         activate();
-        this.host.redraw();
       }
-    });
-    this.els.set(action, el);
+    };
     return el;
   }
 
   /** Place the element over its target; its role, name and value as drawn. */
-  private update(x: Target): void {
-    const el = this.els.get(x.action)!;
-    const { screen, targetsZoomed } = this.host;
-    const z = targetsZoomed ? screen.overlayZoom() : { k: 1, cx: 0, cy: 0, x: 0, y: 0 };
-    const r = x.rect;
-    screen.place(el, {
-      x: z.x + (r.x - z.cx) * z.k,
-      y: z.y + (r.y - z.cy) * z.k,
-      w: r.w * z.k,
-      h: r.h * z.k,
-    });
+  private update(el: HTMLElement, x: Target): void {
+    const { screen, targetsZoomed, options } = this.host;
+    screen.placeZoomed(el, x.rect, targetsZoomed ? screen.overlayZoom() : NO_ZOOM);
     const box = x.action === `row:${SOUND_ROW}`;
-    const role = x.value === undefined ? "button" : box ? "checkbox" : "spinbutton";
-    setIfChanged(el, "role", role);
+    const value = x.value;
+    setIfChanged(el, "role", value === undefined ? "button" : box ? "checkbox" : "spinbutton");
     setIfChanged(el, "aria-label", x.label!);
-    if (box) setIfChanged(el, "aria-checked", String(this.host.options.soundDraftOn));
-    else if (x.value !== undefined) setIfChanged(el, "aria-valuetext", x.value);
+    if (box) setIfChanged(el, "aria-checked", String(options.soundDraftOn));
+    else if (value !== undefined) setIfChanged(el, "aria-valuetext", value);
   }
 }
