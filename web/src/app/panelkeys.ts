@@ -6,14 +6,13 @@
  * opened it when it closes. Pointer events pass through to the canvas, whose taps pick
  * the targets as before.
  */
-import { t } from "../i18n";
 import type { ControlName } from "../view/geometry";
 import type { Target } from "../view/overlays";
 import { setIfChanged } from "./controls";
 import { NO_ZOOM } from "./input";
 import type { Screen } from "./layout";
 import { SOUND_ROW, type SettingsEditor } from "./options";
-import { TITLES, type Overlay, type Panels } from "./panels";
+import type { Overlay, Panels } from "./panels";
 
 export interface PanelKeysHost {
   readonly screen: Screen;
@@ -39,8 +38,6 @@ export class PanelKeys {
     root: HTMLElement,
   ) {
     const layer = this.layer;
-    layer.setAttribute("role", "dialog");
-    layer.hidden = true;
     layer.addEventListener("focusin", (ev) => {
       const el = ev.target as HTMLElement;
       const action = el.dataset.action!;
@@ -70,7 +67,6 @@ export class PanelKeys {
       layer.replaceChildren(...actions.map((a) => this.make(a)));
     items.forEach((x, k) => this.update(layer.children[k] as HTMLElement, x));
     layer.hidden = !open;
-    if (open) setIfChanged(layer, "aria-label", t(TITLES[open]));
     const now = document.activeElement as HTMLElement | null;
     const want = layer.querySelector<HTMLElement>(`[data-action="row:${options.row}"]`);
     const first = want ?? (layer.firstElementChild as HTMLElement | null);

@@ -19,7 +19,7 @@ export type Overlay = null | "help" | "table" | "settings" | "verify";
 export type Panel = Exclude<Overlay, null>;
 
 /** Each panel's title, spoken when it opens. */
-export const TITLES: Record<Panel, string> = {
+const TITLES: Record<Panel, string> = {
   help: "help.title",
   table: "scores.title",
   settings: "settings.title",

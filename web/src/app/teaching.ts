@@ -158,8 +158,8 @@ export class Teaching {
   }
 
   toggleMute(): void {
-    if (!this.audible) return this.host.say(t("sound.no_output"));
-    this.sound.set(!this.sound.on, this.sound.volume);
+    // No audio output here: M says the sound stays muted (the docs say why).
+    this.sound.set(!this.sound.on && this.audible, this.sound.volume);
     this.wake();
     this.host.say(t(this.sound.on ? "sound.unmuted" : "sound.muted"));
   }

@@ -1,7 +1,7 @@
 // The sound's default where the page can know there is no audio output (issue 48): no Web
 // Audio at all, a context that cannot be made, or one still not running after a key press
-// (the gesture browsers wait for). There the sound is off, the settings say so, and M says
-// why. Where a context runs (this Chromium), the default stays on. A device's mute switch is
+// (the gesture browsers wait for). There the sound is off, the settings say so, and M
+// leaves it muted. Where a context runs (this Chromium), the default stays on. A device's mute switch is
 // beyond what a page can read (docs/teach.md).
 import assert from "node:assert/strict";
 import { existsSync } from "node:fs";
@@ -51,14 +51,14 @@ const NO_OUTPUT = {
 };
 
 for (const [what, initScript] of Object.entries(NO_OUTPUT)) {
-  test(`${what}: sound off by default, the settings say off, M says why`, async () => {
+  test(`${what}: sound off by default, the settings say off, M keeps it muted`, async () => {
     const { page, log } = await openPage(browser, { ...VIEW, initScript });
     await page.keyboard.press("q"); // no key of the game; a gesture: the page tries its sound now
     await page.waitForFunction(() => !window.evapcool.app.teaching.sound.on);
     assert.equal((await state(page)).soundOn, false);
     assert.equal(await soundRow(page), "muted");
     await page.keyboard.press("m");
-    assert.equal(await live(page), "No sound: this browser has no audio output here.");
+    assert.equal(await live(page), "Sound muted");
     assert.equal((await state(page)).soundOn, false);
     // The link written from the screen carries the sound as it is: off.
     assert.match(await page.evaluate(() => window.evapcool.link()), /[?&]sound=off\b/);
