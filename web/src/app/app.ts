@@ -303,14 +303,6 @@ export class App
     this.play.heightChanged();
   }
 
-  tapTarget(action: string): void {
-    this.input.target(action);
-  }
-
-  focusControl(name: ControlName): void {
-    this.controls.focus(name);
-  }
-
   notify(text: string): void {
     this.notices.notify(text);
   }

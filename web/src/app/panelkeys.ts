@@ -6,10 +6,9 @@
  * opened it when it closes. Pointer events pass through to the canvas, whose taps pick
  * the targets as before.
  */
-import type { ControlName } from "../view/geometry";
 import type { Target } from "../view/overlays";
-import { setIfChanged } from "./controls";
-import { NO_ZOOM } from "./input";
+import { setIfChanged, type Controls } from "./controls";
+import { NO_ZOOM, type Input } from "./input";
 import type { Screen } from "./layout";
 import { SOUND_ROW, type SettingsEditor } from "./options";
 import type { Overlay, Panels } from "./panels";
@@ -20,10 +19,10 @@ export interface PanelKeysHost {
   readonly options: SettingsEditor;
   readonly targets: Target[];
   readonly targetsZoomed: boolean;
-  /** Do what a tap on the target does. */
-  tapTarget(action: string): void;
-  /** Focus a control of the scene (where focus goes back to). */
-  focusControl(name: ControlName): void;
+  /** Does what a tap on a target does. */
+  readonly input: Input;
+  /** The scene's controls (where the focus may go back to). */
+  readonly controls: Controls;
   redraw(): void;
 }
 
@@ -72,9 +71,9 @@ export class PanelKeys {
     const first = want ?? (layer.firstElementChild as HTMLElement | null);
     if (open !== this.open) {
       const was = this.open;
-      if (!was) this.back = before;
+      // The verify panel's paste box takes the focus itself, and keeps it.
+      if (!was) this.back = before instanceof HTMLTextAreaElement ? null : before;
       this.open = open;
-      // Not when the panel put the focus elsewhere itself (the verify panel's paste box).
       if (!inside && before !== this.back) return;
       if (open) first?.focus();
       else this.restore(was!);
@@ -99,7 +98,7 @@ export class PanelKeys {
     const back = this.back;
     if (!(back instanceof HTMLElement) || back === document.body) return;
     if (back.isConnected && !back.hidden) back.focus();
-    else this.host.focusControl(was === "verify" ? "table" : was);
+    else this.host.controls.focus(was === "verify" ? "table" : was);
   }
 
   private make(action: string): HTMLElement {
@@ -110,7 +109,7 @@ export class PanelKeys {
     const row = action.startsWith("row:");
     // A row's activation steps its value (a box turns over); a button does what a tap does.
     const activate = () => {
-      this.host.tapTarget(row ? "inc" + action.slice(3) : action);
+      this.host.input.target(row ? "inc" + action.slice(3) : action);
       this.host.redraw();
     };
     el.onclick = activate;

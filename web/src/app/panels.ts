@@ -67,7 +67,7 @@ export class Panels {
       const box = screen.visibleBox(12);
       const help = drawHelp(ctx, helpRows(), this.rateLines(), box, 16 / scale);
       this.helpSize = help.size;
-      this.ring(ctx, help.targets);
+      drawFocusRing(ctx, help.targets, this.focused);
       return { targets: help.targets, zoomed: false };
     }
     const zoom = screen.overlayZoom();
@@ -95,13 +95,9 @@ export class Panels {
     } else {
       targets = drawSettings(ctx, options.rows(), options.row, options.footer());
     }
-    this.ring(ctx, targets);
+    drawFocusRing(ctx, targets, this.focused);
     ctx.restore();
     return { targets, zoomed: true };
-  }
-
-  private ring(ctx: CanvasRenderingContext2D, targets: Target[]): void {
-    if (this.focused !== null) drawFocusRing(ctx, targets, this.focused);
   }
 
   /** The display rate while playing (paused frames are not counted) and the game's pace. */

@@ -348,7 +348,7 @@ export function drawSettings(
 }
 
 /** The ring around the target that has the keyboard's focus (an element over it, issue 48). */
-export function drawFocusRing(ctx: CanvasRenderingContext2D, targets: Target[], action: string) {
+export function drawFocusRing(ctx: CanvasRenderingContext2D, targets: Target[], action: unknown) {
   const r = targets.find((x) => x.action === action)?.rect;
   if (!r) return;
   ctx.strokeStyle = C.FOCUS_RING;

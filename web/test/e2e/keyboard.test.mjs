@@ -287,7 +287,7 @@ for (const tag of TAGS) {
   });
 }
 
-test("help and the score table by keyboard: focus in, named buttons, focus back", async () => {
+test("help, the score table and verify by keyboard: focus in, named buttons, focus back", async () => {
   const { page, cdp, log } = await openPage(browser, { viewport: { width: 1000, height: 720 } });
   // H with the focus nowhere: the help's Close has it; closed, it is nowhere again.
   await page.keyboard.press("h");
@@ -320,6 +320,16 @@ test("help and the score table by keyboard: focus in, named buttons, focus back"
   await page.keyboard.press("Space");
   assert.equal((await state(page)).overlay, null);
   assert.equal(await focusedControl(page), "help");
+  // V: the paste box keeps the focus it takes; Tab reaches Verify and Close, named.
+  await page.keyboard.press("v");
+  await drawn(page);
+  assert.equal(await page.evaluate(() => document.activeElement?.tagName), "TEXTAREA");
+  await page.keyboard.press("Tab");
+  assert.deepEqual(await focusedNode(cdp), { role: "button", name: "Verify", checked: undefined });
+  await page.keyboard.press("Tab");
+  assert.deepEqual(await focusedNode(cdp), { role: "button", name: "Close", checked: undefined });
+  await page.keyboard.press("Enter");
+  assert.equal((await state(page)).overlay, null);
   assert.deepEqual(log.errors, []);
   await page.close();
 });
