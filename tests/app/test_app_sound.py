@@ -174,3 +174,47 @@ def test_the_win_sounds_a_chord_and_a_lost_game_a_falling_tone(make_app):
     names = [name for name, _ in lost.teaching.sound.log]
     assert names.count("falling") == 1 and "chord" not in names
     assert names.count("tick") >= 1
+
+
+#: The child: the applet where SDL can open no audio device (a driver that does not exist),
+#: a knife game that loses atoms, then key M.
+NO_DEVICE_CHILD = textwrap.dedent(
+    """
+    import json, sys
+    sys.path.insert(0, sys.argv[2])
+    import pygame
+    from apphelp import frames, key
+    from evapcool.app.applet import App
+    from evapcool.game.rules import Game, GameConfig
+    app = App(Game(GameConfig(seed=4, escape="knife", n_atoms=49)), data_dir=sys.argv[1],
+              config_dir=sys.argv[1], screen=(640, 672))
+    sound = app.teaching.sound
+    app.game.paused = False
+    app.game.set_trap_height(60.0)
+    frames(app, 60)
+    key(app, pygame.K_m)
+    print(json.dumps({"available": sound.available, "audible": sound.audible,
+                      "played": sound.log, "escaped": 49 - app.game.sim.n_trapped,
+                      "notice": app.visible_notices[-1]}))
+    app.close()
+    """
+)
+
+
+def test_no_audio_device_means_no_sound_and_m_says_why(tmp_path):
+    env = {**os.environ, "SDL_AUDIODRIVER": "evapcool-none", "SDL_VIDEODRIVER": "dummy"}
+    tests = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+    done = subprocess.run(
+        [sys.executable, "-c", NO_DEVICE_CHILD, str(tmp_path), tests],
+        env=env,
+        capture_output=True,
+        text=True,
+        timeout=300,
+        check=False,
+    )
+    assert done.returncode == 0, done.stderr[-2000:]
+    info = json.loads(done.stdout.strip().splitlines()[-1])
+    assert info["escaped"] > 0  # atoms left: a tick each, were there a device
+    assert info["available"] is False and info["audible"] is False
+    assert info["played"] == []
+    assert info["notice"] == "No sound: no audio device was found."

@@ -29,6 +29,7 @@ import { Screen, type Zoom } from "./layout";
 import { FrameLoop, type Animated } from "./loop";
 import { Notices } from "./notices";
 import { SettingsEditor } from "./options";
+import { PanelKeys, type PanelKeysHost } from "./panelkeys";
 import { Panels, type Overlay, type PanelRooms } from "./panels";
 import { Picture, type DrawnControls, type PictureRooms } from "./picture";
 import { Play, type PlayEvents } from "./play";
@@ -77,6 +78,7 @@ export class App
     ActionHost,
     ControlsHost,
     InputHost,
+    PanelKeysHost,
     PlayEvents,
     PanelRooms,
     PictureRooms,
@@ -97,6 +99,7 @@ export class App
   readonly teaching: Teaching;
   readonly controls: Controls;
   readonly input: Input;
+  readonly panelKeys: PanelKeys;
   readonly loop = new FrameLoop(this);
   /** Class mode (the page served by `evapcool class`), or null. */
   classMode: ClassMode | null = null;
@@ -139,7 +142,9 @@ export class App
         closeOverlay: () => (this.panels.open = null),
         browserLocale: opts.browserLocale ?? "en",
         fieldLocked: (field) => setup.fieldLocked(field),
-        soundByDefault: !opts.inClass,
+        get soundByDefault() {
+          return !opts.inClass && app.teaching.audible;
+        },
         prefsChanged: (p) => this.teaching.prefsChanged(p),
       },
       opts.overrides ?? {},
@@ -170,7 +175,10 @@ export class App
       say,
       quiet: () => this.play.quietHeight(),
       focusNext: () => this.controls.focus("restart"),
-      showTable: (shown) => (this.panels.open = shown ? "table" : null),
+      showTable: (shown) => {
+        this.panels.open = shown ? "table" : null;
+        this.panelKeys.stay(); // the restart button keeps the focus (issue 27.12)
+      },
     });
     this.scores.openTable(this.options.runSettings());
     this.win = new WinScreen(this);
@@ -189,6 +197,7 @@ export class App
     // The rooms see this applet only as their hosts (the interfaces they declare).
     this.controls = new Controls(this);
     this.input = new Input(this);
+    this.panelKeys = new PanelKeys(this, el.root);
     this.controls.build(el.root);
     this.resize();
     this.input.wire();
@@ -384,6 +393,7 @@ export class App
 
   draw(): void {
     if (this.picture.draw()) this.dirty = true;
+    this.panelKeys.sync();
     this.teaching.frame();
   }
 }

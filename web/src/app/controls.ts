@@ -295,7 +295,7 @@ export class Controls {
 }
 
 /** Screen readers re-read a changed label: set it only when the words change. */
-function setIfChanged(el: HTMLElement, name: string, value: string): void {
+export function setIfChanged(el: HTMLElement, name: string, value: string): void {
   if (el.getAttribute(name) !== value) el.setAttribute(name, value);
 }
 

@@ -43,7 +43,7 @@ export interface InputHost {
 }
 
 /** Targets drawn on the scene itself (the name box's buttons) are not zoomed. */
-const NO_ZOOM = { k: 1, cx: 0, cy: 0, x: 0, y: 0 };
+export const NO_ZOOM = { k: 1, cx: 0, cy: 0, x: 0, y: 0 };
 
 export class Input {
   private pausedByHiding = false;
@@ -63,7 +63,7 @@ export class Input {
     if (scores.nameBoxOpen) return false; // the input field has the keyboard
     if (app.panels.open === "settings") {
       app.options.key(key);
-      return true;
+      return key !== "tab"; // Tab moves between the screen's rows and buttons (panelkeys.ts)
     }
     const action = actionFor(rawKey);
     if (!action) return false;
@@ -171,8 +171,8 @@ export class Input {
     }
   }
 
-  /** A drawn panel's target ("name" or "name:row") was tapped. */
-  private target(action: string): void {
+  /** A drawn panel's target ("name" or "name:row") was tapped (or its element pressed). */
+  target(action: string): void {
     const app = this.host;
     const [name, arg] = action.split(":");
     const row = Number(arg);

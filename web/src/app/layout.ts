@@ -47,6 +47,16 @@ export class Screen {
     el.style.height = `${r.h * l.scale}px`;
   }
 
+  /** A rect drawn under a panel's zoom (overlayZoom) -> the CSS box of an element over it. */
+  placeZoomed(el: HTMLElement, r: Rect, z: Zoom): void {
+    this.place(el, {
+      x: z.x + (r.x - z.cx) * z.k,
+      y: z.y + (r.y - z.cy) * z.k,
+      w: r.w * z.k,
+      h: r.h * z.k,
+    });
+  }
+
   /** The whole viewport in logical px, less a margin (the projector's black bands too). */
   visibleBox(margin: number): Rect {
     const l = this.layout;

@@ -26,6 +26,9 @@ import {
   type PagePrefs,
 } from "./prefs";
 
+/** The sound's row on the settings screen (an on/off box for a screen reader). */
+export const SOUND_ROW = FIELD_NAMES.length + 2;
+
 /** The language row's value meaning "the browser's languages, then the address's". */
 export const AUTO_LANGUAGE = "auto";
 
@@ -74,6 +77,11 @@ export class SettingsEditor {
   /** The sound on now (the choice saved, else the default here). */
   get soundOn(): boolean {
     return this.prefs.sound ?? this.host.soundByDefault;
+  }
+
+  /** The sound as the screen's draft has it. */
+  get soundDraftOn(): boolean {
+    return this.prefsDraft.sound ?? this.host.soundByDefault;
   }
 
   /** The screen's rows: the game's settings, then the language menu. */

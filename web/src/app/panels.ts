@@ -5,7 +5,7 @@
  */
 import { formatFixed, t } from "../i18n";
 import { MIN_TARGET_CSS } from "../view/geometry";
-import { drawHelp, drawSettings, drawTable, drawVerify } from "../view/overlays";
+import { drawFocusRing, drawHelp, drawSettings, drawTable, drawVerify } from "../view/overlays";
 import type { TableCell, Target } from "../view/overlays";
 import { helpRows } from "./bindings";
 import type { Screen } from "./layout";
@@ -45,6 +45,8 @@ export class Panels {
   helpSize = 0;
   /** The score table's words and where they were drawn (the last table drawn). */
   tableCells: TableCell[] = [];
+  /** The target whose element has the keyboard's visible focus (panelkeys.ts), ringed. */
+  focused: string | null = null;
 
   constructor(private readonly rooms: PanelRooms) {}
 
@@ -65,6 +67,7 @@ export class Panels {
       const box = screen.visibleBox(12);
       const help = drawHelp(ctx, helpRows(), this.rateLines(), box, 16 / scale);
       this.helpSize = help.size;
+      drawFocusRing(ctx, help.targets, this.focused);
       return { targets: help.targets, zoomed: false };
     }
     const zoom = screen.overlayZoom();
@@ -92,6 +95,7 @@ export class Panels {
     } else {
       targets = drawSettings(ctx, options.rows(), options.row, options.footer());
     }
+    drawFocusRing(ctx, targets, this.focused);
     ctx.restore();
     return { targets, zoomed: true };
   }

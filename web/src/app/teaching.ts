@@ -54,6 +54,9 @@ export class Teaching {
   readonly log = new RunLog();
   readonly watch = new SceneWatch();
   theme: ThemeName = "dark";
+  /** Sound can play here: no Web Audio, or a context that would not run, says it cannot. A
+   * browser cannot tell a muted device (docs/teach.md). */
+  audible = typeof AudioContext === "function";
   /** The theme and sound the address asked for (this visit only, until settings are saved). */
   private askedTheme: ThemeName | null;
   private askedSound: boolean | null;
@@ -77,7 +80,7 @@ export class Teaching {
   }
 
   private soundOn(p: PagePrefs): boolean {
-    return this.askedSound ?? p.sound ?? !this.inClass;
+    return this.askedSound ?? p.sound ?? (!this.inClass && this.audible);
   }
 
   private applyTheme(p: PagePrefs): void {
@@ -135,16 +138,28 @@ export class Teaching {
 
   /** A first key or tap: browsers start sound only after one. */
   wake(): void {
-    if (this.sound.attached || !this.sound.on || typeof AudioContext !== "function") return;
+    if (this.sound.attached || !this.sound.on || !this.audible) return;
     try {
-      this.sound.attach(new AudioContext());
+      const ctx = new AudioContext();
+      this.sound.attach(ctx);
+      // After a gesture (this one) a context runs unless there is no output to run on.
+      const check = () => ctx.state === "running" || this.silent();
+      ctx.resume().then(check, () => this.silent());
     } catch {
-      // No audio here: the page stays silent.
+      this.silent();
     }
   }
 
+  /** No audio output here: the sound is off (the settings show it off by default). */
+  private silent(): void {
+    this.audible = false;
+    this.sound.set(false, this.sound.volume);
+    this.host.redraw();
+  }
+
   toggleMute(): void {
-    this.sound.set(!this.sound.on, this.sound.volume);
+    // No audio output here: M says the sound stays muted (the docs say why).
+    this.sound.set(!this.sound.on && this.audible, this.sound.volume);
     this.wake();
     this.host.say(t(this.sound.on ? "sound.unmuted" : "sound.muted"));
   }

@@ -86,13 +86,7 @@ export class Verifier {
   place(): void {
     if (this.area.hidden) return;
     const z = this.host.overlayZoom();
-    const r = PASTE_BOX;
-    this.host.screen.place(this.area, {
-      x: z.x + (r.x - z.cx) * z.k,
-      y: z.y + (r.y - z.cy) * z.k,
-      w: r.w * z.k,
-      h: r.h * z.k,
-    });
+    this.host.screen.placeZoomed(this.area, PASTE_BOX, z);
     const scale = this.host.screen.layout.scale * z.k;
     this.area.style.fontSize = `${Math.max(16, 18 * scale)}px`;
   }

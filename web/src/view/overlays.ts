@@ -13,6 +13,10 @@ import { drawText, fitSize, textWidth, wrap, type Anchor } from "./text";
 export interface Target {
   rect: Rect;
   action: string;
+  /** Its words for a screen reader (issue 48): a button's text, a row's label. */
+  label?: string;
+  /** A settings row's value as shown. */
+  value?: string;
 }
 
 function overlay(ctx: CanvasRenderingContext2D, title: string, height: number): Rect {
@@ -59,7 +63,7 @@ function textButton(
   ctx.lineWidth = 2;
   ctx.stroke();
   drawText(ctx, label, size, C.TEXT, cx, y + h / 2, "center", true);
-  out.push({ rect: r, action });
+  out.push({ rect: r, action, label });
 }
 
 /** Buttons in a row, centred on cx, h logical px tall. */
@@ -77,10 +81,13 @@ function buttonRow(
   const widths = buttons.map(([label]) => textWidth(ctx, label, size) + (28 * h) / 34);
   const gap = 16;
   let x = cx - (widths.reduce((a, b) => a + b, 0) + gap * (buttons.length - 1)) / 2;
+  const first = out.length;
   buttons.forEach(([label, action], k) => {
     textButton(ctx, label, x + widths[k] / 2, y, action, out, h);
     x += widths[k] + gap;
   });
+  // Listed in reading order (the keyboard's order): the first button first either way.
+  if (textDirection() === "rtl") out.push(...out.splice(first).reverse());
 }
 
 /** The help as drawn: its tap targets and its row size (logical px; tests read it). */
@@ -136,7 +143,7 @@ export function drawHelp(
     const y = panel.y + panel.h - 14 - (footer.length - k) * (small + 6);
     drawText(ctx, text, small, C.DIM_TEXT, panel.x + panel.w / 2, y, "midtop");
   });
-  return { targets: [{ rect: panel, action: "close" }], size };
+  return { targets: [{ rect: panel, action: "close", label: t("button.close") }], size };
 }
 
 interface HelpFit {
@@ -315,7 +322,7 @@ export function drawSettings(
     const half = Math.max(40, (vw + 40) / 2);
     targets.push({ rect: rect(right - 2 * half, row.y, half, row.h), action: `dec:${k}` });
     targets.push({ rect: rect(right - half, row.y, half + 8, row.h), action: `inc:${k}` });
-    targets.push({ rect: row, action: `row:${k}` });
+    targets.push({ rect: row, action: `row:${k}`, label, value });
   });
   let y = panel.y + 72 + pitch * rows.length;
   for (const line of footer) {
@@ -338,6 +345,17 @@ export function drawSettings(
   if (!stacked) buttonRow(ctx, extra, cx, y + 48, targets, 30);
   else extra.forEach((b, k) => buttonRow(ctx, [b], cx, y + 48 + 38 * k, targets, 30));
   return targets;
+}
+
+/** The ring around the target that has the keyboard's focus (an element over it, issue 48). */
+export function drawFocusRing(ctx: CanvasRenderingContext2D, targets: Target[], action: unknown) {
+  const r = targets.find((x) => x.action === action)?.rect;
+  if (!r) return;
+  ctx.strokeStyle = C.FOCUS_RING;
+  ctx.lineWidth = 4;
+  ctx.beginPath();
+  ctx.roundRect(r.x - 4, r.y - 4, r.w + 8, r.h + 8, 8);
+  ctx.stroke();
 }
 
 /** The name box's hint for a keyboard; a touch screen gets only the Store and Skip buttons. */
