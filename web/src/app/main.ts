@@ -128,6 +128,7 @@ async function main(): Promise<void> {
     // The projector presents it (issue 45): no "Space plays it" for a room without keys.
     if (window.parent !== window && /^#(present|in-step)$/.test(location.hash)) {
       app.notices.clear();
+      app.win.startHint = false;
     }
   }
   const api = classApi(document);

@@ -32,6 +32,9 @@ export interface WinRooms {
 
 export class WinScreen {
   private saidTooFew: string | null = null;
+  /** "Press Space to start" before the first frame; off where no one has keys (a replay
+   * presented on the projector, issue 45). */
+  startHint = true;
 
   constructor(private readonly rooms: WinRooms) {}
 
@@ -55,7 +58,7 @@ export class WinScreen {
       if (tooFew !== this.saidTooFew) this.rooms.say(hints.tooFewSpoken(tooFew));
       // Lost for good (lowering the trap cannot help): a class may count the game.
       if (tooFew !== this.saidTooFew && tooFew !== "lose.stuck_here") void replays.onLoss();
-    } else if (g.paused && g.sim.time === 0 && !panelOpen) {
+    } else if (g.paused && g.sim.time === 0 && !panelOpen && this.startHint) {
       scene.drawStartHint(ctx, coarse);
     }
     this.saidTooFew = tooFew;

@@ -164,6 +164,8 @@ async function framedControls(page, selector) {
       };
       for (const [n, r] of Object.entries(l.buttons)) if (inStage(r)) out.buttons.push(n);
       out.notices.push(...app.notices.visible);
+      // "Press Space to start", drawn before the replay's first frame, is a key's hint too.
+      if (app.win.startHint) out.notices.push("start hint");
     }
     return out;
   }, selector);
