@@ -24,6 +24,8 @@ BASE = {
     "about": set(),
     "extras": set(),
     "limits": set(),
+    # The lab's CSV format: the lab and the game's "Save this run" both write it.
+    "labformat": set(),
     "fileio": {"limits"},
     "argtypes": {"limits", "fileio", "about"},
     # The message catalogs and their translator (issue 23): words for every layer above.

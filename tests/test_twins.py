@@ -123,3 +123,15 @@ def test_each_row_says_why(part: str) -> None:
 
 def test_every_typescript_twin_names_its_python_file_in_its_first_lines() -> None:
     assert unnamed(PY, TS, REGISTER.read_text(encoding="utf-8")) == []
+
+
+def test_the_pages_saved_run_has_the_labs_columns():
+    """The page's "Save this run" (web/src/app/runlog.ts) writes the lab's CSV: its first line
+    and columns are labformat.py's, in order (the desktop's runlog imports them)."""
+    from evapcool.labformat import COLUMNS, CSV_MAGIC
+
+    text = (TS / "app" / "runlog.ts").read_text(encoding="utf-8")
+    listed = re.search(r"export const LAB_COLUMNS = \[(.*?)\] as const;", text, re.S)
+    assert listed is not None, "LAB_COLUMNS not found in runlog.ts"
+    assert tuple(re.findall(r'"(\w+)"', listed.group(1))) == COLUMNS
+    assert f'const CSV_MAGIC = "{CSV_MAGIC}";' in text

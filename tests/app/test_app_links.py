@@ -31,14 +31,6 @@ def test_the_desktop_knows_the_pages_options_and_values():
     assert (trap["low"], trap["high"]) == (25, 450)
 
 
-def test_the_saved_run_has_the_labs_columns():
-    from evapcool.app import runlog
-    from evapcool.lab import io
-
-    assert runlog.COLUMNS == io.COLUMNS and runlog.CSV_MAGIC == io.CSV_MAGIC
-    assert runlog.INT_COLUMNS == io.INT_COLUMNS
-
-
 def test_a_link_gives_its_setup():
     s = links.parse_link(
         "https://example.org/evapcool.html?atoms=100&escape=knife&trap=300&lock=trap,speed"

@@ -17,34 +17,10 @@ from pathlib import Path
 from evapcool.about import __version__
 from evapcool.game.replay import encode
 from evapcool.game.rules import Game
+from evapcool.labformat import COLUMNS, CSV_MAGIC, INT_COLUMNS
 from evapcool.limits import RECORDS_MAX
 
 RUNS_FOLDER = "runs"
-#: The lab's CSV (lab/io.py, which the app may not import: it sits beside the lab): its
-#: first line and its columns, in order (a test keeps them equal to the lab's).
-CSV_MAGIC = "# evapcool lab results"
-COLUMNS = (
-    "frame",
-    "n_trapped",
-    "temperature",
-    "critical_temperature",
-    "trap_height",
-    "total_energy",
-    "pair_collisions",
-    "wall_collisions",
-    "escaped",
-    "evaporated",
-    "evaporated_energy",
-    "excess_energy",
-    "spilled",
-    "spilled_energy",
-    "phase_space_density",
-    "won",
-)
-INT_COLUMNS = frozenset(
-    {"frame", "n_trapped", "pair_collisions", "wall_collisions", "escaped", "evaporated"}
-    | {"spilled", "won"}
-)
 PROGRAM = "evapcool"  # the file's 'program' line (data, as the lab's)
 SCHEDULE = "by hand"  # the lab's schedule column: a person moved the trap
 #: One row a second: the game's 30 physics frames.

@@ -12,6 +12,7 @@ from pathlib import Path
 import numpy as np
 
 from evapcool.fileio import atomic_write_text, check_writable, read_user_text
+from evapcool.labformat import COLUMNS, CSV_MAGIC, INT_COLUMNS
 from evapcool.limits import LAB_FILE_MAX_BYTES, N_ATOMS, RECORDS_MAX, ParameterError
 
 #: Parameters renamed since: old name -> name now (files, specs and calls with the old one
@@ -33,37 +34,6 @@ def current_names(params: Mapping[str, object], warn: bool = False) -> dict[str,
     return out
 
 
-#: Output columns, one row per record (docs/lab.md explains each).
-COLUMNS = (
-    "frame",
-    "n_trapped",
-    "temperature",
-    "critical_temperature",
-    "trap_height",
-    "total_energy",
-    "pair_collisions",
-    "wall_collisions",
-    "escaped",
-    "evaporated",
-    "evaporated_energy",
-    "excess_energy",
-    "spilled",
-    "spilled_energy",
-    "phase_space_density",
-    "won",
-)
-INT_COLUMNS = frozenset(
-    {
-        "frame",
-        "n_trapped",
-        "pair_collisions",
-        "wall_collisions",
-        "escaped",
-        "evaporated",
-        "spilled",
-        "won",
-    }
-)
 #: The ledger columns (evaporated and spilled atoms and their energies) that files written
 #: before version 0.1.0's ledger lack; such files load with these derived or NaN.
 LEDGER_COLUMNS = ("evaporated", "evaporated_energy", "excess_energy", "spilled", "spilled_energy")
@@ -73,7 +43,6 @@ FORMATS = (".csv", ".json")
 #: for the metadata. A file within its size cap could otherwise be 64 million zeros,
 #: several GB once parsed (issue 18: memory of any accepted input under 1 GB).
 VALUES_MAX = RECORDS_MAX * (len(COLUMNS) + 1) + int(N_ATOMS.high) + 100_000
-CSV_MAGIC = "# evapcool lab results"
 
 
 def output_format(path: str | os.PathLike[str]) -> str:

@@ -11,7 +11,7 @@ import type { Game } from "../game/rules";
 import { FPS } from "../game/engine";
 import { RemoteGame, type GameLike } from "../runtime/remote";
 
-/** evapcool lab's columns, in its order (lab/io.py COLUMNS). */
+/** evapcool lab's columns, in its order (labformat.py COLUMNS; tests/test_twins.py binds them). */
 export const LAB_COLUMNS = [
   "frame",
   "n_trapped",
