@@ -8,6 +8,8 @@ import { mkdtempSync, rmSync } from "node:fs";
 import { createServer } from "node:net";
 import { tmpdir } from "node:os";
 import { join } from "node:path";
+import { chromium } from "playwright-core";
+import { CHROMIUM } from "./browser.mjs";
 
 /** A TCP port of 127.0.0.1 free a moment ago. */
 export async function freePort() {
@@ -104,4 +106,27 @@ export async function departmentClass(server) {
   ).token;
   const room = await postJson(server, "/api/classes", lecturerToken, { name: "Optics" });
   return { lecturerToken, room, base: `/c/${room.code}` };
+}
+
+/** A server on a fresh data file (a department's with `department`) and a headless
+ * Chromium, for one test file's `before`; `closeServerAndBrowser` ends both in its `after`. */
+export async function startServerAndBrowser(
+  python,
+  prefix,
+  { department = false, tries = 150 } = {},
+) {
+  const how = department
+    ? { args: ["--department"], token: /admin\?token=(\S+)/, readyPath: "/" }
+    : { args: [], token: /token=(\S+)/, readyPath: "/api/leaderboard" };
+  const server = await startClassServer(python, { prefix, tries, ...how });
+  const browser = await chromium.launch({
+    executablePath: CHROMIUM,
+    args: ["--no-sandbox", "--disable-gpu"],
+  });
+  return { server, browser };
+}
+
+export async function closeServerAndBrowser({ server, browser }) {
+  await browser?.close();
+  await stopClassServer(server);
 }

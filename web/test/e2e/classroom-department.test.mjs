@@ -7,13 +7,11 @@
 // No page may log a script error or a blocked resource.
 import assert from "node:assert/strict";
 import { after, before, test } from "node:test";
-import { chromium } from "playwright-core";
-import { CHROMIUM } from "./browser.mjs";
 import {
   departmentClass,
   play,
-  startClassServer,
-  stopClassServer,
+  closeServerAndBrowser,
+  startServerAndBrowser,
   watchErrors,
 } from "./class-server.mjs";
 import { pythonWithEvapcool } from "./python.mjs";
@@ -25,24 +23,12 @@ let server;
 let browser;
 
 before(async () => {
-  // `evapcool class` on a fresh data file (class-server.mjs)
-  server = await startClassServer(PYTHON, {
-    prefix: "evapcool-dept-",
-    args: ["--department"],
-    token: /admin\?token=(\S+)/,
-    readyPath: "/",
-    tries: 150,
-  });
-  browser = await chromium.launch({
-    executablePath: CHROMIUM,
-    args: ["--no-sandbox", "--disable-gpu"],
-  });
+  ({ server, browser } = await startServerAndBrowser(PYTHON, "evapcool-dept-", {
+    department: true,
+  }));
 });
 
-after(async () => {
-  await browser?.close();
-  await stopClassServer(server);
-});
+after(() => closeServerAndBrowser({ server, browser }));
 
 test(
   "a class of a department: join by code, its lecturer's page and projector",

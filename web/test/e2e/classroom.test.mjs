@@ -11,9 +11,7 @@ import assert from "node:assert/strict";
 import { mkdirSync } from "node:fs";
 import { join } from "node:path";
 import { after, before, test } from "node:test";
-import { chromium } from "playwright-core";
-import { CHROMIUM } from "./browser.mjs";
-import { play, startClassServer, stopClassServer } from "./class-server.mjs";
+import { closeServerAndBrowser, play, startServerAndBrowser } from "./class-server.mjs";
 import { pythonWithEvapcool } from "./python.mjs";
 
 const PYTHON = pythonWithEvapcool(); // none: this file fails, saying so (python.mjs)
@@ -24,23 +22,10 @@ let browser;
 
 before(async () => {
   // `evapcool class` on a fresh data file (class-server.mjs)
-  server = await startClassServer(PYTHON, {
-    prefix: "evapcool-class-",
-    args: [],
-    token: /token=(\S+)/,
-    readyPath: "/api/leaderboard",
-    tries: 150,
-  });
-  browser = await chromium.launch({
-    executablePath: CHROMIUM,
-    args: ["--no-sandbox", "--disable-gpu"],
-  });
+  ({ server, browser } = await startServerAndBrowser(PYTHON, "evapcool-class-"));
 });
 
-after(async () => {
-  await browser?.close();
-  await stopClassServer(server);
-});
+after(() => closeServerAndBrowser({ server, browser }));
 
 const SHOTS = process.env.EVAPCOOL_SHOTS ?? null;
 /** How long a page may take to show a change of the challenge's state before the walk gives

@@ -13,9 +13,7 @@ import { existsSync, mkdtempSync } from "node:fs";
 import { tmpdir } from "node:os";
 import { join, resolve } from "node:path";
 import { after, before, test } from "node:test";
-import { chromium } from "playwright-core";
-import { CHROMIUM } from "./browser.mjs";
-import { startClassServer, stopClassServer, watchErrors } from "./class-server.mjs";
+import { closeServerAndBrowser, startServerAndBrowser, watchErrors } from "./class-server.mjs";
 import { pythonWithEvapcool } from "./python.mjs";
 
 const PYTHON = pythonWithEvapcool(); // none: this file fails, saying so (python.mjs)
@@ -27,23 +25,12 @@ let server;
 let browser;
 
 before(async () => {
-  server = await startClassServer(PYTHON, {
-    prefix: "evapcool-console-",
-    args: ["--department"],
-    token: /admin\?token=(\S+)/,
-    readyPath: "/",
-    tries: 150,
-  });
-  browser = await chromium.launch({
-    executablePath: CHROMIUM,
-    args: ["--no-sandbox", "--disable-gpu"],
-  });
+  ({ server, browser } = await startServerAndBrowser(PYTHON, "evapcool-console-", {
+    department: true,
+  }));
 });
 
-after(async () => {
-  await browser?.close();
-  await stopClassServer(server);
-});
+after(() => closeServerAndBrowser({ server, browser }));
 
 /** Students join a class by its API and send ramp games of `seed` (tests/classhelp.py). */
 async function sendGames(base, seed, names) {

@@ -10,13 +10,11 @@ import { execFileSync } from "node:child_process";
 import { mkdirSync } from "node:fs";
 import { join, resolve } from "node:path";
 import { after, before, test } from "node:test";
-import { chromium } from "playwright-core";
-import { CHROMIUM } from "./browser.mjs";
 import {
   departmentClass,
   postJson,
-  startClassServer,
-  stopClassServer,
+  closeServerAndBrowser,
+  startServerAndBrowser,
   watchErrors,
 } from "./class-server.mjs";
 import { pythonWithEvapcool } from "./python.mjs";
@@ -54,24 +52,13 @@ let browser;
 let world;
 
 before(async () => {
-  server = await startClassServer(PYTHON, {
-    prefix: "evapcool-console-phone-",
-    args: ["--department"],
-    token: /admin\?token=(\S+)/,
-    readyPath: "/",
-    tries: 150,
-  });
-  browser = await chromium.launch({
-    executablePath: CHROMIUM,
-    args: ["--no-sandbox", "--disable-gpu"],
-  });
+  ({ server, browser } = await startServerAndBrowser(PYTHON, "evapcool-console-phone-", {
+    department: true,
+  }));
   world = await twoRounds();
 });
 
-after(async () => {
-  await browser?.close();
-  await stopClassServer(server);
-});
+after(() => closeServerAndBrowser({ server, browser }));
 
 async function shot(page, name) {
   if (!SHOTS) return;

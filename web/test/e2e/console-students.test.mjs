@@ -12,14 +12,12 @@ import assert from "node:assert/strict";
 import { existsSync, mkdirSync } from "node:fs";
 import { join, resolve } from "node:path";
 import { after, before, test } from "node:test";
-import { chromium } from "playwright-core";
-import { CHROMIUM } from "./browser.mjs";
 import {
   departmentClass,
   play,
   postJson,
-  startClassServer,
-  stopClassServer,
+  closeServerAndBrowser,
+  startServerAndBrowser,
   watchErrors,
 } from "./class-server.mjs";
 import { pythonWithEvapcool } from "./python.mjs";
@@ -34,24 +32,13 @@ let server;
 let browser;
 
 before(async () => {
-  server = await startClassServer(PYTHON, {
-    prefix: "evapcool-students-",
-    args: ["--department"],
-    token: /admin\?token=(\S+)/,
-    readyPath: "/",
-    tries: 150,
-  });
-  browser = await chromium.launch({
-    executablePath: CHROMIUM,
-    args: ["--no-sandbox", "--disable-gpu"],
-  });
+  ({ server, browser } = await startServerAndBrowser(PYTHON, "evapcool-students-", {
+    department: true,
+  }));
   if (SHOTS) mkdirSync(SHOTS, { recursive: true });
 });
 
-after(async () => {
-  await browser?.close();
-  await stopClassServer(server);
-});
+after(() => closeServerAndBrowser({ server, browser }));
 
 async function shot(page, name) {
   if (SHOTS) await page.screenshot({ path: join(SHOTS, name) });

@@ -13,9 +13,7 @@ import { execFileSync } from "node:child_process";
 import { mkdirSync, readdirSync } from "node:fs";
 import { join, resolve } from "node:path";
 import { after, before, test } from "node:test";
-import { chromium } from "playwright-core";
-import { CHROMIUM } from "./browser.mjs";
-import { startClassServer, stopClassServer } from "./class-server.mjs";
+import { closeServerAndBrowser, startServerAndBrowser } from "./class-server.mjs";
 import { pythonWithEvapcool } from "./python.mjs";
 
 const PYTHON = pythonWithEvapcool(); // none: this file fails, saying so (python.mjs)
@@ -33,23 +31,10 @@ let browser;
 
 before(async () => {
   // `evapcool class` on a fresh data file (class-server.mjs)
-  server = await startClassServer(PYTHON, {
-    prefix: "evapcool-debrief-",
-    args: [],
-    token: /token=(\S+)/,
-    readyPath: "/api/leaderboard",
-    tries: 300,
-  });
-  browser = await chromium.launch({
-    executablePath: CHROMIUM,
-    args: ["--no-sandbox", "--disable-gpu"],
-  });
+  ({ server, browser } = await startServerAndBrowser(PYTHON, "evapcool-debrief-", { tries: 300 }));
 });
 
-after(async () => {
-  await browser?.close();
-  await stopClassServer(server);
-});
+after(() => closeServerAndBrowser({ server, browser }));
 
 const lecturer = () => ({
   authorization: `Bearer ${server.token}`,
