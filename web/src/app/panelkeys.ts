@@ -1,10 +1,10 @@
 /**
- * The open panel by keyboard (issue 48): a transparent element over each target the panel
- * drew (a settings row, a button, the help's close) gives it a place in the Tab order, a
- * role, its words in the reader's language and a row's value; the focused target is ringed
- * on the canvas (Panels.focused). Focus enters the panel when it opens and goes back to what
- * opened it when it closes. Pointer events pass through to the canvas, whose taps pick
- * the targets as before.
+ * The open panel by keyboard (issue 48), and the win screen's buttons: a transparent
+ * element over each target drawn on the canvas (a settings row, a button, the help's close,
+ * Copy replay code, Store and Skip) gives it a place in the Tab order, a role, its words in
+ * the reader's language and a row's value; the focused target is ringed on the canvas
+ * (Panels.focused). Focus enters a panel when it opens and goes back to what opened it when
+ * it closes. Pointer events pass through to the canvas, whose taps pick the targets as before.
  */
 import type { Target } from "../view/overlays";
 import { setIfChanged, type Controls } from "./controls";
@@ -57,7 +57,9 @@ export class PanelKeys {
     const { panels, options } = this.host;
     const layer = this.layer;
     const open = panels.open;
-    const items = open ? this.host.targets.filter((x) => x.label) : [];
+    // A panel's targets; with none open, the win screen's buttons (copy the code, the name
+    // box's Store and Skip): every button drawn on the canvas has its place in the Tab order.
+    const items = this.host.targets.filter((x) => x.label);
     const before = document.activeElement;
     const inside = !before || before === document.body || layer.contains(before);
     const els = [...layer.children] as HTMLElement[];
@@ -65,7 +67,7 @@ export class PanelKeys {
     if (els.map((el) => el.dataset.action).join() !== actions.join())
       layer.replaceChildren(...actions.map((a) => this.make(a)));
     items.forEach((x, k) => this.update(layer.children[k] as HTMLElement, x));
-    layer.hidden = !open;
+    layer.hidden = items.length === 0;
     const now = document.activeElement as HTMLElement | null;
     const want = layer.querySelector<HTMLElement>(`[data-action="row:${options.row}"]`);
     const first = want ?? (layer.firstElementChild as HTMLElement | null);

@@ -9,7 +9,7 @@ import { emptyAtoms, type AtomArrays } from "../game/sim";
 import type { Condensate } from "../view/condensate";
 import * as C from "../view/colors";
 import { PLAY_RECT } from "../view/geometry";
-import { drawNotices, type Target } from "../view/overlays";
+import { drawFocusRing, drawNotices, type Target } from "../view/overlays";
 import { drawReadout } from "../view/readout";
 import type { Scene } from "../view/scene";
 import { drawText } from "../view/text";
@@ -122,6 +122,7 @@ export class Picture {
     this.readoutSize = l.readout ? drawReadout(ctx, l.readout, sim) : 0;
     this.targets = this.rooms.win.draw(ctx, this.atoms, panels.open !== null);
     this.targetsZoomed = false;
+    if (panels.open === null) drawFocusRing(ctx, this.targets, panels.focused);
     this.rooms.verifier.show(panels.open === "verify");
     const panel = panels.draw(ctx);
     if (panel) [this.targets, this.targetsZoomed] = [panel.targets, panel.zoomed];

@@ -7,7 +7,7 @@ import assert from "node:assert/strict";
 import { existsSync, readdirSync, readFileSync } from "node:fs";
 import { resolve } from "node:path";
 import { after, before, test } from "node:test";
-import { launch, openPage, PAGE, state } from "./browser.mjs";
+import { launch, openPage, PAGE, state, winGame } from "./browser.mjs";
 import { decodePng, pixel } from "./png.mjs";
 
 let browser;
@@ -330,6 +330,54 @@ test("help, the score table and verify by keyboard: focus in, named buttons, foc
   assert.deepEqual(await focusedNode(cdp), { role: "button", name: "Close", checked: undefined });
   await page.keyboard.press("Enter");
   assert.equal((await state(page)).overlay, null);
+  assert.deepEqual(log.errors, []);
+  await page.close();
+});
+
+test("the win screen's buttons by keyboard: Store and Skip, then Copy replay code", async () => {
+  const { page, cdp, log } = await openPage(browser, {
+    query: "?seed=1",
+    viewport: { width: 1000, height: 720 },
+  });
+  await winGame(page);
+  // Tab to the name box's buttons, each named; Enter on Skip skips.
+  const met = new Map();
+  for (let k = 0; k < 30 && !met.has("skip"); k++) {
+    await page.keyboard.press("Tab");
+    const a = await action(page);
+    if (a) met.set(a, await focusedNode(cdp));
+  }
+  assert.deepEqual(met.get("store"), { role: "button", name: "Store", checked: undefined });
+  assert.deepEqual(met.get("skip"), { role: "button", name: "Skip", checked: undefined });
+  assert.ok((await ringPixels(page, '[data-action="skip"]')) > 40, "Skip ringed");
+  await page.keyboard.press("Enter");
+  assert.equal((await state(page)).nameBox, false);
+  // The code's button: in the Tab order, named, ringed; Enter copies the code.
+  await page.waitForFunction(() =>
+    window.evapcool.app.targets.some((x) => x.action === "copycode"),
+  );
+  for (let k = 0; k < 30 && (await action(page)) !== "copycode"; k++)
+    await page.keyboard.press("Tab");
+  assert.deepEqual(await focusedNode(cdp), {
+    role: "button",
+    name: "Copy replay code",
+    checked: undefined,
+  });
+  assert.ok((await ringPixels(page, '[data-action="copycode"]')) > 40, "Copy ringed");
+  await page.keyboard.press("Enter");
+  let notices = [];
+  for (
+    let look = 0;
+    look < 100 && !notices.some((n) => n.startsWith("Replay code copied"));
+    look++
+  ) {
+    notices = (await state(page)).notices;
+    await page.waitForTimeout(50);
+  }
+  assert.ok(
+    notices.some((n) => n.startsWith("Replay code copied")),
+    notices.join("|"),
+  );
   assert.deepEqual(log.errors, []);
   await page.close();
 });
