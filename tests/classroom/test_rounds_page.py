@@ -7,6 +7,7 @@ from __future__ import annotations
 
 import re
 from collections.abc import Iterator
+from datetime import datetime, timedelta, timezone
 from pathlib import Path
 
 import httpx
@@ -47,7 +48,14 @@ def test_each_round_has_its_time_projector_and_exports(department: Server) -> No
         assert len(rows) == 2  # newest first
         now_row, past_row = rows
         stamp = re.search(r'<time datetime="([^"]+)">([^<]+)</time>', past_row)
-        assert stamp and stamp.group(1) == stamp.group(2) == timed["closes_at"]
+        assert stamp and stamp.group(1) == stamp.group(2)
+        # Closed by hand 20 minutes early: the time it closed, not its window's end.
+        ended, planned = (
+            datetime.fromisoformat(t.replace("Z", "+00:00"))
+            for t in (stamp.group(1), timed["closes_at"])
+        )
+        assert abs(ended - datetime.now(timezone.utc)) < timedelta(minutes=2)
+        assert planned - ended > timedelta(minutes=18)
         assert re.fullmatch(r"\d{4}-\d\d-\d\dT\d\d:\d\d:\d\d(\.\d+)?Z", stamp.group(1))
         assert "<time" not in now_row  # no window: no closing time
         links = dict(

@@ -119,3 +119,24 @@ def test_a_file_of_the_first_schema_gains_the_new_columns(tmp_path: Path) -> Non
     store = Store(path)
     challenge = store.open_challenge({}, seed=1, max_frames=100, attempts=None, closes_at=5.0)
     assert store.latest() == {**(store.open_one() or {}), "id": challenge, "closes_at": 5.0}
+
+
+def test_a_round_keeps_the_time_it_ended(tmp_path: Path) -> None:
+    """Closed by hand (with or without a window) or by a new round: the time it closed;
+    closed by its window's end: that end (the history's times, issue 45)."""
+    import time
+
+    store = Store(tmp_path / "class.sqlite")
+    by_hand = store.open_challenge({}, seed=1, max_frames=100, attempts=None)
+    early = store.open_challenge({}, seed=2, max_frames=100, attempts=None, closes_at=4e9)
+    before = time.time()
+    store.close_challenge(early)  # by_hand was closed by this round's opening
+    ran_out = store.open_challenge({}, seed=3, max_frames=100, attempts=None, closes_at=5.0)
+    store.close_challenge(ran_out)
+    after = time.time()
+    ended = {c["id"]: c["closes_at"] for c in store.challenges()}
+    assert before - 1 <= ended[by_hand] <= ended[early] <= after  # type: ignore[operator]
+    assert ended[ran_out] == 5.0
+    assert not store.close_challenge(early) and ended == {
+        c["id"]: c["closes_at"] for c in store.challenges()
+    }

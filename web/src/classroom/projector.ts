@@ -20,6 +20,7 @@ import { byId, classBase, fill, getJson, listen, pageWords, queryParam } from ".
 import { ProjectorDebrief } from "./debrief/projector";
 import { present } from "./debrief/replays";
 import { BoardPager, drawPodium } from "./podium";
+import { localizeTimes, readerLocale } from "./times";
 import { gameOf } from "../view/debrief/model";
 
 /** Seconds each page of a long board stays up. */
@@ -123,9 +124,8 @@ async function showRounds(): Promise<void> {
     box.hidden = true;
     return;
   }
-  const got = await getJson<{ rounds: { id: number; students: number; games: number }[] }>(
-    base + "/api/rounds" + keyQuery,
-  );
+  type Round = { id: number; students: number; games: number; closes_at: number | null };
+  const got = await getJson<{ rounds: Round[] }>(base + "/api/rounds" + keyQuery);
   const list = byId("rounds-list");
   list.replaceChildren();
   const link = (text: string, href: string) => {
@@ -142,7 +142,15 @@ async function showRounds(): Promise<void> {
   for (const r of rounds) {
     const text = fill(words["console.projector.round_line"], { n: r.id, ...r });
     const sep = keyQuery ? "&" : "?";
-    link(text, base + "/projector" + keyQuery + sep + "round=" + r.id).dataset.round = String(r.id);
+    const a = link(text, base + "/projector" + keyQuery + sep + "round=" + r.id);
+    a.dataset.round = String(r.id);
+    if (r.closes_at !== null) {
+      // When it ended, in the room's language and the projector's time zone.
+      const when = document.createElement("time");
+      when.dateTime = new Date(r.closes_at * 1000).toISOString();
+      a.append(" · ", when);
+      localizeTimes(a, readerLocale(document.documentElement.lang, navigator.languages));
+    }
   }
   if (!rounds.length) {
     const li = document.createElement("li");

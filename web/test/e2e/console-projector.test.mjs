@@ -411,6 +411,13 @@ test(
     await live.click("#history");
     await live.waitForSelector(`#rounds-list a[data-round="${first.id}"]`);
     assert.equal(await live.$$eval("#rounds-list a[data-round]", (a) => a.length), 1);
+    // When the round ended, in the room's words (closed by hand: the time it closed).
+    const ended = await live.$eval(`#rounds-list a[data-round="${first.id}"] time`, (t) => [
+      t.dateTime,
+      t.textContent,
+    ]);
+    assert.ok(Math.abs(Date.parse(ended[0]) - Date.now()) < 3_600_000, ended.join(" | "));
+    assert.doesNotMatch(ended[1], /^\d{4}-/, "a time for the reader, not ISO");
     await live.click(`#rounds-list a[data-round="${first.id}"]`);
     await live.waitForURL(/round=\d+/);
     await live.waitForFunction(() => document.getElementById("debrief-paths")?.dataset.curves);

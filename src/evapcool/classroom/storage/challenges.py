@@ -4,11 +4,16 @@ the open, the latest and the past ones."""
 from __future__ import annotations
 
 import json
+import time
 from collections.abc import Sequence
 from typing import Any
 
 from evapcool.classroom.rooms import DEFAULT_ROOM
 from evapcool.classroom.storage.base import CHALLENGE_KEYS, SqlBase
+
+#: A round closed before its window's end (or without one) keeps the time it closed: the
+#: history says when each round ended.
+_CLOSED_NOW = "closes_at = CASE WHEN closes_at IS NULL OR closes_at > ? THEN ? ELSE closes_at END"
 
 
 class ChallengesStore(SqlBase):
@@ -28,7 +33,11 @@ class ChallengesStore(SqlBase):
         epoch. lost: whether games that do not win are taken (ranked with 0 atoms)."""
         with self._tx() as q:
             self._lock(q, "room", room)
-            q("UPDATE challenge SET open = 0 WHERE room = ? AND open = 1", (room,))
+            now = time.time()
+            q(
+                f"UPDATE challenge SET open = 0, {_CLOSED_NOW} WHERE room = ? AND open = 1",
+                (now, now, room),
+            )
             got = q(
                 "INSERT INTO challenge (settings, seed, max_frames, attempts, closes_at, lost, "
                 "room) VALUES (?,?,?,?,?,?,?) RETURNING id",
@@ -45,10 +54,11 @@ class ChallengesStore(SqlBase):
             return int(got.fetchone()[0])
 
     def close_challenge(self, challenge: int) -> bool:
-        """Close a challenge; whether it was open (so closing twice is harmless)."""
-        return (
-            self._write("UPDATE challenge SET open = 0 WHERE id = ? AND open = 1", (challenge,)) > 0
-        )
+        """Close a challenge; whether it was open (so closing twice is harmless). Its
+        closes_at becomes the time it closed, when that is before its window's end."""
+        now = time.time()
+        sql = f"UPDATE challenge SET open = 0, {_CLOSED_NOW} WHERE id = ? AND open = 1"
+        return self._write(sql, (now, now, challenge)) > 0
 
     def due(self, now: float) -> list[tuple[int, int]]:
         """(room, challenge) of every open challenge whose time window has ended."""
