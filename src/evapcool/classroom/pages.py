@@ -156,6 +156,7 @@ LECTURER_BODY = Template("""<header id="top"><div id="top-name">$classes
 <p id="status" role="status"></p><p id="rejected"></p></section>
 <div id="debrief-slot"></div>
 <section id="table-box"><h2>$entries</h2><table id="entries" class="cards"></table></section>
+<section id="rounds-box" hidden><h2>$history</h2><table id="rounds" class="cards"></table></section>
 <section id="new-round"><h2>$heading</h2>
 <form id="open">
 <label for="n_atoms">$atoms</label><input id="n_atoms" type="number" min="2" max="400" value="49">
@@ -311,7 +312,11 @@ LECTURER_LABELS = (
     "lost",
 )
 #: The console's own words on the lecturer's page (issue 45).
-CONSOLE_LABELS = {"print": "console.lecturer.print", "round": "console.lecturer.round"}
+CONSOLE_LABELS = {
+    "print": "console.lecturer.print",
+    "round": "console.lecturer.round",
+    "history": "console.projector.history",
+}
 
 
 #: The lecturer's form's words shared with the game's settings panel (one translation).
@@ -336,6 +341,7 @@ CONSOLE_WORDS = (
     "console.lecturer.pair_left",
     "console.lecturer.pair_right",
     "console.lecturer.pair_option",
+    *("console.lecturer.round_projector", "console.projector.round_line"),
 )
 
 

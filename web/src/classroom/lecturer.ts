@@ -29,6 +29,7 @@ import {
   type Refusal,
 } from "./common";
 import { LecturerDebrief } from "./debrief/lecturer";
+import { showRounds } from "./rounds";
 import { studentRows, type StudentRow } from "./students";
 
 /** The lecturer's list as /api/entries sends it. */
@@ -276,10 +277,20 @@ byId<HTMLAnchorElement>("export").href = base + "/api/export.csv";
 setInterval(tick, 1000);
 // The projector's key (in its link) lets this page's stream past the students' streams.
 const projectorLink = byId<HTMLAnchorElement>("projector");
+// The past rounds: at the start, and again when a round closes or a new one opens.
+let roundsSeen: string | null = null;
+async function refreshRounds(): Promise<void> {
+  const c = challenge.info;
+  const now = c ? `${c.id}:${c.open}` : "";
+  if (now === roundsSeen) return;
+  roundsSeen = now;
+  await showRounds(words, base, projectorLink.href);
+}
 listen(base + "/api/stream" + new URL(projectorLink.href).search, () => {
   if (renaming !== null) return; // the box being typed in stays; the next message redraws
   // Once closed, or once the lecturer has looked early: the debrief kept current.
   void refresh().then(() => {
+    void refreshRounds();
     if (debrief.doc || (challenge.info && !challenge.info.open)) void debrief.refresh();
   });
 });

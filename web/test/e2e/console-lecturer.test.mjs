@@ -165,6 +165,32 @@ test("the administrator, two lecturers, a class each, refusals as pages", async 
   await ada.getByRole("button", { name: "Open", exact: true }).click();
   await ada.getByRole("button", { name: "Close it and open the new round" }).click();
   await ada.waitForFunction((was) => document.getElementById("current").textContent !== was, first);
+  // The round it closed is in the page's past rounds: when it ended, its links.
+  await ada.locator("#rounds-box:not([hidden]) #rounds tr").first().waitFor();
+  const past = await ada.$$eval("#rounds tr", (rows) =>
+    rows.map((tr) => ({
+      round: tr.dataset.round,
+      when: tr.querySelector("time")?.textContent ?? "",
+      links: [...tr.querySelectorAll("a")].map((a) => [a.textContent, a.getAttribute("href")]),
+    })),
+  );
+  assert.equal(past.length, 1, JSON.stringify(past));
+  assert.doesNotMatch(past[0].when, /^$|^\d{4}-/, "a time for the reader");
+  const [onProjector, csv, json] = past[0].links;
+  assert.equal(onProjector[0], "Open on the projector");
+  assert.match(
+    onProjector[1],
+    new RegExp(`/c/${codeA}/projector\\?key=.+&round=${past[0].round}$`),
+  );
+  assert.deepEqual(
+    [csv, json].map(([text, href]) => [text, href]),
+    [
+      ["CSV", `/c/${codeA}/api/export.csv?challenge=${past[0].round}`],
+      ["JSON", `/c/${codeA}/api/export.json?challenge=${past[0].round}`],
+    ],
+  );
+  const exported = await ada.evaluate((href) => fetch(href).then((r) => r.status), json[1]);
+  assert.equal(exported, 200);
   // Two students' games: one row each, ranked, with their games counted.
   await sendGames(`/c/${codeA}`, 77, ["Mia", "Finn"]);
   await ada.waitForFunction(
