@@ -5,7 +5,7 @@
 import { readFileSync } from "node:fs";
 import { describe, expect, it } from "vitest";
 import { luminance, scaleRgb, scoreColor } from "../../src/view/debrief/colors";
-import { drawHeights, drawPaths, MIN_TEXT } from "../../src/view/debrief/charts";
+import { drawHeights, drawPaths, logTicks, MIN_TEXT } from "../../src/view/debrief/charts";
 import {
   archetypeList,
   describeBest,
@@ -253,5 +253,22 @@ describe("the shared clock of two replays in step", () => {
     ).toBe(5);
     expect(allEnded([{ frame: 5, ended: true }, null])).toBe(false);
     expect(allEnded([])).toBe(false);
+  });
+});
+
+describe("the debrief's log axes", () => {
+  it("tick a narrow range more than once, a wide one at most six times", () => {
+    expect(logTicks(24, 56)).toEqual([30, 40, 50]);
+    expect(logTicks(1, 61)).toEqual([1, 2, 5, 10, 20, 50]);
+    expect(logTicks(0.5, 80)).toEqual([1, 3, 10, 30]);
+    for (const [lo, hi] of [
+      [3, 4.5],
+      [24, 56],
+      [0.01, 1e4],
+    ]) {
+      const t = logTicks(lo, hi);
+      expect(t.length).toBeLessThanOrEqual(6);
+      expect(t.every((v) => v >= lo && v <= hi)).toBe(true);
+    }
   });
 });

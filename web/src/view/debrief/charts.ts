@@ -75,8 +75,11 @@ export function ranges(doc: Debrief): { n: [number, number]; t: [number, number]
   return { n: [nLo, 1.15 * Math.max(law.n0, 2)], t: [Math.max(0.8 * tLo, 1e-12), 1.25 * tHi] };
 }
 
-function logTicks(lo: number, hi: number): number[] {
-  for (const mantissas of [[1, 2, 5], [1, 3], [1]]) {
+/** Ticks of a log axis, at most 6: the finest of 1-9, 1-2-5, 1-3 or 1 per decade that fits
+ * (a class's N from 30 to 49 gets 30, 40, 50, not 50 alone). */
+export function logTicks(lo: number, hi: number): number[] {
+  const digits = [1, 2, 3, 4, 5, 6, 7, 8, 9];
+  for (const mantissas of [digits, [1, 2, 5], [1, 3], [1]]) {
     const ticks: number[] = [];
     for (let k = Math.floor(Math.log10(lo)); k <= Math.ceil(Math.log10(hi)); k++)
       for (const m of mantissas) ticks.push(m * Math.pow(10, k));
