@@ -18,6 +18,7 @@ from typing import Any, TypeVar
 from evapcool.classroom.boards import _board
 from evapcool.classroom.debrief import Law
 from evapcool.classroom.fairqueue import FairQueue
+from evapcool.classroom.halls import Buckets
 from evapcool.classroom.ratelimit import Rate, RateLimiter
 from evapcool.classroom.rooms import DEFAULT_ROOM
 from evapcool.classroom.store import ClassStore, Store, StoreAwayError, is_url
@@ -35,8 +36,10 @@ BUCKET_SWEEP = 60.0
 STORE_RETRY = 5
 #: Threads (and pooled connections) for a store shared by several processes.
 SHARED_DB_THREADS = 8
-#: API requests per client address (a class behind one NAT address shares it).
-CLIENT_RATE = Rate(burst=600, per_second=100)
+#: API requests per client address without a checked secret (halls.py): the pages, joins,
+#: wrong codes. A hall of 300 behind one NAT address opens the page, reads the board and
+#: joins (3 each) inside the burst; its students' calls then count against their tokens.
+CLIENT_RATE = Rate(burst=1500, per_second=100)
 #: Submissions per student token.
 SUBMIT_RATE = Rate(burst=5, per_second=0.5)
 #: Joins per class and client address: a lecture hall behind one address joins at once, then
@@ -52,15 +55,21 @@ class Limits:
     client: Rate = CLIENT_RATE
     submit: Rate = SUBMIT_RATE
     join: Rate = JOIN_RATE
-    #: Verifications in flight or waiting, per student token and per client address.
+    #: Verifications in flight or waiting, per student token and per class and address (a
+    #: hall of 300 sending at once fits; the fair queue serves each class and address in turn).
     student_jobs: int = 2
-    address_jobs: int = 64
+    hall_jobs: int = 600
     #: Players a class file holds (`evapcool class --max-students`).
     students: int = 2000
-    #: Open event streams: in all, and per client address; the projector's and the
-    #: lecturer's (with the projector key) have their own bound and never wait for these.
-    listeners: int = 1000
+    #: Open event streams (halls.py): in all; without a student's token in all and per
+    #: client address; per student token, and per class and address (a hall's); the
+    #: projector's and the lecturer's (with the projector key) have their own bound per
+    #: class and never wait for these.
+    listeners: int = 6000
+    anonymous_listeners: int = 1000
     address_listeners: int = 20
+    token_listeners: int = 3
+    hall_listeners: int = 800
     keyed_listeners: int = 16
 
 
@@ -75,6 +84,8 @@ class Listener:
     #: The key it was opened with (checked for the stream's life), and whether it ended.
     key: str | None = None
     closed: bool = False
+    #: The student's token it was opened with (its limits follow the token), if any.
+    token: str | None = None
 
     def close(self) -> None:
         """End the stream: its generator returns at its next look (an empty text wakes it)."""
@@ -107,10 +118,10 @@ class Hub:
     cut_uploads: int = 0
 
     def __post_init__(self) -> None:
-        # Requests per address are one process's flood guard; submissions and joins are
-        # counted in the store (across processes when it is shared).
-        self.per_client = RateLimiter(self.limits.client)
-        self.queue = FairQueue(self.workers, self.limits.student_jobs, self.limits.address_jobs)
+        # Request buckets are one process's flood guard; submissions and joins are counted
+        # in the store (across processes when it is shared).
+        self.buckets = Buckets(RateLimiter(self.limits.client))
+        self.queue = FairQueue(self.workers, self.limits.student_jobs, self.limits.hall_jobs)
         self.wake = asyncio.Event()
 
     async def db(self, fn: Callable[..., T], *args: Any) -> T:
