@@ -17,7 +17,10 @@ import httpx
 import pytest
 from classhelp import SEED, SETTINGS, Server, open_challenge, start_server
 
+from evapcool.classroom.guessing import WRONG_CODES
+from evapcool.classroom.halls import HALL_RATE, KEY_RATE, STUDENT_RATE
 from evapcool.classroom.hub import CLIENT_RATE, Limits
+from evapcool.classroom.ratelimit import Rate
 from evapcool.game.replay import Recording, encode
 
 HALL = 300
@@ -302,3 +305,50 @@ def test_a_flood_with_one_token_is_limited_to_that_token(server: Server) -> None
     assert statuses == [200] * bound + [429] and stream_field == "token"
     assert {field for status, field in got if status == 429} == {"token"}
     assert served == dict.fromkeys(served, 200) and len(served) == 4, served
+
+
+def _rate(rate: Rate) -> str:
+    """A bucket as the guide says it."""
+    if rate.per_second >= 1:
+        return f"{rate.burst:.0f} at once, then {rate.per_second:.0f} a second"
+    return f"{rate.burst:.0f} at once, then one every {1 / rate.per_second:.0f} s"
+
+
+def test_the_guide_states_the_limits() -> None:
+    guide = " ".join(
+        (Path(__file__).resolve().parents[2] / "docs" / "class.md").read_text().split()
+    )
+    limits = Limits()
+    rows = [
+        ("requests without a checked secret", "client address", _rate(limits.client)),
+        ("a student's requests", "token", _rate(STUDENT_RATE)),
+        ("one class's students' requests", "class and client address", _rate(HALL_RATE)),
+        ("the projector's and lecturer's requests", "key or token", _rate(KEY_RATE)),
+        ("games sent (across processes)", "token", _rate(limits.submit)),
+        ("joins (across processes)", "class and client address", _rate(limits.join)),
+        ("wrong join codes (across processes)", "client address", _rate(WRONG_CODES)),
+        (
+            "verifications in flight or waiting",
+            "token; class and client address",
+            f"{limits.student_jobs}; {limits.hall_jobs}",
+        ),
+        ("event streams in all (without the key)", "process", f"{limits.listeners}"),
+        (
+            "a student's event streams",
+            "token; class and client address",
+            f"{limits.token_listeners}; {limits.hall_listeners}",
+        ),
+        (
+            "event streams without a token",
+            "client address; process",
+            f"{limits.address_listeners}; {limits.anonymous_listeners}",
+        ),
+        (
+            "the projector's and lecturer's event streams (key)",
+            "class",
+            f"{limits.keyed_listeners}",
+        ),
+    ]
+    for row in rows:
+        assert "| " + " | ".join(row) + " |" in guide, row
+    assert f"`--max-students`, {limits.students} unless set" in guide

@@ -15,15 +15,39 @@ from __future__ import annotations
 from collections import OrderedDict
 from collections.abc import Sequence
 from dataclasses import dataclass, field
-from typing import TYPE_CHECKING
+from typing import Protocol
 
 from starlette.requests import Request
 
 from evapcool.classroom.errors import RefusedError
 from evapcool.classroom.ratelimit import Rate, RateLimiter
 
-if TYPE_CHECKING:
-    from evapcool.classroom.hub import Limits, Listener
+
+class Listener(Protocol):
+    """What the stream limits read of an open stream (hub.Listener)."""
+
+    address: str
+    keyed: bool
+    room: int
+    token: str | None
+
+
+class StreamBounds(Protocol):
+    """The stream bounds of hub.Limits (read only: Limits is frozen)."""
+
+    @property
+    def listeners(self) -> int: ...
+    @property
+    def anonymous_listeners(self) -> int: ...
+    @property
+    def address_listeners(self) -> int: ...
+    @property
+    def token_listeners(self) -> int: ...
+    @property
+    def hall_listeners(self) -> int: ...
+    @property
+    def keyed_listeners(self) -> int: ...
+
 
 #: Requests per student token: the page asks a few times a game and, without its stream,
 #: once every 3 s; a flood from one token stops here, alone.
@@ -115,7 +139,7 @@ def _check(wait: int, field_name: str) -> None:
 
 
 def stream_refusal(
-    limits: Limits,
+    limits: StreamBounds,
     listeners: Sequence[Listener],
     address: str,
     room: int,
