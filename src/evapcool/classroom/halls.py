@@ -53,9 +53,10 @@ class StreamBounds(Protocol):
 #: once every 3 s; a flood from one token stops here, alone.
 STUDENT_RATE = Rate(burst=40, per_second=2)
 #: Requests of one class's students behind one address: 300 students asking at once (the
-#: close: the debrief and the standing) and 250 a second after, while a class cannot spend
-#: another class's share.
-HALL_RATE = Rate(burst=2000, per_second=250)
+#: close: the debrief and the standing), then 120 a second (300 phones polling every 3 s
+#: without their streams make 100), no more than one address's flood without tokens
+#: would be; a class cannot spend another class's share.
+HALL_RATE = Rate(burst=2000, per_second=120)
 #: Requests per projector key or lecturer token (the projector's and console's pages).
 KEY_RATE = Rate(burst=600, per_second=50)
 #: Secrets remembered as checked (the one unused longest is forgotten first).
