@@ -6,6 +6,8 @@
         [--arrivals burst,spread]
     python scripts/bench_class.py --department --kill [--classes 10] [--spread 120]
     python scripts/bench_class.py --debrief [--students 300] [--runs 5] [--workers 2]
+    python scripts/bench_class.py --term [--classes 10] [--students 300] [--shared 3]
+        [--spread 120] [--closing 60] [--kill]      (scripts/bench_term.py)
 
 Starts a real `evapcool class` on 127.0.0.1, opens a challenge, lets every student join,
 then sends one game per student (real recordings of the autopilot, perturbed so that each
@@ -582,7 +584,15 @@ def main() -> int:
     )
     p.add_argument("--debrief", action="store_true", help="the debrief's first draw (issue 36)")
     p.add_argument("--runs", type=int, default=5, help="closes measured (--debrief)")
+    p.add_argument("--term", action="store_true", help="a department's term (issue 46)")
+    p.add_argument("--shared", type=int, default=3, help="classes behind one address (--term)")
+    p.add_argument("--closing", type=float, default=60.0, help="seconds of closes (--term)")
     args = p.parse_args()
+    if args.term:
+        from bench_term import term_bench
+
+        term_bench(args)
+        return 0
     if args.flood:
         flood_bench(args)
         return 0

@@ -1,5 +1,9 @@
 """Verifications shared fairly: a few at a time, the waiting ones served address by address.
 
+An "address" here is whatever the caller keys the turns by: the server passes a class and
+its client address (a hall behind one NAT address takes its turns as one, apart from the
+other classes behind it).
+
 One student cannot hold the workers: each student token and each client address may have
 only so many verifications in flight or waiting (429 past that), and when a worker frees,
 the next game comes from the waiting address served longest ago (round robin), so an

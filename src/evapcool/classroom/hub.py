@@ -18,6 +18,7 @@ from typing import Any, TypeVar
 from evapcool.classroom.boards import _board
 from evapcool.classroom.debrief import Law
 from evapcool.classroom.fairqueue import FairQueue
+from evapcool.classroom.halls import Buckets
 from evapcool.classroom.ratelimit import Rate, RateLimiter
 from evapcool.classroom.rooms import DEFAULT_ROOM
 from evapcool.classroom.store import ClassStore, Store, StoreAwayError, is_url
@@ -29,14 +30,19 @@ T = TypeVar("T")
 #: Seconds between looks at the open challenge's time window: when it ends, the server
 #: closes the challenge and tells every page (within this, well inside the pages' 2 s).
 WINDOW_CHECK = 0.25
+#: Seconds at least between two boards sent to a room's streams (the changes meanwhile
+#: make one board).
+BOARD_GAP = 0.25
 #: Seconds between forgetting idle rate buckets held in the database.
 BUCKET_SWEEP = 60.0
 #: Seconds a client is told to wait (Retry-After) while the database does not answer.
 STORE_RETRY = 5
 #: Threads (and pooled connections) for a store shared by several processes.
 SHARED_DB_THREADS = 8
-#: API requests per client address (a class behind one NAT address shares it).
-CLIENT_RATE = Rate(burst=600, per_second=100)
+#: API requests per client address without a checked secret (halls.py): the pages, joins,
+#: wrong codes. A hall of 300 behind one NAT address opens the page, reads the board and
+#: joins (3 each) inside the burst; its students' calls then count against their tokens.
+CLIENT_RATE = Rate(burst=1500, per_second=100)
 #: Submissions per student token.
 SUBMIT_RATE = Rate(burst=5, per_second=0.5)
 #: Joins per class and client address: a lecture hall behind one address joins at once, then
@@ -52,15 +58,21 @@ class Limits:
     client: Rate = CLIENT_RATE
     submit: Rate = SUBMIT_RATE
     join: Rate = JOIN_RATE
-    #: Verifications in flight or waiting, per student token and per client address.
+    #: Verifications in flight or waiting, per student token and per class and address (a
+    #: hall of 300 sending at once fits; the fair queue serves each class and address in turn).
     student_jobs: int = 2
-    address_jobs: int = 64
+    hall_jobs: int = 600
     #: Players a class file holds (`evapcool class --max-students`).
     students: int = 2000
-    #: Open event streams: in all, and per client address; the projector's and the
-    #: lecturer's (with the projector key) have their own bound and never wait for these.
-    listeners: int = 1000
+    #: Open event streams (halls.py): in all; without a student's token in all and per
+    #: client address; per student token, and per class and address (a hall's); the
+    #: projector's and the lecturer's (with the projector key) have their own bound per
+    #: class and never wait for these.
+    listeners: int = 6000
+    anonymous_listeners: int = 1000
     address_listeners: int = 20
+    token_listeners: int = 3
+    hall_listeners: int = 800
     keyed_listeners: int = 16
 
 
@@ -75,6 +87,8 @@ class Listener:
     #: The key it was opened with (checked for the stream's life), and whether it ended.
     key: str | None = None
     closed: bool = False
+    #: The student's token it was opened with (its limits follow the token), if any.
+    token: str | None = None
 
     def close(self) -> None:
         """End the stream: its generator returns at its next look (an empty text wakes it)."""
@@ -105,12 +119,14 @@ class Hub:
     generation: dict[int, int] = field(default_factory=dict)
     #: Requests whose client left mid-body (logged once, at the stop).
     cut_uploads: int = 0
+    #: When each room's board was last sent to this process's streams (monotonic).
+    sent_at: dict[int, float] = field(default_factory=dict)
 
     def __post_init__(self) -> None:
-        # Requests per address are one process's flood guard; submissions and joins are
-        # counted in the store (across processes when it is shared).
-        self.per_client = RateLimiter(self.limits.client)
-        self.queue = FairQueue(self.workers, self.limits.student_jobs, self.limits.address_jobs)
+        # Request buckets are one process's flood guard; submissions and joins are counted
+        # in the store (across processes when it is shared).
+        self.buckets = Buckets(RateLimiter(self.limits.client))
+        self.queue = FairQueue(self.workers, self.limits.student_jobs, self.limits.hall_jobs)
         self.wake = asyncio.Event()
 
     async def db(self, fn: Callable[..., T], *args: Any) -> T:
@@ -125,19 +141,26 @@ class Hub:
 
     async def publish(self, room: int) -> None:
         """A room's board changed: tell every process sharing the store, or (one process)
-        send it to this one's streams now."""
+        have it sent to this one's streams (`forward`)."""
         self.generation[room] = self.generation.get(room, 0) + 1  # stale here at once
         if self.store.shared:
             # if the database is away, every process sends all its boards anew once it hears
             # from the database again
             with contextlib.suppress(StoreAwayError):
                 await self.db(self.store.notify, room)
+        elif self._due(room) and room not in self.pending:
+            await self.send(room)  # at once, as it happens (a burst's next ones wait)
         else:
-            await self.send(room)
+            self.changed(room)
+
+    def _due(self, room: int) -> bool:
+        """Whether a room's board may be sent now (none sent in the last BOARD_GAP)."""
+        return time.monotonic() - self.sent_at.get(room, float("-inf")) >= BOARD_GAP
 
     async def send(self, room: int) -> None:
         """Send a room's leaderboard to this process's streams of it; a slow one keeps only
         the newest."""
+        self.sent_at[room] = time.monotonic()
         self.generation[room] = self.generation.get(room, 0) + 1
         await drop_stale(self, [s for s in self.listeners if s.room == room and s.keyed])
         here = [s for s in self.listeners if s.room == room and not s.closed]
@@ -156,13 +179,20 @@ class Hub:
         self.wake.set()
 
     async def forward(self) -> None:
-        """Send the boards of the rooms announced changed (several notices, one board)."""
+        """Send the boards of the rooms announced changed: at once, but a room at most once
+        every BOARD_GAP (the changes meanwhile make one board): a hall of 300 phones
+        sending 25 games a second gets 4 boards a second each, not 25."""
         while True:
             await self.wake.wait()
             self.wake.clear()
-            rooms, self.pending = self.pending, set()
+            due = {room for room in self.pending if self._due(room)}
+            self.pending -= due
+            if self.pending:  # look again when the earliest of the others is due
+                since = min(self.sent_at.get(r, 0.0) for r in self.pending)
+                wait = max(0.01, since + BOARD_GAP - time.monotonic())
+                asyncio.get_running_loop().call_later(wait, self.wake.set)
             unsent = set()
-            for room in rooms:
+            for room in due:
                 try:
                     await self.send(room)
                 except StoreAwayError:

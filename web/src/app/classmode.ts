@@ -161,6 +161,9 @@ export class ClassMode {
   /** The last game's result: [text, "ok" | "bad" | ""]. */
   result: [string, string] = ["", ""];
   private received = 0;
+  /** The event stream, once the student has joined; whether the board is being polled. */
+  private events: EventSource | null = null;
+  private polling = false;
   private form: HTMLFormElement | null = null;
   readonly bar: HTMLElement;
   private readonly stateLine: HTMLElement;
@@ -194,36 +197,56 @@ export class ClassMode {
     root.append(this.bar);
   }
 
-  /** Follow the challenge (the stream), then ask for a name if none yet. */
+  /** Follow the challenge (the stream), else read the board once and ask for a name. */
   async start(): Promise<void> {
     this.player = this.storedPlayer();
     this.render();
-    this.follow();
     setInterval(() => this.render(), 1000);
     window.addEventListener("resize", () => this.render());
-    if (!this.player) this.askName();
-    else {
+    if (!this.player) {
+      void this.look();
+      this.askName();
+    } else {
+      this.follow();
       this.host.notify(t("page.class_playing_as", { name: this.player.name }));
       await this.refreshStanding();
     }
   }
 
-  /** The board from the server's event stream; by polling if the stream is refused. */
+  /** The board from the server's event stream, opened with the student's token (a hall
+   * behind one address streams within each token's bound, not the address's); by polling
+   * if the stream is refused. */
   private follow(): void {
     if (typeof EventSource === "undefined") return void this.poll();
-    const events = new EventSource(`${this.api}/stream`);
+    this.events?.close();
+    const token = this.player ? `?token=${encodeURIComponent(this.player.token)}` : "";
+    const events = new EventSource(`${this.api}/stream${token}`);
+    this.events = events;
     events.onmessage = (e) => this.take(JSON.parse(String(e.data)) as Board);
     events.onerror = () => {
-      if (events.readyState === EventSource.CLOSED) void this.poll();
+      if (events.readyState === EventSource.CLOSED && this.events === events) void this.poll();
     };
   }
 
+  /** The board once: what a page shows before its student joins. */
+  private async look(): Promise<boolean> {
+    try {
+      const auth: Record<string, string> = this.player
+        ? { authorization: `Bearer ${this.player.token}` }
+        : {};
+      const res = await fetch(`${this.api}/leaderboard`, { cache: "no-store", headers: auth });
+      if (res.ok) this.take((await res.json()) as Board);
+      return true;
+    } catch {
+      return false;
+    }
+  }
+
   private async poll(): Promise<void> {
+    if (this.polling) return;
+    this.polling = true;
     for (;;) {
-      try {
-        const res = await fetch(`${this.api}/leaderboard`, { cache: "no-store" });
-        if (res.ok) this.take((await res.json()) as Board);
-      } catch {
+      if (!(await this.look())) {
         this.result = [t("page.class_no_answer"), "bad"];
         this.render();
       }
@@ -478,6 +501,7 @@ export class ClassMode {
       this.form?.remove();
       this.form = null;
       this.host.notify(t("page.class_joined", { name: this.player.name }));
+      this.follow();
       await this.refreshStanding();
     } catch {
       status.textContent = t("page.class_try_again");

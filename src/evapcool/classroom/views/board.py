@@ -13,6 +13,7 @@ from starlette.responses import HTMLResponse, JSONResponse, Response, StreamingR
 from evapcool.classroom import pages
 from evapcool.classroom.boards import _board, _is_open, rounds_of
 from evapcool.classroom.errors import RefusedError
+from evapcool.classroom.halls import stream_refusal
 from evapcool.classroom.hub import Hub, Listener
 from evapcool.classroom.rooms import DEFAULT_ROOM
 from evapcool.classroom.views.common import (
@@ -24,6 +25,7 @@ from evapcool.classroom.views.common import (
     keyed,
     lecturer,
     room_of,
+    student_of,
 )
 from evapcool.classroom.words import raw
 
@@ -97,37 +99,21 @@ async def rounds(request: Request) -> Response:
     return JSONResponse({"rounds": await hub.db(rounds_of, hub.store, room["id"])})
 
 
-def _stream_refusal(hub: Hub, request: Request, with_key: bool, room: int) -> RefusedError | None:
-    """Why one more stream is refused: too many in all or from this address (429); the
-    key's holders are counted apart (per class), so students' streams never crowd the
-    projector out."""
-    limits = hub.limits
-    if with_key:
-        if sum(1 for s in hub.listeners if s.keyed and s.room == room) >= limits.keyed_listeners:
-            return RefusedError(
-                429, "key", "class.error.streams", retry_after=30, n=limits.keyed_listeners
-            )
-        return None
-    public = [s for s in hub.listeners if not s.keyed]
-    if sum(1 for s in public if s.address == address(request)) >= limits.address_listeners:
-        return RefusedError(
-            429, "client", "class.error.streams", retry_after=30, n=limits.address_listeners
-        )
-    if len(public) >= limits.listeners:
-        return RefusedError(429, "client", "class.error.slow_down", retry_after=30, n=30)
-    return None
-
-
 async def stream(request: Request) -> Response:
     """Server-Sent Events: the leaderboard at connect and after every change."""
     hub = guard(request)
     room = await room_of(request, hub)
     with_key = await keyed(request, hub, room)
-    refused = _stream_refusal(hub, request, with_key, room["id"])
+    # A student's stream (?token=) counts against the token, a hall's against its class.
+    token = None if with_key else await student_of(request, hub, room["id"])
+    refused = stream_refusal(
+        hub.limits, hub.listeners, address(request), room["id"], with_key, token
+    )
     if refused:
         raise refused
     listener = Listener(asyncio.Queue(maxsize=4), address(request), with_key, room["id"])
     listener.key = request.query_params.get("key") if with_key else None
+    listener.token = token
     hub.listeners.append(listener)
     first = json.dumps(await hub.board(room["id"], with_key))
     return StreamingResponse(

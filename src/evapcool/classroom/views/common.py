@@ -12,6 +12,7 @@ from starlette.requests import Request
 from evapcool.classroom.boards import showing_of
 from evapcool.classroom.debrief import Showing
 from evapcool.classroom.errors import RefusedError
+from evapcool.classroom.halls import KEY, LECTURER, STUDENT, client_address, student_token, take
 from evapcool.classroom.hub import Hub
 from evapcool.classroom.numbers import whole_number
 from evapcool.classroom.rooms import DEFAULT_ROOM
@@ -39,16 +40,29 @@ def bearer_token(request: Request) -> str:
 
 def address(request: Request) -> str:
     """The client's address (a class behind one NAT address shares it)."""
-    return request.client.host if request.client else "?"
+    return client_address(request)
 
 
 def guard(request: Request) -> Hub:
-    """The Hub, after the client's request rate is checked (429 over it)."""
+    """The Hub, after the request's rate is checked (429 over it): its student's token's,
+    projector key's or lecturer's when this process has checked it, else its address's."""
     hub = hub_of(request)
-    wait = hub.per_client.take(address(request))
-    if wait:
-        raise RefusedError(429, "client", "class.error.slow_down", retry_after=wait, n=wait)
+    take(hub.buckets, request)
     return hub
+
+
+async def student_of(request: Request, hub: Hub, room: int) -> str | None:
+    """The student's token a request gives (Bearer, or ?token= on the stream) if it is one
+    of this class's, else None; remembered as checked (its limits follow it from now on)."""
+    token = student_token(request)
+    if not 0 < len(token) <= 64:
+        return None
+    if hub.buckets.known.of(token) == (STUDENT, room):
+        return token
+    if await hub.db(hub.store.player_name, token, room) is None:
+        return None
+    hub.buckets.known.note(token, STUDENT, room)
+    return token
 
 
 async def room_of(request: Request, hub: Hub) -> dict[str, Any]:
@@ -63,6 +77,8 @@ async def room_of(request: Request, hub: Hub) -> dict[str, Any]:
         room = await room_by_given_code(hub, address(request), str(given))
     if room is None:
         raise RefusedError(404, "class", "class.error.no_class")
+    if hub.buckets.known.of(student_token(request)) is None:
+        await student_of(request, hub, room["id"])  # its next requests count against it
     return room
 
 
@@ -83,6 +99,7 @@ async def lecturer(request: Request, query: bool = False) -> tuple[Hub, dict[str
     token = _lecturer_token(request, query)
     if not matches_digest(token, await _lecturer_digest(hub, room)):
         raise RefusedError(403, "token", "class.error.lecturer")
+    hub.buckets.known.note(token, LECTURER, room["id"])
     if request.method not in ("GET", "HEAD") and not bearer_token(request):
         check_csrf(token, request.headers.get(CSRF_HEADER, ""))
     return hub, room
@@ -106,6 +123,7 @@ async def keyed(request: Request, hub: Hub, room: dict[str, Any]) -> bool:
         ok = secrets.compare_digest(given, room_projector_key(room["digest"], room["code"]))
     if not ok:
         raise RefusedError(403, "key", "class.error.key")
+    hub.buckets.known.note(given, KEY, room["id"])
     return True
 
 

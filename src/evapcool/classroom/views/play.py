@@ -14,6 +14,7 @@ from evapcool.classroom import pages
 from evapcool.classroom.boards import _is_open
 from evapcool.classroom.challenge import challenge_doc
 from evapcool.classroom.errors import RefusedError, read_json
+from evapcool.classroom.halls import STUDENT
 from evapcool.classroom.hub import Hub
 from evapcool.classroom.store import NAME_MAX, ClassFullError, NameTakenError
 from evapcool.classroom.verifier import check_submission, code_chars_ok
@@ -57,6 +58,7 @@ async def join(request: Request) -> Response:
     if isinstance(earlier, str) and 0 < len(earlier) <= 64:
         known = await hub.db(hub.store.player_name, earlier, room["id"])
         if known is not None:
+            hub.buckets.known.note(earlier, STUDENT, room["id"])
             return JSONResponse({"token": earlier, "name": known, "class": room["code"]})
     # Per class and address: a lecture hall joins its class at once, whatever other
     # classes behind the same address (a campus's NAT) do.
@@ -73,6 +75,7 @@ async def join(request: Request) -> Response:
     except ValueError:
         raise RefusedError(400, "name", "class.error.name", n=NAME_MAX) from None
     name = await hub.db(hub.store.player_name, token, room["id"])
+    hub.buckets.known.note(token, STUDENT, room["id"])  # from now on, its own limits
     return JSONResponse({"token": token, "name": name, "class": room["code"]})
 
 
@@ -154,7 +157,8 @@ async def submit(request: Request) -> Response:
     def verify() -> asyncio.Future[dict[str, Any]]:
         return loop.run_in_executor(hub.pool, check_submission, item, how, row)
 
-    got = await hub.queue.run(address(request), token, verify)
+    # Served in turn by class and address: a hall behind one address is one turn-taker.
+    got = await hub.queue.run(f"{room}@{address(request)}", token, verify)
     if "error" in got:
         await _refuse(hub, row, got["error"])
     result = (got["score"], got["frames"], got["edition"], got["code"], got["moves"])

@@ -1,0 +1,260 @@
+"""A department's term (issue 46's benchmark; `python scripts/bench_class.py --term`).
+
+`--classes` classes of `--students` phones on two server processes sharing one PostgreSQL
+(1 verifying worker each); the first `--shared` classes are each a lecture hall behind one
+address of its own (127.0.0.10 + c: every phone of the class shares it, as behind a NAT),
+the others' phones each on an address of their own (127.0.1.x, 127.0.2.x, ...). Every phone
+joins, follows its class's board on its token's stream, and sends one game at a moment
+spread over `--spread` seconds (10 x 300 over 120 s: 25 games a second); a projector per
+class on each process. Then every class closes within one minute (`--closing` seconds),
+and each phone reads its debrief as soon as its stream says its class closed. --kill: the
+first process killed -9 halfway through the closes (its phones go to the other).
+
+Prints p95 submit -> every projector, the debrief's delay after its class's close (p95 and
+the slowest), the honest calls refused (429, 5xx) and, with --kill, acknowledged games not
+on their boards. Traffic goes to 127.0.0.0/8 only. The targets: p95 < 1 s at 25 games/s,
+every debrief within 2 s of the close, 0 refusals, 0 acknowledged games lost.
+"""
+
+from __future__ import annotations
+
+import argparse
+import asyncio
+import json
+import random
+import time
+from collections import Counter
+from typing import Any
+
+import httpx
+from classhelp import SEED, SETTINGS, Server, variant
+
+from evapcool.game.replay import encode
+
+
+def games_of(c: int, students: int) -> list[str]:
+    """Class c's games: different winning games on a seed of its own (the copy check spans
+    the server, so two classes on one start could not both send the same game)."""
+    wins = (rec for k in range(1, 10 * students + 1) if (rec := variant(SEED + c, k)).won)
+    return [encode(rec) for _, rec in zip(range(students), wins, strict=False)]
+
+
+def address(c: int, i: int, shared: int) -> str:
+    """The address phone i of class c comes from."""
+    return f"127.0.0.{10 + c}" if c < shared else f"127.{1 + i // 250}.{c}.{1 + i % 250}"
+
+
+class Term:
+    """The run's state: the servers, the classes, what was measured."""
+
+    def __init__(self, servers: list[Server], classes: list[dict[str, Any]]) -> None:
+        self.servers = servers
+        self.classes = classes
+        self.dead: set[int] = set()
+        self.sent: dict[tuple[int, int], float] = {}
+        self.acked: dict[tuple[int, int], int] = {}
+        self.seen: list[list[dict[str, float]]] = [[{}, {}] for _ in classes]
+        self.closed_at: dict[int, float] = {}
+        self.debrief_after: list[float] = []
+        self.refused: Counter[str] = Counter()
+
+    def base(self, s: int, c: int) -> str:
+        while s % len(self.servers) in self.dead:
+            s += 1
+        return self.servers[s % len(self.servers)].base + self.classes[c]["base"]
+
+    def count(self, what: str, status: int) -> None:
+        if status == 429 or status >= 500:
+            self.refused[f"{what} {status}"] += 1
+
+
+async def open_classes(servers: list[Server], classes: int) -> tuple[list[dict], dict]:
+    """A lecturer, `classes` classes each with a challenge open on a seed of its own."""
+    admin = {"Authorization": f"Bearer {servers[0].token}"}
+    async with httpx.AsyncClient(base_url=servers[0].base, timeout=600) as client:
+        made = await client.post("/api/admin/lecturers", json={"name": "Term"}, headers=admin)
+        lecturer = {"Authorization": f"Bearer {made.json()['token']}"}
+        out = []
+        for c in range(classes):
+            room = (
+                await client.post("/api/classes", json={"name": f"Class {c}"}, headers=lecturer)
+            ).json()
+            base = f"/c/{room['code']}/"
+            rules = {"n_atoms": SETTINGS.n_atoms, "radius": SETTINGS.radius}
+            rules.update(escape=SETTINGS.escape, seed=SEED + c)
+            opened = await client.post(base + "api/challenge", json=rules, headers=lecturer)
+            out.append(
+                {"base": base, "challenge": opened.json()["id"], "projector": room["projector"]}
+            )
+    return out, lecturer
+
+
+async def phone(term: Term, c: int, i: int, game: str, at: float, t0: float, shared: int) -> None:
+    """One phone: join, stream with its token, its game at `at`, its debrief at the close."""
+    transport = httpx.AsyncHTTPTransport(local_address=address(c, i, shared))
+    s = i % 2
+    async with httpx.AsyncClient(timeout=600, transport=transport) as client:
+        joined = await client.post(term.base(s, c) + "api/join", json={"name": f"P{i}"})
+        term.count("join", joined.status_code)
+        token = joined.json()["token"]
+        head = {"Authorization": f"Bearer {token}"}
+        closed = asyncio.Event()
+        watching = asyncio.create_task(_watch(term, client, c, s, token, closed))
+        await asyncio.sleep(max(0.0, at - (time.perf_counter() - t0)))
+        body = {"challenge": term.classes[c]["challenge"], "code": game}
+        term.sent[c, i] = time.perf_counter()
+        while True:
+            try:
+                answer = await client.post(term.base(s, c) + "api/submit", json=body, headers=head)
+                break
+            except httpx.TransportError:
+                s += 1  # the page sends again; the proxy reaches the other process
+        term.acked[c, i] = answer.status_code
+        term.count("submit", answer.status_code)
+        await closed.wait()
+        while True:
+            try:
+                got = await client.get(term.base(s, c) + "api/debrief", headers=head)
+                break
+            except httpx.TransportError:
+                s += 1
+        term.count("debrief", got.status_code)
+        term.debrief_after.append(time.perf_counter() - term.closed_at[c])
+        watching.cancel()
+
+
+async def _watch(term: Term, client, c: int, s: int, token: str, closed: asyncio.Event) -> None:
+    """The phone's stream (its token's), reconnecting to the other process if one dies."""
+    while True:
+        try:
+            url = term.base(s, c) + f"api/stream?token={token}"
+            async with client.stream("GET", url) as events:
+                term.count("stream", events.status_code)
+                async for line in events.aiter_lines():
+                    if line.startswith("data: "):
+                        info = json.loads(line[6:])["info"]
+                        if info and not info["open"]:  # only the lecturer closes it
+                            closed.set()
+        except httpx.TransportError:
+            s += 1
+            await asyncio.sleep(0.5)
+
+
+async def projector(term: Term, c: int, s: int, shared: int) -> None:
+    """Class c's projector on process s: when each phone's name first shows."""
+    transport = httpx.AsyncHTTPTransport(local_address=address(c, 0, shared))
+    async with httpx.AsyncClient(timeout=600, transport=transport) as client:
+        while True:
+            try:
+                path = term.classes[c]["projector"].replace("/projector", "/api/stream")
+                async with client.stream("GET", term.servers[s].base + path) as events:
+                    async for line in events.aiter_lines():
+                        if line.startswith("data: "):
+                            now = time.perf_counter()
+                            for e in json.loads(line[6:])["entries"]:
+                                term.seen[c][s].setdefault(e["name"], now)
+            except httpx.TransportError:
+                await asyncio.sleep(0.5)
+                if s in term.dead:
+                    return
+
+
+async def closes(term: Term, lecturer: dict, closing: float, kill: bool) -> None:
+    """Every class closed within `closing` seconds; --kill: process 0 killed halfway."""
+    gap = closing / max(1, len(term.classes))
+    async with httpx.AsyncClient(timeout=600) as client:
+        for c in range(len(term.classes)):
+            if kill and c == len(term.classes) // 2:
+                term.servers[0].stop(kill=True)
+                term.dead.add(0)
+            term.closed_at[c] = time.perf_counter()  # the debrief's delay counts from here
+            answer = await client.post(term.base(1, c) + "api/challenge/close", headers=lecturer)
+            term.count("close", answer.status_code)
+            await asyncio.sleep(gap)
+
+
+async def run(
+    term: Term, lecturer: dict, games: list[list[str]], args: argparse.Namespace
+) -> float:
+    """The term's minute: phones, projectors, games, closes; the games' seconds."""
+    rng = random.Random(1)
+    projectors = [
+        asyncio.create_task(projector(term, c, s, args.shared))
+        for c in range(len(term.classes))
+        for s in range(len(term.servers))
+    ]
+    t0 = time.perf_counter()
+    phones = [
+        asyncio.create_task(phone(term, c, i, game, rng.uniform(0, args.spread), t0, args.shared))
+        for c, class_games in enumerate(games)
+        for i, game in enumerate(class_games)
+    ]
+    while len(term.acked) < len(phones):
+        await asyncio.sleep(0.5)
+    took = time.perf_counter() - t0
+    await asyncio.sleep(2.0)
+    await closes(term, lecturer, args.closing, args.kill)
+    await asyncio.gather(*phones)
+    for task in projectors:
+        task.cancel()
+    return took
+
+
+def report(term: Term, took: float) -> None:
+    from bench_class import quantile
+
+    lag, missing = [], 0
+    alive = [s for s in range(len(term.servers)) if s not in term.dead]
+    for (c, i), at in term.sent.items():
+        if term.acked.get((c, i)) != 200:
+            continue
+        times = [term.seen[c][s].get(f"P{i}") for s in alive]
+        if None in times:
+            missing += 1
+        else:
+            lag.append(max(t for t in times if t is not None) - at)
+    games = len(term.acked)
+    after = term.debrief_after
+    print(
+        f"{games} games in {took:.1f} s ({games / took:.1f}/s); submit->every projector p95 "
+        f"{quantile(lag, 0.95):.3f} s ({missing} not seen on every projector); debrief after "
+        f"the close p95 {quantile(after, 0.95):.2f} s, slowest {max(after):.2f} s; honest calls "
+        f"refused: {sum(term.refused.values())} {dict(term.refused)}",
+        flush=True,
+    )
+    if term.dead:
+        survivor = next(s for s in range(len(term.servers)) if s not in term.dead)
+        wanted = lost = 0
+        for c, room in enumerate(term.classes):
+            url = term.servers[survivor].base + room["base"] + "api/leaderboard"
+            names = {e["name"] for e in httpx.get(url, timeout=60).json()["entries"]}
+            for (cc, i), status in term.acked.items():
+                if cc == c and status == 200:
+                    wanted += 1
+                    lost += f"P{i}" not in names
+        print(f"  acknowledged 200: {wanted}; not on their boards after the kill: {lost}")
+
+
+def term_bench(args: argparse.Namespace) -> None:
+    """Two processes on a PostgreSQL of their own in a temporary folder (see the top)."""
+    import tempfile
+    from pathlib import Path
+
+    from bench_class import start_department
+    from pghelp import start_postgres
+
+    games = [games_of(c, args.students) for c in range(args.classes)]
+    with tempfile.TemporaryDirectory(prefix="evapcool-pg-") as folder:
+        pg = start_postgres(Path(folder))
+        try:
+            servers = start_department(pg.new_database(), 2, 1)
+            try:
+                classes, lecturer = asyncio.run(open_classes(servers, args.classes))
+                term = Term(servers, classes)
+                took = asyncio.run(run(term, lecturer, games, args))
+                report(term, took)
+            finally:
+                for server in servers:
+                    server.stop()
+        finally:
+            pg.stop()
