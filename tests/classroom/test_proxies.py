@@ -249,7 +249,7 @@ def test_the_projector_and_the_links_show_the_public_address(proxied: Proxied) -
     # The projector says the public address short (no scheme) over the class's join code
     # (issue 45), and no "phones cannot reach" warning.
     short = proxied.public.split("://", 1)[1].rstrip("/")
-    assert f" {short}<" in page and f">{room['code']}<" in page
+    assert f'<span class="address">{short}</span><' in page and f">{room['code']}<" in page
     assert 'id="loopback"' not in page
 
 
