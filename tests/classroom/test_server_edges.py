@@ -158,6 +158,8 @@ def test_loopback_addresses_are_the_ones_phones_cannot_reach(url: str, unreachab
     assert loopback(url) is unreachable
 
 
+# One store: the keep-alive is uvicorn's, whichever store answers.
+@pytest.mark.parametrize("store_at", ["sqlite"], indirect=True)
 def test_an_idle_connection_outlives_uvicorns_default_keep_alive(server: Server) -> None:
     """A connection idle past uvicorn's default 5 s still carries the next request: the server
     does not close it under a client that may be sending (class_cli.KEEP_ALIVE_SECONDS)."""
