@@ -29,7 +29,7 @@ import {
   type Refusal,
 } from "./common";
 import { LecturerDebrief } from "./debrief/lecturer";
-import { showRounds } from "./rounds";
+import { showRounds } from "./pastrounds";
 import { studentRows, type StudentRow } from "./students";
 
 /** The lecturer's list as /api/entries sends it. */
