@@ -11,28 +11,29 @@ static inline void pair_key(const Core *core, int32_t i, int32_t j, int64_t *lo,
   *hi = a < b ? b : a;
 }
 
+/* The heads of the three cells from c, step apart, appended to heads[0..n) without a branch
+ * (about two cells in three are empty, at random); the new count. */
+static inline int32_t gather3(const int32_t *c, int32_t step, int32_t *heads, int32_t n) {
+  for (int32_t k = 0; k < 3; k++) {
+    int32_t h = c[k * step];
+    heads[n] = h;
+    n += h >= 0;
+  }
+  return n;
+}
+
 /*
- * Pairs of trapped row i with the rows of cells [x0, x1] x [y0, y1] (seed Eqs. 15-19). An
- * earlier pair replaces i's real event; on a tie the solo event stays and pairs go in
- * (lower, higher) World index order, as in the reference engine.
+ * Pairs of trapped row i with the rows of the cells whose heads are given (seed Eqs.
+ * 15-19). An earlier pair replaces i's real event; on a tie the solo event stays and pairs
+ * go in (lower, higher) World index order, as in the reference engine.
  */
-void scan(Core *core, int32_t i, int32_t x0, int32_t x1, int32_t y0, int32_t y1) {
+static void scan(Core *core, int32_t i, const int32_t *heads, int32_t n_heads) {
   const State *s = &core->state[i];
   const double ri = s->radius, g = core->run.gravity;
-  const int32_t nx = core->run.nx;
   Plan *p = &core->plan[i];
   double bt = core->queued[i].real_t;
   const int was_pair = p->real_rank == RANK_PAIR;
   int32_t best = -1; /* the partner found here, -1 while the real event stands */
-  /* The heads of the cells that hold atoms (a scan covers at most 3 x 3 cells), gathered
-   * without a branch: about two cells in three are empty, at random. */
-  int32_t heads[9], n_heads = 0;
-  for (int32_t cy = y0; cy <= y1; cy++)
-    for (int32_t cx = x0; cx <= x1; cx++) {
-      int32_t h = core->cells[cy * nx + cx];
-      heads[n_heads] = h;
-      n_heads += h >= 0;
-    }
   for (int32_t k = 0; k < n_heads; k++)
     for (int32_t j = heads[k]; j >= 0; j = core->state[j].next) {
       if (j == i) continue;
@@ -62,6 +63,21 @@ void scan(Core *core, int32_t i, int32_t x0, int32_t x1, int32_t y0, int32_t y1)
   }
 }
 
+/* Pairs of row i with the three cells from cell index c, step apart (a row of cells: 1, a
+ * column: the stride): after a crossing, the line of cells that came within reach. */
+void scan_line(Core *core, int32_t i, int32_t c, int32_t step) {
+  int32_t heads[3];
+  scan(core, i, heads, gather3(&core->cells[c], step, heads, 0));
+}
+
+/* Pairs of row i with the 3 x 3 cells around its own (the border's cells are empty). */
+static void scan_around(Core *core, int32_t i) {
+  const int32_t w = core->run.stride;
+  const int32_t *c = &core->cells[cell_index(core, core->plan[i].cell_x - 1, core->plan[i].cell_y - 1)];
+  int32_t heads[9];
+  scan(core, i, heads, gather3(c + 2 * w, 1, heads, gather3(c + w, 1, heads, gather3(c, 1, heads, 0))));
+}
+
 /* Row i's real event: wall (SPEC 2.1) or pair if trapped, exit if escaped. */
 void predict_real(Core *core, int32_t i) {
   const State *s = &core->state[i];
@@ -82,11 +98,7 @@ void predict_real(Core *core, int32_t i) {
   p->real_a = p->atom;
   p->real_b = 0;
   p->real_kind = kind;
-  if (st == TRAPPED && !core->run.won) {
-    int32_t cx = p->cell_x, cy = p->cell_y;
-    scan(core, i, cx > 0 ? cx - 1 : 0, cx < core->run.nx - 1 ? cx + 1 : core->run.nx - 1, cy > 0 ? cy - 1 : 0,
-         cy < core->run.ny - 1 ? cy + 1 : core->run.ny - 1);
-  }
+  if (st == TRAPPED && !core->run.won) scan_around(core, i);
 }
 
 /* Where an atom filed in cell c (from u0) is refiled: its upper and lower edge, a skin out. */

@@ -82,6 +82,7 @@ typedef struct {
   double skin;                   /* an atom is refiled this far past its cell's edge */
   double x_left, x_right, y_bottom; /* window edges (exit bounds before the radius) */
   int32_t nx, ny, n_cells, n_atoms;
+  int32_t stride; /* cells from one row of the grid to the next: nx and an empty border cell each side */
   int32_t knife, record, win_rule;
   int32_t maintain_every; /* events between two renumberings */
   /* shared with the wrapper */
@@ -117,7 +118,9 @@ struct Core {
   HeapEntry *heap;
   Filing *filing;     /* by row, reset whenever the calendar is rebuilt (not renumbered) */
   int32_t *bins;      /* first row of each list: n_bins ring lists, overflow, no event */
-  int32_t *cells;     /* first row of each cell (row-major); state[].next goes on */
+  int32_t *cells;     /* first row of each cell, at cy * stride + cx; state[].next goes on. A
+                       * border of cells that stay empty rings the grid, so a scan of the
+                       * cells around any cell needs no clamping to the grid's edges. */
   int32_t *row_of;    /* row of every World atom */
   double *tc_table;   /* critical temperature for every atom count, seed Eq. (46) */
   LogLine *event_log;
@@ -155,6 +158,9 @@ int32_t calendar_top(Core *core);
 void calendar_rebuild(Core *core, double now);
 
 /* grid.c */
+static inline int32_t cell_index(const Core *core, int32_t cx, int32_t cy) {
+  return cy * core->run.stride + cx;
+}
 int32_t grid_shape(Core *core);
 int32_t grid_errors(Core *core);
 int32_t cell_of(Core *core, double u, double u0, int32_t n);
@@ -162,7 +168,7 @@ void cell_link(Core *core, int32_t i, int32_t cx, int32_t cy);
 void cell_unlink(Core *core, int32_t i);
 
 /* predict.c */
-void scan(Core *core, int32_t i, int32_t x0, int32_t x1, int32_t y0, int32_t y1);
+void scan_line(Core *core, int32_t i, int32_t c, int32_t step);
 void predict_real(Core *core, int32_t i);
 void predict_crossing(Core *core, int32_t i);
 void set_key(Core *core, int32_t i);
