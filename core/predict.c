@@ -22,10 +22,28 @@ static inline int32_t gather3(const int32_t *c, int32_t step, int32_t *heads, in
   return n;
 }
 
+/* Row i's pair with row j at time t against the best so far (bt, partner `best`, -1 while
+ * the real event stands): the new best partner. A tie is decided by the keys. */
+static inline int32_t take_pair(const Core *core, int32_t i, int32_t j, double t, int was_pair,
+                                int32_t best, double *bt) {
+  if (t == *bt) { /* rare: a tie, decided by the keys */
+    const Plan *p = &core->plan[i];
+    int64_t lo, hi, ba = p->real_a, bb = p->real_b;
+    pair_key(core, i, j, &lo, &hi);
+    if (best >= 0) pair_key(core, i, best, &ba, &bb);
+    if ((best >= 0 || was_pair) && (lo < ba || (lo == ba && hi < bb))) best = j;
+  }
+  /* an earlier pair, taken without a branch (which way it goes is a coin toss) */
+  const int earlier = t < *bt;
+  *bt = earlier ? t : *bt;
+  return earlier ? j : best;
+}
+
 /*
  * Pairs of trapped row i with the rows of the cells whose heads are given (seed Eqs.
- * 15-19). An earlier pair replaces i's real event; on a tie the solo event stays and pairs
- * go in (lower, higher) World index order, as in the reference engine.
+ * 15-19), two neighbours at a time. An earlier pair replaces i's real event; on a tie the
+ * solo event stays and pairs go in (lower, higher) World index order, as in the reference
+ * engine, so the order the pairs are tested in changes nothing.
  */
 static void scan(Core *core, int32_t i, const int32_t *heads, int32_t n_heads) {
   const State *s = &core->state[i];
@@ -34,22 +52,29 @@ static void scan(Core *core, int32_t i, const int32_t *heads, int32_t n_heads) {
   double bt = core->queued[i].real_t;
   const int was_pair = p->real_rank == RANK_PAIR;
   int32_t best = -1; /* the partner found here, -1 while the real event stands */
+  int32_t held = -1; /* a neighbour waiting for a second, to test the two at once */
+  double slack = __builtin_fabs(bt) * 1e-12; /* follows bt */
   for (int32_t k = 0; k < n_heads; k++)
     for (int32_t j = heads[k]; j >= 0; j = core->state[j].next) {
       if (j == i) continue;
-      const State *q = &core->state[j];
-      double t = pair_contact_time(s, q, ri + q->radius, g, bt);
-      if (t == bt) { /* rare: a tie, decided by the keys */
-        int64_t lo, hi, ba = p->real_a, bb = p->real_b;
-        pair_key(core, i, j, &lo, &hi);
-        if (best >= 0) pair_key(core, i, best, &ba, &bb);
-        if ((best >= 0 || was_pair) && (lo < ba || (lo == ba && hi < bb))) best = j;
+      if (held < 0) {
+        held = j;
+        continue;
       }
-      /* an earlier pair, taken without a branch (which way it goes is a coin toss) */
-      const int earlier = t < bt;
-      best = earlier ? j : best;
-      bt = earlier ? t : bt;
+      int32_t rows[2] = {held, j};
+      double ts[2];
+      held = -1;
+      if (!pair_contact_times(s, &core->state[rows[0]], &core->state[rows[1]], g, bt, slack, ts)) {
+        if (bt < INF) continue; /* most pairs: both miss, and an inf neither ties nor wins */
+        ts[0] = ts[1] = INF;
+      }
+      for (int32_t m = 0; m < 2; m++) best = take_pair(core, i, rows[m], ts[m], was_pair, best, &bt);
+      slack = __builtin_fabs(bt) * 1e-12;
     }
+  if (held >= 0) {
+    const State *q = &core->state[held];
+    best = take_pair(core, i, held, pair_contact_time(s, q, ri + q->radius, g, bt), was_pair, best, &bt);
+  }
   if (best >= 0) {
     int64_t lo, hi;
     pair_key(core, i, best, &lo, &hi);
