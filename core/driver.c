@@ -250,7 +250,9 @@ int32_t core_start(Core *core, double energy_sum, double trap_height) {
   core->run.maintain_every = RENUMBER_EVENTS_PER_ATOM * core->run.n_atoms;
   int32_t nc = grid_shape(core);
   int32_t *cells = core_take(core, sizeof(int32_t) * nc);
+  double *edges = core_take(core, sizeof(double) * 2 * (core->run.nx + core->run.ny));
   if (core->out_of_memory) return 0;
+  grid_edges(core, edges);
   for (int32_t c = 0; c < nc; c++) cells[c] = -1;
   core->cells = cells + core->run.stride + 1; /* cell (0, 0), inside the border */
   setup(core);

@@ -99,6 +99,22 @@ int32_t grid_shape(Core *core) {
   return core->run.stride * (core->run.ny + 2);
 }
 
+/* The refiling edges of every column, then of every row (2 (nx + ny) doubles), computed
+ * once: each edge a skin beyond its cell's (edge_x, edge_y in tables.h). */
+void grid_edges(Core *core, double *edges) {
+  const double cs = core->run.cell, skin = core->run.skin;
+  core->edge_x = edges;
+  core->edge_y = edges + 2 * core->run.nx;
+  for (int32_t c = 0; c < core->run.nx; c++) {
+    core->edge_x[2 * c] = core->run.grid_x0 + c * cs - skin;
+    core->edge_x[2 * c + 1] = core->run.grid_x0 + (c + 1) * cs + skin;
+  }
+  for (int32_t c = 0; c < core->run.ny; c++) {
+    core->edge_y[2 * c] = core->run.grid_y0 + c * cs - skin;
+    core->edge_y[2 * c + 1] = core->run.grid_y0 + (c + 1) * cs + skin;
+  }
+}
+
 /* 1 if u lies beyond cell c's edges (of n from u0) widened by `room` (edge cells: one edge). */
 static int beyond(double u, double u0, int32_t c, int32_t n, double cs, double room) {
   return (c > 0 && u < u0 + c * cs - room) || (c < n - 1 && u > u0 + (c + 1) * cs + room);

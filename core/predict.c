@@ -126,21 +126,13 @@ void predict_real(Core *core, int32_t i) {
   if (st == TRAPPED && !core->run.won) scan_around(core, i);
 }
 
-/* Where an atom filed in cell c (from u0) is refiled: its upper and lower edge, a skin out. */
-static inline double edge_above(const Core *core, double u0, int32_t c) {
-  return u0 + (c + 1) * core->run.cell + core->run.skin;
-}
-static inline double edge_below(const Core *core, double u0, int32_t c) {
-  return u0 + c * core->run.cell - core->run.skin;
-}
-
 /* Time of the next y crossing of row i's arc and the row it enters (inf if none). */
 static double crossing_y(Core *core, const State *s, int32_t cy, double taken, int32_t *to) {
   const double g = core->run.gravity;
   double y = s->y, vy = s->vy, t0 = s->t;
   double tc = INF;
   if (vy > 0.0 && cy < core->run.ny - 1) {
-    double d = edge_above(core, core->run.grid_y0, cy) - y;
+    double d = core->edge_y[2 * cy + 1] - y;
     double disc = vy * vy - 2.0 * g * d;
     if (disc > 0.0) {
       double sq = __builtin_sqrt(disc);
@@ -153,7 +145,7 @@ static double crossing_y(Core *core, const State *s, int32_t cy, double taken, i
     }
   }
   if (tc == INF && cy > 0) {
-    double h = y - edge_below(core, core->run.grid_y0, cy);
+    double h = y - core->edge_y[2 * cy];
     double disc = vy * vy + 2.0 * g * h;
     if (disc < 0.0) disc = 0.0;
     double sq = __builtin_sqrt(disc);
@@ -182,8 +174,8 @@ static int y_edge_within(const Core *core, const State *s, int32_t cy, double by
   double dt = (by - s->t) * (1.0 + 1e-9) + (__builtin_fabs(by) + __builtin_fabs(s->t)) * 1e-12;
   if (!(dt > 0.0 && dt < INF)) return 1; /* (inf: 0 * inf would read as no reach) */
   double rise = (vy > 0.0 ? vy : 0.0) * dt, fall = (vy < 0.0 ? -vy : 0.0) * dt + 0.5 * g * dt * dt;
-  double top = cy < core->run.ny - 1 ? edge_above(core, core->run.grid_y0, cy) - s->y : INF;
-  double bottom = cy > 0 ? s->y - edge_below(core, core->run.grid_y0, cy) : INF;
+  double top = cy < core->run.ny - 1 ? core->edge_y[2 * cy + 1] - s->y : INF;
+  double bottom = cy > 0 ? s->y - core->edge_y[2 * cy] : INF;
   return rise * (1.0 + 1e-9) + 1e-9 * cs >= top || fall * (1.0 + 1e-9) + 1e-9 * cs >= bottom;
 }
 
@@ -202,11 +194,11 @@ void predict_crossing(Core *core, int32_t i) {
     double x = s->x, vx = s->vx, t0 = s->t;
     int32_t cx = p->cell_x, cy = p->cell_y;
     if (vx > 0.0 && cx < core->run.nx - 1) {
-      bt = t0 + (edge_above(core, core->run.grid_x0, cx) - x) / vx;
+      bt = t0 + (core->edge_x[2 * cx + 1] - x) / vx;
       bk = KIND_CROSS_X;
       barg = cx + 1;
     } else if (vx < 0.0 && cx > 0) {
-      bt = t0 + (edge_below(core, core->run.grid_x0, cx) - x) / vx;
+      bt = t0 + (core->edge_x[2 * cx] - x) / vx;
       bk = KIND_CROSS_X;
       barg = cx - 1;
     }

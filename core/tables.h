@@ -122,6 +122,8 @@ struct Core {
                        * border of cells that stay empty rings the grid, so a scan of the
                        * cells around any cell needs no clamping to the grid's edges. */
   int32_t *row_of;    /* row of every World atom */
+  double *edge_x;     /* where an atom filed in column c is refiled: edge_x[2c] on the left, */
+  double *edge_y;     /* edge_x[2c + 1] on the right, a skin out (rows: edge_y, below, above) */
   double *tc_table;   /* critical temperature for every atom count, seed Eq. (46) */
   LogLine *event_log;
   /* spare tables for renumbering (swapped with the live ones) and its order */
@@ -175,6 +177,7 @@ static inline int32_t cell_index(const Core *core, int32_t cx, int32_t cy) {
   return cy * core->run.stride + cx;
 }
 int32_t grid_shape(Core *core);
+void grid_edges(Core *core, double *edges);
 int32_t grid_errors(Core *core);
 int32_t cell_of(Core *core, double u, double u0, int32_t n);
 void cell_link(Core *core, int32_t i, int32_t cx, int32_t cy);
