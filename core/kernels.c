@@ -63,6 +63,7 @@ double pair_contact_time(const State *p, const State *q, double sigma, double g,
   return tr + c / (__builtin_sqrt(disc) - b);
 }
 
+#ifdef CORE_LANES
 /* The least of a and b lane by lane, as `a < b ? a : b` (minpd is defined so). */
 static inline v2d least2(v2d a, v2d b) {
 #ifdef __SSE2__
@@ -108,6 +109,7 @@ int32_t pair_contact_times(const State *p, const State *q0, const State *q1, dou
     t[k] = !pass[k] ? INF : apart[k] ? tr[k] + c[k] / (__builtin_sqrt(disc[k]) - b[k]) : tr[k];
   return lanes;
 }
+#endif
 
 /*
  * Absolute time when a trapped centre meets the wall y = a x^2 (SPEC 2.1): the one

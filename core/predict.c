@@ -53,10 +53,16 @@ static void scan(Core *core, int32_t i, const int32_t *heads, int32_t n_heads) {
   const int was_pair = p->real_rank == RANK_PAIR;
   int32_t best = -1; /* the partner found here, -1 while the real event stands */
   int32_t held = -1; /* a neighbour waiting for a second, to test the two at once */
+#ifdef CORE_LANES
   double slack = __builtin_fabs(bt) * 1e-12; /* follows bt */
+#endif
   for (int32_t k = 0; k < n_heads; k++)
     for (int32_t j = heads[k]; j >= 0; j = core->state[j].next) {
       if (j == i) continue;
+#ifndef CORE_LANES
+      const State *q = &core->state[j];
+      best = take_pair(core, i, j, pair_contact_time(s, q, ri + q->radius, g, bt), was_pair, best, &bt);
+#else
       if (held < 0) {
         held = j;
         continue;
@@ -70,6 +76,7 @@ static void scan(Core *core, int32_t i, const int32_t *heads, int32_t n_heads) {
       }
       for (int32_t m = 0; m < 2; m++) best = take_pair(core, i, rows[m], ts[m], was_pair, best, &bt);
       slack = __builtin_fabs(bt) * 1e-12;
+#endif
     }
   if (held >= 0) {
     const State *q = &core->state[held];

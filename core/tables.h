@@ -140,8 +140,12 @@ struct Core {
   int32_t n_blocks;
 };
 
-/* Two lanes of doubles (SSE2 natively; scalar code where there is no SIMD): every lane
- * rounds as the scalar operation does (IEEE; -ffp-contract=off leaves no fused multiply-add). */
+/* Natively (SSE2, NEON) the pair scan tests two neighbours at once; the WebAssembly core,
+ * built without SIMD, where two lanes would be scalar code anyway, tests one at a time. */
+#if defined(__SSE2__) || defined(__ARM_NEON)
+#define CORE_LANES 1
+/* Two lanes of doubles: every lane rounds as the scalar operation does (IEEE;
+ * -ffp-contract=off leaves no fused multiply-add). */
 typedef double v2d __attribute__((vector_size(16)));
 typedef int64_t v2m __attribute__((vector_size(16)));
 static inline v2d lane_pick(v2m m, v2d a, v2d b) { return (v2d)((m & (v2m)a) | (~m & (v2m)b)); }
@@ -150,6 +154,7 @@ static inline v2d lane_pick(v2m m, v2d a, v2d b) { return (v2d)((m & (v2m)a) | (
 typedef struct {
   v2d t, x, y, vx, vy, r, half_g, g;
 } PairSide;
+#endif
 
 /* kernels.c */
 double flight_x(double x, double vx, double dt);
@@ -157,8 +162,10 @@ double flight_y(double y, double vy, double half_g, double dt);
 double flight_vy(double vy, double g, double dt);
 double atom_energy_of(double m, double y, double vx, double vy, double g);
 double pair_contact_time(const State *p, const State *q, double sigma, double g, double beat);
+#ifdef CORE_LANES
 int32_t pair_contact_times(const State *p, const State *q0, const State *q1, double g, double beat,
                            double slack, double t[2]);
+#endif
 double wall_contact_time(const State *s, double a, double g);
 double exit_time(const State *s, double x_left, double x_right, double y_bottom, double g);
 void collide_pair(double rx, double ry, State *p, double m1, State *q, double m2);
