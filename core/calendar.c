@@ -57,6 +57,14 @@ static inline void put(Core *core, int32_t p, HeapEntry e) {
   core->filing[e.row].heap_pos = p;
 }
 
+/* The place of the lesser key of places c and d (c on a tie). */
+static inline int32_t lesser(Core *core, int32_t c, int32_t d) {
+  double td = core->heap[d].t, tc = core->heap[c].t;
+  if (td == tc) /* rare: the rest of the keys decide */
+    return comes_before(core, td, core->heap[d].row, tc, core->heap[c].row) ? d : c;
+  return td < tc ? d : c; /* without a branch */
+}
+
 /* Move the heap entry at place p up or down to its place. (Once it moved up, it comes
  * before every entry below its new place: the way down would move nothing.) */
 static void sift(Core *core, int32_t p) {
@@ -69,14 +77,13 @@ static void sift(Core *core, int32_t p) {
   for (;;) {
     int32_t c = 4 * p + 1;
     if (c >= n) break;
-    int32_t end = c + 4 <= n ? c + 4 : n;
-    for (int32_t d = c + 1; d < end; d++) {
-      double td = core->heap[d].t, tc = core->heap[c].t;
-      if (td == tc) { /* rare: the rest of the keys decide */
-        if (comes_before(core, td, core->heap[d].row, tc, core->heap[c].row)) c = d;
-      } else {
-        c = td < tc ? d : c; /* the least of the children, without a branch */
-      }
+    if (c + 4 <= n) { /* four children, as at most places */
+      int32_t first = c;
+      c = lesser(core, c, first + 1);
+      c = lesser(core, c, first + 2);
+      c = lesser(core, c, first + 3);
+    } else {
+      for (int32_t d = c + 1; d < n; d++) c = lesser(core, c, d);
     }
     if (!comes_before(core, core->heap[c].t, core->heap[c].row, e.t, e.row)) break;
     core->heap[p] = core->heap[c];
