@@ -97,8 +97,14 @@ int32_t look_before(Core *core, int32_t i, int32_t kind, int32_t *after) {
   *after = -1;
   if (n > 1) {
     int32_t c = 1;
-    for (int32_t d = 2; d < 5 && d < n; d++)
-      if (core->heap[d].t < core->heap[c].t) c = d;
+    if (n >= 5) { /* the root's four children, as mostly */
+      const HeapEntry *h = core->heap;
+      int32_t a = h[2].t < h[1].t ? 2 : 1, b = h[4].t < h[3].t ? 4 : 3;
+      c = h[b].t < h[a].t ? b : a;
+    } else {
+      for (int32_t d = 2; d < n; d++)
+        if (core->heap[d].t < core->heap[c].t) c = d;
+    }
     next = core->heap[c].row;
     ask_row(core, next);
     if (core->run.n_atoms >= DEEP_MIN_ATOMS && n > 2) {
