@@ -113,6 +113,10 @@ void grid_edges(Core *core, double *edges) {
     core->edge_y[2 * c] = core->run.grid_y0 + c * cs - skin;
     core->edge_y[2 * c + 1] = core->run.grid_y0 + (c + 1) * cs + skin;
   }
+  /* The edge cells reach to infinity: their outer edges, read only by y_edge_within's
+   * bound (the crossings test for an edge cell first), are infinitely far. */
+  core->edge_y[0] = -INF;
+  core->edge_y[2 * core->run.ny - 1] = INF;
 }
 
 /* 1 if u lies beyond cell c's edges (of n from u0) widened by `room` (edge cells: one edge). */

@@ -181,9 +181,9 @@ static int y_edge_within(const Core *core, const State *s, int32_t cy, double by
   double dt = (by - s->t) * (1.0 + 1e-9) + (__builtin_fabs(by) + __builtin_fabs(s->t)) * 1e-12;
   if (!(dt > 0.0 && dt < INF)) return 1; /* (inf: 0 * inf would read as no reach) */
   double rise = (vy > 0.0 ? vy : 0.0) * dt, fall = (vy < 0.0 ? -vy : 0.0) * dt + 0.5 * g * dt * dt;
-  double top = cy < core->run.ny - 1 ? core->edge_y[2 * cy + 1] - s->y : INF;
-  double bottom = cy > 0 ? s->y - core->edge_y[2 * cy] : INF;
-  return rise * (1.0 + 1e-9) + 1e-9 * cs >= top || fall * (1.0 + 1e-9) + 1e-9 * cs >= bottom;
+  /* (the edge rows' outer edges are at infinity in the table: no reach there) */
+  double top = core->edge_y[2 * cy + 1] - s->y, bottom = s->y - core->edge_y[2 * cy];
+  return (rise * (1.0 + 1e-9) + 1e-9 * cs >= top) | (fall * (1.0 + 1e-9) + 1e-9 * cs >= bottom);
 }
 
 /*
