@@ -31,9 +31,13 @@ static int coming_cells(const Core *core, int32_t j, int32_t *first, int32_t *ro
   if (p->rank == RANK_CROSS) {
     if (p->cross_axis == KIND_CROSS_X)
       x0 = 2 * p->cross_to - p->cell_x, *cols = 1;
-    else
+    else if (p->cross_axis == KIND_CROSS_Y)
       y0 = 2 * p->cross_to - p->cell_y, *rows = 1;
+    else
+      return 0; /* (no crossing at all: nothing to read) */
   }
+  /* A crossing enters a cell of the grid from a neighbour, so the line beyond lies in the
+   * grid or its border: every index here is inside the cells' table. */
   *first = cell_index(core, x0, y0);
   return 1;
 }
