@@ -119,7 +119,8 @@ static int32_t cell_order(Core *core) {
   int32_t k = 0;
   for (int32_t cy = 0; cy < core->run.ny; cy++)
     for (int32_t cx = 0; cx < core->run.nx; cx++)
-      for (int32_t j = core->cells[cell_index(core, cx, cy)]; j >= 0; j = core->state[j].next) core->order[k++] = j;
+      for (int32_t j = core->cells[cell_index(core, cx, cy)]; j >= 0; j = core->state[j].next)
+        core->order[k++] = j;
   int32_t linked = k;
   for (int32_t r = 0; r < n; r++) core->row_of[core->plan[r].atom] = -1;
   for (int32_t q = 0; q < linked; q++) core->row_of[core->plan[core->order[q]].atom] = q;

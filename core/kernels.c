@@ -101,7 +101,8 @@ int32_t pair_contact_times(const State *p, const State *q0, const State *q1, dou
   v2d disc = b * b - vv * c;
   v2d room = ((v2d){beat, beat} - tr) * (1.0 + 1e-9) + slack + 1e-290;
   v2m apart = c > zero;
-  v2d meets = lane_pick(apart, disc, one), in_time = lane_pick(apart, (1e-161 - 2.0 * b) * room - c, one);
+  v2d meets = lane_pick(apart, disc, one);
+  v2d in_time = lane_pick(apart, (1e-161 - 2.0 * b) * room - c, one);
   v2m pass = least2(least2(-b, meets), in_time) > zero;
   int32_t lanes = (int32_t)(pass[0] & 1) | (int32_t)(pass[1] & 2);
   if (lanes == 0) return 0; /* as most pairs do: t[] not written */

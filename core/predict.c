@@ -61,7 +61,8 @@ static void scan(Core *core, int32_t i, const int32_t *heads, int32_t n_heads) {
       if (j == i) continue;
 #ifndef CORE_LANES
       const State *q = &core->state[j];
-      best = take_pair(core, i, j, pair_contact_time(s, q, ri + q->radius, g, bt), was_pair, best, &bt);
+      double t = pair_contact_time(s, q, ri + q->radius, g, bt);
+      best = take_pair(core, i, j, t, was_pair, best, &bt);
 #else
       if (held < 0) {
         held = j;
@@ -80,7 +81,8 @@ static void scan(Core *core, int32_t i, const int32_t *heads, int32_t n_heads) {
     }
   if (held >= 0) {
     const State *q = &core->state[held];
-    best = take_pair(core, i, held, pair_contact_time(s, q, ri + q->radius, g, bt), was_pair, best, &bt);
+    double t = pair_contact_time(s, q, ri + q->radius, g, bt);
+    best = take_pair(core, i, held, t, was_pair, best, &bt);
   }
   if (best >= 0) {
     int64_t lo, hi;

@@ -82,7 +82,7 @@ typedef struct {
   double skin;                   /* an atom is refiled this far past its cell's edge */
   double x_left, x_right, y_bottom; /* window edges (exit bounds before the radius) */
   int32_t nx, ny, n_cells, n_atoms;
-  int32_t stride; /* cells from one row of the grid to the next: nx and an empty border cell each side */
+  int32_t stride; /* cells from one grid row to the next: nx and a border cell each side */
   int32_t knife, record, win_rule;
   int32_t maintain_every; /* events between two renumberings */
   /* shared with the wrapper */
