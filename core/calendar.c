@@ -38,10 +38,9 @@ static inline int comes_before(Core *core, double t, int32_t x, double u, int32_
   return p->tie_b < q->tie_b;
 }
 
-/* Move the heap entry at place p up or down to its place (children 4p+1..4p+4). */
-static void sift(Core *core, int32_t p) {
-  HeapEntry e = core->heap[p];
-  int32_t n = core->run.heap_size;
+/* Entry e's place at or above place p (whose entry is e, or free): the entries above that
+ * come after it moved down. */
+static inline int32_t sift_up(Core *core, int32_t p, HeapEntry e) {
   while (p > 0) {
     int32_t q = (p - 1) >> 2;
     if (!comes_before(core, e.t, e.row, core->heap[q].t, core->heap[q].row)) break;
@@ -49,25 +48,55 @@ static void sift(Core *core, int32_t p) {
     core->filing[core->heap[p].row].heap_pos = p;
     p = q;
   }
+  return p;
+}
+
+/* Entry e at place p (children 4p+1..4p+4). */
+static inline void put(Core *core, int32_t p, HeapEntry e) {
+  core->heap[p] = e;
+  core->filing[e.row].heap_pos = p;
+}
+
+/* The place of the lesser key of places c and d (c on a tie). */
+static inline int32_t lesser(Core *core, int32_t c, int32_t d) {
+  double td = core->heap[d].t, tc = core->heap[c].t;
+  if (td == tc) /* rare: the rest of the keys decide */
+    return comes_before(core, td, core->heap[d].row, tc, core->heap[c].row) ? d : c;
+  return td < tc ? d : c; /* without a branch */
+}
+
+/* Move the heap entry at place p up or down to its place. (Once it moved up, it comes
+ * before every entry below its new place: the way down would move nothing.) */
+static void sift(Core *core, int32_t p) {
+  HeapEntry e = core->heap[p];
+  int32_t n = core->run.heap_size, up = sift_up(core, p, e);
+  if (up != p) {
+    put(core, up, e);
+    return;
+  }
   for (;;) {
     int32_t c = 4 * p + 1;
     if (c >= n) break;
-    int32_t end = c + 4 <= n ? c + 4 : n;
-    for (int32_t d = c + 1; d < end; d++) {
-      double td = core->heap[d].t, tc = core->heap[c].t;
-      if (td == tc) { /* rare: the rest of the keys decide */
-        if (comes_before(core, td, core->heap[d].row, tc, core->heap[c].row)) c = d;
-      } else {
-        c = td < tc ? d : c; /* the least of the children, without a branch */
-      }
+    if (c + 4 <= n) { /* four children, as at most places */
+      int32_t first = c;
+      c = lesser(core, c, first + 1);
+      c = lesser(core, c, first + 2);
+      c = lesser(core, c, first + 3);
+    } else {
+      for (int32_t d = c + 1; d < n; d++) c = lesser(core, c, d);
     }
     if (!comes_before(core, core->heap[c].t, core->heap[c].row, e.t, e.row)) break;
     core->heap[p] = core->heap[c];
     core->filing[core->heap[p].row].heap_pos = p;
     p = c;
   }
-  core->heap[p] = e;
-  core->filing[e.row].heap_pos = p;
+  put(core, p, e);
+}
+
+/* Row r's entry, new at the heap's end (place p), to its place: only ever up. */
+static inline void push(Core *core, int32_t p, int32_t r, double t) {
+  HeapEntry e = {t, r, 0};
+  put(core, sift_up(core, p, e), e);
 }
 
 static void list_add(Core *core, int32_t r, int32_t l) {
@@ -105,13 +134,13 @@ void file_atom(Core *core, int32_t r) {
   double q = (t - core->run.bin_base) / core->run.bin_width;
   int32_t p = u->heap_pos;
   if (q < (double)(core->run.bin + 1)) {
-    if (p < 0) {
-      if (u->bin >= 0) list_remove(core, r);
-      p = core->run.heap_size++;
-      core->heap[p].row = r;
+    if (p >= 0) {
+      core->heap[p].t = t;
+      sift(core, p);
+      return;
     }
-    core->heap[p].t = t;
-    sift(core, p);
+    if (u->bin >= 0) list_remove(core, r);
+    push(core, core->run.heap_size++, r, t);
     return;
   }
   int32_t nb = core->run.n_bins; /* a power of two */
@@ -227,8 +256,8 @@ static int next_bin(Core *core) {
     /* The keys asked for above, into the heap one by one (what lies beyond is not yet in it). */
     for (int32_t p = first; p < total; p++) {
       core->run.heap_size = p + 1;
-      core->heap[p].t = core->queued[core->heap[p].row].key_t;
-      sift(core, p);
+      int32_t r = core->heap[p].row;
+      push(core, p, r, core->queued[r].key_t);
     }
   }
   return 1;

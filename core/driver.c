@@ -115,10 +115,12 @@ static void setup(Core *core) {
 /* Order of the rows: the cells' rows in cell order (row-major), then the others; sets
  * row_of (World atom -> new row) and returns how many rows are in cells. */
 static int32_t cell_order(Core *core) {
-  const int32_t n = core->run.n_atoms, nc = core->run.n_cells;
+  const int32_t n = core->run.n_atoms;
   int32_t k = 0;
-  for (int32_t c = 0; c < nc; c++)
-    for (int32_t j = core->cells[c]; j >= 0; j = core->state[j].next) core->order[k++] = j;
+  for (int32_t cy = 0; cy < core->run.ny; cy++)
+    for (int32_t cx = 0; cx < core->run.nx; cx++)
+      for (int32_t j = core->cells[cell_index(core, cx, cy)]; j >= 0; j = core->state[j].next)
+        core->order[k++] = j;
   int32_t linked = k;
   for (int32_t r = 0; r < n; r++) core->row_of[core->plan[r].atom] = -1;
   for (int32_t q = 0; q < linked; q++) core->row_of[core->plan[core->order[q]].atom] = q;
@@ -155,7 +157,8 @@ void renumber(Core *core) {
   core->queued2 = u;
   core->plan2 = p;
   /* Cell lists: linking in descending row order leaves each list ascending. */
-  for (int32_t c = 0; c < core->run.n_cells; c++) core->cells[c] = -1;
+  for (int32_t cy = 0; cy < core->run.ny; cy++)
+    for (int32_t cx = 0; cx < core->run.nx; cx++) core->cells[cell_index(core, cx, cy)] = -1;
   for (int32_t q = 0; q < n; q++) core->state[q].next = -1;
   for (int32_t q = linked - 1; q >= 0; q--) cell_link(core, q, core->plan[q].cell_x, core->plan[q].cell_y);
   for (int32_t q = 0; q < n; q++) load_key(core, q);
@@ -247,9 +250,12 @@ int32_t core_start(Core *core, double energy_sum, double trap_height) {
   core->run.x_rim = __builtin_sqrt(trap_height / core->run.curvature);
   core->run.maintain_every = RENUMBER_EVENTS_PER_ATOM * core->run.n_atoms;
   int32_t nc = grid_shape(core);
-  core->cells = core_take(core, sizeof(int32_t) * nc);
+  int32_t *cells = core_take(core, sizeof(int32_t) * nc);
+  double *edges = core_take(core, sizeof(double) * 2 * (core->run.nx + core->run.ny));
   if (core->out_of_memory) return 0;
-  for (int32_t c = 0; c < nc; c++) core->cells[c] = -1;
+  grid_edges(core, edges);
+  for (int32_t c = 0; c < nc; c++) cells[c] = -1;
+  core->cells = cells + core->run.stride + 1; /* cell (0, 0), inside the border */
   setup(core);
   return 1;
 }

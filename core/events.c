@@ -123,8 +123,9 @@ void exit_event(Core *core, int32_t i, double te) {
 
 /*
  * Row i crosses into the next cell at te (kind: KIND_CROSS_X or KIND_CROSS_Y). Only the
- * row or column of cells that came within reach needs a scan: pairs with the other
- * neighbours are held already. 1 if the real event stands (only the crossing to predict).
+ * row or column of cells that came within reach needs a scan (beyond the grid's edge: its
+ * empty border): pairs with the other neighbours are held already. 1 if the real event
+ * stands (only the crossing to predict).
  */
 int32_t crossing_event(Core *core, int32_t i, double te, int32_t kind) {
   core->run.crossings++;
@@ -134,15 +135,11 @@ int32_t crossing_event(Core *core, int32_t i, double te, int32_t kind) {
   cell_unlink(core, i);
   if (kind == KIND_CROSS_X) {
     cell_link(core, i, to, cy);
-    int32_t c = 2 * to - cx;
-    if (c >= 0 && c < core->run.nx)
-      scan(core, i, c, c, cy > 0 ? cy - 1 : 0, cy < core->run.ny - 1 ? cy + 1 : core->run.ny - 1);
+    scan_line(core, i, cell_index(core, 2 * to - cx, cy - 1), core->run.stride);
   } else {
     cell_link(core, i, cx, to);
     core->queued[i].arc_cross_t = te;
-    int32_t c = 2 * to - cy;
-    if (c >= 0 && c < core->run.ny)
-      scan(core, i, cx > 0 ? cx - 1 : 0, cx < core->run.nx - 1 ? cx + 1 : core->run.nx - 1, c, c);
+    scan_line(core, i, cell_index(core, cx - 1, 2 * to - cy), 1);
   }
   return 1;
 }

@@ -30,7 +30,7 @@ void cell_link(Core *core, int32_t i, int32_t cx, int32_t cy) {
   Plan *p = &core->plan[i];
   p->cell_x = cx;
   p->cell_y = cy;
-  int32_t c = cy * core->run.nx + cx;
+  int32_t c = cell_index(core, cx, cy);
   int32_t q = core->cells[c];
   core->state[i].next = q;
   p->cell_prev = -1;
@@ -43,7 +43,7 @@ void cell_unlink(Core *core, int32_t i) {
   Plan *pl = &core->plan[i];
   int32_t p = pl->cell_prev;
   int32_t q = core->state[i].next;
-  int32_t c = pl->cell_y * core->run.nx + pl->cell_x;
+  int32_t c = cell_index(core, pl->cell_x, pl->cell_y);
   if (p >= 0)
     core->state[p].next = q;
   else if (core->cells[c] == i)
@@ -58,7 +58,8 @@ void cell_unlink(Core *core, int32_t i) {
  * (below the height of the most energetic one, y <= E / (m g)), as long as that takes at
  * most 8 cells per atom (plus 64); beyond it atoms sit in the edge cells, which reach to
  * infinity.
- * Sets run.cell, nx, ny, grid_x0, grid_y0, n_cells.
+ * Sets run.cell, nx, ny, grid_x0, grid_y0, n_cells, stride; returns the cells to allocate,
+ * the border included.
  */
 int32_t grid_shape(Core *core) {
   int32_t n = core->run.n_atoms;
@@ -94,7 +95,28 @@ int32_t grid_shape(Core *core) {
   core->run.grid_x0 = -0.5 * nx * cs;
   core->run.grid_y0 = -0.5 * cs;
   core->run.n_cells = core->run.nx * core->run.ny;
-  return core->run.n_cells;
+  core->run.stride = core->run.nx + 2;
+  return core->run.stride * (core->run.ny + 2);
+}
+
+/* The refiling edges of every column, then of every row (2 (nx + ny) doubles), computed
+ * once: each edge a skin beyond its cell's (edge_x, edge_y in tables.h). */
+void grid_edges(Core *core, double *edges) {
+  const double cs = core->run.cell, skin = core->run.skin;
+  core->edge_x = edges;
+  core->edge_y = edges + 2 * core->run.nx;
+  for (int32_t c = 0; c < core->run.nx; c++) {
+    core->edge_x[2 * c] = core->run.grid_x0 + c * cs - skin;
+    core->edge_x[2 * c + 1] = core->run.grid_x0 + (c + 1) * cs + skin;
+  }
+  for (int32_t c = 0; c < core->run.ny; c++) {
+    core->edge_y[2 * c] = core->run.grid_y0 + c * cs - skin;
+    core->edge_y[2 * c + 1] = core->run.grid_y0 + (c + 1) * cs + skin;
+  }
+  /* The edge cells reach to infinity: their outer edges, read only by y_edge_within's
+   * bound (the crossings test for an edge cell first), are infinitely far. */
+  core->edge_y[0] = -INF;
+  core->edge_y[2 * core->run.ny - 1] = INF;
 }
 
 /* 1 if u lies beyond cell c's edges (of n from u0) widened by `room` (edge cells: one edge). */

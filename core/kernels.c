@@ -63,6 +63,55 @@ double pair_contact_time(const State *p, const State *q, double sigma, double g,
   return tr + c / (__builtin_sqrt(disc) - b);
 }
 
+#ifdef CORE_LANES
+/* The least of a and b lane by lane, as `a < b ? a : b` (minpd is defined so). */
+static inline v2d least2(v2d a, v2d b) {
+#ifdef __SSE2__
+  return __builtin_ia32_minpd(a, b);
+#else
+  return lane_pick(a < b, a, b);
+#endif
+}
+
+/*
+ * pair_contact_time of row p with q0 and with q1 at once, into t[0] and t[1]: each
+ * lane does the scalar function's operations in its order, so each time is the same bits.
+ * `slack` is |beat| 1e-12, as the scalar function computes it. (The one `beat` serves both;
+ * a later one only lets more pairs through to be solved exactly.) Returns which lanes did
+ * not miss (bits 1 and 2); if none, t[] is not written (both inf).
+ */
+int32_t pair_contact_times(const State *p, const State *q0, const State *q1, double g, double beat,
+                           double slack, double t[2]) {
+  const v2d one = {1.0, 1.0}, zero = {0.0, 0.0};
+  const PairSide me_ = {{p->t, p->t}, {p->x, p->x}, {p->y, p->y}, {p->vx, p->vx}, {p->vy, p->vy},
+                        {p->radius, p->radius}, {0.5 * g, 0.5 * g}, {g, g}};
+  const PairSide *me = &me_;
+  v2d t1 = me->t, t2 = {q0->t, q1->t};
+  v2d tr = lane_pick(t1 >= t2, t1, t2);
+  v2d d1 = tr - t1, d2 = tr - t2;
+  v2d qx = {q0->x, q1->x}, qy = {q0->y, q1->y}, qvx = {q0->vx, q1->vx}, qvy = {q0->vy, q1->vy};
+  v2d rx = me->x + me->vx * d1 - (qx + qvx * d2);
+  v2d ry = me->y + me->vy * d1 - me->half_g * d1 * d1 - (qy + qvy * d2 - me->half_g * d2 * d2);
+  v2d vx = me->vx - qvx;
+  v2d vy = me->vy - me->g * d1 - (qvy - me->g * d2);
+  v2d sigma = me->r + (v2d){q0->radius, q1->radius};
+  v2d b = rx * vx + ry * vy;
+  v2d c = rx * rx + ry * ry - sigma * sigma;
+  v2d vv = vx * vx + vy * vy;
+  v2d disc = b * b - vv * c;
+  v2d room = ((v2d){beat, beat} - tr) * (1.0 + 1e-9) + slack + 1e-290;
+  v2m apart = c > zero;
+  v2d meets = lane_pick(apart, disc, one);
+  v2d in_time = lane_pick(apart, (1e-161 - 2.0 * b) * room - c, one);
+  v2m pass = least2(least2(-b, meets), in_time) > zero;
+  int32_t lanes = (int32_t)(pass[0] & 1) | (int32_t)(pass[1] & 2);
+  if (lanes == 0) return 0; /* as most pairs do: t[] not written */
+  for (int k = 0; k < 2; k++)
+    t[k] = !pass[k] ? INF : apart[k] ? tr[k] + c[k] / (__builtin_sqrt(disc[k]) - b[k]) : tr[k];
+  return lanes;
+}
+#endif
+
 /*
  * Absolute time when a trapped centre meets the wall y = a x^2 (SPEC 2.1): the one
  * non-negative root of A s^2 + B s + C, cancellation-free; C < 0 is round-off, read as 0.

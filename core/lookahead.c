@@ -20,42 +20,42 @@ static inline void ask_row(const Core *core, int32_t r) {
   __builtin_prefetch(&core->plan[r]);
 }
 
-/* The block of cells row j's next event will scan (x0..x1, y0..y1); 0 if none. A crossing
- * scans the column or row beyond its new cell, other events the 3 x 3 block around it. */
-static int coming_cells(const Core *core, int32_t j, int32_t b[4]) {
+/* The cells row j's next event will scan: the index of the first, into *rows and *cols how
+ * many (one line per row of cells); 0 if none. A crossing scans the column or row beyond
+ * its new cell, other events the 3 x 3 block around it (the border's cells are empty). */
+static int coming_cells(const Core *core, int32_t j, int32_t *first, int32_t *rows, int32_t *cols) {
   const Plan *p = &core->plan[j];
-  const int32_t nx = core->run.nx, ny = core->run.ny, cx = p->cell_x, cy = p->cell_y;
   if (p->status != TRAPPED) return 0;
-  b[0] = cx > 0 ? cx - 1 : 0;
-  b[1] = cx < nx - 1 ? cx + 1 : nx - 1;
-  b[2] = cy > 0 ? cy - 1 : 0;
-  b[3] = cy < ny - 1 ? cy + 1 : ny - 1;
+  int32_t x0 = p->cell_x - 1, y0 = p->cell_y - 1;
+  *rows = *cols = 3;
   if (p->rank == RANK_CROSS) {
-    if (p->cross_axis == KIND_CROSS_X) {
-      b[0] = b[1] = 2 * p->cross_to - cx;
-      if (b[0] < 0 || b[0] >= nx) return 0;
-    } else {
-      b[2] = b[3] = 2 * p->cross_to - cy;
-      if (b[2] < 0 || b[2] >= ny) return 0;
-    }
+    if (p->cross_axis == KIND_CROSS_X)
+      x0 = 2 * p->cross_to - p->cell_x, *cols = 1;
+    else if (p->cross_axis == KIND_CROSS_Y)
+      y0 = 2 * p->cross_to - p->cell_y, *rows = 1;
+    else
+      return 0; /* (no crossing at all: nothing to read) */
   }
+  /* A crossing enters a cell of the grid from a neighbour, so the line beyond lies in the
+   * grid or its border: every index here is inside the cells' table. */
+  *first = cell_index(core, x0, y0);
   return 1;
 }
 
 /* The heads of those cells: one line per row of cells. */
 static void ask_heads(const Core *core, int32_t j) {
-  int32_t b[4];
-  if (!coming_cells(core, j, b)) return;
-  for (int32_t cy = b[2]; cy <= b[3]; cy++) __builtin_prefetch(&core->cells[cy * core->run.nx + b[0]]);
+  int32_t c, rows, cols;
+  if (!coming_cells(core, j, &c, &rows, &cols)) return;
+  for (int32_t r = 0; r < rows; r++) __builtin_prefetch(&core->cells[c + r * core->run.stride]);
 }
 
 /* Read those heads (asked for an event ago) and ask for their first atoms' states. */
 static void ask_firsts(const Core *core, int32_t j) {
-  int32_t b[4];
-  if (!coming_cells(core, j, b)) return;
-  for (int32_t cy = b[2]; cy <= b[3]; cy++)
-    for (int32_t cx = b[0]; cx <= b[1]; cx++) {
-      int32_t first = core->cells[cy * core->run.nx + cx];
+  int32_t c, rows, cols;
+  if (!coming_cells(core, j, &c, &rows, &cols)) return;
+  for (int32_t r = 0; r < rows; r++)
+    for (int32_t k = 0; k < cols; k++) {
+      int32_t first = core->cells[c + r * core->run.stride + k];
       if (first >= 0) __builtin_prefetch(&core->state[first]);
     }
 }
@@ -101,8 +101,14 @@ int32_t look_before(Core *core, int32_t i, int32_t kind, int32_t *after) {
   *after = -1;
   if (n > 1) {
     int32_t c = 1;
-    for (int32_t d = 2; d < 5 && d < n; d++)
-      if (core->heap[d].t < core->heap[c].t) c = d;
+    if (n >= 5) { /* the root's four children, as mostly */
+      const HeapEntry *h = core->heap;
+      int32_t a = h[2].t < h[1].t ? 2 : 1, b = h[4].t < h[3].t ? 4 : 3;
+      c = h[b].t < h[a].t ? b : a;
+    } else {
+      for (int32_t d = 2; d < n; d++)
+        if (core->heap[d].t < core->heap[c].t) c = d;
+    }
     next = core->heap[c].row;
     ask_row(core, next);
     if (core->run.n_atoms >= DEEP_MIN_ATOMS && n > 2) {

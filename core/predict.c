@@ -11,44 +11,79 @@ static inline void pair_key(const Core *core, int32_t i, int32_t j, int64_t *lo,
   *hi = a < b ? b : a;
 }
 
+/* The heads of the three cells from c, step apart, appended to heads[0..n) without a branch
+ * (about two cells in three are empty, at random); the new count. */
+static inline int32_t gather3(const int32_t *c, int32_t step, int32_t *heads, int32_t n) {
+  for (int32_t k = 0; k < 3; k++) {
+    int32_t h = c[k * step];
+    heads[n] = h;
+    n += h >= 0;
+  }
+  return n;
+}
+
+/* Row i's pair with row j at time t against the best so far (bt, partner `best`, -1 while
+ * the real event stands): the new best partner. A tie is decided by the keys. */
+static inline int32_t take_pair(const Core *core, int32_t i, int32_t j, double t, int was_pair,
+                                int32_t best, double *bt) {
+  if (t == *bt) { /* rare: a tie, decided by the keys */
+    const Plan *p = &core->plan[i];
+    int64_t lo, hi, ba = p->real_a, bb = p->real_b;
+    pair_key(core, i, j, &lo, &hi);
+    if (best >= 0) pair_key(core, i, best, &ba, &bb);
+    if ((best >= 0 || was_pair) && (lo < ba || (lo == ba && hi < bb))) best = j;
+  }
+  /* an earlier pair, taken without a branch (which way it goes is a coin toss) */
+  const int earlier = t < *bt;
+  *bt = earlier ? t : *bt;
+  return earlier ? j : best;
+}
+
 /*
- * Pairs of trapped row i with the rows of cells [x0, x1] x [y0, y1] (seed Eqs. 15-19). An
- * earlier pair replaces i's real event; on a tie the solo event stays and pairs go in
- * (lower, higher) World index order, as in the reference engine.
+ * Pairs of trapped row i with the rows of the cells whose heads are given (seed Eqs.
+ * 15-19), two neighbours at a time. An earlier pair replaces i's real event; on a tie the
+ * solo event stays and pairs go in (lower, higher) World index order, as in the reference
+ * engine, so the order the pairs are tested in changes nothing.
  */
-void scan(Core *core, int32_t i, int32_t x0, int32_t x1, int32_t y0, int32_t y1) {
+static void scan(Core *core, int32_t i, const int32_t *heads, int32_t n_heads) {
   const State *s = &core->state[i];
   const double ri = s->radius, g = core->run.gravity;
-  const int32_t nx = core->run.nx;
   Plan *p = &core->plan[i];
   double bt = core->queued[i].real_t;
   const int was_pair = p->real_rank == RANK_PAIR;
   int32_t best = -1; /* the partner found here, -1 while the real event stands */
-  /* The heads of the cells that hold atoms (a scan covers at most 3 x 3 cells), gathered
-   * without a branch: about two cells in three are empty, at random. */
-  int32_t heads[9], n_heads = 0;
-  for (int32_t cy = y0; cy <= y1; cy++)
-    for (int32_t cx = x0; cx <= x1; cx++) {
-      int32_t h = core->cells[cy * nx + cx];
-      heads[n_heads] = h;
-      n_heads += h >= 0;
-    }
+  int32_t held = -1; /* a neighbour waiting for a second, to test the two at once */
+#ifdef CORE_LANES
+  double slack = __builtin_fabs(bt) * 1e-12; /* follows bt */
+#endif
   for (int32_t k = 0; k < n_heads; k++)
     for (int32_t j = heads[k]; j >= 0; j = core->state[j].next) {
       if (j == i) continue;
+#ifndef CORE_LANES
       const State *q = &core->state[j];
       double t = pair_contact_time(s, q, ri + q->radius, g, bt);
-      if (t == bt) { /* rare: a tie, decided by the keys */
-        int64_t lo, hi, ba = p->real_a, bb = p->real_b;
-        pair_key(core, i, j, &lo, &hi);
-        if (best >= 0) pair_key(core, i, best, &ba, &bb);
-        if ((best >= 0 || was_pair) && (lo < ba || (lo == ba && hi < bb))) best = j;
+      best = take_pair(core, i, j, t, was_pair, best, &bt);
+#else
+      if (held < 0) {
+        held = j;
+        continue;
       }
-      /* an earlier pair, taken without a branch (which way it goes is a coin toss) */
-      const int earlier = t < bt;
-      best = earlier ? j : best;
-      bt = earlier ? t : bt;
+      int32_t rows[2] = {held, j};
+      double ts[2];
+      held = -1;
+      if (!pair_contact_times(s, &core->state[rows[0]], &core->state[rows[1]], g, bt, slack, ts)) {
+        if (bt < INF) continue; /* most pairs: both miss, and an inf neither ties nor wins */
+        ts[0] = ts[1] = INF;
+      }
+      for (int32_t m = 0; m < 2; m++) best = take_pair(core, i, rows[m], ts[m], was_pair, best, &bt);
+      slack = __builtin_fabs(bt) * 1e-12;
+#endif
     }
+  if (held >= 0) {
+    const State *q = &core->state[held];
+    double t = pair_contact_time(s, q, ri + q->radius, g, bt);
+    best = take_pair(core, i, held, t, was_pair, best, &bt);
+  }
   if (best >= 0) {
     int64_t lo, hi;
     pair_key(core, i, best, &lo, &hi);
@@ -60,6 +95,21 @@ void scan(Core *core, int32_t i, int32_t x0, int32_t x1, int32_t y0, int32_t y1)
     p->partner = best;
     p->partner_count = (int32_t)core->state[best].count;
   }
+}
+
+/* Pairs of row i with the three cells from cell index c, step apart (a row of cells: 1, a
+ * column: the stride): after a crossing, the line of cells that came within reach. */
+void scan_line(Core *core, int32_t i, int32_t c, int32_t step) {
+  int32_t heads[3];
+  scan(core, i, heads, gather3(&core->cells[c], step, heads, 0));
+}
+
+/* Pairs of row i with the 3 x 3 cells around its own (the border's cells are empty). */
+static void scan_around(Core *core, int32_t i) {
+  const int32_t w = core->run.stride;
+  const int32_t *c = &core->cells[cell_index(core, core->plan[i].cell_x - 1, core->plan[i].cell_y - 1)];
+  int32_t heads[9];
+  scan(core, i, heads, gather3(c + 2 * w, 1, heads, gather3(c + w, 1, heads, gather3(c, 1, heads, 0))));
 }
 
 /* Row i's real event: wall (SPEC 2.1) or pair if trapped, exit if escaped. */
@@ -82,19 +132,7 @@ void predict_real(Core *core, int32_t i) {
   p->real_a = p->atom;
   p->real_b = 0;
   p->real_kind = kind;
-  if (st == TRAPPED && !core->run.won) {
-    int32_t cx = p->cell_x, cy = p->cell_y;
-    scan(core, i, cx > 0 ? cx - 1 : 0, cx < core->run.nx - 1 ? cx + 1 : core->run.nx - 1, cy > 0 ? cy - 1 : 0,
-         cy < core->run.ny - 1 ? cy + 1 : core->run.ny - 1);
-  }
-}
-
-/* Where an atom filed in cell c (from u0) is refiled: its upper and lower edge, a skin out. */
-static inline double edge_above(const Core *core, double u0, int32_t c) {
-  return u0 + (c + 1) * core->run.cell + core->run.skin;
-}
-static inline double edge_below(const Core *core, double u0, int32_t c) {
-  return u0 + c * core->run.cell - core->run.skin;
+  if (st == TRAPPED && !core->run.won) scan_around(core, i);
 }
 
 /* Time of the next y crossing of row i's arc and the row it enters (inf if none). */
@@ -103,7 +141,7 @@ static double crossing_y(Core *core, const State *s, int32_t cy, double taken, i
   double y = s->y, vy = s->vy, t0 = s->t;
   double tc = INF;
   if (vy > 0.0 && cy < core->run.ny - 1) {
-    double d = edge_above(core, core->run.grid_y0, cy) - y;
+    double d = core->edge_y[2 * cy + 1] - y;
     double disc = vy * vy - 2.0 * g * d;
     if (disc > 0.0) {
       double sq = __builtin_sqrt(disc);
@@ -116,7 +154,7 @@ static double crossing_y(Core *core, const State *s, int32_t cy, double taken, i
     }
   }
   if (tc == INF && cy > 0) {
-    double h = y - edge_below(core, core->run.grid_y0, cy);
+    double h = y - core->edge_y[2 * cy];
     double disc = vy * vy + 2.0 * g * h;
     if (disc < 0.0) disc = 0.0;
     double sq = __builtin_sqrt(disc);
@@ -145,9 +183,9 @@ static int y_edge_within(const Core *core, const State *s, int32_t cy, double by
   double dt = (by - s->t) * (1.0 + 1e-9) + (__builtin_fabs(by) + __builtin_fabs(s->t)) * 1e-12;
   if (!(dt > 0.0 && dt < INF)) return 1; /* (inf: 0 * inf would read as no reach) */
   double rise = (vy > 0.0 ? vy : 0.0) * dt, fall = (vy < 0.0 ? -vy : 0.0) * dt + 0.5 * g * dt * dt;
-  double top = cy < core->run.ny - 1 ? edge_above(core, core->run.grid_y0, cy) - s->y : INF;
-  double bottom = cy > 0 ? s->y - edge_below(core, core->run.grid_y0, cy) : INF;
-  return rise * (1.0 + 1e-9) + 1e-9 * cs >= top || fall * (1.0 + 1e-9) + 1e-9 * cs >= bottom;
+  /* (the edge rows' outer edges are at infinity in the table: no reach there) */
+  double top = core->edge_y[2 * cy + 1] - s->y, bottom = s->y - core->edge_y[2 * cy];
+  return (rise * (1.0 + 1e-9) + 1e-9 * cs >= top) | (fall * (1.0 + 1e-9) + 1e-9 * cs >= bottom);
 }
 
 /*
@@ -165,11 +203,11 @@ void predict_crossing(Core *core, int32_t i) {
     double x = s->x, vx = s->vx, t0 = s->t;
     int32_t cx = p->cell_x, cy = p->cell_y;
     if (vx > 0.0 && cx < core->run.nx - 1) {
-      bt = t0 + (edge_above(core, core->run.grid_x0, cx) - x) / vx;
+      bt = t0 + (core->edge_x[2 * cx + 1] - x) / vx;
       bk = KIND_CROSS_X;
       barg = cx + 1;
     } else if (vx < 0.0 && cx > 0) {
-      bt = t0 + (edge_below(core, core->run.grid_x0, cx) - x) / vx;
+      bt = t0 + (core->edge_x[2 * cx] - x) / vx;
       bk = KIND_CROSS_X;
       barg = cx - 1;
     }

@@ -82,6 +82,7 @@ typedef struct {
   double skin;                   /* an atom is refiled this far past its cell's edge */
   double x_left, x_right, y_bottom; /* window edges (exit bounds before the radius) */
   int32_t nx, ny, n_cells, n_atoms;
+  int32_t stride; /* cells from one grid row to the next: nx and a border cell each side */
   int32_t knife, record, win_rule;
   int32_t maintain_every; /* events between two renumberings */
   /* shared with the wrapper */
@@ -117,8 +118,12 @@ struct Core {
   HeapEntry *heap;
   Filing *filing;     /* by row, reset whenever the calendar is rebuilt (not renumbered) */
   int32_t *bins;      /* first row of each list: n_bins ring lists, overflow, no event */
-  int32_t *cells;     /* first row of each cell (row-major); state[].next goes on */
+  int32_t *cells;     /* first row of each cell, at cy * stride + cx; state[].next goes on. A
+                       * border of cells that stay empty rings the grid, so a scan of the
+                       * cells around any cell needs no clamping to the grid's edges. */
   int32_t *row_of;    /* row of every World atom */
+  double *edge_x;     /* where an atom filed in column c is refiled: edge_x[2c] on the left, */
+  double *edge_y;     /* edge_x[2c + 1] on the right, a skin out (rows: edge_y, below, above) */
   double *tc_table;   /* critical temperature for every atom count, seed Eq. (46) */
   LogLine *event_log;
   /* spare tables for renumbering (swapped with the live ones) and its order */
@@ -135,12 +140,32 @@ struct Core {
   int32_t n_blocks;
 };
 
+/* Natively (SSE2, NEON) the pair scan tests two neighbours at once; the WebAssembly core,
+ * built without SIMD, where two lanes would be scalar code anyway, tests one at a time. */
+#if defined(__SSE2__) || defined(__ARM_NEON)
+#define CORE_LANES 1
+/* Two lanes of doubles: every lane rounds as the scalar operation does (IEEE;
+ * -ffp-contract=off leaves no fused multiply-add). */
+typedef double v2d __attribute__((vector_size(16)));
+typedef int64_t v2m __attribute__((vector_size(16)));
+static inline v2d lane_pick(v2m m, v2d a, v2d b) { return (v2d)((m & (v2m)a) | (~m & (v2m)b)); }
+
+/* A scanning row's state, the same in both lanes (kernels.c: pair_contact_times). */
+typedef struct {
+  v2d t, x, y, vx, vy, r, half_g, g;
+} PairSide;
+#endif
+
 /* kernels.c */
 double flight_x(double x, double vx, double dt);
 double flight_y(double y, double vy, double half_g, double dt);
 double flight_vy(double vy, double g, double dt);
 double atom_energy_of(double m, double y, double vx, double vy, double g);
 double pair_contact_time(const State *p, const State *q, double sigma, double g, double beat);
+#ifdef CORE_LANES
+int32_t pair_contact_times(const State *p, const State *q0, const State *q1, double g, double beat,
+                           double slack, double t[2]);
+#endif
 double wall_contact_time(const State *s, double a, double g);
 double exit_time(const State *s, double x_left, double x_right, double y_bottom, double g);
 void collide_pair(double rx, double ry, State *p, double m1, State *q, double m2);
@@ -155,14 +180,18 @@ int32_t calendar_top(Core *core);
 void calendar_rebuild(Core *core, double now);
 
 /* grid.c */
+static inline int32_t cell_index(const Core *core, int32_t cx, int32_t cy) {
+  return cy * core->run.stride + cx;
+}
 int32_t grid_shape(Core *core);
+void grid_edges(Core *core, double *edges);
 int32_t grid_errors(Core *core);
 int32_t cell_of(Core *core, double u, double u0, int32_t n);
 void cell_link(Core *core, int32_t i, int32_t cx, int32_t cy);
 void cell_unlink(Core *core, int32_t i);
 
 /* predict.c */
-void scan(Core *core, int32_t i, int32_t x0, int32_t x1, int32_t y0, int32_t y1);
+void scan_line(Core *core, int32_t i, int32_t c, int32_t step);
 void predict_real(Core *core, int32_t i);
 void predict_crossing(Core *core, int32_t i);
 void set_key(Core *core, int32_t i);
