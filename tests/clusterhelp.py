@@ -69,16 +69,18 @@ class Cluster:
         proc.wait(timeout=30)
 
     def close(self) -> None:
-        procs = [*getattr(self, "workers", []), self.scheduler]
-        for p in procs:
-            if p.poll() is None:
-                p.terminate()
-        for p in procs:
-            try:
-                p.wait(timeout=20)
-            except subprocess.TimeoutExpired:
-                p.kill()
-                p.wait()
+        # The workers first, then the scheduler: a worker whose scheduler went first waits
+        # for it (up to 20 s seen) before it exits. Whatever lingers after 5 s is killed.
+        for group in (getattr(self, "workers", []), [self.scheduler]):
+            for p in group:
+                if p.poll() is None:
+                    p.terminate()
+            for p in group:
+                try:
+                    p.wait(timeout=5)
+                except subprocess.TimeoutExpired:
+                    p.kill()
+                    p.wait()
         for log in self.logs:
             log.close()
 
