@@ -160,6 +160,14 @@ def test_result_plot_and_pandas_without_their_packages(monkeypatch):
             '{"url": "file:///tmp/dist/evapcool-0.9-cp311-linux_x86_64.whl", "archive_info": {}}',
             "pip install '/tmp/dist/evapcool-0.9-cp311-linux_x86_64.whl[lab]'",
         ),
+        (
+            '{"url": "file:///tmp/dist/evapcool-0.9.tar.gz", "archive_info": {}}',
+            "pip install '/tmp/dist/evapcool-0.9.tar.gz[lab]'",
+        ),
+        (
+            '{"url": "https://example.org/evapcool", "vcs_info": {"vcs": "git"}}',
+            "pip install 'evapcool[lab]'",
+        ),
         (None, "pip install 'evapcool[lab]'"),
     ],
 )

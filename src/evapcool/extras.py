@@ -53,7 +53,7 @@ def install_hint(extra: str) -> str:
 
 
 def _installed_from() -> tuple[str, str] | None:
-    """("editable", folder) or ("file", wheel) from the install's direct_url.json (PEP 610);
+    """("editable", folder) or ("file", where) from the install's direct_url.json (PEP 610);
     None for an install from an index or when it cannot be read."""
     import json
     from importlib import metadata
@@ -70,7 +70,8 @@ def _installed_from() -> tuple[str, str] | None:
     path = unquote(url.path)
     if doc.get("dir_info", {}).get("editable"):
         return ("editable", path)
-    return ("file", path) if path.endswith(".whl") else None
+    # A wheel, a source archive or a folder installed as it was.
+    return ("file", path) if "archive_info" in doc or "dir_info" in doc else None
 
 
 def available(module: str) -> bool:
