@@ -4,7 +4,7 @@
  * CSV and JSON exports), newest first. The department's list of classes shows the same.
  */
 import { byId, fill, getJson, type Words } from "./common";
-import { localizeTimes, readerLocale } from "./times";
+import { readerTime } from "./times";
 
 interface Round {
   id: number;
@@ -28,12 +28,7 @@ function roundRow(words: Words, r: Round, base: string, projector: string): HTML
   const tr = document.createElement("tr");
   tr.dataset.round = String(r.id);
   const when = document.createElement("td");
-  if (r.closes_at !== null) {
-    const t = document.createElement("time");
-    t.dateTime = new Date(r.closes_at * 1000).toISOString();
-    t.textContent = t.dateTime;
-    when.append(t);
-  }
+  if (r.closes_at !== null) when.append(readerTime(r.closes_at));
   const what = document.createElement("td");
   what.textContent = fill(words["console.projector.round_line"], { n: r.id, ...r });
   const links = document.createElement("span");
@@ -57,6 +52,5 @@ export async function showRounds(words: Words, base: string, projector: string):
   if (!got.ok) return;
   const table = byId("rounds");
   table.replaceChildren(...got.body.rounds.map((r) => roundRow(words, r, base, projector)));
-  localizeTimes(table, readerLocale(document.documentElement.lang, navigator.languages));
   byId("rounds-box").hidden = got.body.rounds.length === 0;
 }

@@ -20,7 +20,7 @@ import { byId, classBase, fill, getJson, listen, pageWords, queryParam } from ".
 import { ProjectorDebrief } from "./debrief/projector";
 import { present } from "./debrief/replays";
 import { BoardPager, drawPodium } from "./podium";
-import { localizeTimes, readerLocale } from "./times";
+import { readerTime } from "./times";
 import { gameOf } from "../view/debrief/model";
 
 /** Seconds each page of a long board stays up. */
@@ -144,13 +144,8 @@ async function showRounds(): Promise<void> {
     const sep = keyQuery ? "&" : "?";
     const a = link(text, base + "/projector" + keyQuery + sep + "round=" + r.id);
     a.dataset.round = String(r.id);
-    if (r.closes_at !== null) {
-      // When it ended, in the room's language and the projector's time zone.
-      const when = document.createElement("time");
-      when.dateTime = new Date(r.closes_at * 1000).toISOString();
-      a.append(" · ", when);
-      localizeTimes(a, readerLocale(document.documentElement.lang, navigator.languages));
-    }
+    // When it ended, in the room's language and the projector's time zone.
+    if (r.closes_at !== null) a.append(" · ", readerTime(r.closes_at));
   }
   if (!rounds.length) {
     const li = document.createElement("li");

@@ -42,3 +42,16 @@ export function localizeTimes(root: ParentNode, locale: string): void {
     }
   }
 }
+
+/** A <time> for a moment the server gives in seconds since the epoch, written for the
+ * page's reader (the page's language, the browser's time zone). */
+export function readerTime(seconds: number): HTMLTimeElement {
+  const t = document.createElement("time");
+  t.dateTime = new Date(seconds * 1000).toISOString();
+  t.title = t.dateTime;
+  t.textContent = localTime(
+    t.dateTime,
+    readerLocale(document.documentElement.lang, navigator.languages),
+  );
+  return t;
+}
