@@ -158,12 +158,13 @@ def test_result_plot_and_pandas_without_their_packages(monkeypatch):
         ),
         (
             '{"url": "file:///tmp/dist/evapcool-0.9-cp311-linux_x86_64.whl", "archive_info": {}}',
-            "pip install '/tmp/dist/evapcool-0.9-cp311-linux_x86_64.whl[lab]'",
+            "pip install 'evapcool[lab]'",
         ),
         (
             '{"url": "file:///tmp/dist/evapcool-0.9.tar.gz", "archive_info": {}}',
-            "pip install '/tmp/dist/evapcool-0.9.tar.gz[lab]'",
+            "pip install 'evapcool[lab]'",
         ),
+        ('{"url": "file:///home/mia/evapcool", "dir_info": {}}', "pip install 'evapcool[lab]'"),
         (
             '{"url": "https://example.org/evapcool", "vcs_info": {"vcs": "git"}}',
             "pip install 'evapcool[lab]'",
@@ -174,7 +175,8 @@ def test_result_plot_and_pandas_without_their_packages(monkeypatch):
 def test_the_install_hint_follows_where_evapcool_came_from(
     monkeypatch: pytest.MonkeyPatch, direct_url: str | None, hint: str
 ) -> None:
-    """A clone, a wheel file or an index (PEP 610's direct_url.json): the line that works."""
+    """A clone gets its folder (PEP 610's direct_url.json); a wheel, an archive or an index
+    install the name, which keeps the installed evapcool (the wheel may be gone)."""
     from importlib import metadata
 
     class Installed:

@@ -42,19 +42,17 @@ class SlowEngineWarning(UserWarning):
 
 
 def install_hint(extra: str) -> str:
-    """The pip line that adds `extra` to this install, wherever it came from: a clone
-    (editable), a wheel file, or an index (no release is on PyPI yet: docs/releasing.md)."""
-    source = _installed_from()
-    if source is not None and source[0] == "editable":
-        return f"pip install -e '{source[1]}[{extra}]'"
-    if source is not None:
-        return f"pip install '{source[1]}[{extra}]'"
+    """The pip line that adds `extra` to this install: a clone's folder (editable), else by
+    name, which keeps the installed evapcool (a wheel's, an index's) and adds the extra's
+    packages; a wheel's path would fail once the file is gone (docs/releasing.md)."""
+    folder = _editable_folder()
+    if folder is not None:
+        return f"pip install -e '{folder}[{extra}]'"
     return f"pip install 'evapcool[{extra}]'"
 
 
-def _installed_from() -> tuple[str, str] | None:
-    """("editable", folder) or ("file", where) from the install's direct_url.json (PEP 610);
-    None for an install from an index or when it cannot be read."""
+def _editable_folder() -> str | None:
+    """The clone an editable install points at (PEP 610's direct_url.json), else None."""
     import json
     from importlib import metadata
     from urllib.parse import unquote, urlparse
@@ -65,13 +63,9 @@ def _installed_from() -> tuple[str, str] | None:
     except (metadata.PackageNotFoundError, ValueError):
         return None
     url = urlparse(str(doc.get("url", "")))
-    if url.scheme != "file":
+    if url.scheme != "file" or not doc.get("dir_info", {}).get("editable"):
         return None
-    path = unquote(url.path)
-    if doc.get("dir_info", {}).get("editable"):
-        return ("editable", path)
-    # A wheel, a source archive or a folder installed as it was.
-    return ("file", path) if "archive_info" in doc or "dir_info" in doc else None
+    return unquote(url.path)
 
 
 def available(module: str) -> bool:
