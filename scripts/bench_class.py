@@ -266,7 +266,7 @@ async def setup_department(servers: list[Server], classes: int, names: list[str]
             ).json()
             base = f"/c/{room['code']}/"
             body = {"n_atoms": SETTINGS.n_atoms, "radius": SETTINGS.radius}
-            body.update(escape=SETTINGS.escape, seed=SEED)
+            body.update(escape=SETTINGS.escape, seed=SEED + c)  # games_of(c)'s start
             opened = await client.post(
                 first.base + base + "api/challenge", json=body, headers=lecturer
             )
@@ -309,8 +309,8 @@ async def follow(
 
 
 async def department_run(dept: Department, entries, starts, gate: int, kill_at: float | None):
-    """Every class's students send their games at `starts` (each class the same moments,
-    shifted); two projectors per class (one on each process). kill_at: seconds after the
+    """Every class's students send their games (entries[c]) at `starts` (each class the same
+    moments, shifted); two projectors per class (one on each process). kill_at: seconds after the
     start to kill -9 the first process (its students and projectors go to the other)."""
     servers = dept.servers
     sent: dict = {}
@@ -379,7 +379,7 @@ async def department_run(dept: Department, entries, starts, gate: int, kill_at: 
         tasks = [
             student(clients[c], c, i, n, code, h, at + c * 0.0137)
             for c in range(len(dept.classes))
-            for i, ((n, code, h), at) in enumerate(zip(entries, starts, strict=True))
+            for i, ((n, code, h), at) in enumerate(zip(entries[c], starts, strict=True))
         ]
         if kill_at is not None:
             tasks.append(killer())
@@ -397,10 +397,9 @@ async def department_run(dept: Department, entries, starts, gate: int, kill_at: 
 
 def department_report(label: str, dept: Department, entries, result) -> dict:
     sent, acked, seen, took, bad, retried = result
-    honest = [n for n, _, h in entries if h]
     lag, missing = [], 0
     for c in range(len(dept.classes)):
-        for n in honest:
+        for n in (n for n, _, h in entries[c] if h):
             times = [s.get(n) for s in seen[c]]
             if any(t is None for t in times):
                 missing += 1
@@ -438,11 +437,13 @@ def department_bench(args: argparse.Namespace) -> None:
     sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tests"))
     from pghelp import start_postgres
 
-    entries = student_games(args.students)
-    names = [n for n, _, _ in entries]
+    # A seed per class: the copy check spans the server, so two classes on one start could
+    # not both send the same game.
+    entries = [student_games(args.students, seed=SEED + c) for c in range(args.classes)]
+    names = [n for n, _, _ in entries[0]]
     rng = random.Random(1)
-    spread = sorted(rng.uniform(0, args.spread) for _ in entries)
-    burst = [0.0] * len(entries)
+    spread = sorted(rng.uniform(0, args.spread) for _ in names)
+    burst = [0.0] * len(names)
     with (
         tempfile.TemporaryDirectory(prefix="evapcool-bench-") as tmp,
         tempfile.TemporaryDirectory(prefix="evapcool-pg-") as pg_folder,
@@ -451,9 +452,9 @@ def department_bench(args: argparse.Namespace) -> None:
         try:
             runs = [
                 ("SQLite, 1 process, 2 workers", None, 1, 2, burst, args.burst, None),
-                ("SQLite, 1 process, 2 workers", None, 1, 2, spread, len(entries), None),
+                ("SQLite, 1 process, 2 workers", None, 1, 2, spread, len(names), None),
                 ("PostgreSQL, 2 processes, 1 worker each", pg, 2, 1, burst, args.burst, None),
-                ("PostgreSQL, 2 processes, 1 worker each", pg, 2, 1, spread, len(entries), None),
+                ("PostgreSQL, 2 processes, 1 worker each", pg, 2, 1, spread, len(names), None),
             ]
             runs = [r for r in runs if ("burst" if r[4] is burst else "spread") in args.arrivals]
             if args.kill:
@@ -464,7 +465,7 @@ def department_bench(args: argparse.Namespace) -> None:
                         2,
                         1,
                         spread,
-                        len(entries),
+                        len(names),
                         args.spread / 2,
                     )
                 ]

@@ -29,11 +29,13 @@ START_TIMEOUT = 90.0
 _CACHE: dict[tuple[int, int], Recording] = {}
 
 
-def student_games(students: int, forged_every: int = 10) -> list[tuple[str, str, bool]]:
-    """(name, code, honest) per student: all different honest games, and one in
+def student_games(
+    students: int, forged_every: int = 10, seed: int = SEED
+) -> list[tuple[str, str, bool]]:
+    """(name, code, honest) per student: all different honest games on `seed`, and one in
     `forged_every` claiming one atom more than it won (the load test and the benchmark)."""
     out = []
-    wins = (rec for k in range(1, 10 * students + 1) if (rec := variant(SEED, k)).won)
+    wins = (rec for k in range(1, 10 * students + 1) if (rec := variant(seed, k)).won)
     for i, rec in zip(range(students), wins, strict=False):
         honest = i % forged_every != 0
         if not honest:
