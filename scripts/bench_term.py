@@ -32,7 +32,6 @@ from classhelp import SEED, SETTINGS, Server, variant
 
 from evapcool.game.replay import encode
 
-
 #: The board's state when its round is closed, as the stream writes it (json.dumps).
 CLOSED = re.compile(r'"open": false')
 

@@ -1,6 +1,10 @@
 """Verification cost per classic game (issue 22): replay of autopilot recordings, median ms.
 
 Run: python scripts/bench_verify.py [GAMES]  (fast and reference engines interleaved).
+
+Then the class server's whole check of each game (issue 47: decode, replay and path, the
+result's record; `classroom.verifier.check_submission`), in CPU time (time.process_time,
+which a shared machine's other processes do not add to), median of five per game.
 """
 
 from __future__ import annotations
@@ -29,6 +33,61 @@ def main() -> None:
             f"{engine:>9}: median {med:.0f} ms per game ({frames:.0f} frames), "
             f"{1e3 / med:.1f} games/s on one core, n={len(ms)}"
         )
+    whole_check(recs)
+
+
+def whole_check(recs: list) -> None:
+    """The server's check of each code (issue 47's target: <= 12 ms of CPU)."""
+    from evapcool.classroom.verifier import check_submission
+    from evapcool.game.replay import encode
+
+    for label, make in (("desktop's codes", encode), ("page-like codes", page_like_code)):
+        per_game = [check_cost(make(rec), rec, check_submission) for rec in recs]
+        print(
+            f"whole check (decode, replay and path), {label}: median "
+            f"{statistics.median(per_game):.1f} ms of CPU per game (per game: "
+            f"{', '.join(f'{m:.1f}' for m in per_game)})"
+        )
+
+
+def page_like_code(rec) -> str:
+    """A code as the page writes it: JSON.stringify's numbers (450, not 450.0), fields
+    unsorted, deflated at zlib's default level (CompressionStream): the server packs its
+    text again (the desktop's code it keeps as sent)."""
+    import base64
+    import json
+    import zlib
+
+    from evapcool.game.replay import CODE_PREFIX, checksum
+
+    def js(x):
+        return int(x) if isinstance(x, float) and x.is_integer() else x
+
+    doc = rec.to_json()
+    doc["moves"] = [[js(h), n] for h, n in doc["moves"]]
+    doc["settings"] = {k: js(v) for k, v in doc["settings"].items()}
+    text = json.dumps(doc, separators=(",", ":"))
+    payload = base64.urlsafe_b64encode(zlib.compress(text.encode(), 6)).decode().rstrip("=")
+    return f"{CODE_PREFIX}.{payload}.{checksum(payload)}"
+
+
+def check_cost(code: str, rec, check_submission) -> float:
+    """Median CPU ms of five checks of one code (the challenge its game was played in)."""
+    from evapcool.classroom.verifier import SETTING_NAMES
+
+    challenge = {
+        "settings": {name: getattr(rec.settings, name) for name in SETTING_NAMES},
+        "seed": rec.seed,
+        "max_frames": rec.n_frames,
+        "lost": True,
+    }
+    runs = []
+    for _ in range(5):
+        t = time.process_time()
+        got = check_submission(code, "code", challenge)
+        runs.append((time.process_time() - t) * 1e3)
+        assert got.get("score") == rec.score, got
+    return statistics.median(runs)
 
 
 if __name__ == "__main__":

@@ -12,12 +12,14 @@ MAX_DEPTH = 16
 
 def too_deep(doc: object, limit: int = MAX_DEPTH) -> bool:
     """Whether a parsed JSON value nests arrays and objects deeper than `limit`."""
-    stack: list[tuple[object, int]] = [(doc, 1)]
-    while stack:
-        item, depth = stack.pop()
-        if isinstance(item, (list, dict)):
-            if depth > limit:
-                return True
-            children = item.values() if isinstance(item, dict) else item
-            stack.extend((child, depth + 1) for child in children)
-    return False
+    level, depth = [doc], 1
+    while True:
+        # Level by level, keeping only containers: a recording's thousands of numbers are
+        # looked at once each, in one comprehension (the server checks every code so).
+        containers = [x for x in level if isinstance(x, (list, dict))]
+        if not containers:
+            return False
+        if depth > limit:
+            return True
+        level = [y for x in containers for y in (x.values() if isinstance(x, dict) else x)]
+        depth += 1

@@ -11,6 +11,7 @@ import binascii
 import hashlib
 import json
 import math
+import operator
 import re
 import zlib
 from typing import Any
@@ -29,6 +30,7 @@ from evapcool.game.replay import (
     Settings,
     Verdict,
     check_claim,
+    checksum,
     decode,
     encode,
     record_autopilot,
@@ -84,9 +86,10 @@ def code_chars_ok(code: str) -> bool:
 INFLATE_LIMIT = HEADER_BYTES + RUN_BYTES * MAX_FRAMES
 
 
-def checked_decode(code: str) -> Recording:
+def checked_decode(code: str) -> tuple[Recording, object]:
     """`decode`, once the code is known to inflate within INFLATE_LIMIT and to nest no
-    deeper than a recording: ReplayError(DAMAGED) otherwise, before decode unpacks it."""
+    deeper than a recording: ReplayError(DAMAGED) otherwise, before decode unpacks it.
+    Also the code's JSON document when it was read here (None when `decode` read it)."""
     parts = code.strip().split(".")
     if len(parts) == 3 and parts[0] == CODE_PREFIX:
         try:
@@ -94,27 +97,45 @@ def checked_decode(code: str) -> Recording:
             inflater = zlib.decompressobj()
             text = inflater.decompress(raw, INFLATE_LIMIT + 1)
         except (binascii.Error, zlib.error, ValueError):
-            return decode(code)  # its own reason (damaged)
+            return decode(code), None  # its own reason (damaged)
         if len(text) > INFLATE_LIMIT or inflater.unconsumed_tail:
             raise ReplayError(DAMAGED, f"inflates past {INFLATE_LIMIT} bytes")
-        if _nested_too_deep(text):
-            raise ReplayError(DAMAGED, f"nested deeper than {MAX_DEPTH}")
-    return decode(code)
+        doc = _parsed_within_depth(text)
+        if doc is not None and _as_decode_reads(code, parts, inflater):
+            return Recording.from_json(doc), doc
+    return decode(code), None
 
 
-def _nested_too_deep(text: bytes) -> bool:
-    """Whether JSON text nests deeper than a recording may (or than the parser can)."""
+def _parsed_within_depth(text: bytes) -> object | None:
+    """The parsed JSON if it is UTF-8 JSON (else None: decode says why), ReplayError if
+    it nests deeper than a recording may (or than the parser can)."""
     try:
-        return too_deep(json.loads(text))
+        doc: object = json.loads(text.decode("utf-8"))
     except RecursionError:
-        return True
-    except ValueError:
-        return False  # not JSON: decode says so
+        doc = None
+        deep = True
+    except ValueError:  # UnicodeDecodeError is one
+        return None
+    else:
+        deep = too_deep(doc)
+    if deep:
+        raise ReplayError(DAMAGED, f"nested deeper than {MAX_DEPTH}")
+    return doc
+
+
+def _as_decode_reads(code: str, parts: list[str], inflater: Any) -> bool:
+    """Whether `decode` would read the same text: not too long, its checksum right, one
+    whole zlib stream and nothing after it (else decode reads it and says why not)."""
+    whole = inflater.eof and not inflater.unused_data
+    return whole and len(code.strip()) <= MAX_CODE_CHARS and parts[2] == checksum(parts[1])
 
 
 def moves_key(rec: Recording, frames: int) -> str:
     """The moves up to frame `frames` (the win), whatever runs or fields carry them: a
     copy of a game, re-encoded, split into other runs or of another edition, has the same."""
+    heights = [h for h, _ in rec.moves]
+    if frames >= rec.n_frames and not any(map(operator.eq, heights, heights[1:])):
+        return _digest(rec.moves)  # its own runs (as a recorder writes them), all played
     runs: list[list[float]] = []
     left = frames
     for height, n in rec.moves:
@@ -126,6 +147,10 @@ def moves_key(rec: Recording, frames: int) -> str:
         else:
             runs.append([height, take])
         left -= take
+    return _digest(runs)
+
+
+def _digest(runs: Any) -> str:
     text = json.dumps(runs, separators=(",", ":"))
     return hashlib.sha256(text.encode("ascii")).hexdigest()
 
@@ -140,12 +165,16 @@ def reference_frames(settings: dict[str, Any], seed: int) -> int:
     return min(MAX_FRAMES, max(FLOOR_FRAMES, math.ceil(MARGIN * rec.frames)))
 
 
-def _recording(item: object, how: str) -> Recording:
-    """The recording of a code or a JSON recording; ReplayError if it is not one."""
+def _recording(item: object, how: str) -> tuple[Recording, str | None]:
+    """The recording of a code or a JSON recording, and the code as kept: the code sent
+    when it holds the recording's fields and nothing else (whichever edition packed it, it
+    unpacks to the same game: no need to pack it again), else None. ReplayError if it is
+    not one."""
     if how == "code" and isinstance(item, str):
-        return checked_decode(item)
+        rec, doc = checked_decode(item)
+        return rec, item.strip() if doc == rec.to_json() else None
     if how == "recording" and isinstance(item, dict):
-        return Recording.from_json(item)
+        return Recording.from_json(item), None
     raise ReplayError(DAMAGED, f"{how} of the wrong type")
 
 
@@ -181,14 +210,14 @@ def check_submission(item: object, how: str, challenge: dict[str, Any]) -> dict[
     challenge takes lost games (`lost`).
     """
     try:
-        rec = _recording(item, how)
+        rec, kept = _recording(item, how)
         wrong = _mismatch(rec, challenge)
         if wrong is not None:
             return wrong
         if not rec.won and not challenge.get("lost"):
             return refusal("won", "class.error.not_won")
-        rec.check()
-        # One replay gives the result and the path (game_path plays the frames verify would).
+        # from_json has checked the recording's fields and limits. One replay gives the
+        # result and the path (game_path plays the frames verify would).
         path = game_path(rec, engine=ENGINE)
         got = check_claim(rec, Verdict(path.won, path.score, path.frames))
     except ReplayError as exc:
@@ -197,7 +226,7 @@ def check_submission(item: object, how: str, challenge: dict[str, Any]) -> dict[
         "score": got.score,
         "frames": got.frames,
         "edition": rec.edition,
-        "code": encode(rec),
+        "code": kept or encode(rec),
         "moves": moves_key(rec, got.frames),
         "path": json.dumps(path.to_json(), separators=(",", ":")),
     }

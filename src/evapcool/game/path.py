@@ -17,7 +17,7 @@ rule). T is kept to T_DIGITS significant digits (the drawing needs no more).
 from __future__ import annotations
 
 import math
-from dataclasses import asdict, dataclass
+from dataclasses import dataclass, fields
 from typing import Any
 
 from evapcool.game.replay import Recording
@@ -45,7 +45,8 @@ class GamePath:
 
     def to_json(self) -> dict[str, Any]:
         """The stored and served form (columns of numbers as lists), fields in order."""
-        return {k: list(v) if isinstance(v, tuple) else v for k, v in asdict(self).items()}
+        doc = {f.name: getattr(self, f.name) for f in fields(self)}
+        return {k: list(v) if isinstance(v, tuple) else v for k, v in doc.items()}
 
 
 def stride_of(frames: int) -> int:

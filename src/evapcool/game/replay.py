@@ -16,7 +16,8 @@ import binascii
 import json
 import math
 import zlib
-from dataclasses import asdict, dataclass, field
+from dataclasses import asdict, dataclass, field, fields
+from functools import cached_property
 from typing import Any
 
 from evapcool.about import __version__
@@ -79,7 +80,7 @@ class Recording:
     start_generator: int = START_GENERATOR
     format: int = FORMAT_VERSION
 
-    @property
+    @cached_property
     def n_frames(self) -> int:
         return sum(n for _, n in self.moves)
 
@@ -88,7 +89,9 @@ class Recording:
         return [h for h, n in self.moves for _ in range(n)]
 
     def to_json(self) -> dict[str, Any]:
-        doc = asdict(self)
+        """The JSON document, fields in order; shallow (asdict deep-copied every move)."""
+        doc = {f.name: getattr(self, f.name) for f in fields(self)}
+        doc["settings"] = asdict(self.settings)
         doc["moves"] = [[h, n] for h, n in self.moves]
         return doc
 
@@ -173,7 +176,8 @@ def _bool(x: object) -> bool:
 # -- codes -----------------------------------------------------------------------------------
 
 
-def _crc(payload: str) -> str:
+def checksum(payload: str) -> str:
+    """The code's last part: the payload's CRC-32, 8 hex digits."""
     return f"{zlib.crc32(payload.encode('ascii')) & 0xFFFFFFFF:08x}"
 
 
@@ -182,7 +186,7 @@ def encode(rec: Recording) -> str:
     text = json.dumps(rec.to_json(), separators=(",", ":"), sort_keys=True)
     packed = base64.urlsafe_b64encode(zlib.compress(text.encode("utf-8"), 9))
     payload = packed.decode("ascii").rstrip("=")
-    return f"{CODE_PREFIX}.{payload}.{_crc(payload)}"
+    return f"{CODE_PREFIX}.{payload}.{checksum(payload)}"
 
 
 def decode(code: str) -> Recording:
@@ -198,7 +202,7 @@ def decode(code: str) -> Recording:
         if prefix.startswith("EC") and prefix[2:].isdigit():
             raise ReplayError(OTHER_VERSION, f"code version {prefix}")
         raise ReplayError(DAMAGED, "does not start with EC1.")
-    if crc != _crc(payload):
+    if crc != checksum(payload):
         raise ReplayError(DAMAGED, "checksum does not match")
     try:
         raw = base64.urlsafe_b64decode(payload + "=" * (-len(payload) % 4))
