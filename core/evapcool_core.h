@@ -178,6 +178,16 @@ CORE_API(core_power) double core_power(double x, double p);
  * py: Core.fill_tc_table(tc0: float, exponent: float) -> None */
 CORE_API(core_fill_tc_table) void core_fill_tc_table(Core *core, double tc0, double exponent);
 
+/* overlap.c: the first pair of included atoms (include[i] != 0) closer than
+ * (r_i + r_j)(1 - tol), tol >= 0, least i then least j, into pair: 1 if there is one, else 0
+ * (dx dx + dy dy < lim lim, lim = (r_i + r_j)(1 - tol), as physics/validation.py compares);
+ * work: 6n + 2 int32 of scratch.
+ * py: first_overlap(x: Any, y: Any, radius: Any, include: Any, tol: float) -> tuple[int, int] | None */
+CORE_API(core_first_overlap)
+int32_t core_first_overlap(const double *x, const double *y, const double *radius,
+                           const int8_t *include, int32_t n, double tol, int32_t *work,
+                           int32_t *pair);
+
 /* game.c: one whole frame, the height held: CORE_DONE, or CORE_LOG_FULL to empty the log
  * and call again with the same height.
  * py: Core.frame(height: float) -> int [nogil] */

@@ -133,5 +133,6 @@ static PyMethodDef module_methods[] = {
     {"load_cup", (PyCFunction)py_load_cup, METH_VARARGS, "The start from a seed into pos and vel ((n, 2) doubles each): the atoms placed, fewer than n if they do not fit below y_top, -1 for impossible odds."},
     {"cup_capacity", (PyCFunction)py_cup_capacity, METH_VARARGS, "Atoms the loading places below y_top."},
     {"power", (PyCFunction)py_power, METH_VARARGS, "X^p from products and square roots (the same bits everywhere)."},
+    {"first_overlap", (PyCFunction)py_first_overlap, METH_VARARGS, "The first pair of included atoms (include[i] != 0) closer than (r_i + r_j)(1 - tol), tol >= 0, least i then least j, into pair: 1 if there is one, else 0 (dx dx + dy dy < lim lim, lim = (r_i + r_j)(1 - tol), as physics/validation.py compares); work: 6n + 2 int32 of scratch."},
     {NULL, NULL, 0, NULL},
 };

@@ -230,6 +230,33 @@ static PyObject *py_load_cup(PyObject *Py_UNUSED(module), PyObject *args) {
   return PyLong_FromLong(placed);
 }
 
+/* first_overlap(x, y, radius, include, tol) -> (i, j) or None: the first overlapping pair of
+ * included atoms (x, y, radius n float64 each, include n int8 or bool; core/overlap.c). */
+static PyObject *py_first_overlap(PyObject *Py_UNUSED(module), PyObject *args) {
+  PyObject *objs[4];
+  double tol;
+  if (!PyArg_ParseTuple(args, "OOOOd", &objs[0], &objs[1], &objs[2], &objs[3], &tol)) return NULL;
+  Py_buffer v[4];
+  static const char *what[] = {"x", "y", "radius", "include"};
+  if (PyObject_GetBuffer(objs[0], &v[0], PyBUF_C_CONTIGUOUS) < 0) return NULL;
+  Py_ssize_t n = v[0].len / 8, got = 1;
+  for (; got < 4; got++)
+    if (get_buffer(objs[got], &v[got], n, got < 3 ? 8 : 1, 0, what[got]) < 0) break;
+  int32_t *work = got == 4 && n < INT32_MAX / 8 ? PyMem_Malloc(sizeof(int32_t) * (6 * n + 2)) : NULL;
+  int32_t pair[2], found = 0;
+  if (work) {
+    Py_BEGIN_ALLOW_THREADS
+    found = core_first_overlap(v[0].buf, v[1].buf, v[2].buf, v[3].buf, (int32_t)n, tol, work, pair);
+    Py_END_ALLOW_THREADS
+    PyMem_Free(work);
+  }
+  for (Py_ssize_t k = 0; k < got; k++) PyBuffer_Release(&v[k]);
+  if (got < 4) return NULL;
+  if (!work) return PyErr_NoMemory();
+  if (!found) Py_RETURN_NONE;
+  return Py_BuildValue("(ii)", pair[0], pair[1]);
+}
+
 #include "_core_glue.h"
 
 static PyTypeObject CoreType = {

@@ -302,7 +302,7 @@ def check_placement(
     idx = np.flatnonzero(trapped)
     if not overlaps or idx.size < 2:
         return
-    # A grid, linear in N (validation.first_overlap); a sweep along x was O(N^2) for a column.
+    # The core's grid, linear in N (validation.first_overlap: core/overlap.c, or its oracle).
     pair = first_overlap(np.column_stack((x[idx], y[idx])), radius[idx], tol)
     if pair is not None:
         a, b = int(idx[pair[0]]), int(idx[pair[1]])

@@ -1,10 +1,12 @@
 """Checks of a starting state (issue 13): no overlapping pair, every centre in the cup.
 
 Used by `Simulation` for given positions and by whatever loads a state from a file.
-The overlap search is a grid in NumPy, linear in the number of atoms: atoms are
-grouped into levels by radius (a factor 2 per level) and each level gets cells two
-of its largest radii wide, so a pair can only touch within a 3 x 3 block of the
-larger atom's level, and a block holds a bounded number of non-overlapping atoms.
+The overlap search is the core's (core/overlap.c, both editions') where it is installed;
+`first_overlap_reference` is its readable oracle and the fallback: a grid in NumPy, linear
+in the number of atoms: atoms are grouped into levels by radius (a factor 2 per level) and
+each level gets cells two of its largest radii wide, so a pair can only touch within a
+3 x 3 block of the larger atom's level, and a block holds a bounded number of
+non-overlapping atoms.
 """
 
 from __future__ import annotations
@@ -13,6 +15,7 @@ import numpy as np
 
 from evapcool import limits
 from evapcool.limits import CONTACT_TOLERANCE, POSITION_MAX, VELOCITY_MAX
+from evapcool.physics.core import compiled
 from evapcool.physics.world import TRAPPED, World
 
 #: Candidate pairs examined at once (memory: about 100 bytes each).
@@ -55,7 +58,22 @@ def _closer(
 
 
 def first_overlap(pos: np.ndarray, radii: np.ndarray, tol: float = 0.0) -> tuple[int, int] | None:
-    """The first pair (i < j, least i, then least j) closer than (r_i + r_j)(1 - tol), or None."""
+    """The first pair (i < j, least i, then least j) closer than (r_i + r_j)(1 - tol), or None:
+    the core's (core/overlap.c) where it is installed, else `first_overlap_reference`'s."""
+    module = compiled()
+    if module is None:
+        return first_overlap_reference(pos, radii, tol)
+    x, y = (np.ascontiguousarray(pos[:, k], dtype=np.float64) for k in (0, 1))
+    r = np.ascontiguousarray(radii, dtype=np.float64)
+    pair: tuple[int, int] | None = module.first_overlap(x, y, r, np.ones(len(r), np.int8), tol)
+    return pair
+
+
+def first_overlap_reference(
+    pos: np.ndarray, radii: np.ndarray, tol: float = 0.0
+) -> tuple[int, int] | None:
+    """first_overlap in NumPy: the readable oracle of core/overlap.c, the fallback without it
+    (a heap of overlapping atoms may end its search early, at a pair not the first)."""
     n = len(radii)
     if n < 2:
         return None

@@ -2,7 +2,8 @@
  * A game's path in the (N, T) plane and its trap height, sampled from its replay (twin of
  * evapcool/game/path.py, issue 36): frame 0 and every `stride`-th whole frame, then the last
  * frame played, at most MAX_POINTS points, T to T_DIGITS significant digits. The class
- * server keeps each verified game's path so; a page computes the same points for its game.
+ * server keeps each verified game's path so; a page computes the same points for its game,
+ * in one call to the core's core_path (core/game.c) as Python's does (issue 47).
  */
 import { startOf, type Recording } from "./replay";
 import { clampHeight, type SimFactory } from "./rules";
@@ -34,35 +35,25 @@ export function roundT(t: number): number {
 }
 
 /** The path of a recording's game, replayed up to the win or the end of its moves (or
- * `frames` whole frames, when known). */
+ * `frames` whole frames, when known), sampled in one call to the core (core_path). */
 export function gamePath(rec: Recording, factory: SimFactory, frames?: number): GamePath {
   const all = framesOf(rec.moves);
   const total = frames === undefined ? all : Math.min(frames, all);
-  const stride = strideOf(total);
   const sim = startOf(rec, factory);
-  const out: GamePath = { k: [], n: [], t: [], h: [], frames: 0, won: false, score: 0, t0: 0 };
-  const keep = (k: number, h: number) => {
-    const n = sim.nTrapped;
-    const t = sim.temperature;
-    if (!(n > 0 && Number.isFinite(t) && t > 0)) return;
-    out.k.push(k);
-    out.n.push(n);
-    out.t.push(roundT(t));
-    out.h.push(h);
+  const runs = rec.moves.map(([h, n]) => [clampHeight(h), n] as const);
+  const t0 = sim.temperature;
+  const h0 = runs.length ? runs[0][0] : clampHeight(sim.trapHeight);
+  const played = sim.path(runs, total, strideOf(total), h0);
+  const rows = played.rows;
+  const score = sim.score;
+  return {
+    k: rows.map((r) => r[0]),
+    n: rows.map((r) => r[1]),
+    t: rows.map((r) => roundT(r[2])),
+    h: rows.map((r) => r[3]),
+    frames: played.frames,
+    won: score !== null,
+    score: score ?? 0,
+    t0,
   };
-  out.t0 = sim.temperature;
-  keep(0, clampHeight(rec.moves.length ? rec.moves[0][0] : sim.trapHeight));
-  let k = 0;
-  for (const [height, run] of rec.moves) {
-    const h = clampHeight(height);
-    for (let i = 0; i < run && k < total && sim.score === null; i++) {
-      sim.frame(h);
-      k += 1;
-      if (k % stride === 0 || k === total || sim.score !== null) keep(k, h);
-    }
-  }
-  out.frames = k;
-  out.won = sim.score !== null;
-  out.score = sim.score ?? 0;
-  return out;
 }

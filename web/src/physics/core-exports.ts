@@ -112,6 +112,21 @@ export interface CoreExports {
   /** Tc(N) = Tc0 (N / N0)^p for N = 0..N0, the core's own power. */
   core_fill_tc_table(core: Core, tc0: number, exponent: number): void;
   /**
+   * The first pair of included atoms (include[i] != 0) closer than (r_i + r_j)(1 - tol), tol >= 0,
+   * least i then least j, into pair: 1 if there is one, else 0 (dx dx + dy dy < lim lim, lim = (r_i
+   * + r_j)(1 - tol), as physics/validation.py compares); work: 6n + 2 int32 of scratch.
+   */
+  core_first_overlap(
+    x: number,
+    y: number,
+    radius: number,
+    include: number,
+    n: number,
+    tol: number,
+    work: number,
+    pair: number,
+  ): number;
+  /**
    * One whole frame, the height held: CORE_DONE, or CORE_LOG_FULL to empty the log and call again
    * with the same height.
    */

@@ -328,6 +328,13 @@ export class Simulation {
     return this.engine.replay(runs, limit);
   }
 
+  /** The game's path in the (N, T) plane: runs played as `replay` plays them; rows [k, N, T, h]
+   * at frame 0 (height h0), every stride-th whole frame, the last and the win's, where N > 0
+   * and T > 0 (game/path.ts rounds T). The frames played and those rows (core_path). */
+  path(runs: ReadonlyArray<readonly [number, number]>, limit: number, stride: number, h0: number) {
+    return this.engine.path(runs, limit, stride, h0);
+  }
+
   // -- counters --------------------------------------------------------------------------
   get pairCollisionCount(): number {
     return this.engine.read("core_pairs");

@@ -1,7 +1,8 @@
 /**
  * The limits a state must keep, the twin of Python's `physics/validation.py` `check_world`:
  * every parameter within its range and the trapped atoms within reach and speed, from the
- * table both editions share (src/limits.ts), with Python's words (issue 25.1).
+ * table both editions share (src/limits.ts), with Python's words (issue 25.1); the overlap
+ * check is the core's (core/overlap.c: firstOverlap), as Python's where it is built.
  */
 import {
   CURVATURE,
@@ -17,6 +18,7 @@ import {
   pyG,
   type Range,
 } from "../limits";
+import { instance, OUT_OF_MEMORY } from "./wasm";
 
 /** Per-atom positions and velocities as columns, trap coordinates. */
 export interface Motion {
@@ -141,44 +143,27 @@ export function checkStart(
   }
 }
 
-/** The overlapping pair of trapped atoms with the least index, then the least partner. */
+/** The first pair (i < j, least i, then least j) of included atoms closer than
+ * (r_i + r_j)(1 - tol), or null (core/overlap.c: Python's validation.first_overlap). */
 export function firstOverlap(
   x: Float64Array,
   y: Float64Array,
   radius: Float64Array,
-  trapped: (i: number) => boolean,
+  included: (i: number) => boolean,
   tol: number,
 ): [number, number] | null {
   const n = x.length;
-  // Sweep along x: only atoms closer than the largest contact distance in x can overlap.
-  const order: number[] = [];
-  let rMax = 0;
-  for (let i = 0; i < n; i++) {
-    if (!trapped(i)) continue;
-    order.push(i);
-    if (radius[i] > rMax) rMax = radius[i];
-  }
-  order.sort((p, q) => x[p] - x[q] || p - q);
-  let bi = -1;
-  let bj = -1;
-  for (let p = 0; p < order.length; p++) {
-    const i = order[p];
-    for (let q = p + 1; q < order.length; q++) {
-      const j = order[q];
-      const dx = x[j] - x[i];
-      if (dx > 2 * rMax) break;
-      const dy = y[j] - y[i];
-      const sigma = radius[i] + radius[j];
-      const lim = sigma * (1 - tol);
-      if (dx * dx + dy * dy < lim * lim) {
-        const lo = i < j ? i : j;
-        const hi = i < j ? j : i;
-        if (bi < 0 || lo < bi || (lo === bi && hi < bj)) {
-          bi = lo;
-          bj = hi;
-        }
-      }
-    }
-  }
-  return bi >= 0 ? [bi, bj] : null;
+  const c = instance(); // a fresh memory for the columns and the scratch, dropped after
+  const at = c.core_buffer(c.core_new(), 6 * n + Math.ceil(n / 8) + 2);
+  if (at === 0) throw new RangeError(OUT_OF_MEMORY(n));
+  const columns = new Float64Array(c.memory.buffer, at, 3 * n);
+  [x, y, radius].forEach((column, k) => columns.set(column.subarray(0, n), k * n));
+  const include = at + 24 * n;
+  const flags = new Int8Array(c.memory.buffer, include, n);
+  for (let i = 0; i < n; i++) flags[i] = included(i) ? 1 : 0;
+  const pair = include + 8 * Math.ceil(n / 8);
+  const work = pair + 8;
+  if (!c.core_first_overlap(at, at + 8 * n, at + 16 * n, include, n, tol, work, pair)) return null;
+  const [i, j] = new Int32Array(c.memory.buffer, pair, 2);
+  return [i, j];
 }

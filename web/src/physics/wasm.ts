@@ -12,15 +12,16 @@
 import packedCore from "virtual:evapcool-wasm";
 import { ParameterError, pyG } from "../limits";
 import { SEED_PORTABLE_MAX } from "./start";
-import { escapeBox } from "./room";
-import type { SimulationConfig } from "./config";
+import { escapeBox, type Room } from "./room";
 import type { Core, CoreExports } from "./core-exports";
+import type { EscapeRule } from "./constants";
 import { CORE_LOG_FULL, CORE_LOG_LINE_BYTES } from "./model";
 
-/** Everything an engine needs besides the atoms: a checked config's rules, or a state's. */
-export type EngineRules = Pick<
-  SimulationConfig,
-  "room" | "curvature" | "gravity" | "tcExponent" | "escape" | "win" | "trapHeight" | "recordEvents"
+/** Everything an engine needs besides the atoms: a checked config's rules (config.ts's
+ * SimulationConfig, whose checks call the core: named here, not imported), or a state's. */
+export type EngineRules = { readonly room: Room; readonly escape: EscapeRule } & Readonly<
+  Record<"curvature" | "gravity" | "tcExponent" | "trapHeight", number> &
+    Record<"win" | "recordEvents", boolean>
 >;
 
 /** Atoms and the clock; for a fresh start t = 0, status trapped and the sums are computed. */
@@ -59,7 +60,7 @@ const LOG_LINE_BYTES = CORE_LOG_LINE_BYTES;
 const LOG_BUFFER = 4096;
 
 /** The WebAssembly memory (at most 4 GB) could not hold the engine's tables. */
-const OUT_OF_MEMORY = (n: number) =>
+export const OUT_OF_MEMORY = (n: number) =>
   `nAtoms must fit the engine core's memory (${n} atoms did not: not enough memory)`;
 
 let compiled: WebAssembly.Module | null = null;
@@ -91,8 +92,8 @@ function coreModule(): WebAssembly.Module {
   return compiled;
 }
 
-/** A fresh instance of the core (its own memory: an engine, or one start computed). */
-function instance(): CoreExports {
+/** A fresh instance of the core (its own memory: an engine, one start or one check computed). */
+export function instance(): CoreExports {
   return new WebAssembly.Instance(coreModule(), {}).exports as unknown as CoreExports;
 }
 

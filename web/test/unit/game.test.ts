@@ -258,6 +258,9 @@ class FakeSim implements SimLike {
   replay(): number {
     throw new Error("the game's rules never replay");
   }
+  path(): never {
+    throw new Error("the game's rules never sample a path");
+  }
   trapped(): AtomArrays {
     const z = new Float64Array(0);
     return { x: z, y: z, vx: z, vy: z, radius: z, mass: z, count: 0 };
