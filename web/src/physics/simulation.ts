@@ -328,6 +328,11 @@ export class Simulation {
     return this.engine.replay(runs, limit);
   }
 
+  /** The reach rule (REACH_*: core_out_of_reach), the lowest rim the player can set, the rim now. */
+  outOfReach(lowest: number, height: number): number {
+    return this.engine.outOfReach(lowest, height);
+  }
+
   // -- counters --------------------------------------------------------------------------
   get pairCollisionCount(): number {
     return this.engine.read("core_pairs");
