@@ -84,6 +84,25 @@ def reach_state(
     }
 
 
+def tie(energy: float, m: float, g: float) -> float | None:
+    """A rim H with m g H == E to the last bit, if one lies within a few ulps of E / (m g)."""
+    h = energy / (m * g)
+    for _ in range(8):
+        if m * g * h == energy:
+            return h
+        h = math.nextafter(h, math.inf if m * g * h < energy else -math.inf)
+    return None
+
+
+def tie_case(masses: list[float]) -> dict[str, Any]:
+    """Atoms above Tc whose E is m g H to the last bit for the rim H asked for: stuck here."""
+    state = reach_state(masses, 10, "trap", 1.0, 1.5, 80.0)
+    sim = Simulation.from_state(state, engine="reference")
+    h = tie(sim.total_energy(), float(sim.masses.min()), sim.gravity)
+    assert h is not None, masses
+    return {"case": f"E = m g H to the last bit, {len(masses)} atoms", "state": state, "height": h}
+
+
 def answer(state: dict[str, Any], height: float) -> int:
     """The reference engine's readable rule (the oracle) on that state."""
     sim = Simulation.from_state(state, engine="reference")
@@ -122,6 +141,7 @@ def cases() -> list[dict[str, Any]]:
             for tc in (1.0, 1.0 - 1e-15, 1.0 + 1e-15)
         ),
     ]
+    out += [tie_case([1.0, 1.25]), tie_case([1.5, 1.1, 1.3])]
     for c in out:
         c["code"] = answer(c["state"], c["height"])
         c["reason"] = REACH_NAMES[c["code"]]
@@ -130,8 +150,8 @@ def cases() -> list[dict[str, Any]]:
 
 def fixture_text() -> str:
     head = "scripts/reach_cases.py from the reference engine's readable rule: do not edit"
-    fixture = {"generated_by": head, "lowest": HEIGHT_MIN, "cases": cases()}
-    return json.dumps(fixture, indent=1) + "\n"
+    lines = ",\n".join(json.dumps(c) for c in cases())  # a case a line
+    return f'{{"generated_by": "{head}", "lowest": {HEIGHT_MIN!r}, "cases": [\n{lines}\n]}}\n'
 
 
 def main(argv: list[str] | None = None) -> int:

@@ -16,7 +16,7 @@ from hypothesis import strategies as st
 
 from evapcool.game.rules import HEIGHT_MAX, HEIGHT_MIN
 from evapcool.physics.core import compiled
-from evapcool.physics.model import REACH_NAMES, REACH_STUCK_HERE, REACH_WITHIN
+from evapcool.physics.model import REACH_NAMES, REACH_STUCK, REACH_STUCK_HERE, REACH_WITHIN
 from evapcool.physics.reference import out_of_reach
 from evapcool.physics.simulation import Simulation
 
@@ -68,6 +68,22 @@ def test_the_core_answers_as_the_readable_rule(
     # Without it (Game.lost): the same answer, but for "lower the trap", not a loss yet.
     assert out_of_reach(*args) == (REACH_WITHIN if code == REACH_STUCK_HERE else code)
     assert fast.out_of_reach(HEIGHT_MIN, HEIGHT_MIN) == out_of_reach(*args)
+
+
+@settings(max_examples=200, deadline=None)
+@given(masses=st.lists(st.floats(0.5, 2.0), min_size=2, max_size=7), n_gone=st.integers(0, 60))
+def test_a_tie_to_the_last_bit_is_stuck_as_the_readable_rule_says(masses, n_gone) -> None:
+    """E == m g H: no atom can leave (the rule's <=), in the core as in its oracle."""
+    state = cases.reach_state(masses, n_gone, "escape", 1.0, 1.5, HEIGHT_MIN)
+    fast = Simulation.from_state(state, engine="fast")
+    reference = Simulation.from_state(state, engine="reference")
+    n, energy, g = fast.n_trapped, fast.total_energy(), fast.gravity
+    h = cases.tie(energy, float(fast.masses.min()), g)
+    if h is None or energy / n < fast.critical_temperature:
+        return
+    for lowest, height, want in ((h, h, REACH_STUCK), (0.5 * h, h, REACH_STUCK_HERE)):
+        assert fast.out_of_reach(lowest, height) == want
+        assert reference.out_of_reach(lowest, height) == want
 
 
 def test_the_shared_cases_are_the_readable_rules_and_the_cores() -> None:
