@@ -193,6 +193,7 @@ double *core_allocate(Core *core, int32_t n, int32_t log_capacity) {
   core->order = core_take(core, sizeof(int32_t) * n);
   core->row_of = core_take(core, sizeof(int32_t) * n);
   core->tc_table = core_take(core, sizeof(double) * (n + 1));
+  core->scratch = core_take(core, sizeof(double) * (n + 1));
   core->run.log_capacity = log_capacity;
   core->event_log = core_take(core, sizeof(LogLine) * log_capacity);
   calendar_init(core, n);

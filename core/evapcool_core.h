@@ -55,6 +55,12 @@
 /* @names ESCAPE_RULES: How atoms leave: over the rim, or cut at m g H at once (the knife). */
 #define ESCAPE_RIM 0
 #define ESCAPE_KNIFE 1
+/* @names REACH_NAMES: The reach rule's answers (core_out_of_reach): within reach, or why not. */
+#define REACH_WITHIN 0
+#define REACH_ALL_ESCAPED 1
+#define REACH_ONE_ATOM 2
+#define REACH_STUCK 3
+#define REACH_STUCK_HERE 4
 /* The answers of core_advance_to and core_frame: every event done, or
  * the log to be emptied first (then call again). */
 #define CORE_DONE 0
@@ -206,6 +212,9 @@ CORE_API(core_replay) int32_t core_replay(Core *core, const double *runs, int32_
 CORE_API(core_path)
 int32_t core_path(Core *core, const double *runs, int32_t n_runs, int32_t limit, int32_t stride,
                   double h0, double *points, int32_t *n_points);
+/* game.c: why the gas can no longer condense (REACH_*), or REACH_WITHIN.
+ * py: Core.out_of_reach(lowest: float, height: float) -> int */
+CORE_API(core_out_of_reach) int32_t core_out_of_reach(Core *core, double lowest, double height);
 /* game.c: n doubles of the engine's memory for the caller to fill (a recording's runs). */
 CORE_API(core_buffer) double *core_buffer(Core *core, int32_t n);
 

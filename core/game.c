@@ -84,18 +84,18 @@ static double pairwise_sum(const double *a, int32_t n) {
   return pairwise_sum(a, n2) + pairwise_sum(a + n2, n - n2);
 }
 
-/* T = E / N (seed Eq. 1) with E the trapped atoms' energies summed in World index order. */
-static double temperature(Core *core, double *energies) {
-  int32_t n = 0;
+/* E of the trapped atoms, in World index order and summed as NumPy sums (total_energy); N: *n. */
+static double trapped_energy(Core *core, int32_t *n) {
+  *n = 0;
   for (int32_t a = 0; a < core->run.n_atoms; a++)
-    if (core_status_of(core, a) == TRAPPED) energies[n++] = core_atom_energy(core, a);
-  return n > 0 ? pairwise_sum(energies, n) / n : 0.0;
+    if (core_status_of(core, a) == TRAPPED) core->scratch[(*n)++] = core_atom_energy(core, a);
+  return pairwise_sum(core->scratch, *n);
 }
 
 /* Keep frame k's point (k, N, T, h) unless no atom is trapped or T is not finite and > 0. */
-static void keep(Core *core, double *points, int32_t *n_points, double *energies, int32_t k, double h) {
-  double t = temperature(core, energies);
-  int32_t n = core->run.n_trapped;
+static void keep(Core *core, double *points, int32_t *n_points, int32_t k, double h) {
+  int32_t n;
+  double t = trapped_energy(core, &n) / n; /* T = E / N, seed Eq. 1 */
   if (n <= 0 || !__builtin_isfinite(t) || !(t > 0.0)) return;
   double *p = points + 4 * (*n_points)++;
   p[0] = k;
@@ -109,17 +109,14 @@ static void keep(Core *core, double *points, int32_t *n_points, double *energies
  * played as core_replay plays them, up to the win or `limit` frames; kept are frame 0 (with
  * height h0) and every `stride`-th whole frame, the last one and the win's. points: rows
  * of (k, N, T, h), at least limit / stride + 2 of them; their count into n_points. Returns
- * the frames played (0 if the memory cannot hold the energies).
+ * the frames played.
  */
 int32_t core_path(Core *core, const double *runs, int32_t n_runs, int32_t limit, int32_t stride,
                   double h0, double *points, int32_t *n_points) {
-  if (!core->scratch) core->scratch = core_take(core, sizeof(double) * (core->run.n_atoms + 1));
-  double *energies = core->scratch;
   *n_points = 0;
-  if (!energies) return 0;
   core->run.record = 0;
   core->run.n_log = 0;
-  keep(core, points, n_points, energies, 0, h0);
+  keep(core, points, n_points, 0, h0);
   int32_t k = 0;
   for (int32_t r = 0; r < n_runs; r++)
     for (double f = 0.0; f < runs[2 * r + 1]; f += 1.0) {
@@ -127,7 +124,29 @@ int32_t core_path(Core *core, const double *runs, int32_t n_runs, int32_t limit,
       core_frame(core, runs[2 * r]);
       k++;
       if (k % stride == 0 || k == limit || core->run.score >= 0)
-        keep(core, points, n_points, energies, k, runs[2 * r]);
+        keep(core, points, n_points, k, runs[2 * r]);
     }
   return k;
+}
+
+/*
+ * The reach rule, its why and its oracle physics/reference.py's `out_of_reach`: REACH_WITHIN
+ * while T < Tc(N) stays reachable, with m the lightest trapped mass, `lowest` the lowest rim
+ * the player can set and `height` the rim now. Never once won, nor without the win rule.
+ */
+int32_t core_out_of_reach(Core *core, double lowest, double height) {
+  const Run *r = &core->run;
+  if (r->won || !r->win_rule) return REACH_WITHIN;
+  int32_t n;
+  double energy = trapped_energy(core, &n), m = INF;
+  for (int32_t a = 0; a < r->n_atoms; a++) {
+    double mass = core_stored_of(core, a, 6);
+    if (core_status_of(core, a) == TRAPPED && mass < m) m = mass;
+  }
+  if (n <= 0) return REACH_ALL_ESCAPED;
+  if (energy / n < core->tc_table[n]) return REACH_WITHIN; /* condensing now */
+  if (n == 1) return REACH_ONE_ATOM;
+  if (energy <= m * r->gravity * lowest) return REACH_STUCK;
+  if (energy <= m * r->gravity * height) return REACH_STUCK_HERE;
+  return REACH_WITHIN;
 }

@@ -8,7 +8,8 @@ import pytest
 
 from evapcool import Simulation
 from evapcool.game import rules
-from evapcool.game.rules import Game, GameConfig, check_speed
+from evapcool.game.rules import Game, GameConfig, check_speed, lose_message
+from evapcool.physics.reference import out_of_reach
 
 
 def test_rules_do_not_need_pygame():
@@ -119,33 +120,38 @@ def test_missing_core_falls_back_to_reference(monkeypatch):
 ESCAPE = 1.0 * (10.0 / 30.0) * rules.HEIGHT_MIN  # m g H_min: the least an escaping atom carries
 
 
+def said(*args: float, trap_energy: float | None = None) -> str | None:
+    """What the player reads for the reference's readable reach rule (the core's oracle)."""
+    return lose_message(out_of_reach(int(args[0]), *args[1:], trap_energy=trap_energy))
+
+
 def test_no_atoms_left_is_out_of_reach():
-    assert rules.out_of_reach(0, 0.0, 0.0, ESCAPE) == "All the atoms escaped."
+    assert said(0, 0.0, 0.0, ESCAPE) == "All the atoms escaped."
 
 
 def test_one_atom_above_tc_is_out_of_reach_below_it_is_not():
-    assert rules.out_of_reach(1, 5.0, 4.0, ESCAPE) is not None
-    assert rules.out_of_reach(1, 3.0, 4.0, ESCAPE) is None  # condensing now
+    assert said(1, 5.0, 4.0, ESCAPE) is not None
+    assert said(1, 3.0, 4.0, ESCAPE) is None  # condensing now
 
 
 def test_two_atoms_with_energy_to_spare_can_still_win():
     # One may leave carrying nearly all the energy: the other is then as cold as it likes.
-    assert rules.out_of_reach(2, 2 * 50.0, 4.0, ESCAPE) is None
-    assert rules.out_of_reach(500, 500 * 50.0, 40.0, ESCAPE) is None
+    assert said(2, 2 * 50.0, 4.0, ESCAPE) is None
+    assert said(500, 500 * 50.0, 40.0, ESCAPE) is None
 
 
 def test_atoms_that_cannot_leave_keep_their_temperature():
-    assert rules.out_of_reach(3, 0.9 * ESCAPE, 0.1, ESCAPE) is not None
-    assert rules.out_of_reach(3, 1.1 * ESCAPE, 0.1, ESCAPE) is None
+    assert said(3, 0.9 * ESCAPE, 0.1, ESCAPE) is not None
+    assert said(3, 1.1 * ESCAPE, 0.1, ESCAPE) is None
 
 
 def test_atoms_too_cold_to_leave_as_the_trap_stands_are_told_to_lower_it():
     # Issue 34: 2 atoms at T = 7.5 > Tc = 7.2 under a high trap stayed frozen with no word.
     here = 1.0 * (10.0 / 30.0) * 60.0  # m g H at a trap height of 60
-    said = rules.out_of_reach(2, 15.0, 7.2, ESCAPE, trap_energy=here)
-    assert said is not None and "lower the trap, or restart" in said
-    assert rules.out_of_reach(2, 15.0, 7.2, ESCAPE, trap_energy=0.5 * here) is None  # can leave
-    assert rules.out_of_reach(2, 13.0, 7.2, ESCAPE, trap_energy=here) is None  # condensing
+    told = said(2, 15.0, 7.2, ESCAPE, trap_energy=here)
+    assert told is not None and "lower the trap, or restart" in told
+    assert said(2, 15.0, 7.2, ESCAPE, trap_energy=0.5 * here) is None  # can leave
+    assert said(2, 13.0, 7.2, ESCAPE, trap_energy=here) is None  # condensing
 
 
 def test_a_real_gas_under_a_high_trap_is_told_within_a_frame():

@@ -22,6 +22,7 @@ from typing import Any
 from evapcool.i18n import t
 from evapcool.limits import APPLET_SPEED
 from evapcool.physics.config import CHECKED_KEYWORDS, SimulationConfig
+from evapcool.physics.model import REACH_NAMES, REACH_STUCK_HERE, REACH_WITHIN
 from evapcool.physics.room import CLASSIC_ROOM, Room
 from evapcool.physics.simulation import (
     ATOM_RADIUS,
@@ -89,6 +90,11 @@ GAME_PHYSICS: dict[str, Any] = {
     "record_events": False,
     "win": True,
 }
+
+
+def lose_message(code: int) -> str | None:
+    """The reach rule's answer (Simulation.out_of_reach) as the player reads it (lose.*)."""
+    return None if code == REACH_WITHIN else t(f"lose.{REACH_NAMES[code]}")
 
 
 def make_simulation(config: GameConfig) -> Simulation:
@@ -304,67 +310,13 @@ class Game:
     def lost(self) -> bool:
         """The gas can no longer condense whatever the trap does: a lost game (a class
         that counts lost games takes it)."""
-        sim = self.sim
-        if sim.won or not sim.win_rule:
-            return False
-        masses = sim.masses
-        lightest = float(masses.min()) if masses.size else 1.0
-        escape = lightest * sim.gravity * HEIGHT_MIN
-        found = out_of_reach(
-            sim.n_trapped, sim.total_energy(), sim.critical_temperature, escape_energy=escape
-        )
-        return found is not None
+        return self._reach() not in (REACH_WITHIN, REACH_STUCK_HERE)
 
     @property
     def too_few_atoms(self) -> str | None:
         """Why the gas can no longer condense (say so, offer a restart), or None."""
-        sim = self.sim
-        if sim.won or not sim.win_rule:
-            return None
-        masses = sim.masses
-        lightest = float(masses.min()) if masses.size else 1.0
-        return out_of_reach(
-            sim.n_trapped,
-            sim.total_energy(),
-            sim.critical_temperature,
-            escape_energy=lightest * sim.gravity * HEIGHT_MIN,
-            trap_energy=lightest * sim.gravity * self.trap_height,
-        )
+        return lose_message(self._reach())
 
-
-def out_of_reach(
-    n: int,
-    energy: float,
-    critical_temperature: float,
-    escape_energy: float,
-    trap_energy: float | None = None,
-) -> str | None:
-    """Why T < Tc can no longer be reached by n trapped atoms of total energy E, or None.
-
-    T = E / N (seed Eq. 1) changes only when atoms leave: collisions and bounces keep
-    E. An atom leaves only above the rim (or, with the knife, above m g H), so it
-    carries away more than escape_energy = m g H_min, H_min being the lowest rim the
-    slider allows. With n >= 2 atoms and E above that, one may leave carrying nearly
-    all the energy, and the rest could be left as cold as they like: a win stays
-    possible, however unlikely. It is out of reach exactly when
-    - no atom is left;
-    - one atom is left above Tc(1): alone it never collides, so its energy (its T)
-      stays until it leaves, and then none is left;
-    - T >= Tc(N) and no atom can ever leave (E <= escape_energy), so T stays.
-
-    trap_energy (m g H at the trap as it stands): with E <= trap_energy and T >= Tc, no
-    atom can leave as the trap stands (even one holding all the energy stays below the
-    rim), so T stays until the player lowers the trap: said with what to do (lower the
-    trap, or restart), not a loss yet.
-    """
-    if n <= 0:
-        return t("lose.all_escaped")
-    if energy / n < critical_temperature:
-        return None  # condensing now
-    if n == 1:
-        return t("lose.one_atom")
-    if energy <= escape_energy:
-        return t("lose.stuck")
-    if trap_energy is not None and energy <= trap_energy:
-        return t("lose.stuck_here")
-    return None
+    def _reach(self) -> int:
+        """The reach rule (Simulation.out_of_reach) for the slider's floor and the trap asked."""
+        return self.sim.out_of_reach(HEIGHT_MIN, self.trap_height)

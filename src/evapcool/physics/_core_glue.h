@@ -108,6 +108,17 @@ static PyObject *core_py_frame_end(CoreObject *self, PyObject *Py_UNUSED(args)) 
   return PyBool_FromLong(out);
 }
 
+static PyObject *core_py_out_of_reach(CoreObject *self, PyObject *args) {
+  Core *core = ready(self);
+  if (!core) return NULL;
+  double lowest;
+  double height;
+  if (!PyArg_ParseTuple(args, "dd", &lowest, &height)) return NULL;
+  int32_t out;
+  out = core_out_of_reach(core, lowest, height);
+  return PyLong_FromLong(out);
+}
+
 static PyMethodDef core_methods[] = {
     {"load", (PyCFunction)core_py_load, METH_VARARGS, "Copy the inputs into the tables; the fixed parameters and the clock."},
     {"start", (PyCFunction)core_py_start, METH_VARARGS, "The grid, the cells and every prediction; 0 if the memory cannot hold the cells."},
@@ -125,6 +136,7 @@ static PyMethodDef core_methods[] = {
     {"frame_end", (PyCFunction)core_py_frame_end, METH_NOARGS, "A whole frame's end: 1 at the frame the win is first seen (the score fixed)."},
     {"replay", (PyCFunction)core_py_replay, METH_VARARGS, "(height, frames) runs played from a whole frame up to the win or `limit` frames: the frames played."},
     {"path", (PyCFunction)core_py_path, METH_VARARGS, "A recording's path in the (N, T) plane: the runs played as core_replay plays them, frame 0 (height h0), every stride-th frame, the last and the win's kept as rows of (k, N, T, h) in points (their count into n_points); the frames played."},
+    {"out_of_reach", (PyCFunction)core_py_out_of_reach, METH_VARARGS, "Why the gas can no longer condense (REACH_*), or REACH_WITHIN."},
     {NULL, NULL, 0, NULL},
 };
 

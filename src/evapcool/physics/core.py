@@ -202,6 +202,11 @@ class CoreEngine:
         self._sync()
         return int(frames), np.frombuffer(rows, dtype=np.float64).reshape(-1, 4)
 
+    def out_of_reach(self, lowest: float, height: float) -> int:
+        """Why the gas can no longer condense (core_out_of_reach: REACH_*), or REACH_WITHIN."""
+        self._update_tc_table()
+        return int(self.core.out_of_reach(float(lowest), float(height)))
+
     # -- diagnostics --------------------------------------------------------------
     @property
     def crossing_count(self) -> int:

@@ -44,6 +44,13 @@ EVENT_NAMES = ("pair", "wall", "escape", "gone", "knife")
 ESCAPE_RIM = 0
 ESCAPE_KNIFE = 1
 ESCAPE_RULES = ("rim", "knife")
+#: The reach rule's answers (core_out_of_reach): within reach, or why not.
+REACH_WITHIN = 0
+REACH_ALL_ESCAPED = 1
+REACH_ONE_ATOM = 2
+REACH_STUCK = 3
+REACH_STUCK_HERE = 4
+REACH_NAMES = ("within", "all_escaped", "one_atom", "stuck", "stuck_here")
 #: The answers of core_advance_to and core_frame: every event done, or the log to be emptied first
 #: (then call again).
 CORE_DONE = 0

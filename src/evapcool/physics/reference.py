@@ -14,6 +14,7 @@ import math
 import numpy as np
 
 from evapcool.physics import kernels as k
+from evapcool.physics import model
 from evapcool.physics.world import (
     ESCAPED,
     EV_ESCAPE,
@@ -312,3 +313,38 @@ class ReferenceEngine:
                 if k % stride == 0 or k == limit or self.score is not None:
                     keep(k, height)
         return k, np.array(points, dtype=np.float64).reshape(-1, 4)
+
+    # -- the reach rule: the readable rule core_out_of_reach runs, its oracle ---------------
+    def out_of_reach(self, lowest: float, height: float) -> int:
+        """The reach rule (model.REACH_*) with the lowest rim the player can set and the rim
+        now; never once won, nor without the win rule (REACH_WITHIN)."""
+        w = self.w
+        if w.won or not w.win_rule:
+            return model.REACH_WITHIN
+        n, trapped, g = w.n_trapped, w.status == TRAPPED, w.gravity
+        m = float(w.mass[trapped].min()) if n else 1.0
+        energy, tc = float(np.sum(w.energies()[trapped])), w.critical_temperature_of(n)
+        return out_of_reach(n, energy, tc, m * g * lowest, m * g * height)
+
+
+def out_of_reach(
+    n: int, energy: float, tc: float, escape_energy: float, trap_energy: float | None = None
+) -> int:
+    """Why T < Tc can no longer be reached by n trapped atoms of total energy E (REACH_*).
+
+    T = E / N (seed Eq. 1) changes only when atoms leave, each carrying more than
+    escape_energy = m g H_min (m the lightest mass, H_min the slider's floor); with n >= 2
+    and E above it one may leave with nearly all of it. Out of reach: no atom left; one above
+    Tc(1) (alone it never collides); T >= Tc(N) with E <= escape_energy. E <= trap_energy
+    (m g H now): none can leave until the trap is lowered (REACH_STUCK_HERE, not a loss)."""
+    if n <= 0:
+        return model.REACH_ALL_ESCAPED
+    if energy / n < tc:
+        return model.REACH_WITHIN  # condensing now
+    if n == 1:
+        return model.REACH_ONE_ATOM
+    if energy <= escape_energy:
+        return model.REACH_STUCK
+    if trap_energy is not None and energy <= trap_energy:
+        return model.REACH_STUCK_HERE
+    return model.REACH_WITHIN

@@ -263,6 +263,11 @@ class Simulation:
         runs = np.array(moves, dtype=np.float64).reshape(-1, 2)
         return self._engine.path(runs, limit, stride, h0)
 
+    def out_of_reach(self, lowest: float, height: float) -> int:
+        """The reach rule (model.REACH_*), the engine's (core_out_of_reach or its oracle), with
+        the lowest rim the player can set and the rim now."""
+        return self._engine.out_of_reach(lowest, height)
+
     # -- the trap ---------------------------------------------------------------
     @property
     def trap_height(self) -> float:

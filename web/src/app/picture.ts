@@ -120,7 +120,7 @@ export class Picture {
     scene.drawFrame(ctx, sceneGame(g), l.sceneHeight, 16 / l.scale);
     this.rooms.controls.draw(ctx);
     this.readoutSize = l.readout ? drawReadout(ctx, l.readout, sim) : 0;
-    this.targets = this.rooms.win.draw(ctx, this.atoms, panels.open !== null);
+    this.targets = this.rooms.win.draw(ctx, panels.open !== null);
     this.targetsZoomed = false;
     if (panels.open === null) drawFocusRing(ctx, this.targets, panels.focused);
     this.rooms.verifier.show(panels.open === "verify");

@@ -5,8 +5,6 @@
  * Python's twin: `src/evapcool/app/winscreen.py` (docs/twins.md).
  */
 import { NAME_MAX } from "../game/highscores";
-import { lightestMass } from "../game/rules";
-import type { AtomArrays } from "../game/sim";
 import { t } from "../i18n";
 import { MIN_TARGET_CSS } from "../view/geometry";
 import { drawMessageButtons, drawNameFrame, type Target } from "../view/overlays";
@@ -48,10 +46,10 @@ export class WinScreen {
 
   /** The score, the too-few message or the start hint, and the win's buttons or the name
    * box's frame; their tap targets. `panelOpen`: a panel covers the play area. */
-  draw(ctx: CanvasRenderingContext2D, atoms: AtomArrays, panelOpen: boolean): Target[] {
+  draw(ctx: CanvasRenderingContext2D, panelOpen: boolean): Target[] {
     const { play, scores, replays, scene, hints, coarse } = this.rooms;
     const g = play.game;
-    const tooFew = g.score === null ? g.tooFewAtoms(lightestMass(atoms)) : null;
+    const tooFew = g.score === null ? g.tooFewAtoms() : null;
     if (g.score !== null) scene.drawScore(ctx, g.score);
     else if (tooFew !== null) {
       scene.drawTooFew(ctx, t(tooFew), hints.tooFewLine);

@@ -20,6 +20,7 @@ export {
   FPS,
   GRAVITY,
   N_ATOMS,
+  REACH_NAMES,
   TC_EXPONENT_CUP,
   TC_EXPONENT_SEED,
   type EscapeRule,

@@ -11,7 +11,8 @@
  */
 import { MoveRecorder } from "./moves";
 import { FPS, N_ATOMS, ATOM_RADIUS, TC_EXPONENT_SEED, type GamePhysics } from "./engine";
-import type { AtomArrays, GameSim } from "./sim";
+import { REACH_NAMES } from "./engine";
+import type { GameSim } from "./sim";
 import { APPLET_SPEED } from "../limits";
 
 export const HEIGHT_MIN = 25;
@@ -251,57 +252,16 @@ export class Game {
     return this.sim.nTrapped === 0 && !this.sim.won;
   }
 
-  /** Why the gas can no longer condense (a message key: lose.*), or null; `lightest`: the
-   * lightest trapped atom's mass (the escape energy's). */
-  tooFewAtoms(lightest = lightestMass(this.sim.trapped())): LoseReason | null {
-    const sim = this.sim;
-    if (sim.won || !sim.winRule) return null;
-    const n = sim.nTrapped;
-    return outOfReach(
-      n,
-      sim.temperature * n,
-      sim.criticalTemperature,
-      lightest * sim.gravity * HEIGHT_MIN,
-      lightest * sim.gravity * this.trapHeight,
-    );
+  /** Why the gas can no longer condense (a message key: lose.*), or null: the core's reach
+   * rule (core_out_of_reach) for the slider's lowest rim and the trap asked for. */
+  tooFewAtoms(): LoseReason | null {
+    return LOSE_REASONS[this.sim.outOfReach(HEIGHT_MIN, this.trapHeight)];
   }
 }
 
-/** What outOfReach answers (message keys; the physics worker posts their index). */
-export const LOSE_REASONS = [
-  "lose.all_escaped",
-  "lose.one_atom",
-  "lose.stuck",
-  "lose.stuck_here",
-] as const;
-export type LoseReason = (typeof LOSE_REASONS)[number];
-
-/** The lightest of these atoms' masses (1 for none). */
-export function lightestMass(a: AtomArrays): number {
-  let m = Infinity;
-  for (let i = 0; i < a.count; i++) m = Math.min(m, a.mass[i]);
-  return Number.isFinite(m) ? m : 1;
-}
-
-/**
- * Why T < Tc can no longer be reached by n trapped atoms of total energy E, or null (the
- * desktop's rule). T = E / N changes only when atoms leave, and an atom leaves only with
- * more than escapeEnergy = m g H_min. Out of reach exactly when no atom is left; when one
- * atom is left above Tc(1) (alone it never collides); or when T >= Tc(N) and no atom can
- * ever leave (E <= escapeEnergy). With E <= trapEnergy (m g H at the trap as it stands)
- * and T >= Tc, no atom can leave until the trap is lowered: "lose.stuck_here" says so.
- */
-export function outOfReach(
-  n: number,
-  energy: number,
-  criticalTemperature: number,
-  escapeEnergy: number,
-  trapEnergy: number | null = null,
-): LoseReason | null {
-  if (n <= 0) return "lose.all_escaped";
-  if (energy / n < criticalTemperature) return null; // condensing now
-  if (n === 1) return "lose.one_atom";
-  if (energy <= escapeEnergy) return "lose.stuck";
-  if (trapEnergy !== null && energy <= trapEnergy) return "lose.stuck_here";
-  return null;
-}
+/** The reach rule's answers as message keys: lose. and a name of the core's (REACH_NAMES). */
+export type LoseReason = `lose.${Exclude<(typeof REACH_NAMES)[number], "within">}`;
+/** Each code of the core's reach rule (the physics worker posts it) as its key; null: within. */
+export const LOSE_REASONS = REACH_NAMES.map((name) =>
+  name === "within" ? null : `lose.${name}`,
+) as ReadonlyArray<LoseReason | null>;

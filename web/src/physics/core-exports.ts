@@ -153,6 +153,8 @@ export interface CoreExports {
     points: number,
     nPoints: number,
   ): number;
+  /** Why the gas can no longer condense (REACH_*), or REACH_WITHIN. */
+  core_out_of_reach(core: Core, lowest: number, height: number): number;
   /** N doubles of the engine's memory for the caller to fill (a recording's runs). */
   core_buffer(core: Core, n: number): number;
 }

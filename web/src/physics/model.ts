@@ -44,6 +44,13 @@ export const EVENT_NAMES = ["pair", "wall", "escape", "gone", "knife"] as const;
 export const ESCAPE_RIM = 0;
 export const ESCAPE_KNIFE = 1;
 export const ESCAPE_RULES = ["rim", "knife"] as const;
+/** The reach rule's answers (core_out_of_reach): within reach, or why not. */
+export const REACH_WITHIN = 0;
+export const REACH_ALL_ESCAPED = 1;
+export const REACH_ONE_ATOM = 2;
+export const REACH_STUCK = 3;
+export const REACH_STUCK_HERE = 4;
+export const REACH_NAMES = ["within", "all_escaped", "one_atom", "stuck", "stuck_here"] as const;
 /**
  * The answers of core_advance_to and core_frame: every event done, or the log to be emptied first
  * (then call again).

@@ -335,6 +335,11 @@ export class Simulation {
     return this.engine.path(runs, limit, stride, h0);
   }
 
+  /** The reach rule (REACH_*: core_out_of_reach), the lowest rim the player can set, the rim now. */
+  outOfReach(lowest: number, height: number): number {
+    return this.engine.outOfReach(lowest, height);
+  }
+
   // -- counters --------------------------------------------------------------------------
   get pairCollisionCount(): number {
     return this.engine.read("core_pairs");

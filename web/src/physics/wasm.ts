@@ -306,6 +306,11 @@ export class WasmEngine {
     return { frames, rows };
   }
 
+  /** Why the gas can no longer condense (core_out_of_reach: REACH_*), or REACH_WITHIN. */
+  outOfReach(lowest: number, height: number): number {
+    return this.c.core_out_of_reach(this.core, lowest, height);
+  }
+
   /** Tc(N) = Tc0 (N / N0)^p, seed Eq. (46) with exponent p. */
   criticalTemperatureOf(nTrapped: number): number {
     return this.tc0 * this.c.core_power(nTrapped / this.nAtoms, this.rules.tcExponent);

@@ -6,7 +6,7 @@
  * A worker of the same code replays the verify panel's codes (off the page's thread).
  */
 import { forceWin, makeSimulation, provideCore, replayGolden } from "../game/engine";
-import { Game, LOSE_REASONS, MAX_WALL_STEP, lightestMass, type GameConfig } from "../game/rules";
+import { Game, LOSE_REASONS, MAX_WALL_STEP, type GameConfig } from "../game/rules";
 import {
   bufferBytes,
   bufferCapacity,
@@ -127,8 +127,7 @@ function publish(): void {
   // the one the core fixed at the win's frame (atoms may still leave after it).
   h[HEADER.score] = g.score ?? NaN;
   h[HEADER.allEscaped] = g.allEscaped ? 1 : 0;
-  const tooFew = g.tooFewAtoms(lightestMass(v.trapped));
-  h[HEADER.tooFew] = tooFew === null ? NaN : LOSE_REASONS.indexOf(tooFew);
+  h[HEADER.tooFew] = LOSE_REASONS.indexOf(g.tooFewAtoms());
   changed = false;
   post({ type: "frame", buffer }, [buffer]);
 }

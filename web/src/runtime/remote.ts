@@ -382,8 +382,8 @@ export class RemoteGame implements GameLike {
 
   /** The worker's answer to the reach rule (Game.tooFewAtoms) for the frame drawn. */
   tooFewAtoms(): LoseReason | null {
-    const k = this.stale || !this.frame ? NaN : this.frame.header[HEADER.tooFew];
-    return Number.isNaN(k) ? null : LOSE_REASONS[k];
+    const k = this.stale || !this.frame ? 0 : this.frame.header[HEADER.tooFew];
+    return LOSE_REASONS[k] ?? null;
   }
 
   /** The worker's ms spent on the physics for its newest frame. */

@@ -47,7 +47,7 @@ export const HEADER = {
   roomRight: 25,
   roomBelow: 26,
   roomAbove: 27,
-  /** Why the gas can no longer condense: an index of LOSE_REASONS (game/rules.ts), NaN: none. */
+  /** Why the gas can no longer condense: the core's reach code (REACH_*, LOSE_REASONS's index). */
   tooFew: 28,
   /** Every atom has left the cup (Game.allEscaped): 0 / 1. */
   allEscaped: 29,

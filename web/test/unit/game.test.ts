@@ -8,7 +8,7 @@ import {
   MAX_ENTRIES,
   scoresKey,
 } from "../../src/game/highscores";
-import { Game, HEIGHT_MAX, HEIGHT_MIN, type GameConfig } from "../../src/game/rules";
+import { Game, HEIGHT_MAX, HEIGHT_MIN, LOSE_REASONS, type GameConfig } from "../../src/game/rules";
 import {
   DEFAULTS,
   describe as describeSettings,
@@ -261,6 +261,13 @@ class FakeSim implements SimLike {
   path(): never {
     throw new Error("the game's rules never sample a path");
   }
+  // The core's reach rule (core_out_of_reach): the code set here, the heights asked with kept.
+  reach = 0;
+  asked: number[] = [];
+  outOfReach(lowest: number, height: number): number {
+    this.asked = [lowest, height];
+    return this.reach;
+  }
   trapped(): AtomArrays {
     const z = new Float64Array(0);
     return { x: z, y: z, vx: z, vy: z, radius: z, mass: z, count: 0 };
@@ -377,47 +384,24 @@ describe("game rules", () => {
   });
 });
 
-describe("too few atoms (the desktop's rule)", () => {
-  test("out of reach: none left, one alone above Tc, or none can leave any more", async () => {
-    const { outOfReach } = await import("../../src/game/rules");
-    expect(outOfReach(0, 0, 10, 5)).toBe("lose.all_escaped");
-    expect(outOfReach(1, 20, 10, 5)).toBe("lose.one_atom");
-    expect(outOfReach(1, 5, 10, 5)).toBeNull(); // below Tc: condensing
-    expect(outOfReach(3, 30, 5, 40)).toBe("lose.stuck");
-    expect(outOfReach(3, 300, 5, 40)).toBeNull(); // one may leave with nearly all of it
-    // Issue 34: too cold to leave as the trap stands (E <= m g H), still above Tc.
-    expect(outOfReach(2, 15, 7.2, 5, 20)).toBe("lose.stuck_here");
-    expect(outOfReach(2, 15, 7.2, 5, 10)).toBeNull(); // one may leave over this trap
-    expect(outOfReach(2, 13, 7.2, 5, 20)).toBeNull(); // condensing now
-  });
-
-  test("the game asks it with the lightest atom's escape energy; never after the win", () => {
+describe("too few atoms (the core's reach rule)", () => {
+  test("each code of the core is its message key, asked with H_min and the trap asked for", () => {
     const sims: FakeSim[] = [];
     const game = new Game(() => {
       const s = new FakeSim();
       sims.push(s);
       return s;
     });
-    sims[0].nTrapped = 1;
-    expect(game.tooFewAtoms()).toBe("lose.one_atom");
-    // Two atoms too cold to leave, the escape energy from the lightest trapped atom's mass:
-    // T = 100 >= Tc, E = 200 <= m g H_min with m = 24 (25 x 24 / 3 = 200): stuck for good;
-    // with m = 23 one may leave, but not over the trap as it stands (H = 400).
-    sims[0].nTrapped = 2;
-    const heavy = (m: number) => {
-      const mass = Float64Array.of(m + 1, m);
-      const z = new Float64Array(2);
-      return { x: z, y: z, vx: z, vy: z, radius: z, mass, count: 2 };
-    };
-    sims[0].trapped = () => heavy(24);
-    expect(game.tooFewAtoms()).toBe("lose.stuck");
-    sims[0].trapped = () => heavy(23);
-    expect(game.tooFewAtoms()).toBe("lose.stuck_here");
-    sims[0].won = true;
-    expect(game.tooFewAtoms()).toBeNull();
-    sims[0].won = false;
-    sims[0].winRule = false;
-    expect(game.tooFewAtoms()).toBeNull();
+    const keys = [null, "lose.all_escaped", "lose.one_atom", "lose.stuck", "lose.stuck_here"];
+    keys.forEach((key, code) => {
+      sims[0].reach = code;
+      expect(game.tooFewAtoms()).toBe(key);
+    });
+    expect(LOSE_REASONS).toEqual(keys);
+    expect(sims[0].asked).toEqual([HEIGHT_MIN, 400]);
+    game.setTrapHeight(60);
+    game.tooFewAtoms();
+    expect(sims[0].asked).toEqual([HEIGHT_MIN, 60]);
   });
 });
 
