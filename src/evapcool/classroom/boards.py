@@ -3,6 +3,7 @@ challenge, the replay on its projector, the debrief's state, a challenge's time 
 
 from __future__ import annotations
 
+import json
 import time
 from typing import Any
 
@@ -55,6 +56,27 @@ def _leaderboard(
         "rejected": current["rejected"],
         "replay": replay,
     }
+
+
+def _phones_board(store: ClassStore, room: int) -> tuple[dict[str, Any], dict[str, dict[str, Any]]]:
+    """The board as joined students' streams get it (issue 46): the board without its rows
+    or replay (`players` counts the rows), and each player's row's place by token. A hall's
+    300 phones each get their own row alone, not the whole board four times a second."""
+    board = _board(store, room, keyed=False)
+    rows = board.pop("entries")
+    board.pop("replay")
+    at = {row["entry"]: k for k, row in enumerate(rows)}
+    mine = {}
+    if board["challenge"] is not None:
+        for token, entry in store.board_entries(int(board["challenge"])).items():
+            if entry in at:
+                mine[token] = rows[at[entry]]
+    return board, mine
+
+
+def phone_text(board: dict[str, Any], row: dict[str, Any] | None) -> str:
+    """A joined student's stream event: the board with their own row alone (if ranked)."""
+    return json.dumps({**board, "entries": [row] if row else []})
 
 
 def _board(store: ClassStore, room: int, keyed: bool, past: int | None = None) -> dict[str, Any]:

@@ -15,7 +15,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any, TypeVar
 
-from evapcool.classroom.boards import _board
+from evapcool.classroom.boards import _board, _phones_board, phone_text
 from evapcool.classroom.debrief import Law
 from evapcool.classroom.fairqueue import FairQueue
 from evapcool.classroom.halls import Buckets
@@ -139,6 +139,10 @@ class Hub:
         state (no names in its anonymous mode)."""
         return await self.db(_board, self.store, room, keyed)
 
+    async def phones_board(self, room: int) -> tuple[dict[str, Any], dict[str, dict[str, Any]]]:
+        """The board of joined students' streams and each one's own row (boards.phone_text)."""
+        return await self.db(_phones_board, self.store, room)
+
     async def publish(self, room: int) -> None:
         """A room's board changed: tell every process sharing the store, or (one process)
         have it sent to this one's streams (`forward`)."""
@@ -165,12 +169,18 @@ class Hub:
         await drop_stale(self, [s for s in self.listeners if s.room == room and s.keyed])
         here = [s for s in self.listeners if s.room == room and not s.closed]
         texts = {}
-        for keyed in {s.keyed for s in here}:
+        for keyed in {s.keyed for s in here if s.token is None}:
             texts[keyed] = json.dumps(await self.board(room, keyed))
+        board: dict[str, Any] = {}
+        mine: dict[str, dict[str, Any]] = {}
+        if any(s.token is not None for s in here):
+            board, mine = await self.phones_board(room)
         for listener in here:
             if listener.queue.full():
                 listener.queue.get_nowait()
-            listener.queue.put_nowait(texts[listener.keyed])
+            token = listener.token
+            text = texts[listener.keyed] if token is None else phone_text(board, mine.get(token))
+            listener.queue.put_nowait(text)
 
     def changed(self, room: int | None) -> None:
         """A notice from the store (on the event loop): a room's board changed (None: any

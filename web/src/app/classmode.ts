@@ -33,9 +33,11 @@ export interface ChallengeState extends Challenge {
   closes_in: number | null;
 }
 
-/** The leaderboard document of the server's stream (docs/class.md). */
+/** The leaderboard document of the server's stream (docs/class.md); a joined student's
+ * stream holds their own row alone in `entries` and counts the board in `players`. */
 export interface Board {
   info: ChallengeState | null;
+  players?: number;
   /** name: null in the debrief's anonymous mode. */
   entries: Array<{
     rank: number;
@@ -271,10 +273,10 @@ export class ClassMode {
     const mine = board.entries.find((e) => e.entry !== undefined && e.entry === this.bestEntry);
     if (mine) [this.best, this.rank] = [mine.score, mine.rank];
     else if (this.bestEntry !== null) this.rank = null; // hidden by the lecturer
-    this.ranked = board.entries.length;
+    this.ranked = board.players ?? board.entries.length;
     this.render();
     const closed = info !== null && !info.open;
-    const key = closed ? `${info.id}:${board.debrief?.anonymous}:${board.entries.length}` : "";
+    const key = closed ? `${info.id}:${board.debrief?.anonymous}:${this.ranked}` : "";
     if (key !== this.debriefKey) {
       this.debriefKey = key;
       if (closed) void this.showDebrief();

@@ -182,6 +182,10 @@ class EntriesStore(SqlBase):
         """
         return [row[:5] for row in _best(self._all(challenge)) if not row[6]]
 
+    def board_entries(self, challenge: int) -> dict[str, int]:
+        """Each player on the leaderboard: their token -> their best shown entry."""
+        return {row[5]: row[0] for row in _best(self._all(challenge)) if not row[6]}
+
     def rank(self, challenge: int, token: str) -> int | None:
         """A player's place on the leaderboard (None if not on it)."""
         shown = [row for row in _best(self._all(challenge)) if not row[6]]

@@ -11,7 +11,7 @@ from starlette.requests import Request
 from starlette.responses import HTMLResponse, JSONResponse, Response, StreamingResponse
 
 from evapcool.classroom import pages
-from evapcool.classroom.boards import _board, _is_open, rounds_of
+from evapcool.classroom.boards import _board, _is_open, phone_text, rounds_of
 from evapcool.classroom.errors import RefusedError
 from evapcool.classroom.halls import stream_refusal
 from evapcool.classroom.hub import Hub, Listener
@@ -115,7 +115,11 @@ async def stream(request: Request) -> Response:
     listener.key = request.query_params.get("key") if with_key else None
     listener.token = token
     hub.listeners.append(listener)
-    first = json.dumps(await hub.board(room["id"], with_key))
+    if token is None:
+        first = json.dumps(await hub.board(room["id"], with_key))
+    else:  # a joined student's page: the board with its own row alone (hub.send)
+        board, mine = await hub.phones_board(room["id"])
+        first = phone_text(board, mine.get(token))
     return StreamingResponse(
         _events(hub, listener, first),
         media_type="text/event-stream",
