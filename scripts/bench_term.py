@@ -57,6 +57,10 @@ class Term:
         self.dead: set[int] = set()
         self.sent: dict[tuple[int, int], float] = {}
         self.acked: dict[tuple[int, int], int] = {}
+        self.ack_after: list[float] = []
+        self.joined = 0
+        self.go = asyncio.Event()
+        self.t0 = 0.0
         self.seen: list[list[dict[str, float]]] = [[{}, {}] for _ in classes]
         self.closed_at: dict[int, float] = {}
         self.debrief_after: list[float] = []
@@ -93,8 +97,9 @@ async def open_classes(servers: list[Server], classes: int) -> tuple[list[dict],
     return out, lecturer
 
 
-async def phone(term: Term, c: int, i: int, game: str, at: float, t0: float, shared: int) -> None:
-    """One phone: join, stream with its token, its game at `at`, its debrief at the close."""
+async def phone(term: Term, c: int, i: int, game: str, at: float, shared: int) -> None:
+    """One phone: join, stream with its token, its game `at` seconds after every phone has
+    joined (a class joins before it plays), its debrief at the close."""
     transport = httpx.AsyncHTTPTransport(local_address=address(c, i, shared))
     s = i % 2
     async with httpx.AsyncClient(timeout=600, transport=transport) as client:
@@ -104,7 +109,9 @@ async def phone(term: Term, c: int, i: int, game: str, at: float, t0: float, sha
         head = {"Authorization": f"Bearer {token}"}
         closed = asyncio.Event()
         watching = asyncio.create_task(_watch(term, client, c, s, token, closed))
-        await asyncio.sleep(max(0.0, at - (time.perf_counter() - t0)))
+        term.joined += 1
+        await term.go.wait()
+        await asyncio.sleep(max(0.0, at - (time.perf_counter() - term.t0)))
         body = {"challenge": term.classes[c]["challenge"], "code": game}
         term.sent[c, i] = time.perf_counter()
         while True:
@@ -114,6 +121,7 @@ async def phone(term: Term, c: int, i: int, game: str, at: float, t0: float, sha
             except httpx.TransportError:
                 s += 1  # the page sends again; the proxy reaches the other process
         term.acked[c, i] = answer.status_code
+        term.ack_after.append(time.perf_counter() - term.sent[c, i])
         term.count("submit", answer.status_code)
         await closed.wait()
         while True:
@@ -187,12 +195,16 @@ async def run(
         for c in range(len(term.classes))
         for s in range(len(term.servers))
     ]
-    t0 = time.perf_counter()
     phones = [
-        asyncio.create_task(phone(term, c, i, game, rng.uniform(0, args.spread), t0, args.shared))
+        asyncio.create_task(phone(term, c, i, game, rng.uniform(0, args.spread), args.shared))
         for c, class_games in enumerate(games)
         for i, game in enumerate(class_games)
     ]
+    while term.joined < len(phones):
+        await asyncio.sleep(0.2)
+    await asyncio.sleep(2.0)  # the streams' first boards
+    t0 = term.t0 = time.perf_counter()
+    term.go.set()
     while len(term.acked) < len(phones):
         await asyncio.sleep(0.5)
     took = time.perf_counter() - t0
@@ -220,7 +232,9 @@ def report(term: Term, took: float) -> None:
     games = len(term.acked)
     after = term.debrief_after
     print(
-        f"{games} games in {took:.1f} s ({games / took:.1f}/s); submit->every projector p95 "
+        f"{games} games in {took:.1f} s ({games / took:.1f}/s); submit->200 p50 "
+        f"{quantile(term.ack_after, 0.5):.3f} s, p95 {quantile(term.ack_after, 0.95):.3f} s; "
+        f"submit->every projector p50 {quantile(lag, 0.5):.3f} s, p95 "
         f"{quantile(lag, 0.95):.3f} s ({missing} not seen on every projector); debrief after "
         f"the close p95 {quantile(after, 0.95):.2f} s, slowest {max(after):.2f} s; honest calls "
         f"refused: {sum(term.refused.values())} {dict(term.refused)}",
