@@ -204,16 +204,51 @@ async def run(
         await asyncio.sleep(0.2)
     await asyncio.sleep(2.0)  # the streams' first boards
     t0 = term.t0 = time.perf_counter()
+    before = cpu_seconds()
     term.go.set()
     while len(term.acked) < len(phones):
         await asyncio.sleep(0.5)
     took = time.perf_counter() - t0
+    used = {k: v - before[k] for k, v in cpu_seconds().items()}
+    print(
+        f"CPU in the games' {took:.0f} s (2 cores: {2 * took:.0f} s): "
+        + ", ".join(f"{k} {v:.0f} s" for k, v in used.items()),
+        flush=True,
+    )
     await asyncio.sleep(2.0)
     await closes(term, lecturer, args.closing, args.kill)
     await asyncio.gather(*phones)
     for task in projectors:
         task.cancel()
     return took
+
+
+def cpu_seconds() -> dict[str, float]:
+    """CPU seconds so far of the servers (with their verifying workers), PostgreSQL and this
+    process (the phones and projectors): who used the two cores."""
+    import os
+    import resource
+
+    tick = os.sysconf("SC_CLK_TCK")
+    mine = os.getpid()
+    out = {"servers": 0.0, "postgres": 0.0}
+    for pid in filter(str.isdigit, os.listdir("/proc")):
+        try:
+            with open(f"/proc/{pid}/stat") as f:
+                stat = f.read()
+            with open(f"/proc/{pid}/cmdline", "rb") as f:
+                cmd = f.read()
+        except OSError:
+            continue
+        fields = stat.rsplit(")", 1)[1].split()
+        used = (int(fields[11]) + int(fields[12])) / tick
+        if b"postgres" in cmd:
+            out["postgres"] += used
+        elif b"evapcool" in cmd or b"multiprocessing" in cmd:
+            out["servers"] += used if int(pid) != mine else 0.0
+    usage = resource.getrusage(resource.RUSAGE_SELF)
+    out["phones"] = usage.ru_utime + usage.ru_stime
+    return out
 
 
 def report(term: Term, took: float) -> None:

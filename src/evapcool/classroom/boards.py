@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import json
 import time
+from dataclasses import dataclass
 from typing import Any
 
 from evapcool.classroom.challenge import challenge_doc
@@ -12,83 +13,101 @@ from evapcool.classroom.debrief import Showing, without_names
 from evapcool.classroom.store import ClassStore
 
 
-def _replay_seen(store: ClassStore, room: int, keyed: bool) -> Any:
+@dataclass
+class _Read:
+    """What a room's boards are made of, read from the store once (every board of a send:
+    the projector's, a page's, the joined students' own rows)."""
+
+    current: dict[str, Any] | None
+    showing: dict[str, Any] | None
+    now_open: dict[str, Any] | None
+    rows: list[tuple[int, str, int, int, str, str]]  # entry, name, score, frames, edition, token
+    state: Showing
+
+
+def _read(store: ClassStore, room: int, past: int | None = None) -> _Read:
+    current = store.latest(room) if past is None else store.challenge(past, room)
+    showing = store.showing(room) if past is None else None
+    now_open = store.open_one(room) if showing is not None else None
+    rows = [] if current is None else store.leaderboard_players(_id(current))
+    state = showing_of(store.debrief_state(room))
+    if past is not None and (current or {}).get("id") != _latest_id(store, room):
+        state = Showing(state.anonymous)  # a past round: no game picked nor paired
+    return _Read(current, showing, now_open, rows, state)
+
+
+def keyed_replay(store: ClassStore, room: int) -> dict[str, Any] | None:
+    """The replay on a room's projector as its key's holders (and the lecturer) see it."""
+    shown: dict[str, Any] | None = _replay_seen(
+        _Read(None, store.showing(room), None, [], Showing()), keyed=True
+    )
+    return shown
+
+
+def _id(row: dict[str, Any]) -> int:
+    return int(row["id"])
+
+
+def _replay_seen(read: _Read, keyed: bool) -> Any:
     """The replay on the projector as a reader may see it: without its code while its
     challenge is open, unless the reader holds the projector's key (or is the lecturer)."""
-    showing = store.showing(room)
+    showing, now_open = read.showing, read.now_open
     if showing is None:
         return None
     hidden = {"player"}  # the student's token, never shown
-    now_open = store.open_one(room)
     if not keyed and _is_open(now_open) and now_open and now_open["id"] == showing["challenge"]:
         hidden.add("code")
     return {k: v for k, v in showing.items() if k not in hidden}
 
 
-def _leaderboard(
-    store: ClassStore, room: int, keyed: bool, past: int | None = None
-) -> dict[str, Any]:
-    """The leaderboard of a room's current challenge, or of its past round `past` (kept with
-    its board: issue 45; no replay playing in it) (see docs/class.md)."""
-    current = store.latest(room) if past is None else store.challenge(past, room)
-    replay = _replay_seen(store, room, keyed) if past is None else None
-    if current is None:
-        return {
-            "challenge": None,
-            "open": False,
-            "info": None,
-            "entries": [],
-            "players": 0,
-            "rejected": 0,
-            "replay": replay,
-        }
-    rows = store.leaderboard(int(current["id"]))  # type: ignore[call-overload]
+def _shaped(read: _Read, keyed: bool) -> dict[str, Any]:
+    """The leaderboard document (see docs/class.md) with the debrief's state; no names in
+    the debrief's anonymous mode."""
+    current = read.current
     entries = [
         {"rank": i, "entry": r[0], "name": r[1], "score": r[2], "frames": r[3], "edition": r[4]}
-        for i, r in enumerate(rows, 1)
+        for i, r in enumerate(read.rows, 1)
     ]
-    return {
-        "challenge": current["id"],
+    board = {
+        "challenge": None if current is None else current["id"],
         "open": _is_open(current),
-        "info": challenge_info(current),
+        "info": None if current is None else challenge_info(current),
         "entries": entries,
         "players": len(entries),  # one row a student: how many played (the board says it)
-        "rejected": current["rejected"],
-        "replay": replay,
+        "rejected": 0 if current is None else current["rejected"],
+        "replay": _replay_seen(read, keyed),
+        "debrief": read.state.to_json(),
     }
+    return without_names(board) if read.state.anonymous else board
 
 
-def _phones_board(store: ClassStore, room: int) -> tuple[dict[str, Any], dict[str, dict[str, Any]]]:
-    """The board as joined students' streams get it (issue 46): the board without its rows
-    or replay (`players` counts the rows), and each player's row's place by token. A hall's
-    300 phones each get their own row alone, not the whole board four times a second."""
-    board = _board(store, room, keyed=False)
+def _board(store: ClassStore, room: int, keyed: bool, past: int | None = None) -> dict[str, Any]:
+    """The leaderboard of a room's current challenge, or of its past round `past` (kept with
+    its board: issue 45; no replay playing in it)."""
+    return _shaped(_read(store, room, past), keyed)
+
+
+def _send_boards(
+    store: ClassStore, room: int, kinds: set[bool], phones: bool
+) -> tuple[dict[bool, str], dict[str, Any], dict[str, dict[str, Any]]]:
+    """Every board one send needs, from one read of the store: the text for each kind of
+    reader (keyed or not), and for joined students' streams (issue 46) the board without
+    its rows or replay (`players` counts them) and each student's own row by token: a
+    hall's 300 phones get their own row, not the whole board four times a second each."""
+    read = _read(store, room)
+    texts = {keyed: json.dumps(_shaped(read, keyed)) for keyed in kinds}
+    if not phones:
+        return texts, {}, {}
+    board = _shaped(read, keyed=False)
     rows = board.pop("entries")
     board.pop("replay")
-    at = {row["entry"]: k for k, row in enumerate(rows)}
-    mine = {}
-    if board["challenge"] is not None:
-        for token, entry in store.board_entries(int(board["challenge"])).items():
-            if entry in at:
-                mine[token] = rows[at[entry]]
-    return board, mine
+    mine = {r[5]: row for r, row in zip(read.rows, rows, strict=True)}
+    return texts, board, mine
 
 
 def phone_text(board: dict[str, Any], row: dict[str, Any] | None) -> str:
     """A joined student's stream event: the board with their own row alone (if ranked)."""
     return json.dumps({**board, "entries": [row] if row else []})
-
-
-def _board(store: ClassStore, room: int, keyed: bool, past: int | None = None) -> dict[str, Any]:
-    """The leaderboard document with the debrief's state (see docs/class.md); no names
-    in the debrief's anonymous mode. past: a past round's (its debrief with no game picked
-    nor paired: those are the current round's)."""
-    board = _leaderboard(store, room, keyed, past)
-    state = showing_of(store.debrief_state(room))
-    if past is not None and board["challenge"] != _latest_id(store, room):
-        state = Showing(state.anonymous)
-    board["debrief"] = state.to_json()
-    return without_names(board) if state.anonymous else board
 
 
 def _latest_id(store: ClassStore, room: int) -> object:

@@ -6,7 +6,6 @@ from __future__ import annotations
 
 import asyncio
 import contextlib
-import json
 import multiprocessing
 import time
 from collections.abc import Callable
@@ -15,7 +14,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any, TypeVar
 
-from evapcool.classroom.boards import _board, _phones_board, phone_text
+from evapcool.classroom.boards import _board, _send_boards, phone_text
 from evapcool.classroom.debrief import Law
 from evapcool.classroom.fairqueue import FairQueue
 from evapcool.classroom.halls import Buckets
@@ -141,7 +140,8 @@ class Hub:
 
     async def phones_board(self, room: int) -> tuple[dict[str, Any], dict[str, dict[str, Any]]]:
         """The board of joined students' streams and each one's own row (boards.phone_text)."""
-        return await self.db(_phones_board, self.store, room)
+        _, board, mine = await self.db(_send_boards, self.store, room, set(), True)
+        return board, mine
 
     async def publish(self, room: int) -> None:
         """A room's board changed: tell every process sharing the store, or (one process)
@@ -168,13 +168,9 @@ class Hub:
         self.generation[room] = self.generation.get(room, 0) + 1
         await drop_stale(self, [s for s in self.listeners if s.room == room and s.keyed])
         here = [s for s in self.listeners if s.room == room and not s.closed]
-        texts = {}
-        for keyed in {s.keyed for s in here if s.token is None}:
-            texts[keyed] = json.dumps(await self.board(room, keyed))
-        board: dict[str, Any] = {}
-        mine: dict[str, dict[str, Any]] = {}
-        if any(s.token is not None for s in here):
-            board, mine = await self.phones_board(room)
+        kinds = {s.keyed for s in here if s.token is None}
+        phones = any(s.token is not None for s in here)
+        texts, board, mine = await self.db(_send_boards, self.store, room, kinds, phones)
         for listener in here:
             if listener.queue.full():
                 listener.queue.get_nowait()

@@ -182,9 +182,9 @@ class EntriesStore(SqlBase):
         """
         return [row[:5] for row in _best(self._all(challenge)) if not row[6]]
 
-    def board_entries(self, challenge: int) -> dict[str, int]:
-        """Each player on the leaderboard: their token -> their best shown entry."""
-        return {row[5]: row[0] for row in _best(self._all(challenge)) if not row[6]}
+    def leaderboard_players(self, challenge: int) -> list[tuple[int, str, int, int, str, str]]:
+        """The leaderboard's rows with each one's player (their token) last."""
+        return [row[:6] for row in _best(self._all(challenge)) if not row[6]]
 
     def rank(self, challenge: int, token: str) -> int | None:
         """A player's place on the leaderboard (None if not on it)."""

@@ -10,7 +10,7 @@ from starlette.requests import Request
 from starlette.responses import HTMLResponse, JSONResponse, Response
 
 from evapcool.classroom import pages
-from evapcool.classroom.boards import _replay_seen, challenge_info
+from evapcool.classroom.boards import challenge_info, keyed_replay
 from evapcool.classroom.challenge import challenge_doc, parse_challenge
 from evapcool.classroom.debrief import Showing
 from evapcool.classroom.errors import RefusedError, read_json
@@ -151,7 +151,7 @@ async def show(request: Request) -> Response:
     doc = await read_json(request, hub.limits.body_bytes)
     await _show(hub, room["id"], None if doc.get("entry") is None else _entry_id(doc))
     await hub.publish(room["id"])
-    return JSONResponse({"replay": await hub.db(_replay_seen, hub.store, room["id"], True)})
+    return JSONResponse({"replay": await hub.db(keyed_replay, hub.store, room["id"])})
 
 
 async def entries(request: Request) -> Response:
