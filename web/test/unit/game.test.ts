@@ -9,6 +9,7 @@ import {
   scoresKey,
 } from "../../src/game/highscores";
 import { Game, HEIGHT_MAX, HEIGHT_MIN, LOSE_REASONS, type GameConfig } from "../../src/game/rules";
+import { REACH_NAMES } from "../../src/physics/model";
 import {
   DEFAULTS,
   describe as describeSettings,
@@ -398,6 +399,8 @@ describe("too few atoms (the core's reach rule)", () => {
       expect(game.tooFewAtoms()).toBe(key);
     });
     expect(LOSE_REASONS).toEqual(keys);
+    // one key per code of the core's (generated from its header): a new code needs its key
+    expect(LOSE_REASONS).toEqual(REACH_NAMES.map((n) => (n === "within" ? null : `lose.${n}`)));
     expect(sims[0].asked).toEqual([HEIGHT_MIN, 400]);
     game.setTrapHeight(60);
     game.tooFewAtoms();
