@@ -14,15 +14,14 @@ last place either side of it, tolerances 0, CONTACT_TOLERANCE and 0.05, masks, h
 
 from __future__ import annotations
 
-import argparse
 import json
 import sys
 from pathlib import Path
 from typing import Any
 
 import numpy as np
+from fixture_cli import fixture_main
 
-from evapcool.fileio import atomic_write_text
 from evapcool.limits import CONTACT_TOLERANCE
 from evapcool.physics.validation import first_overlap_reference
 
@@ -112,18 +111,7 @@ def fixture_text() -> str:
 
 
 def main(argv: list[str] | None = None) -> int:
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--check", action="store_true", help="exit 1 if the fixture is stale")
-    args = parser.parse_args(argv)
-    text = fixture_text()
-    if args.check:
-        if not FIXTURE.exists() or FIXTURE.read_text(encoding="utf-8") != text:
-            print(f"{FIXTURE} is stale: run python scripts/overlap_cases.py", file=sys.stderr)
-            return 1
-        return 0
-    atomic_write_text(FIXTURE, text)
-    print(f"wrote {FIXTURE}")
-    return 0
+    return fixture_main(__doc__, __file__, FIXTURE, fixture_text, argv)
 
 
 if __name__ == "__main__":

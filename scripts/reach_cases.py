@@ -11,7 +11,6 @@ fixture fresh; web/test/reach.test.ts feeds every case to the TypeScript Simulat
 
 from __future__ import annotations
 
-import argparse
 import json
 import math
 import sys
@@ -19,9 +18,9 @@ from pathlib import Path
 from typing import Any
 
 import numpy as np
+from fixture_cli import fixture_main
 
 from evapcool import Simulation
-from evapcool.fileio import atomic_write_text
 from evapcool.game.rules import HEIGHT_MIN
 from evapcool.physics.model import REACH_NAMES
 from evapcool.physics.portable import power
@@ -155,18 +154,7 @@ def fixture_text() -> str:
 
 
 def main(argv: list[str] | None = None) -> int:
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--check", action="store_true", help="exit 1 if the fixture is stale")
-    args = parser.parse_args(argv)
-    text = fixture_text()
-    if args.check:
-        if not FIXTURE.exists() or FIXTURE.read_text(encoding="utf-8") != text:
-            print(f"{FIXTURE} is stale: run python scripts/reach_cases.py", file=sys.stderr)
-            return 1
-        return 0
-    atomic_write_text(FIXTURE, text)
-    print(f"wrote {FIXTURE}")
-    return 0
+    return fixture_main(__doc__, __file__, FIXTURE, fixture_text, argv)
 
 
 if __name__ == "__main__":

@@ -6,13 +6,12 @@ answer on random states near every threshold, and the page's shared cases fresh
 
 from __future__ import annotations
 
-import importlib.util
 from pathlib import Path
-from types import ModuleType
 
 import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
+from scripthelp import load_script
 
 from evapcool.game.rules import HEIGHT_MAX, HEIGHT_MIN
 from evapcool.physics.core import compiled
@@ -24,15 +23,7 @@ ROOT = Path(__file__).resolve().parents[2]
 pytestmark = pytest.mark.skipif(compiled() is None, reason="the compiled core is not built")
 
 
-def _script(name: str) -> ModuleType:
-    spec = importlib.util.spec_from_file_location(name, ROOT / "scripts" / f"{name}.py")
-    assert spec and spec.loader
-    module = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(module)
-    return module
-
-
-cases = _script("reach_cases")
+cases = load_script("reach_cases")
 NEAR = st.sampled_from(cases.SCALES) | st.floats(0.3, 3.0)
 
 

@@ -4,13 +4,14 @@ grid of validation.py is its readable oracle and the fallback without the compil
 from __future__ import annotations
 
 import functools
-import importlib.util
 from pathlib import Path
+from types import ModuleType
 
 import numpy as np
 import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
+from scripthelp import load_script
 
 from evapcool.limits import CONTACT_TOLERANCE
 from evapcool.physics import validation
@@ -23,14 +24,8 @@ needs_core = pytest.mark.skipif(CORE is None, reason="the compiled core is not b
 
 
 @functools.cache
-def _script():
-    spec = importlib.util.spec_from_file_location(
-        "overlap_cases", ROOT / "scripts" / "overlap_cases.py"
-    )
-    assert spec and spec.loader
-    module = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(module)
-    return module
+def _script() -> ModuleType:
+    return load_script("overlap_cases")
 
 
 def core_pair(x, y, radius, include, tol) -> tuple[int, int] | None:

@@ -7,27 +7,19 @@ holds the Python edition's exact refusal of out-of-range states and parameters
 
 from __future__ import annotations
 
-import importlib.util
 import json
 import math
 from pathlib import Path
-from types import ModuleType
+
+from scripthelp import load_script
 
 from evapcool import limits
 
 ROOT = Path(__file__).resolve().parents[2]
 
 
-def _script(name: str) -> ModuleType:
-    spec = importlib.util.spec_from_file_location(name, ROOT / "scripts" / f"{name}.py")
-    assert spec and spec.loader
-    module = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(module)
-    return module
-
-
 def test_the_committed_limits_table_is_limits_py() -> None:
-    web_limits = _script("web_limits")
+    web_limits = load_script("web_limits")
     committed = (ROOT / "web" / "src" / "limits.json").read_text(encoding="utf-8")
     assert committed == web_limits.table_text(), "run python scripts/web_limits.py"
 
@@ -48,7 +40,7 @@ def test_every_range_of_limits_py_is_in_the_table_entry_by_entry() -> None:
 
 
 def test_the_committed_refusals_are_the_python_editions() -> None:
-    refusals = _script("refusals")
+    refusals = load_script("refusals")
     committed = (ROOT / "web" / "test" / "cases" / "refusals.json").read_text(encoding="utf-8")
     assert committed == refusals.fixture_text(), "run python scripts/refusals.py"
 
