@@ -168,6 +168,8 @@ class Hub:
         self.generation[room] = self.generation.get(room, 0) + 1
         await drop_stale(self, [s for s in self.listeners if s.room == room and s.keyed])
         here = [s for s in self.listeners if s.room == room and not s.closed]
+        if not here:
+            return  # no stream of it here: nothing to read
         kinds = {s.keyed for s in here if s.token is None}
         phones = any(s.token is not None for s in here)
         texts, board, mine = await self.db(_send_boards, self.store, room, kinds, phones)
