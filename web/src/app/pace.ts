@@ -10,8 +10,14 @@ import { FPS } from "../game/engine";
 export const SLOW_NOTE = (pace: string) => t("page.slow_motion", { pace });
 /** Pace measured over windows of this much wall clock, ms. */
 const WINDOW_MS = 1000;
-/** A gap longer than this between frames (a hidden tab) starts a new window, ms. */
+/**
+ * A gap between frames longer than GAP_MS and GAP_FACTOR times the frames' typical gap (a
+ * stalled tab) starts a new window; a device whose every frame is slow is measured.
+ */
 const GAP_MS = 250;
+const GAP_FACTOR = 4;
+/** Weight of each new gap in the typical gap (an exponential average). */
+const GAP_WEIGHT = 0.1;
 /** Slow below ENTER, real time again from LEAVE (no flicker near the line). */
 const ENTER = 0.95;
 const LEAVE = 0.98;
@@ -23,6 +29,7 @@ export class PaceMeter {
   private startMs = NaN;
   private startTime = 0;
   private lastMs = NaN;
+  private typicalGap = NaN;
   private key = "";
 
   /**
@@ -32,8 +39,11 @@ export class PaceMeter {
   add(nowMs: number, time: number, speed: number, running: boolean, key: string): void {
     const gap = nowMs - this.lastMs;
     this.lastMs = nowMs;
+    const typical = Number.isNaN(this.typicalGap) ? 0 : this.typicalGap;
+    const stalled = !(gap < Math.max(GAP_MS, GAP_FACTOR * typical));
+    if (gap >= 0) this.typicalGap = this.typical(gap);
     const fresh = Number.isNaN(this.startMs) || time < this.startTime;
-    if (!running || key !== this.key || !(gap < GAP_MS) || fresh) {
+    if (!running || key !== this.key || stalled || fresh) {
       this.key = key;
       this.startMs = running ? nowMs : NaN;
       this.startTime = time;
@@ -45,6 +55,11 @@ export class PaceMeter {
     this.slow = this.slow ? this.pace < LEAVE : this.pace < ENTER;
     this.startMs = nowMs;
     this.startTime = time;
+  }
+
+  private typical(gap: number): number {
+    const was = this.typicalGap;
+    return Number.isNaN(was) ? gap : was + GAP_WEIGHT * (gap - was);
   }
 
   /** The line to show, or null at real time. */
