@@ -196,6 +196,8 @@ double *core_allocate(Core *core, int32_t n, int32_t log_capacity) {
   core->scratch = core_take(core, sizeof(double) * (n + 1));
   core->run.log_capacity = log_capacity;
   core->event_log = core_take(core, sizeof(LogLine) * log_capacity);
+  core->play.moves = core_take(core, sizeof(double) * 2 * CORE_MOVES_CAPACITY);
+  core->play.asked = NAN;
   calendar_init(core, n);
   core->bins = core_take(core, sizeof(int32_t) * (core->run.n_bins + 2));
   double *inputs = core_take(core, sizeof(double) * 8 * n);

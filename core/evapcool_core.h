@@ -65,6 +65,12 @@
  * the log to be emptied first (then call again). */
 #define CORE_DONE 0
 #define CORE_LOG_FULL 1
+/* The further answers of core_play_to: the moves to be taken first (then call again), or
+ * (asked for) a whole frame played, recorded and ended: call again to go on. */
+#define CORE_MOVES_FULL 2
+#define CORE_FRAME_END 3
+/* Runs of (height, frames) the core keeps before they must be taken. */
+#define CORE_MOVES_CAPACITY 64
 /* Bytes of one line of the event log (LogLine). */
 #define CORE_LOG_LINE_BYTES 24
 /* ---- end of the model's constants ------------------------------------------------------ */
@@ -215,6 +221,42 @@ int32_t core_path(Core *core, const double *runs, int32_t n_runs, int32_t limit,
 /* game.c: why the gas can no longer condense (REACH_*), or REACH_WITHIN.
  * py: Core.out_of_reach(lowest: float, height: float) -> int */
 CORE_API(core_out_of_reach) int32_t core_out_of_reach(Core *core, double lowest, double height);
+/* play.c: the game's clock, to `end` (frames) in pieces that stop at each whole frame: there
+ * the height held is recorded (up to the win), the win seen, the script's or the asked height
+ * applied. CORE_DONE; CORE_LOG_FULL or CORE_MOVES_FULL to empty first; with each_frame
+ * CORE_FRAME_END after each recorded frame. Call again with the same end to go on.
+ * py: Core.play_to(end: float, each_frame: bool) -> int [nogil] */
+CORE_API(core_play_to) int32_t core_play_to(Core *core, double end, int32_t each_frame);
+/* play.c: ask for a rim height from the next whole frame (at once if `now` or on one); refused
+ * (0) once won, while a script plays, or if it is the height asked already.
+ * py: Core.ask_height(height: float, now: bool) -> bool */
+CORE_API(core_ask_height) int32_t core_ask_height(Core *core, double height, int32_t now);
+/* play.c: the rim's height now, or the one it takes at the next whole frame.
+ * py: Core.asked_height() -> float */
+CORE_API(core_asked_height) double core_asked_height(const Core *core);
+/* play.c: a script of n_runs (height, frames) runs to hold, added by core_hold_run, each
+ * height from the whole frame of its turn counted from the start; 0 runs: none. 0 if the
+ * memory cannot hold it.
+ * py: Core.hold(n_runs: int) -> None [nomem] */
+CORE_API(core_hold) int32_t core_hold(Core *core, int32_t n_runs);
+/* play.c: the script's next run; after the last, its height for the frame starting now.
+ * py: Core.hold_run(height: float, frames: float) -> None */
+CORE_API(core_hold_run) void core_hold_run(Core *core, double height, double frames);
+/* play.c: whole frames played since the start.
+ * py: Core.frames_played() -> float */
+CORE_API(core_frames_played) double core_frames_played(const Core *core);
+/* play.c: runs of moves kept (the last may still grow).
+ * py: Core.n_moves() -> int */
+CORE_API(core_n_moves) int32_t core_n_moves(const Core *core);
+/* play.c: the height of kept run k.
+ * py: Core.move_height(k: int) -> float */
+CORE_API(core_move_height) double core_move_height(const Core *core, int32_t k);
+/* play.c: the frames of kept run k.
+ * py: Core.move_frames(k: int) -> float */
+CORE_API(core_move_frames) double core_move_frames(const Core *core, int32_t k);
+/* play.c: the moves kept were taken (after CORE_MOVES_FULL): keep none.
+ * py: Core.moves_taken() -> None */
+CORE_API(core_moves_taken) void core_moves_taken(Core *core);
 /* game.c: n doubles of the engine's memory for the caller to fill (a recording's runs). */
 CORE_API(core_buffer) double *core_buffer(Core *core, int32_t n);
 

@@ -18,6 +18,7 @@
 #include "evapcool_core.h"
 
 #define INF __builtin_inf()
+#define NAN __builtin_nan("")
 /* Native builds ask for memory ahead of the loop (lookahead.c); -DCORE_NO_LOOKAHEAD turns it
  * off. WebAssembly has no prefetch: there the loop touches the next rows instead. */
 #if !defined(__wasm__) && !defined(CORE_NO_LOOKAHEAD)
@@ -109,9 +110,27 @@ enum { KIND_NONE = 0, KIND_PAIR, KIND_WALL, KIND_EXIT, KIND_CROSS_X, KIND_CROSS_
 /* Ranks order events of equal time: crossings, then solo events, then pairs. */
 enum { RANK_CROSS = -1, RANK_SOLO = 0, RANK_PAIR = 1 };
 
+/* What core_play_to owes at a whole frame it reached (play.c). */
+enum { OWED_NONE = 0, OWED_END, OWED_NEXT };
+
+/* The game's clock above the physics (play.c): the height asked for, the moves, a script. */
+typedef struct {
+  double asked;        /* height asked for, applied at the next whole frame; NaN: none */
+  double frames;       /* whole frames played since the start */
+  double *moves;       /* (height, frames) runs held up to the win, not yet taken */
+  int32_t n_moves;
+  int32_t owed;        /* OWED_*: the work of the whole frame reached, not yet done */
+  double *script;      /* (height, frames) runs to hold (a recording watched) */
+  int32_t script_runs; /* runs of the script; held once all n_script are in (0: none) */
+  int32_t n_script, script_capacity;
+  int32_t script_run;  /* the run holding the frame starting now, and the frames ... */
+  double script_used;  /* ... of it already held */
+} Play;
+
 /* One engine: its scalars and tables (no globals, so a process may hold several). */
 struct Core {
   Run run;
+  Play play;
   State *state;
   Queued *queued;
   Plan *plan;
@@ -136,7 +155,7 @@ struct Core {
   double state_out[4]; /* where state_at writes: x, y, vx, vy */
   int32_t out_of_memory;
   /* every block taken (memory.c frees them with the engine) */
-  void *blocks[24];
+  void *blocks[32];
   int32_t n_blocks;
 };
 

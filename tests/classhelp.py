@@ -62,18 +62,16 @@ def _play(seed: int, k: int, budget: int = 5000) -> Recording:
     control = load_strategy("demo").controller()
     game = Game(SETTINGS.game_config(seed, "fast"))
     game.toggle_pause()
-    recorder = Recorder(SETTINGS, seed, edition="web" if k % 2 else "desktop")
     start, nudge = (37 * k) % 600, 1.0 + (k % 11)
     for frame in range(budget):
         height = control(read(game.sim, mass=1.0))
         if k and start <= frame < start + 60:
             height += nudge
         game.set_trap_height(clamp_height(height))
-        recorder.frame(game.trap_height)
         game.run_frames(1)
         if game.won or game.sim.n_trapped == 0:
             break
-    return recorder.finish(game.won, game.score)
+    return Recorder(SETTINGS, seed, edition="web" if k % 2 else "desktop").finish(game)
 
 
 def ramp_game(seed: int, k: int, lost_from: int = 28) -> Recording:
@@ -86,17 +84,15 @@ def ramp_game(seed: int, k: int, lost_from: int = 28) -> Recording:
     step, every, floor = 3 + k % 4, 12 + k, 300 if lost else 60 + 10 * (k % 5)
     game = Game(SETTINGS.game_config(seed, "fast"))
     game.toggle_pause()
-    recorder = Recorder(SETTINGS, seed, edition="web")
     height = 400.0
     for frame in range(1500 if lost else 6000):
         if frame % every == 0 and height > floor:
             height = max(floor, height - step)
         game.set_trap_height(height)
-        recorder.frame(game.trap_height)
         game.run_frames(1)
         if game.won or game.sim.n_trapped == 0:
             break
-    return recorder.finish(game.won, game.score)
+    return Recorder(SETTINGS, seed, edition="web").finish(game)
 
 
 def code(seed: int, k: int) -> str:

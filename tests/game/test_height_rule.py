@@ -19,13 +19,14 @@ def test_height_set_mid_frame_takes_effect_at_the_next_whole_frame() -> None:
     assert game.trap_height == 300.0  # what the slider shows: the height asked for
     assert game.sim.trap_height == 400.0  # the physics still has the old rim
     seen: list[tuple[float, float]] = []
-    advance = game.sim.advance
+    engine = game.sim._engine  # the reference engine, playing by physics/play.py
+    advance_to = engine.advance_to
 
-    def watch(dt: float) -> None:
-        advance(dt)
+    def watch(t_end: float) -> None:
+        advance_to(t_end)
         seen.append((game.sim.time, game.sim.trap_height))
 
-    game.sim.advance = watch  # type: ignore[method-assign]
+    engine.advance_to = watch  # type: ignore[method-assign]
     game._advance(1.25)  # from 0.5 to 1.75: pieces 0.5 -> 1 -> 1.75
     assert [t for t, _ in seen] == [1.0, 1.75]
     assert seen[0][1] == 400.0  # the piece up to t = 1 ran with the old rim
@@ -111,8 +112,6 @@ def test_a_game_at_any_display_step_replays_to_the_same_win() -> None:
     from evapcool.game.replay import Recorder, Settings, verify
 
     game = Game(GameConfig(seed=21))
-    recorder = Recorder(Settings(), 21)
-    game.on_frame.append(recorder.frame)
     game.toggle_pause()
     k = 0
     while game.won_at is None and game.sim.time < 3000:
@@ -120,7 +119,7 @@ def test_a_game_at_any_display_step_replays_to_the_same_win() -> None:
             game.nudge_height(-5.0)
         game.update(1.0 / 60.0)  # half a frame per display frame
         k += 1
-    rec = recorder.finish(game.won, game.score)
+    rec = Recorder(Settings(), 21).finish(game)
     assert rec.won and rec.frames == int(game.sim.time)
     assert verify(rec).score == game.score
 
@@ -131,7 +130,7 @@ def test_playback_holds_a_recordings_heights_and_ignores_the_player() -> None:
 
     rec = record_autopilot("demo", Settings(), 9)
     game = Game(Settings().game_config(9))
-    game.playback(rec.heights())
+    game.playback(rec.moves)
     assert game.trap_height == rec.heights()[0]
     assert not game.set_trap_height(100.0)  # the recording holds the trap
     game.toggle_pause()

@@ -69,11 +69,17 @@ def test_edited_fields_and_other_versions() -> None:
     assert err.value.reason == r.OTHER_VERSION
 
 
-def test_recorder_run_length_codes() -> None:
-    rec = r.Recorder(SETTINGS, 3)
+@pytest.mark.parametrize("engine", ["reference", "fast"])
+def test_recorder_run_length_codes(engine: str) -> None:
+    """The moves the clock records (core/play.c, its oracle physics/play.py), run-length coded."""
+    from evapcool.game.rules import Game
+
+    game = Game(SETTINGS.game_config(3, engine))
+    game.toggle_pause()
     for h in (400.0, 400.0, 300.0, 300.0, 300.0, 400.0):
-        rec.frame(h)
-    out = rec.finish(False, None)
+        game.set_trap_height(h)
+        game.run_frames(1)
+    out = r.Recorder(SETTINGS, 3).finish(game)
     assert out.moves == ((400.0, 2), (300.0, 3), (400.0, 1))
     assert out.frames == 6 and out.heights() == [400.0, 400.0, 300.0, 300.0, 300.0, 400.0]
 

@@ -141,7 +141,7 @@ def _play_in_pieces(engine: str, rec: r.Recording) -> tuple[float | None, int | 
     game = Game(GameConfig(seed=rec.seed, engine=engine, speed=1.0))
     held: list[float] = []
     game.on_frame.append(held.append)
-    game.playback(rec.heights())
+    game.playback(rec.moves)
     game.toggle_pause()
     for _ in range(int(rec.frames / 0.7) + 3):
         game.update(0.7 / 30.0)

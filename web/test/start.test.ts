@@ -8,7 +8,7 @@ import { Game } from "../src/game/rules";
 import { makeSimulation } from "../src/game/engine";
 import { Simulation } from "../src/physics/simulation";
 import { SEED_PORTABLE_MAX } from "../src/physics/start";
-import { loadCup, power } from "../src/physics/wasm";
+import { loadCup, power } from "../src/physics/instance";
 
 interface StartCase {
   atoms: number;

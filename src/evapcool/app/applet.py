@@ -339,7 +339,7 @@ class App:
         if not self.classroom.counts_lost or self.replays.recorder is None or self.pilot.flew:
             return
         if self.game.lost and self.classroom.challenge is not None:
-            code = self.replays.finish_lost(self.classroom.challenge.max_frames)
+            code = self.replays.finish_lost(self.game, self.classroom.challenge.max_frames)
             if code is not None:
                 self.classroom.send_lost(code)
 

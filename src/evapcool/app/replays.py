@@ -44,8 +44,7 @@ class ReplayKeeper:
         self.path: Path | None = None
 
     def attach(self, game: Game) -> None:
-        """Listen to the game's frames (once; `start` begins each new recording)."""
-        game.on_frame.append(self._frame)
+        """The first recording (`start` begins each new one; the core records the moves)."""
         self.start(game)
 
     def start(self, game: Game) -> None:
@@ -57,22 +56,18 @@ class ReplayKeeper:
             self.recorder = Recorder(settings_of(game.config), seed, self.edition)
         self.code = self.path = None
 
-    def _frame(self, height: float) -> None:
-        if self.recorder is not None:
-            self.recorder.frame(height)
-
     def finish(self, game: Game) -> str | None:
         """The won game's replay code, saved to the replays folder; None if not recorded."""
         rec = self.recorder
         if rec is None:
             return None
-        # The win is seen at a whole frame's end, after that frame was recorded (rules.py).
+        # The win is seen at a whole frame's end, after that frame was recorded (core/play.c).
         self.recorder = None  # the atoms settling after the win are not part of the game
-        self.code = encode(rec.finish(True, game.score))
+        self.code = encode(rec.finish(game))
         self.path = self._save(self.code, game.score or 0, rec.seed)
         return self.code
 
-    def finish_lost(self, max_frames: int | None) -> str | None:
+    def finish_lost(self, game: Game, max_frames: int | None) -> str | None:
         """The code of the game just lost for good (its frames so far, at most max_frames:
         the rest cannot win either); None if not recorded. Not saved: it is no replay to
         keep, and its recording ends here."""
@@ -80,7 +75,7 @@ class ReplayKeeper:
         if rec is None:
             return None
         self.recorder = None
-        lost = rec.finish(False, None)
+        lost = rec.finish(game)
         if max_frames is not None and lost.frames > max_frames:
             left, moves = max_frames, []
             for h, n in lost.moves:

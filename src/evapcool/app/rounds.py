@@ -57,7 +57,7 @@ class Rounds:
         self.watching = watching
         replays.attach(game)  # every game is recorded, the autopilot's too
         if watching is not None:
-            game.playback(watching.heights())
+            game.playback(watching.moves)
             notices.news(t("desk.replay.watching", edition=watching.edition))
 
     def _config(self) -> GameConfig:
@@ -92,7 +92,7 @@ class Rounds:
             self.game.restart()
         self.replays.start(self.game)
         if self.watching is not None:
-            self.game.playback(self.watching.heights())
+            self.game.playback(self.watching.moves)
         self.scores.new_round()
         self.pilot.new_game(self.game)
         self.charts.reset()

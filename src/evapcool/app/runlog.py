@@ -169,9 +169,9 @@ def replay_code(game: Game, recorder_code: str | None, recorder) -> str | None:
     """The won game's kept code, else the code of the heights played so far (not won)."""
     if recorder_code is not None:
         return recorder_code
-    if recorder is None or not recorder.runs:
+    if recorder is None or not game.sim.moves():
         return None
-    return encode(recorder.finish(False, None))
+    return encode(recorder.finish(game))
 
 
 def run_file(folder: Path, game: Game) -> Path:

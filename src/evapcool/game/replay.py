@@ -16,7 +16,7 @@ import binascii
 import json
 import math
 import zlib
-from dataclasses import asdict, dataclass, field, fields
+from dataclasses import asdict, dataclass, fields
 from functools import cached_property
 from typing import Any
 
@@ -218,28 +218,22 @@ def decode(code: str) -> Recording:
 
 @dataclass
 class Recorder:
-    """Collects the held trap height of each physics frame (the app calls `frame(h)`)."""
+    """Who played: the settings, seed and edition of a game whose moves the core records
+    (the held height of each whole frame up to the win: Simulation.moves, core/play.c)."""
 
     settings: Settings
     seed: int
     edition: str = "desktop"
-    runs: list[list[float | int]] = field(default_factory=list)
 
-    def frame(self, height: float) -> None:
-        """The height held during one more physics frame."""
-        if self.runs and self.runs[-1][0] == height:
-            self.runs[-1][1] = int(self.runs[-1][1]) + 1
-        else:
-            self.runs.append([float(height), 1])
-
-    def finish(self, won: bool, score: int | None) -> Recording:
-        moves = tuple((float(h), int(n)) for h, n in self.runs)
+    def finish(self, game: Game) -> Recording:
+        """The game's recording so far: its moves, and its win and score if won."""
+        moves = tuple((float(h), int(n)) for h, n in game.sim.moves())
         return Recording(
             settings=self.settings,
             seed=self.seed,
             moves=moves,
-            won=won,
-            score=int(score or 0) if won else 0,
+            won=game.won,
+            score=int(game.score or 0) if game.won else 0,
             frames=sum(n for _, n in moves),
             edition=self.edition,
         )
@@ -293,11 +287,9 @@ def record_autopilot(
     control = load_strategy(strategy_spec).controller()
     game = Game(settings.game_config(seed, engine))
     game.toggle_pause()
-    recorder = Recorder(settings, seed)
     for _ in range(budget):
         game.set_trap_height(clamp_height(control(read(game.sim, mass=1.0))))
-        recorder.frame(game.trap_height)
         game.run_frames(1)
         if game.won or game.sim.n_trapped == 0:
             break
-    return recorder.finish(game.won, game.score)
+    return Recorder(settings, seed).finish(game)

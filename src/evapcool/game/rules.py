@@ -15,7 +15,7 @@ once: docs/model.md.)
 from __future__ import annotations
 
 import math
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass, fields
 from typing import Any
 
@@ -117,7 +117,7 @@ class Game:
         #: Called once with the game when the gas condenses (highscores, sounds...).
         self.on_win: list[Callable[[Game], None]] = []
         #: Called at the end of each whole physics frame up to the win with the height held
-        #: during it (a replay's Recorder.frame: a game is its heights per frame, issue 22).
+        #: during it (the run log; the moves themselves are the core's: Simulation.moves).
         self.on_frame: list[Callable[[float], None]] = []
         #: Bumped by every restart so views can drop per-game caches.
         self.generation = 0
@@ -137,12 +137,6 @@ class Game:
             self.config = config
         self.sim = sim
         self.sim.set_checked_trap_height(clamp_height(self.config.start_height))
-        #: A height asked for since the last whole frame, applied at the next one.
-        self._pending_height: float | None = None
-        #: Heights to hold frame by frame (a recording played back), or None: the player's.
-        self._script: list[float] | None = None
-        #: Whole frames played since the (re)start (the script's index).
-        self._frames_done = 0
         self.paused = True
         #: Play time (s) at which the win was first seen, None before.
         self.won_at: float | None = None
@@ -163,11 +157,9 @@ class Game:
         self._paused = bool(value)
 
     def _finish_frame(self) -> None:
-        for _ in range(3):  # one piece, a second if rounding stopped short of the boundary
-            t = float(self.sim.time)
-            if t.is_integer():
-                return
-            self._advance(math.floor(t) + 1.0 - t)
+        t = float(self.sim.time)
+        if not t.is_integer():
+            self._play_to(math.floor(t) + 1.0)
 
     def toggle_pause(self) -> None:
         self.paused = not self.paused
@@ -185,50 +177,26 @@ class Game:
     @property
     def trap_height(self) -> float:
         """The rim's height now, or the one it takes at the next whole frame."""
-        pending = self._pending_height
-        return self.sim.trap_height if pending is None else pending
+        return self.sim.asked_height
 
     def set_trap_height(self, height: float) -> bool:
         """Ask for a rim height (clamped to the slider range), applied at the next whole
-        frame (at once if paused or on one); frozen once the gas has condensed.
+        frame (at once if paused or on one); frozen once the gas has condensed and while a
+        recording plays (Simulation.ask_height, the core's rule).
 
         Returns True if the height asked for changed.
         """
-        if self.won or self._script is not None:
-            return False  # the score is the atoms left: no evaporating after the win
         # The slider's range, inside limits.TRAP_HEIGHT: the one check and conversion.
-        h = clamp_height(height)
-        if h == self.trap_height:
-            return False
-        self._pending_height = h
-        if self.paused or float(self.sim.time).is_integer():
-            self._apply_pending()  # nothing in flight
-        return True
+        return self.sim.ask_height(clamp_height(height), self.paused)
 
     def nudge_height(self, delta: float) -> bool:
         return self.set_trap_height(self.trap_height + delta)
 
-    def playback(self, heights: list[float] | None) -> None:
-        """Hold these heights, one per whole frame from now (a recording watched); the
-        player's heights are ignored until the script ends or playback(None)."""
-        self._script = list(heights) if heights else None
-        self._scripted()
-        if float(self.sim.time).is_integer():
-            self._apply_pending()
-
-    def _scripted(self) -> None:
-        """The script's height for the frame starting now."""
-        if self._script is None:
-            return
-        if self._frames_done >= len(self._script):
-            self._script = None
-            return
-        self._pending_height = clamp_height(self._script[self._frames_done])
-
-    def _apply_pending(self) -> None:
-        if self._pending_height is not None:
-            self.sim.set_checked_trap_height(self._pending_height)
-            self._pending_height = None
+    def playback(self, moves: Sequence[tuple[float, int]] | None) -> None:
+        """Hold a recording's (height, frames) moves, frame by frame from the start (a
+        recording watched); the player's heights are ignored until they end or
+        playback(None)."""
+        self.sim.hold([(clamp_height(h), n) for h, n in moves or ()])
 
     # -- time ----------------------------------------------------------------------------
     def update(self, wall_seconds: float) -> float:
@@ -248,34 +216,25 @@ class Game:
         return self._advance(1.0) if self.paused else 0.0
 
     def _advance(self, frames: float) -> float:
-        """Advance frames in pieces that stop at each whole frame: the win is seen and the
-        score fixed at the frame's end, then the held height applies (Simulation.frame's
-        rule, the core's), so a game (its win, its score) depends on the heights of whole
-        frames, not on the display's step (replays rely on it)."""
-        sim = self.sim
-        end = sim.time + frames
-        while sim.time < end:
-            boundary = math.floor(sim.time) + 1.0
-            if float(sim.time).is_integer() and end >= boundary:
-                sim.frame(sim.trap_height)  # a whole frame in one step
-            else:
-                sim.advance(min(boundary, end) - sim.time)
-                if sim.time >= boundary:
-                    sim.frame_end()
-            if sim.time >= boundary:
-                if self.won_at is None:  # the moves end with the frame of the win
-                    for listener in self.on_frame:
-                        listener(sim.trap_height)
-                self._frames_done += 1
-                self._check_win()
-                self._scripted()
-                self._apply_pending()
+        self._play_to(self.sim.time + frames)
         return frames
+
+    def _play_to(self, end: float) -> None:
+        """Play to `end` (Simulation.play_to: the core's clock, whole frame by whole frame; a
+        game, its win and its score depend on the heights of whole frames, not on the
+        display's step); the frame listeners hear each frame up to the win."""
+        self.sim.play_to(end, self._frame_played if self.on_frame else None)
+        self._check_win()
+
+    def _frame_played(self, height: float) -> None:
+        for listener in self.on_frame:
+            listener(height)
+        self._check_win()
 
     def _check_win(self) -> None:
         """The win seen at a frame's end (the score fixed there), once."""
         if self.sim.score is not None and self.won_at is None:
-            self.won_at = self.play_time
+            self.won_at = (self.sim.win_frame or 0.0) / FPS
             self._won_with = self.sim.score
             for callback in list(self.on_win):
                 callback(self)

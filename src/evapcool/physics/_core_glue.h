@@ -119,6 +119,102 @@ static PyObject *core_py_out_of_reach(CoreObject *self, PyObject *args) {
   return PyLong_FromLong(out);
 }
 
+static PyObject *core_py_play_to(CoreObject *self, PyObject *args) {
+  Core *core = ready(self);
+  if (!core) return NULL;
+  double end;
+  int each_frame;
+  if (!PyArg_ParseTuple(args, "dp", &end, &each_frame)) return NULL;
+  int32_t out;
+  Py_BEGIN_ALLOW_THREADS
+  out = core_play_to(core, end, each_frame);
+  Py_END_ALLOW_THREADS
+  return PyLong_FromLong(out);
+}
+
+static PyObject *core_py_ask_height(CoreObject *self, PyObject *args) {
+  Core *core = ready(self);
+  if (!core) return NULL;
+  double height;
+  int now;
+  if (!PyArg_ParseTuple(args, "dp", &height, &now)) return NULL;
+  int32_t out;
+  out = core_ask_height(core, height, now);
+  return PyBool_FromLong(out);
+}
+
+static PyObject *core_py_asked_height(CoreObject *self, PyObject *Py_UNUSED(args)) {
+  Core *core = ready(self);
+  if (!core) return NULL;
+  double out;
+  out = core_asked_height(core);
+  return PyFloat_FromDouble(out);
+}
+
+static PyObject *core_py_hold(CoreObject *self, PyObject *args) {
+  Core *core = ready(self);
+  if (!core) return NULL;
+  int n_runs;
+  if (!PyArg_ParseTuple(args, "i", &n_runs)) return NULL;
+  int32_t out;
+  out = core_hold(core, n_runs);
+  if (!out) return PyErr_NoMemory();
+  Py_RETURN_NONE;
+}
+
+static PyObject *core_py_hold_run(CoreObject *self, PyObject *args) {
+  Core *core = ready(self);
+  if (!core) return NULL;
+  double height;
+  double frames;
+  if (!PyArg_ParseTuple(args, "dd", &height, &frames)) return NULL;
+  core_hold_run(core, height, frames);
+  Py_RETURN_NONE;
+}
+
+static PyObject *core_py_frames_played(CoreObject *self, PyObject *Py_UNUSED(args)) {
+  Core *core = ready(self);
+  if (!core) return NULL;
+  double out;
+  out = core_frames_played(core);
+  return PyFloat_FromDouble(out);
+}
+
+static PyObject *core_py_n_moves(CoreObject *self, PyObject *Py_UNUSED(args)) {
+  Core *core = ready(self);
+  if (!core) return NULL;
+  int32_t out;
+  out = core_n_moves(core);
+  return PyLong_FromLong(out);
+}
+
+static PyObject *core_py_move_height(CoreObject *self, PyObject *args) {
+  Core *core = ready(self);
+  if (!core) return NULL;
+  int k;
+  if (!PyArg_ParseTuple(args, "i", &k)) return NULL;
+  double out;
+  out = core_move_height(core, k);
+  return PyFloat_FromDouble(out);
+}
+
+static PyObject *core_py_move_frames(CoreObject *self, PyObject *args) {
+  Core *core = ready(self);
+  if (!core) return NULL;
+  int k;
+  if (!PyArg_ParseTuple(args, "i", &k)) return NULL;
+  double out;
+  out = core_move_frames(core, k);
+  return PyFloat_FromDouble(out);
+}
+
+static PyObject *core_py_moves_taken(CoreObject *self, PyObject *Py_UNUSED(args)) {
+  Core *core = ready(self);
+  if (!core) return NULL;
+  core_moves_taken(core);
+  Py_RETURN_NONE;
+}
+
 static PyMethodDef core_methods[] = {
     {"load", (PyCFunction)core_py_load, METH_VARARGS, "Copy the inputs into the tables; the fixed parameters and the clock."},
     {"start", (PyCFunction)core_py_start, METH_VARARGS, "The grid, the cells and every prediction; 0 if the memory cannot hold the cells."},
@@ -137,6 +233,16 @@ static PyMethodDef core_methods[] = {
     {"replay", (PyCFunction)core_py_replay, METH_VARARGS, "(height, frames) runs played from a whole frame up to the win or `limit` frames: the frames played."},
     {"path", (PyCFunction)core_py_path, METH_VARARGS, "A recording's path in the (N, T) plane: the runs played as core_replay plays them, frame 0 (height h0), every stride-th frame, the last and the win's kept as rows of (k, N, T, h) in points (their count into n_points); the frames played."},
     {"out_of_reach", (PyCFunction)core_py_out_of_reach, METH_VARARGS, "Why the gas can no longer condense (REACH_*), or REACH_WITHIN."},
+    {"play_to", (PyCFunction)core_py_play_to, METH_VARARGS, "The game's clock, to `end` (frames) in pieces that stop at each whole frame: there the height held is recorded (up to the win), the win seen, the script's or the asked height applied. CORE_DONE; CORE_LOG_FULL or CORE_MOVES_FULL to empty first; with each_frame CORE_FRAME_END after each recorded frame. Call again with the same end to go on."},
+    {"ask_height", (PyCFunction)core_py_ask_height, METH_VARARGS, "Ask for a rim height from the next whole frame (at once if `now` or on one); refused (0) once won, while a script plays, or if it is the height asked already."},
+    {"asked_height", (PyCFunction)core_py_asked_height, METH_NOARGS, "The rim's height now, or the one it takes at the next whole frame."},
+    {"hold", (PyCFunction)core_py_hold, METH_VARARGS, "A script of n_runs (height, frames) runs to hold, added by core_hold_run, each height from the whole frame of its turn counted from the start; 0 runs: none. 0 if the memory cannot hold it."},
+    {"hold_run", (PyCFunction)core_py_hold_run, METH_VARARGS, "The script's next run; after the last, its height for the frame starting now."},
+    {"frames_played", (PyCFunction)core_py_frames_played, METH_NOARGS, "Whole frames played since the start."},
+    {"n_moves", (PyCFunction)core_py_n_moves, METH_NOARGS, "Runs of moves kept (the last may still grow)."},
+    {"move_height", (PyCFunction)core_py_move_height, METH_VARARGS, "The height of kept run k."},
+    {"move_frames", (PyCFunction)core_py_move_frames, METH_VARARGS, "The frames of kept run k."},
+    {"moves_taken", (PyCFunction)core_py_moves_taken, METH_NOARGS, "The moves kept were taken (after CORE_MOVES_FULL): keep none."},
     {NULL, NULL, 0, NULL},
 };
 

@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import functools
 import importlib
+from collections.abc import Callable, Sequence
 from pathlib import Path
 from types import ModuleType
 
@@ -19,7 +20,13 @@ import numpy as np
 
 from evapcool.extras import MissingExtraError
 from evapcool.physics import coresource
-from evapcool.physics.model import CORE_LOG_FULL, CORE_LOG_LINE_BYTES
+from evapcool.physics.model import (
+    CORE_DONE,
+    CORE_FRAME_END,
+    CORE_LOG_FULL,
+    CORE_LOG_LINE_BYTES,
+    CORE_MOVES_FULL,
+)
 from evapcool.physics.world import World
 
 #: Lines of the core's event log buffer (emptied into the World when full).
@@ -119,6 +126,7 @@ class CoreEngine:
         self.core.start(world.energy_sum, world.trap_height)
         self._crossings = 0
         self._stale = 0
+        self._moves: list[tuple[float, int]] = []  # taken from the core when it was full
 
     def _update_tc_table(self) -> None:
         """Tc(N) for every N, by the core's power (the World's portable power's twin)."""
@@ -165,6 +173,51 @@ class CoreEngine:
         self.core.force_win()
         self.w.won = True
 
+    # -- the game's clock (core/play.c) ------------------------------------------------
+    def play_to(self, end: float, on_frame: Callable[[float], None] | None) -> None:
+        """Play to `end` frames; on_frame(height held) after each whole frame recorded."""
+        self._update_tc_table()
+        while (code := self.core.play_to(float(end), on_frame is not None)) != CORE_DONE:
+            self._take_log()
+            if code == CORE_MOVES_FULL:
+                self._take_moves()
+            elif code == CORE_FRAME_END and on_frame is not None:
+                self._sync()
+                on_frame(self.w.trap_height)
+        self._take_log()
+        self._sync()
+
+    def ask_height(self, height: float, now: bool) -> bool:
+        """A rim height from the next whole frame (at once if now or on one), or refused."""
+        asked = bool(self.core.ask_height(float(height), bool(now)))
+        self._take_log()
+        self._sync()
+        return asked
+
+    @property
+    def asked_height(self) -> float:
+        return float(self.core.asked_height())
+
+    def hold(self, runs: Sequence[tuple[float, float]]) -> None:
+        """Hold these (height, frames) runs' heights, counted from the start (none: stop)."""
+        self.core.hold(len(runs))
+        for height, frames in runs:
+            self.core.hold_run(float(height), float(frames))
+        self._take_log()
+        self._sync()
+
+    def _take_moves(self) -> None:
+        core = self.core
+        for k in range(core.n_moves()):
+            self._moves.append((core.move_height(k), int(core.move_frames(k))))
+        core.moves_taken()
+
+    def moves(self) -> list[tuple[float, int]]:
+        """The (height, frames) runs held so far, up to the frame of the win."""
+        core = self.core
+        kept = [(core.move_height(k), int(core.move_frames(k))) for k in range(core.n_moves())]
+        return self._moves + kept
+
     # -- the game's frame (core/game.c) -----------------------------------------------
     def frame(self, height: float) -> None:
         """One whole frame from a whole frame, the trap at height during it (from its start,
@@ -184,6 +237,12 @@ class CoreEngine:
         """Atoms trapped at the end of the frame the win was seen in; None before."""
         fixed = self.core.score()
         return None if fixed is None else int(fixed[0])
+
+    @property
+    def win_frame(self) -> float | None:
+        """The whole frame the win was seen at; None before."""
+        fixed = self.core.score()
+        return None if fixed is None else float(fixed[1])
 
     def replay(self, runs: np.ndarray, limit: int) -> int:
         """(height, frames) runs from a whole frame, up to the win or limit frames: the

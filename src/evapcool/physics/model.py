@@ -55,5 +55,11 @@ REACH_NAMES = ("within", "all_escaped", "one_atom", "stuck", "stuck_here")
 #: (then call again).
 CORE_DONE = 0
 CORE_LOG_FULL = 1
+#: The further answers of core_play_to: the moves to be taken first (then call again), or (asked
+#: for) a whole frame played, recorded and ended: call again to go on.
+CORE_MOVES_FULL = 2
+CORE_FRAME_END = 3
+#: Runs of (height, frames) the core keeps before they must be taken.
+CORE_MOVES_CAPACITY = 64
 #: Bytes of one line of the event log (LogLine).
 CORE_LOG_LINE_BYTES = 24

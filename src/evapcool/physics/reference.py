@@ -10,11 +10,14 @@ event plus an O(N^2) scan, fine up to a few hundred atoms. The compiled core
 from __future__ import annotations
 
 import math
+from collections.abc import Callable, Sequence
 
 import numpy as np
 
 from evapcool.physics import kernels as k
 from evapcool.physics import model
+from evapcool.physics import play as clock
+from evapcool.physics.play import Play
 from evapcool.physics.world import (
     ESCAPED,
     EV_ESCAPE,
@@ -41,8 +44,10 @@ class ReferenceEngine:
 
     def __init__(self, world: World) -> None:
         self.w = world
-        #: Atoms trapped at the end of the whole frame the win was seen in; None before.
+        #: Atoms trapped at the end of the whole frame the win was seen in, and that frame.
         self.score: int | None = None
+        self.win_frame: float | None = None
+        self.play = Play()
         n = len(world.radius)
         self.pair = np.full((n, n), INF)
         self.solo = np.full(n, INF)  # wall time if trapped, exit time if escaped
@@ -257,6 +262,23 @@ class ReferenceEngine:
             self._log(EV_KNIFE, int(i), -1, w.time)
             self._remove(int(i), GONE, w.time)
 
+    # -- the game's clock: physics/play.py, the oracle of core/play.c ------------------------
+    def play_to(self, end: float, on_frame: Callable[[float], None] | None) -> None:
+        clock.play_to(self, end, on_frame)
+
+    def ask_height(self, height: float, now: bool) -> bool:
+        return clock.ask_height(self, height, now)
+
+    @property
+    def asked_height(self) -> float:
+        return clock.asked_height(self)
+
+    def hold(self, runs: Sequence[tuple[float, float]]) -> None:
+        clock.hold(self, runs)
+
+    def moves(self) -> list[tuple[float, int]]:
+        return clock.moves(self)
+
     # -- the game's frame: the readable rule core/game.c runs, its oracle -------------------
     def frame(self, height: float) -> None:
         """One whole frame from a whole frame, the trap at height during it: the height takes
@@ -273,6 +295,7 @@ class ReferenceEngine:
         at the atoms trapped now (one on its way over the rim may still leave; it stays)."""
         if self.w.won and self.score is None:
             self.score = self.w.n_trapped
+            self.win_frame = self.w.time
 
     def replay(self, runs: np.ndarray, limit: int) -> int:
         """Hold each (height, frames) run's height for that many whole frames, from a whole

@@ -5,8 +5,9 @@ Pure model: NumPy and the compiled core (physics/core.py), never pygame.
 
 from __future__ import annotations
 
+import math
 import warnings
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from typing import Any
 
 import numpy as np
@@ -227,6 +228,42 @@ class Simulation:
     def engine(self) -> str:
         """Name of the engine in use: 'reference', or 'fast' (the compiled core)."""
         return self._engine.name
+
+    # -- the game's clock (core/play.c; its readable oracle: physics/play.py) -------------
+    def play_to(self, end: float, on_frame: Callable[[float], None] | None = None) -> None:
+        """Play to `end` frames in pieces that stop at each whole frame: there the height held
+        is recorded (`moves`, up to the win), the win seen and the score fixed, then the
+        script's or the asked height applied. on_frame(height held): after each recorded
+        frame, the state at its end."""
+        if math.isnan(end):
+            raise ValueError("end must be a number of frames (got nan)")
+        self._engine.play_to(end, on_frame)
+
+    def ask_height(self, height: float, now: bool = False) -> bool:
+        """Ask for a rim height (within limits.TRAP_HEIGHT, checked by the caller) from the
+        next whole frame, at once if `now` (paused) or on one. False, and nothing asked, once
+        won, while a script plays, or if it is the height asked already."""
+        return self._engine.ask_height(height, now)
+
+    @property
+    def asked_height(self) -> float:
+        """The rim's height now, or the one it takes at the next whole frame."""
+        return self._engine.asked_height
+
+    def hold(self, runs: Sequence[tuple[float, float]]) -> None:
+        """Hold these (height, frames) runs' heights (a recording watched): whole frame k
+        from the start holds the k-th height; asked heights are refused till it ends.
+        No runs: the player's heights again."""
+        self._engine.hold(runs)
+
+    def moves(self) -> list[tuple[float, int]]:
+        """The (height, frames) runs held so far, up to the frame the win was seen in."""
+        return self._engine.moves()
+
+    @property
+    def win_frame(self) -> float | None:
+        """The whole frame at whose end the win was seen; None before."""
+        return self._engine.win_frame
 
     # -- the game's frame (core/game.c; the reference engine's readable rule is its oracle) --
     def frame(self, height: float) -> None:

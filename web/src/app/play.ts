@@ -8,7 +8,6 @@ import { ParameterError } from "../limits";
 import { FPS } from "../game/engine";
 import { Autopilot } from "../game/autopilot";
 import { forceWin, randomSeed, replayGolden } from "../game/engine";
-import { heightsOf } from "../game/moves";
 import { configOf, type Recording, type ReplaySettings } from "../game/replay";
 import { DEFAULT_CONFIG, Game, type GameConfig, type SimFactory } from "../game/rules";
 import type { Settings } from "../game/settings";
@@ -142,7 +141,7 @@ export class Play {
     this.autopilot?.steer(this.game);
     // A watched replay's heights from the start of this game (the page's own game).
     const rec = this.replaying;
-    if (rec && this.game instanceof Game) this.game.playback(heightsOf(rec.moves));
+    if (rec && this.game instanceof Game) this.game.playback(rec.moves);
   }
 
   /** The win's notice when the autopilot or a replay won (never a player's score). */

@@ -32,7 +32,7 @@ export class Replays {
   async onWin(): Promise<void> {
     const g = this.host.game;
     const generation = g.generation;
-    const runs = g instanceof RemoteGame ? await g.moves() : (g as Game).moves.runs;
+    const runs = g instanceof RemoteGame ? await g.moves() : (g as Game).moves();
     const seed = g.config.seed;
     if (seed === null || g.generation !== generation) return;
     const rec = recordingOf(g.config, seed, runs, g.won, g.score);
@@ -51,7 +51,7 @@ export class Replays {
     const generation = g.generation;
     if (generation === this.lostGeneration || g.won) return;
     this.lostGeneration = generation;
-    const runs = g instanceof RemoteGame ? await g.moves() : (g as Game).moves.runs;
+    const runs = g instanceof RemoteGame ? await g.moves() : (g as Game).moves();
     const seed = g.config.seed;
     if (seed === null || g.generation !== generation || g.won) return;
     const rec = recordingOf(g.config, seed, runs, false, null);

@@ -116,7 +116,7 @@ const num = (x: number): string =>
 /** The replay code of the game so far (its moves, settings and seed), or null. */
 export async function codeSoFar(g: GameLike): Promise<string | null> {
   try {
-    const runs = g instanceof RemoteGame ? await g.moves() : (g as Game).moves.runs;
+    const runs = g instanceof RemoteGame ? await g.moves() : (g as Game).moves();
     const seed = g.config.seed;
     if (seed === null) return null;
     return await encode(recordingOf(g.config, seed, runs, g.won, g.score));

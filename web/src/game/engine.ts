@@ -4,9 +4,9 @@ import { readTrace, replayTrace, traceText } from "../physics/trace";
 import type { EscapeRule } from "../physics/constants";
 
 /** The start's own count of the atoms a cup holds, for the settings (game/capacity.ts). */
-export { startCapacity } from "../physics/wasm";
+export { startCapacity } from "../physics/instance";
 /** The WebAssembly core's bytes: the page hands them to its physics worker. */
-export { coreBytes, haveCore, provideCore } from "../physics/wasm";
+export { coreBytes, haveCore, provideCore } from "../physics/instance";
 /** A fresh seed of the shared start generator, for a game that names none. */
 export { randomSeed, SEED_PORTABLE_MAX, START_GENERATOR } from "../physics/start";
 /** The room around the cup (the view places it on screen: view/screen.ts). */

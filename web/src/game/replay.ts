@@ -17,7 +17,6 @@ import {
 import type { GameSim } from "./sim";
 import { framesOf } from "./moves";
 import { REPLAY_ATOMS, REPLAY_FRAMES_MAX, REPLAY_RADIUS } from "../limits";
-export { MoveRecorder } from "./moves";
 
 export const CODE_PREFIX = "EC1";
 export const FORMAT_VERSION = 1;

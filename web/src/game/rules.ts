@@ -5,11 +5,10 @@
  * Time: the physics runs in whole frames of 1/30 s of play (x speed). Trap-height
  * changes wait for the next frame boundary, so a run depends on what the player did
  * in which frame, never on the display's rate; between boundaries the exact physics is
- * advanced to the moment drawn, so motion stays smooth at 60 or 120 Hz. The whole frame,
- * the win seen at its end and the score fixed there are the core's (core/game.c, the same
- * C as the desktop's: GameSim).
+ * advanced to the moment drawn, so motion stays smooth at 60 or 120 Hz. That clock, the
+ * moves it records, the win seen at a frame's end and the score fixed there are the core's
+ * (core/play.c, the same C as the desktop's: GameSim.playTo).
  */
-import { MoveRecorder } from "./moves";
 import { FPS, N_ATOMS, ATOM_RADIUS, TC_EXPONENT_SEED, type GamePhysics } from "./engine";
 import { REACH_NAMES } from "./engine";
 import type { GameSim } from "./sim";
@@ -70,14 +69,8 @@ export class Game {
   generation = 0;
   readonly onWin: Array<(game: Game) => void> = [];
   /** Called at the end of each whole physics frame up to the win with the height held
-   * during it (a replay's recorder: a game is its heights per frame, issue 22). */
+   * during it (the moves themselves are the core's: moves()). */
   readonly onFrame: Array<(height: number) => void> = [];
-  /** The heights held since the (re)start, one per whole frame: the game's moves. */
-  moves = new MoveRecorder();
-  /** Heights to hold frame by frame (a recording played back), or null: the player's. */
-  private script: number[] | null = null;
-  /** A trap height asked for since the last frame boundary (applied there). */
-  private pendingHeight: number | null = null;
 
   constructor(
     private readonly factory: SimFactory,
@@ -96,9 +89,6 @@ export class Game {
     this.sim = sim;
     this.paused = true;
     this.wonAt = null;
-    this.pendingHeight = null;
-    this.moves = new MoveRecorder();
-    this.script = null;
     this.generation += 1;
   }
 
@@ -114,25 +104,19 @@ export class Game {
   }
 
   private finishFrame(): void {
-    // One piece, a second if rounding stopped short of the boundary.
-    for (let k = 0; k < 3 && !Number.isInteger(this.sim.time); k++)
-      this.advance(Math.floor(this.sim.time) + 1 - this.sim.time);
+    const t = this.sim.time;
+    if (!Number.isInteger(t)) this.playTo(Math.floor(t) + 1);
   }
 
-  /** Play these heights back, one per whole frame from now (the player's input is ignored
-   * until the script ends or `playback(null)`). */
-  playback(heights: number[] | null): void {
-    this.script = heights && heights.length ? heights : null;
-    this.scripted();
-    if (Number.isInteger(this.sim.time)) this.applyPending();
+  /** Hold a recording's [height, frames] moves frame by frame from the start (a recording
+   * watched); the player's input is ignored until they end or `playback(null)`. */
+  playback(moves: ReadonlyArray<readonly [number, number]> | null): void {
+    this.sim.hold((moves ?? []).map(([h, n]) => [clampHeight(h), n] as const));
   }
 
-  /** The script's height for the frame starting now. */
-  private scripted(): void {
-    if (!this.script) return;
-    const h = this.script[this.moves.frames];
-    if (h === undefined) this.script = null;
-    else this.pendingHeight = clampHeight(h);
+  /** The [height, frames] runs held since the (re)start, up to the win: the game's moves. */
+  moves(): Array<[number, number]> {
+    return this.sim.moves();
   }
 
   togglePause(): void {
@@ -149,7 +133,7 @@ export class Game {
 
   /** The height the trap has, or will have at the next frame boundary. */
   get trapHeight(): number {
-    return this.pendingHeight ?? this.sim.trapHeight;
+    return this.sim.askedHeight;
   }
 
   /** Ask for a rim height, clamped to the slider's range: the one clamp on its way down. */
@@ -158,24 +142,14 @@ export class Game {
   }
 
   /** Hold a height of the slider's range from the next whole frame (the physics worker's:
-   * the page's mirror clamped it, runtime/remote.ts); frozen once the gas condensed. */
+   * the page's mirror clamped it, runtime/remote.ts); refused once the gas condensed, while
+   * a recording plays and if already asked (the core's rule: GameSim.askHeight). */
   holdHeight(h: number): boolean {
-    if (this.won || this.script || h === this.trapHeight) return false;
-    this.pendingHeight = h;
-    // Paused, or at a frame boundary: nothing is in flight, apply now.
-    if (this.paused || Number.isInteger(this.sim.time)) this.applyPending();
-    return true;
+    return this.sim.askHeight(h, this.paused);
   }
 
   nudgeHeight(delta: number): boolean {
     return this.setTrapHeight(this.trapHeight + delta);
-  }
-
-  private applyPending(): void {
-    if (this.pendingHeight !== null) {
-      this.sim.trapHeight = this.pendingHeight;
-      this.pendingHeight = null;
-    }
   }
 
   /** Advance by elapsed wall time x 30 x speed (capped); returns the frames advanced. */
@@ -196,38 +170,28 @@ export class Game {
     return this.advance(1);
   }
 
-  /** Advance `frames`, stopping at each whole frame: the win is seen and the score fixed at
-   * its end, then the held height applies (the core's frame rule: GameSim.frame), so a game
-   * (its win, its score) depends on the heights of whole frames, not on the display's step. */
   private advance(frames: number): number {
-    const sim = this.sim;
-    const end = sim.time + frames;
-    while (sim.time < end) {
-      const boundary = Math.floor(sim.time) + 1;
-      if (Number.isInteger(sim.time) && end >= boundary) {
-        sim.frame(sim.trapHeight); // a whole frame in one step
-      } else {
-        sim.advance(Math.min(boundary, end) - sim.time);
-        if (sim.time >= boundary) sim.frameEnd();
-      }
-      if (sim.time >= boundary) {
-        if (this.wonAt === null) {
-          // The moves end with the frame of the win.
-          this.moves.frame(sim.trapHeight);
-          for (const listener of this.onFrame) listener(sim.trapHeight);
-        }
-        this.checkWin();
-        this.scripted();
-        this.applyPending();
-      }
-    }
+    this.playTo(this.sim.time + frames);
     return frames;
+  }
+
+  /** Play to `end` (the core's clock, whole frame by whole frame: a game, its win and its
+   * score depend on the heights of whole frames, not on the display's step); the frame
+   * listeners hear each frame up to the win. */
+  private playTo(end: number): void {
+    this.sim.playTo(end, this.onFrame.length ? (h) => this.framePlayed(h) : null);
+    this.checkWin();
+  }
+
+  private framePlayed(height: number): void {
+    for (const listener of this.onFrame) listener(height);
+    this.checkWin();
   }
 
   /** The win seen at a frame's end (the score fixed there), once. */
   private checkWin(): void {
     if (this.sim.score !== null && this.wonAt === null) {
-      this.wonAt = this.playTime;
+      this.wonAt = (this.sim.winFrame ?? 0) / FPS;
       for (const callback of [...this.onWin]) callback(this);
     }
   }

@@ -44,14 +44,26 @@ export interface SimLike extends Pick<
 }
 
 /**
- * A simulation the game plays: the frame step, its win and score, the replay, its path and the
- * reach rule are the core's (core/game.c, the same C in both editions): every edition ends and
- * scores a game alike.
+ * A simulation the game plays: its clock with the moves, the win and score, the replay, its
+ * path and the reach rule are the core's (core/play.c, game.c, the same C in both editions):
+ * every edition ends and scores a game alike.
  */
 export interface GameSim
   extends
     SimLike,
-    Pick<Simulation, "frame" | "frameEnd" | "score" | "replay" | "path" | "outOfReach"> {}
+    Pick<
+      Simulation,
+      | "playTo"
+      | "askHeight"
+      | "askedHeight"
+      | "hold"
+      | "moves"
+      | "winFrame"
+      | "score"
+      | "replay"
+      | "path"
+      | "outOfReach"
+    > {}
 
 export function emptyAtoms(): AtomArrays {
   const z = () => new Float64Array(0);

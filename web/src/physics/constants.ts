@@ -28,3 +28,11 @@ export {
 export type EscapeRule = (typeof ESCAPE_RULES)[number];
 export type StatusName = (typeof STATUS_NAMES)[number];
 export type EventName = (typeof EVENT_NAMES)[number];
+
+/** One processed event: kind, atoms (j = -1 for solo events) and time in frames. */
+export interface PhysicsEvent {
+  kind: EventName;
+  i: number;
+  j: number;
+  time: number;
+}

@@ -155,6 +155,37 @@ export interface CoreExports {
   ): number;
   /** Why the gas can no longer condense (REACH_*), or REACH_WITHIN. */
   core_out_of_reach(core: Core, lowest: number, height: number): number;
+  /**
+   * The game's clock, to `end` (frames) in pieces that stop at each whole frame: there the height
+   * held is recorded (up to the win), the win seen, the script's or the asked height applied.
+   * CORE_DONE; CORE_LOG_FULL or CORE_MOVES_FULL to empty first; with each_frame CORE_FRAME_END
+   * after each recorded frame. Call again with the same end to go on.
+   */
+  core_play_to(core: Core, end: number, eachFrame: number): number;
+  /**
+   * Ask for a rim height from the next whole frame (at once if `now` or on one); refused (0) once
+   * won, while a script plays, or if it is the height asked already.
+   */
+  core_ask_height(core: Core, height: number, now: number): number;
+  /** The rim's height now, or the one it takes at the next whole frame. */
+  core_asked_height(core: Core): number;
+  /**
+   * A script of n_runs (height, frames) runs to hold, added by core_hold_run, each height from the
+   * whole frame of its turn counted from the start; 0 runs: none. 0 if the memory cannot hold it.
+   */
+  core_hold(core: Core, nRuns: number): number;
+  /** The script's next run; after the last, its height for the frame starting now. */
+  core_hold_run(core: Core, height: number, frames: number): void;
+  /** Whole frames played since the start. */
+  core_frames_played(core: Core): number;
+  /** Runs of moves kept (the last may still grow). */
+  core_n_moves(core: Core): number;
+  /** The height of kept run k. */
+  core_move_height(core: Core, k: number): number;
+  /** The frames of kept run k. */
+  core_move_frames(core: Core, k: number): number;
+  /** The moves kept were taken (after CORE_MOVES_FULL): keep none. */
+  core_moves_taken(core: Core): void;
   /** N doubles of the engine's memory for the caller to fill (a recording's runs). */
   core_buffer(core: Core, n: number): number;
 }

@@ -2,7 +2,7 @@
  * The web edition's physics: the exact event-driven model of docs/model.md, the same events
  * as the Python engines (held to it by the golden traces in web/test/golden/).
  */
-export { Simulation, type PhysicsEvent } from "./simulation";
+export { Simulation } from "./simulation";
 export { pairwiseSum, type AtomSnapshot } from "./snapshot";
 export {
   checkedConfig,

@@ -57,5 +57,13 @@ export const REACH_NAMES = ["within", "all_escaped", "one_atom", "stuck", "stuck
  */
 export const CORE_DONE = 0;
 export const CORE_LOG_FULL = 1;
+/**
+ * The further answers of core_play_to: the moves to be taken first (then call again), or (asked
+ * for) a whole frame played, recorded and ended: call again to go on.
+ */
+export const CORE_MOVES_FULL = 2;
+export const CORE_FRAME_END = 3;
+/** Runs of (height, frames) the core keeps before they must be taken. */
+export const CORE_MOVES_CAPACITY = 64;
 /** Bytes of one line of the event log (LogLine). */
 export const CORE_LOG_LINE_BYTES = 24;

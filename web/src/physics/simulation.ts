@@ -15,7 +15,7 @@ import {
   STATUS_NAMES,
   TRAPPED,
   type EscapeRule,
-  type EventName,
+  type PhysicsEvent,
 } from "./constants";
 import { checkedConfig, points, type SimulationOptions } from "./config";
 import { roomTop, type Room } from "./room";
@@ -30,7 +30,8 @@ import {
   type SimulationState,
   type StateInput,
 } from "./state";
-import { STORED, WasmEngine, loadCup, type EngineAtoms, type EngineRules } from "./wasm";
+import { loadCup } from "./instance";
+import { STORED, WasmEngine, type EngineAtoms, type EngineRules } from "./wasm";
 import {
   countOf,
   interleaved,
@@ -41,14 +42,6 @@ import {
   type AtomSnapshot,
 } from "./snapshot";
 import { CONTACT_TOLERANCE, DT, TRAP_HEIGHT as TRAP_HEIGHT_RANGE } from "../limits";
-
-/** One processed event: kind, atoms (j = -1 for solo events) and time in frames. */
-export interface PhysicsEvent {
-  kind: EventName;
-  i: number;
-  j: number;
-  time: number;
-}
 
 /** Hard disks in a parabolic cup under gravity, advanced event by event, exactly. */
 export class Simulation {
@@ -301,36 +294,52 @@ export class Simulation {
     this.engine.forceWin();
   }
 
-  // -- the game's frame (core/game.c: written once for both editions) -------------------
-  /**
-   * One whole frame from a whole frame, the trap at `height` during it: the height takes
-   * effect at the frame's start (not after the win: the score is the atoms left), and the
-   * frame's end sees the win and fixes the score. height: within the trap's limits.
-   */
-  frame(height: number): void {
-    this.engine.frame(height);
+  // -- the game's clock (core/play.c: written once for both editions) -------------------
+  /** Play to `end` frames, stopping at each whole frame: the height held recorded (moves, up
+   * to the win), the win seen, the next height applied; onFrame(height held) after each. */
+  playTo(end: number, onFrame: ((height: number) => void) | null = null): void {
+    if (Number.isNaN(end)) throw new RangeError("end must be a number of frames (got NaN)");
+    this.engine.playTo(end, onFrame);
   }
 
-  /** The end of a whole frame reached by advance: the win seen now, the score fixed. */
-  frameEnd(): void {
-    this.engine.frameEnd();
+  /** A rim height from the next whole frame (at once if `now` or on one), or refused (false). */
+  askHeight(height: number, now = false): boolean {
+    return this.engine.askHeight(height, now);
   }
 
-  /** Atoms trapped at the end of the whole frame the win was seen in; null before. */
+  /** The rim's height now, or the one it takes at the next whole frame. */
+  get askedHeight(): number {
+    return this.engine.read("core_asked_height");
+  }
+
+  /** Hold [height, frames] runs (a recording watched) from the start; none: the player's. */
+  hold(runs: ReadonlyArray<readonly [number, number]>): void {
+    this.engine.hold(runs);
+  }
+
+  /** The [height, frames] runs held so far, up to the frame the win was seen in. */
+  moves(): Array<[number, number]> {
+    return this.engine.moves();
+  }
+
+  /** The whole frame at whose end the win was seen; null before. */
+  get winFrame(): number | null {
+    return this.score === null ? null : this.engine.read("core_win_frame");
+  }
+
+  /** Atoms trapped at the end of the frame the win was seen in; null before. */
   get score(): number | null {
     const score = this.engine.read("core_score");
     return score < 0 ? null : score;
   }
 
-  /** Hold each [height, frames] run's height for that many whole frames (frame), from a whole
-   * frame, up to the end of the frame the win is seen in or `limit` frames: the frames played. */
+  /** [height, frames] runs played from a whole frame to the win's or `limit`: frames played. */
   replay(runs: ReadonlyArray<readonly [number, number]>, limit: number): number {
     return this.engine.replay(runs, limit);
   }
 
-  /** The game's path in the (N, T) plane: runs played as `replay` plays them; rows [k, N, T, h]
-   * at frame 0 (height h0), every stride-th whole frame, the last and the win's, where N > 0
-   * and T > 0 (game/path.ts rounds T). The frames played and those rows (core_path). */
+  /** The (N, T) path of runs played as `replay` plays them (core_path): rows [k, N, T, h] at
+   * frame 0 (height h0), every stride-th frame, the last and the win's, with N, T > 0. */
   path(runs: ReadonlyArray<readonly [number, number]>, limit: number, stride: number, h0: number) {
     return this.engine.path(runs, limit, stride, h0);
   }

@@ -1,6 +1,6 @@
 /**
  * The seeds of the shared start generator (issue 22.1). The generator itself is the core's
- * (core/start.c, called by wasm.ts's loadCup): the same atoms from the same seed in every
+ * (core/start.c, called by instance.ts's loadCup): the same atoms from the same seed in every
  * edition; the golden starts (web/test/golden/starts.json, written by Python) hold it.
  * Python's twin: `src/evapcool/physics/start.py` (docs/twins.md).
  */

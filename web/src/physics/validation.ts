@@ -18,7 +18,7 @@ import {
   pyG,
   type Range,
 } from "../limits";
-import { instance, OUT_OF_MEMORY } from "./wasm";
+import { instance, OUT_OF_MEMORY } from "./instance";
 
 /** Per-atom positions and velocities as columns, trap coordinates. */
 export interface Motion {

@@ -4,18 +4,22 @@
  * packed (deflate, base 85: scripts/wasm-plugin.mjs). It processes the events of Python's ReferenceEngine in
  * the same order with the same arithmetic, so the golden traces replay bit for bit.
  *
- * One WebAssembly instance per engine, holding one `Core` (core_new): its memory holds that
- * engine's tables, allocated once. Its exports' types (core-exports.ts) are generated from the
+ * One WebAssembly instance per engine (instance.ts), holding one `Core` (core_new): its memory
+ * holds that engine's tables, allocated once. Its exports' types (core-exports.ts) are generated from the
  * core's header, core/evapcool_core.h, as Python's binding is. Validation stays in front of it (Simulation, state.ts):
  * the core is handed sound states.
  */
-import packedCore from "virtual:evapcool-wasm";
-import { ParameterError, pyG } from "../limits";
-import { SEED_PORTABLE_MAX } from "./start";
+import { instance, OUT_OF_MEMORY } from "./instance";
 import { escapeBox, type Room } from "./room";
 import type { Core, CoreExports } from "./core-exports";
 import type { EscapeRule } from "./constants";
-import { CORE_LOG_FULL, CORE_LOG_LINE_BYTES } from "./model";
+import {
+  CORE_DONE,
+  CORE_FRAME_END,
+  CORE_LOG_FULL,
+  CORE_LOG_LINE_BYTES,
+  CORE_MOVES_FULL,
+} from "./model";
 
 /** Everything an engine needs besides the atoms: a checked config's rules (config.ts's
  * SimulationConfig, whose checks call the core: named here, not imported), or a state's. */
@@ -59,102 +63,6 @@ const LOG_LINE_BYTES = CORE_LOG_LINE_BYTES;
 /** Log lines the core buffers between two copies (at least the atom count + 8). */
 const LOG_BUFFER = 4096;
 
-/** The WebAssembly memory (at most 4 GB) could not hold the engine's tables. */
-export const OUT_OF_MEMORY = (n: number) =>
-  `nAtoms must fit the engine core's memory (${n} atoms did not: not enough memory)`;
-
-let compiled: WebAssembly.Module | null = null;
-/** The core's bytes handed over by the page (the worker's bundle carries none of its own). */
-let given: Uint8Array<ArrayBuffer> | null = null;
-
-/** The core's bytes: the page's own, or those handed over (empty if neither). */
-export function coreBytes(): Uint8Array<ArrayBuffer> {
-  return given ?? packedCore;
-}
-
-/** Whether this page or worker has the WebAssembly core (the page cannot start without). */
-export function haveCore(): boolean {
-  return coreBytes().length > 0;
-}
-
-/** The physics worker gets the core from the page: one copy in the page's file, not two. */
-export function provideCore(bytes: Uint8Array<ArrayBuffer>): void {
-  given = bytes;
-}
-
-/** The core's compiled module (compiled once, synchronously, on first use). */
-function coreModule(): WebAssembly.Module {
-  if (compiled === null) {
-    const bytes = coreBytes();
-    if (bytes.length === 0) throw new Error("the engine core was not handed to this worker");
-    compiled = new WebAssembly.Module(bytes);
-  }
-  return compiled;
-}
-
-/** A fresh instance of the core (its own memory: an engine, one start or one check computed). */
-export function instance(): CoreExports {
-  return new WebAssembly.Instance(coreModule(), {}).exports as unknown as CoreExports;
-}
-
-/**
- * The start from a seed (core/start.c, the shared start generator of both editions): positions
- * and velocities ([x0, y0, ...], [vx0, vy0, ...]) of n atoms of equal radius, rows of cells from
- * the bottom, each atom at a uniform point of its cell's jitter disk, moving in a uniform
- * direction. ParameterError if they do not fit below yTop; RangeError for a bad seed.
- */
-export function loadCup(
-  n: number,
-  radius: number,
-  curvature: number,
-  yTop: number,
-  seed: number,
-): { positions: Float64Array; velocities: Float64Array } {
-  if (!Number.isSafeInteger(seed) || seed < 0)
-    throw new RangeError(
-      `seed must be a whole number from 0 to ${SEED_PORTABLE_MAX} (got ${seed})`,
-    );
-  const c = instance();
-  const at = c.core_buffer(c.core_new(), 4 * n);
-  if (at === 0) throw new RangeError(OUT_OF_MEMORY(n));
-  const placed = c.core_load_cup(
-    at,
-    at + 16 * n,
-    n,
-    radius,
-    curvature,
-    yTop,
-    seed >>> 0,
-    Math.floor(seed / 4294967296) >>> 0,
-  );
-  if (placed < 0)
-    throw new Error(`no point in the disk for an atom (seed ${seed}): impossible odds`);
-  if (placed < n)
-    throw new ParameterError(
-      "nAtoms",
-      `${n} atoms of radius ${pyG(radius)} do not fit in the cup below the window top ` +
-        `(at most ${placed} fit)`,
-      ": ",
-    );
-  const out = new Float64Array(c.memory.buffer, at, 4 * n);
-  return { positions: out.slice(0, 2 * n), velocities: out.slice(2 * n) };
-}
-
-/** An instance for the core's functions that take no memory: one serves every call. */
-let tools: CoreExports | null = null;
-
-/** How many atoms of this radius the start places with every disk below yTop (core/start.c). */
-export function startCapacity(radius: number, curvature: number, yTop: number): number {
-  tools ??= instance();
-  return tools.core_cup_capacity(radius, curvature, yTop);
-}
-
-/** x^p for x >= 0 and 0 < p <= 10 from products and square roots: the same bits everywhere. */
-export function power(x: number, p: number): number {
-  tools ??= instance();
-  return tools.core_power(x, p);
-}
-
 /** The atoms' columns where core_allocate placed the inputs: 7 columns of doubles, then status. */
 function writeInputs(buffer: ArrayBuffer, at: number, atoms: EngineAtoms): void {
   const n = atoms.x.length;
@@ -186,6 +94,8 @@ export class WasmEngine {
   private mem: Float64Array;
   /** The event log, copied out of the core's buffer: [kind, i, j, time], world indices. */
   private readonly log: Array<[number, number, number, number]> = [];
+  /** The moves taken from the core's buffer when it was full. */
+  private readonly taken: Array<[number, number]> = [];
 
   /** The rules it runs, kept apart from whatever else the caller's object holds. */
   readonly rules: EngineRules;
@@ -259,16 +169,40 @@ export class WasmEngine {
     this.c.core_force_win(this.core);
   }
 
-  /** One whole frame from a whole frame, the trap at `height` during it (from its start,
-   * not after the win), then its end: the win seen, the score fixed (core/game.c). */
-  frame(height: number): void {
-    while (this.c.core_frame(this.core, height) === LOG_FULL) this.drainLog();
+  /** Play to `end` frames (core/play.c); onFrame(height held) after each recorded frame. */
+  playTo(end: number, onFrame: ((height: number) => void) | null): void {
+    for (;;) {
+      const code = this.c.core_play_to(this.core, end, onFrame ? 1 : 0);
+      this.drainLog();
+      if (code === CORE_DONE) return;
+      if (code === CORE_MOVES_FULL) this.moves(true);
+      else if (code === CORE_FRAME_END) onFrame?.(this.read("core_trap_height"));
+    }
+  }
+
+  /** A rim height from the next whole frame (at once if `now` or on one), or refused. */
+  askHeight(height: number, now: boolean): boolean {
+    const asked = this.c.core_ask_height(this.core, height, now ? 1 : 0) === 1;
+    this.drainLog();
+    return asked;
+  }
+
+  /** Hold these [height, frames] runs' heights, counted from the start (none: stop). */
+  hold(runs: ReadonlyArray<readonly [number, number]>): void {
+    if (!this.c.core_hold(this.core, runs.length)) throw new RangeError(OUT_OF_MEMORY(this.nAtoms));
+    for (const [height, frames] of runs) this.c.core_hold_run(this.core, height, frames);
     this.drainLog();
   }
 
-  /** The end of a whole frame reached by advanceTo: the win seen, the score fixed. */
-  frameEnd(): void {
-    this.c.core_frame_end(this.core);
+  /** The [height, frames] runs held so far, up to the win (`take`: the core's full buffer). */
+  moves(take = false): Array<[number, number]> {
+    const kept: Array<[number, number]> = [];
+    for (let k = 0; k < this.c.core_n_moves(this.core); k++)
+      kept.push([this.c.core_move_height(this.core, k), this.c.core_move_frames(this.core, k)]);
+    if (!take) return [...this.taken, ...kept];
+    this.taken.push(...kept);
+    this.c.core_moves_taken(this.core);
+    return this.taken;
   }
 
   /** [height, frames] runs from a whole frame, up to the win or `limit` frames: the frames

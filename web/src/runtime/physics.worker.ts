@@ -196,7 +196,7 @@ function receive(msg: ToWorker): void {
       post({ type: "replayed", id: msg.id, text: replayGolden(msg.text) });
       break;
     case "moves":
-      post({ type: "moves", id: msg.id, runs: game ? game.moves.runs : [] });
+      post({ type: "moves", id: msg.id, runs: game ? game.moves() : [] });
       break;
     case "verify":
       if (msg.core.length) provideCore(msg.core);

@@ -8,7 +8,8 @@ import {
   MAX_ENTRIES,
   scoresKey,
 } from "../../src/game/highscores";
-import { Game, HEIGHT_MAX, HEIGHT_MIN, LOSE_REASONS, type GameConfig } from "../../src/game/rules";
+import { forceWin, makeSimulation } from "../../src/game/engine";
+import { Game, HEIGHT_MAX, HEIGHT_MIN, LOSE_REASONS } from "../../src/game/rules";
 import { REACH_NAMES } from "../../src/physics/model";
 import {
   DEFAULTS,
@@ -19,7 +20,6 @@ import {
   validate,
 } from "../../src/game/settings";
 import { loadSettings, saveSettings, SETTINGS_KEY } from "../../src/game/settingsStore";
-import type { AtomArrays, SimLike } from "../../src/game/sim";
 import { MemoryStore } from "../../src/game/store";
 import { ADDRESS_OPTIONS, parseParams } from "../../src/app/params";
 
@@ -219,79 +219,11 @@ describe("high scores", () => {
   });
 });
 
-/** A SimLike whose temperature falls with the trap height: enough for the game's rules. */
-class FakeSim implements SimLike {
-  time = 0;
-  nAtoms = 10;
-  nTrapped = 10;
-  nEscaped = 0;
-  trapHeight = 400;
-  rimHalfWidth = 200;
-  curvature = 0.01;
-  gravity = 1 / 3;
-  initialTemperature = 100;
-  criticalTemperature = 75;
-  tcExponent = 2 / 3;
-  won = false;
-  winRule = true;
-  collisionCount = 0;
-  room = { left: 296, right: 344, below: 128, above: 544 };
-  originLift = 12;
-  heights: Array<[number, number]> = [];
-  get temperature() {
-    return this.trapHeight / 4;
-  }
-  advance(dt: number) {
-    this.time += dt;
-    this.heights.push([this.time, this.trapHeight]);
-    if (this.temperature < this.criticalTemperature) this.won = true;
-  }
-  // The core's frame rule (core/game.c), as GameSim promises it.
-  score: number | null = null;
-  frame(height: number) {
-    if (!this.won && height !== this.trapHeight) this.trapHeight = height;
-    this.advance(1);
-    this.frameEnd();
-  }
-  frameEnd() {
-    if (this.won && this.score === null) this.score = this.nTrapped;
-  }
-  replay(): number {
-    throw new Error("the game's rules never replay");
-  }
-  path(): never {
-    throw new Error("the game's rules never sample a path");
-  }
-  // The core's reach rule (core_out_of_reach): the code set here, the heights asked with kept.
-  reach = 0;
-  asked: number[] = [];
-  outOfReach(lowest: number, height: number): number {
-    this.asked = [lowest, height];
-    return this.reach;
-  }
-  trapped(): AtomArrays {
-    const z = new Float64Array(0);
-    return { x: z, y: z, vx: z, vy: z, radius: z, mass: z, count: 0 };
-  }
-  escaped(): AtomArrays {
-    return this.trapped();
-  }
-}
-
-describe("game rules", () => {
-  const make = () => {
-    const sims: FakeSim[] = [];
-    const game = new Game((c: GameConfig) => {
-      const s = new FakeSim();
-      s.nAtoms = c.nAtoms;
-      sims.push(s);
-      return s;
-    });
-    return { game, sims };
-  };
+describe("game rules (the clock is the core's: core/play.c)", () => {
+  const make = () => new Game(makeSimulation, { nAtoms: 49, seed: 3 });
 
   test("starts paused at 400; speed doubles and halves within 1/4 to 4", () => {
-    const { game } = make();
+    const game = make();
     expect(game.paused).toBe(true);
     expect(game.trapHeight).toBe(400);
     expect(game.update(1)).toBe(0);
@@ -302,7 +234,7 @@ describe("game rules", () => {
   });
 
   test("the trap is clamped to the slider and moves only at whole frames", () => {
-    const { game, sims } = make();
+    const game = make();
     game.setTrapHeight(1000);
     expect(game.trapHeight).toBe(HEIGHT_MAX);
     game.setTrapHeight(-5);
@@ -311,41 +243,43 @@ describe("game rules", () => {
     game.paused = false;
     game.update(0.5 / 30); // half a frame: now between boundaries
     game.setTrapHeight(380);
-    expect(sims[0].trapHeight).toBe(400);
+    expect(game.sim.trapHeight).toBe(400);
     expect(game.trapHeight).toBe(380);
     game.update(0.25 / 30);
-    expect(sims[0].trapHeight).toBe(400);
+    expect(game.sim.trapHeight).toBe(400);
     game.update(0.5 / 30);
     // The change took effect exactly at frame 1.
-    expect(sims[0].heights.map(([t, h]) => [Number(t.toFixed(9)), h])).toEqual([
-      [0.5, 400],
-      [0.75, 400],
-      [1, 400],
-      [1.25, 380],
+    expect(game.sim.trapHeight).toBe(380);
+    expect(game.moves()).toEqual([[400, 1]]);
+    game.runFrames(2);
+    expect(game.moves()).toEqual([
+      [400, 1],
+      [380, 2],
     ]);
   });
 
   test("holdHeight: the worker holds a height as the page's mirror sent it (clamped once)", () => {
-    const { game, sims } = make();
+    const game = make();
     expect(game.holdHeight(300)).toBe(true);
-    expect(sims[0].trapHeight).toBe(300); // paused: at once
+    expect(game.sim.trapHeight).toBe(300); // paused: at once
     expect(game.holdHeight(300)).toBe(false);
-    game.setTrapHeight(280); // T = 70 < Tc = 75
     game.paused = false;
     game.runFrames(2);
+    forceWin(game.sim);
+    game.runFrames(1);
     expect(game.won).toBe(true);
     expect(game.holdHeight(350)).toBe(false); // frozen after the win
-    expect(game.trapHeight).toBe(280);
+    expect(game.trapHeight).toBe(300);
   });
 
   test("pausing mid-frame finishes the frame: a paused height lands on a whole frame", () => {
-    const { game, sims } = make();
+    const game = make();
     game.paused = false;
     game.update(0.4 / 30);
     game.paused = true;
-    expect(sims[0].time).toBe(1);
+    expect(game.sim.time).toBe(1);
     game.setTrapHeight(320);
-    expect(sims[0].trapHeight).toBe(320); // at once: frame 1 on starts with it
+    expect(game.sim.trapHeight).toBe(320); // at once: frame 1 on starts with it
     const held: number[] = [];
     game.onFrame.push((h) => held.push(h));
     game.paused = false;
@@ -354,57 +288,75 @@ describe("game rules", () => {
   });
 
   test("a stall never jumps the game ahead: at most 2 physics frames a drawn frame at 1x", () => {
-    const { game, sims } = make();
+    const game = make();
     game.paused = false;
     game.update(5);
-    expect(sims[0].time).toBeCloseTo(2, 12);
+    expect(game.sim.time).toBeCloseTo(2, 12);
   });
 
-  test("the win is announced once, with the play time; the trap then freezes", () => {
-    const { game } = make();
+  test("the win is announced once, with its frame's play time; the trap then freezes", () => {
+    const game = make();
     const wins: number[] = [];
     game.onWin.push((g) => wins.push(g.wonAt ?? -1));
     game.paused = false;
-    game.setTrapHeight(280); // T = 70 < Tc = 75
+    game.runFrames(1);
+    forceWin(game.sim); // the gas condenses in frame 1: seen at its end
+    game.update(1.5 / 30);
     game.runFrames(3);
-    game.runFrames(3);
-    expect(wins).toEqual([1 / 30]);
-    expect(game.score).toBe(10);
+    expect(wins).toEqual([2 / 30]);
+    expect(game.score).toBe(game.sim.nTrapped);
+    expect(game.moves()).toEqual([[400, 2]]); // the moves end with the win's frame
     expect(game.setTrapHeight(100)).toBe(false);
     game.restart();
     expect(game.score).toBeNull();
     expect(game.paused).toBe(true);
   });
 
+  test("a recording watched holds its heights from the start and refuses the player's", () => {
+    const game = make();
+    game.playback([
+      [300, 2],
+      [200, 1],
+    ]);
+    expect(game.trapHeight).toBe(300);
+    expect(game.setTrapHeight(100)).toBe(false);
+    game.paused = false;
+    game.runFrames(3);
+    expect(game.sim.trapHeight).toBe(200);
+    expect(game.setTrapHeight(100)).toBe(true); // its frames are over: the player's again
+    expect(game.moves()).toEqual([
+      [300, 2],
+      [200, 1],
+    ]);
+  });
+
   test("step: one frame, only while paused", () => {
-    const { game, sims } = make();
+    const game = make();
     expect(game.step()).toBe(1);
     game.paused = false;
     expect(game.step()).toBe(0);
-    expect(sims[0].time).toBe(1);
+    expect(game.sim.time).toBe(1);
   });
 });
 
 describe("too few atoms (the core's reach rule)", () => {
   test("each code of the core is its message key, asked with H_min and the trap asked for", () => {
-    const sims: FakeSim[] = [];
-    const game = new Game(() => {
-      const s = new FakeSim();
-      sims.push(s);
-      return s;
-    });
+    const game = new Game(makeSimulation, { nAtoms: 49, seed: 3 });
+    let code = 0;
+    let asked: number[] = [];
+    game.sim.outOfReach = (lowest: number, height: number) => ((asked = [lowest, height]), code);
     const keys = [null, "lose.all_escaped", "lose.one_atom", "lose.stuck", "lose.stuck_here"];
-    keys.forEach((key, code) => {
-      sims[0].reach = code;
+    keys.forEach((key, k) => {
+      code = k;
       expect(game.tooFewAtoms()).toBe(key);
     });
     expect(LOSE_REASONS).toEqual(keys);
     // one key per code of the core's (generated from its header): a new code needs its key
     expect(LOSE_REASONS).toEqual(REACH_NAMES.map((n) => (n === "within" ? null : `lose.${n}`)));
-    expect(sims[0].asked).toEqual([HEIGHT_MIN, 400]);
+    expect(asked).toEqual([HEIGHT_MIN, 400]);
     game.setTrapHeight(60);
     game.tooFewAtoms();
-    expect(sims[0].asked).toEqual([HEIGHT_MIN, 60]);
+    expect(asked).toEqual([HEIGHT_MIN, 60]);
   });
 });
 

@@ -14,6 +14,7 @@ import {
   type Recording,
 } from "../../src/game/replay";
 import { crc32Hex, decode, encode } from "../../src/game/replaycode";
+import { framesOf } from "../../src/game/moves";
 import { Game } from "../../src/game/rules";
 
 /** A ramp that wins: 5 px lower every 25 frames down to 100 (as the page tests play). */
@@ -25,7 +26,7 @@ function wonGame(seed: number): Recording {
     game.runFrames(1);
   }
   expect(game.won).toBe(true);
-  return recordingOf(game.config, seed, game.moves.runs, game.won, game.score);
+  return recordingOf(game.config, seed, game.moves(), game.won, game.score);
 }
 
 async function reason(code: string): Promise<string> {
@@ -50,9 +51,9 @@ describe("a game is its whole frames' heights", () => {
             if (k % 40 === 0 && game.trapHeight > 100) game.nudgeHeight(-5);
             game.update(dt);
           }
-          const rec = recordingOf(game.config, seed, game.moves.runs, game.won, game.score);
+          const rec = recordingOf(game.config, seed, game.moves(), game.won, game.score);
           const v = verify(rec, makeSimulation);
-          return v.won === game.won && v.frames === game.moves.frames;
+          return v.won === game.won && v.frames === framesOf(game.moves());
         },
       ),
       { numRuns: 8 },

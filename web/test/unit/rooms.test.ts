@@ -5,7 +5,7 @@
 import { readdirSync, readFileSync } from "node:fs";
 import { resolve } from "node:path";
 import { expect, test } from "vitest";
-import { coreBytes } from "../../src/physics/wasm";
+import { coreBytes } from "../../src/physics/instance";
 
 const WEB = resolve(import.meta.dirname, "../../src/physics");
 const PY = resolve(import.meta.dirname, "../../../src/evapcool/physics");
@@ -17,6 +17,8 @@ const NO_TWIN: Record<string, string> = {
   "constants.ts":
     "the applet's constants; Python keeps them in constants.py, world.py and limits.py",
   "wasm.ts": "the core's WebAssembly wrapper (Python's native one is physics/core.py)",
+  "instance.ts":
+    "the core's WebAssembly module and instances, and its engine-free calls (Python: core.py)",
   "wasm-core.d.ts": "the type of the core the build inlines (web/scripts/wasm-plugin.mjs)",
   "core-exports.ts": "the core's exports, generated from core/evapcool_core.h (Python's _core.pyi)",
   "snapshot.ts":
