@@ -11,6 +11,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
+from evapcool.physics import core as core_module
 from evapcool.physics.core import compiled
 from evapcool.physics.model import CORE_MOVES_CAPACITY
 from evapcool.physics.simulation import Simulation
@@ -30,7 +31,11 @@ WIN = st.tuples(st.just("win"), st.just(0.0))
 
 def _sim(engine: str, seed: int, knife: bool) -> Simulation:
     escape = "knife" if knife else "rim"
-    return Simulation(30, seed=seed, engine=engine, escape=escape, record_events=True)
+    # The core's log as small as it goes (n + 8 lines): it fills within frames, and before a
+    # knife at a whole frame, so play goes on from where it stopped many times a game.
+    with pytest.MonkeyPatch.context() as patch:
+        patch.setattr(core_module, "LOG_CAPACITY", 1)
+        return Simulation(30, seed=seed, engine=engine, escape=escape, record_events=True)
 
 
 def _act(sim: Simulation, action: tuple, heard: list) -> object:
@@ -71,6 +76,13 @@ def test_the_cores_clock_plays_as_its_oracle(seed: int, knife: bool, actions: li
             sim.to_state(),
         ]
     assert out["fast"] == out["reference"]
+
+
+def test_a_full_log_stops_play_where_it_goes_on() -> None:
+    """The small log of the test above fills: the core returns, is emptied, goes on."""
+    sim = _sim("fast", 4, knife=True)
+    sim.play_to(40.0)
+    assert len(sim.event_log) > 3 * (30 + 8)
 
 
 def test_moves_beyond_the_cores_buffer_are_all_kept() -> None:
