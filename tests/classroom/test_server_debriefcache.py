@@ -79,3 +79,35 @@ def test_many_asking_at_once_cost_one_build() -> None:
     got = asyncio.run(run())
     assert len(builds) == 2
     assert len({id(g) for g in got[:301]}) == 1 and got[301] is not got[0]
+
+
+def test_a_board_sent_while_a_debrief_is_built_keeps_it() -> None:
+    """Sending a room's board changes nothing: a debrief built meanwhile is kept (it was
+    rebuilt by the next asker, seconds in a full hall); a change announced makes it stale."""
+    import asyncio
+
+    from evapcool.classroom.debrief_cache import DebriefCache
+    from evapcool.classroom.hub import Hub
+
+    builds = []
+
+    async def run() -> None:
+        hub = Hub.__new__(Hub)  # the state send and changed use, no store: nobody listens
+        hub.sent_at, hub.generation, hub.listeners, hub.pending = {}, {}, [], set()
+        hub.wake = asyncio.Event()
+        cache = DebriefCache()
+
+        async def make() -> object:
+            builds.append(1)
+            await hub.send(1)  # the board goes out while the debrief is built
+            return object()
+
+        first = await cache.get(hub, (1, 1, False), make)
+        assert await cache.get(hub, (1, 1, False), make) is first
+        hub.changed(1)  # another process (or this one) changed the room's games
+        assert await cache.get(hub, (1, 1, False), make) is not first
+        hub.changed(None)  # the store was away: any room may have changed
+        await cache.get(hub, (1, 1, False), make)
+
+    asyncio.run(run())
+    assert len(builds) == 3

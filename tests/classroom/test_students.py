@@ -121,13 +121,11 @@ def lost_code() -> str:
     until one atom is left (above Tc(1))."""
     game = Game(SETTINGS.game_config(SEED, "fast"))
     game.toggle_pause()
-    recorder = Recorder(SETTINGS, SEED, edition="web")
     game.set_trap_height(HEIGHT_MIN)
     while not game.lost:
-        recorder.frame(game.trap_height)
         game.run_frames(1)
-        assert not game.won and recorder.runs[0][1] < 3000
-    return encode(recorder.finish(False, None))
+        assert not game.won and game.sim.time < 3000
+    return encode(Recorder(SETTINGS, SEED, edition="web").finish(game))
 
 
 def test_lost_games_count_when_the_challenge_says_so(department: Server) -> None:

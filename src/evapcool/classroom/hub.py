@@ -165,7 +165,6 @@ class Hub:
         """Send a room's leaderboard to this process's streams of it; a slow one keeps only
         the newest."""
         self.sent_at[room] = time.monotonic()
-        self.generation[room] = self.generation.get(room, 0) + 1
         await drop_stale(self, [s for s in self.listeners if s.room == room and s.keyed])
         here = [s for s in self.listeners if s.room == room and not s.closed]
         if not here:
@@ -182,8 +181,12 @@ class Hub:
 
     def changed(self, room: int | None) -> None:
         """A notice from the store (on the event loop): a room's board changed (None: any
-        may have, after the connection was lost)."""
-        self.pending.update([room] if room is not None else {s.room for s in self.listeners})
+        may have, after the connection was lost): what was built from it is stale. A send
+        itself changes nothing (a debrief built meanwhile is kept)."""
+        listened = {s.room for s in self.listeners}
+        for stale in [room] if room is not None else {*self.generation, *listened}:
+            self.generation[stale] = self.generation.get(stale, 0) + 1
+        self.pending.update([room] if room is not None else listened)
         self.wake.set()
 
     async def forward(self) -> None:
