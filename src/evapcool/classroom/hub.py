@@ -6,6 +6,7 @@ from __future__ import annotations
 
 import asyncio
 import contextlib
+import json
 import multiprocessing
 import time
 from collections.abc import Callable
@@ -32,6 +33,9 @@ WINDOW_CHECK = 0.25
 #: Seconds at least between two boards sent to a room's streams (the changes meanwhile
 #: make one board).
 BOARD_GAP = 0.25
+#: Seconds at least between two boards sent to a room's joined students (a phone shows its
+#: place: once a second is enough); a new round, its close or the debrief's view go at once.
+PHONE_GAP = 1.0
 #: Seconds between forgetting idle rate buckets held in the database.
 BUCKET_SWEEP = 60.0
 #: Seconds a client is told to wait (Retry-After) while the database does not answer.
@@ -120,6 +124,11 @@ class Hub:
     cut_uploads: int = 0
     #: When each room's board was last sent to this process's streams (monotonic).
     sent_at: dict[int, float] = field(default_factory=dict)
+    #: ... to its joined students' streams, with what must reach them at once (PHONE_GAP),
+    #: and the rooms whose phones wait for a board.
+    phones_at: dict[int, float] = field(default_factory=dict)
+    phone_phase: dict[int, str] = field(default_factory=dict)
+    phones_late: set[int] = field(default_factory=set)
 
     def __post_init__(self) -> None:
         # Request buckets are one process's flood guard; submissions and joins are counted
@@ -162,8 +171,8 @@ class Hub:
         return time.monotonic() - self.sent_at.get(room, float("-inf")) >= BOARD_GAP
 
     async def send(self, room: int) -> None:
-        """Send a room's leaderboard to this process's streams of it; a slow one keeps only
-        the newest."""
+        """Send a room's leaderboard to this process's streams of it (its joined students'
+        as `_phones_due` allows); a slow one keeps only the newest."""
         self.sent_at[room] = time.monotonic()
         await drop_stale(self, [s for s in self.listeners if s.room == room and s.keyed])
         here = [s for s in self.listeners if s.room == room and not s.closed]
@@ -172,12 +181,33 @@ class Hub:
         kinds = {s.keyed for s in here if s.token is None}
         phones = any(s.token is not None for s in here)
         texts, board, mine = await self.db(_send_boards, self.store, room, kinds, phones)
+        if phones and not self._phones_due(room, board):
+            here = [s for s in here if s.token is None]
         for listener in here:
             if listener.queue.full():
                 listener.queue.get_nowait()
             token = listener.token
             text = texts[listener.keyed] if token is None else phone_text(board, mine.get(token))
             listener.queue.put_nowait(text)
+
+    def _phones_due(self, room: int, board: dict[str, Any]) -> bool:
+        """Whether a room's joined students get this board: a new round, its close or the
+        debrief's view at once, else at most one every PHONE_GAP (the newest is sent then)."""
+        now = time.monotonic()
+        phase = json.dumps([board["challenge"], board["open"], board["debrief"]])
+        wait = self.phones_at.get(room, float("-inf")) + PHONE_GAP - now
+        if phase == self.phone_phase.get(room) and wait > 0:
+            if room not in self.phones_late:
+                self.phones_late.add(room)
+                asyncio.get_running_loop().call_later(wait, self._phones_wait_over, room)
+            return False
+        self.phone_phase[room], self.phones_at[room] = phase, now
+        return True
+
+    def _phones_wait_over(self, room: int) -> None:
+        self.phones_late.discard(room)
+        self.pending.add(room)
+        self.wake.set()
 
     def changed(self, room: int | None) -> None:
         """A notice from the store (on the event loop): a room's board changed (None: any
