@@ -45,7 +45,7 @@ try {
       [10000, 1, "worker", undefined],
       [10000, 1, "page", NO_WORKER],
       [15000, 1, "worker", undefined], // issue 47: 20 000 of radius 1 do not fit (15 085 do)
-      [20000, 0.85, "worker", undefined], // issue 47's 20 000, of the largest radius that holds them
+      [20000, 0.85, "worker", undefined], // issue 47's 20 000: no settings' radius (1-20) holds them
     ].filter(([atoms]) => !only || only.includes(atoms))) {
       const query = `?atoms=${atoms}&radius=${radius}&seed=1`;
       const r = await play(browser, query, initScript, playSeconds);
