@@ -40,3 +40,15 @@ def test_phones_get_a_board_a_second_but_a_round_or_its_close_at_once() -> None:
 
     got = asyncio.run(run())
     assert got == [True, False, False, False, False, True, True, True, True, False, True]
+
+
+def test_the_class_guide_says_the_gaps() -> None:
+    """docs/class.md's API table gives the streams' gaps: 0.25 s for a room's screens, a
+    second for its joined students."""
+    from pathlib import Path
+
+    from evapcool.classroom.hub import BOARD_GAP
+
+    text = (Path(__file__).resolve().parents[2] / "docs" / "class.md").read_text("utf-8")
+    assert BOARD_GAP == 0.25 and "at most one every 0.25 s" in text
+    assert PHONE_GAP == 1.0 and "at most one a second" in text
