@@ -206,17 +206,17 @@ class CoreEngine:
         self._take_log()
         self._sync()
 
-    def _take_moves(self) -> None:
+    def _kept_moves(self) -> list[tuple[float, int]]:
         core = self.core
-        for k in range(core.n_moves()):
-            self._moves.append((core.move_height(k), int(core.move_frames(k))))
-        core.moves_taken()
+        return [(core.move_height(k), int(core.move_frames(k))) for k in range(core.n_moves())]
+
+    def _take_moves(self) -> None:
+        self._moves += self._kept_moves()
+        self.core.moves_taken()
 
     def moves(self) -> list[tuple[float, int]]:
         """The (height, frames) runs held so far, up to the frame of the win."""
-        core = self.core
-        kept = [(core.move_height(k), int(core.move_frames(k))) for k in range(core.n_moves())]
-        return self._moves + kept
+        return self._moves + self._kept_moves()
 
     # -- the game's frame (core/game.c) -----------------------------------------------
     def frame(self, height: float) -> None:

@@ -175,7 +175,7 @@ export class WasmEngine {
       const code = this.c.core_play_to(this.core, end, onFrame ? 1 : 0);
       this.drainLog();
       if (code === CORE_DONE) return;
-      if (code === CORE_MOVES_FULL) this.moves(true);
+      if (code === CORE_MOVES_FULL) this.takeMoves();
       else if (code === CORE_FRAME_END) onFrame?.(this.read("core_trap_height"));
     }
   }
@@ -194,15 +194,22 @@ export class WasmEngine {
     this.drainLog();
   }
 
-  /** The [height, frames] runs held so far, up to the win (`take`: the core's full buffer). */
-  moves(take = false): Array<[number, number]> {
+  /** The [height, frames] runs held so far, up to the win. */
+  moves(): Array<[number, number]> {
+    return [...this.taken, ...this.keptMoves()];
+  }
+
+  /** The core's buffer of moves was full: keep them here, empty it. */
+  private takeMoves(): void {
+    this.taken.push(...this.keptMoves());
+    this.c.core_moves_taken(this.core);
+  }
+
+  private keptMoves(): Array<[number, number]> {
     const kept: Array<[number, number]> = [];
     for (let k = 0; k < this.c.core_n_moves(this.core); k++)
       kept.push([this.c.core_move_height(this.core, k), this.c.core_move_frames(this.core, k)]);
-    if (!take) return [...this.taken, ...kept];
-    this.taken.push(...kept);
-    this.c.core_moves_taken(this.core);
-    return this.taken;
+    return kept;
   }
 
   /** [height, frames] runs from a whole frame, up to the win or `limit` frames: the frames

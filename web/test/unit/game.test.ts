@@ -10,7 +10,7 @@ import {
 } from "../../src/game/highscores";
 import { forceWin, makeSimulation } from "../../src/game/engine";
 import { Game, HEIGHT_MAX, HEIGHT_MIN, LOSE_REASONS } from "../../src/game/rules";
-import { REACH_NAMES } from "../../src/physics/model";
+import { CORE_MOVES_CAPACITY, REACH_NAMES } from "../../src/physics/model";
 import {
   DEFAULTS,
   describe as describeSettings,
@@ -328,6 +328,18 @@ describe("game rules (the clock is the core's: core/play.c)", () => {
       [300, 2],
       [200, 1],
     ]);
+  });
+
+  test("moves beyond the core's buffer of runs are all kept (CORE_MOVES_CAPACITY)", () => {
+    const game = make();
+    game.paused = false;
+    const want: Array<[number, number]> = [];
+    for (let k = 0; k < 3 * CORE_MOVES_CAPACITY + 5; k++) want.push([450 - (k % 7), 1 + (k % 3)]);
+    for (const [h, n] of want) {
+      game.setTrapHeight(h);
+      game.runFrames(n);
+    }
+    expect(game.moves()).toEqual(want);
   });
 
   test("step: one frame, only while paused", () => {
