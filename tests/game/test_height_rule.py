@@ -140,7 +140,7 @@ def test_playback_holds_a_recordings_heights_and_ignores_the_player() -> None:
 
 
 def test_the_win_is_seen_at_its_frames_end_before_a_height_asked_in_it_applies() -> None:
-    """The replay's order (core/game.c, Simulation.frame): the score is the atoms trapped at
+    """The replay's order (core/game.c, Simulation.replay): the score is the atoms trapped at
     the end of the win's frame; a height asked during that frame applies after, so a knife
     cut it makes cannot change the score (nor make the live game disagree with its replay)."""
     for engine in ("reference", "fast"):

@@ -1,6 +1,6 @@
 """The start, the game's frame and the replay written once in the core (core/start.c,
 core/game.c), against their Python twins: the readable oracle and the fallback without the
-compiled core (physics/start.py, loading.py, portable.py; Simulation.frame / replay's
+compiled core (physics/start.py, loading.py, portable.py; Simulation.replay's
 Python branch). Bit for bit, on many seeds and sizes, and on recorded games.
 """
 

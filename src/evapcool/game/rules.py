@@ -4,7 +4,7 @@ Pure state, no pygame: the view and the app read and drive it, tests drive it
 directly. Time is physics frames (1/30 s) unless a name says seconds.
 
 When the player's trap height takes effect (both editions' rule, written once in the
-compiled core: core/game.c, `Simulation.frame`): at the next whole physics frame, t = k.
+compiled core: core/play.c, `Simulation.play_to`): at the next whole physics frame, t = k.
 The game advances in pieces that stop at each whole frame, see the win there (the score
 fixed then) and apply the height asked for since the last one, so a run depends on what
 the player did in which frame, never on the display's rate. Paused, or standing on a

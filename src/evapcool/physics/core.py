@@ -219,19 +219,6 @@ class CoreEngine:
         return self._moves + self._kept_moves()
 
     # -- the game's frame (core/game.c) -----------------------------------------------
-    def frame(self, height: float) -> None:
-        """One whole frame from a whole frame, the trap at height during it (from its start,
-        not after the win), then its end: the win seen, the score fixed."""
-        self._update_tc_table()
-        while self.core.frame(float(height)) == LOG_FULL:
-            self._take_log()
-        self._take_log()
-        self._sync()
-
-    def frame_end(self) -> None:
-        """The end of a whole frame reached otherwise: the win seen, the score fixed."""
-        self.core.frame_end()
-
     @property
     def score(self) -> int | None:
         """Atoms trapped at the end of the frame the win was seen in; None before."""

@@ -266,25 +266,13 @@ class Simulation:
         return self._engine.win_frame
 
     # -- the game's frame (core/game.c; the reference engine's readable rule is its oracle) --
-    def frame(self, height: float) -> None:
-        """One whole frame from a whole frame, the trap at height during it: the height takes
-        effect at the frame's start (not after the win: the score is the atoms left), and the
-        frame's end sees the win and fixes the score (game/rules.py's rule). height: checked
-        within limits.TRAP_HEIGHT by the caller."""
-        self._engine.frame(height)
-
-    def frame_end(self) -> None:
-        """The end of a whole frame: a win latched during it is seen now and the score fixed
-        at the atoms trapped now (one on its way over the rim may still leave; it stays)."""
-        self._engine.frame_end()
-
     @property
     def score(self) -> int | None:
         """Atoms trapped at the end of the whole frame the win was seen in; None before."""
         return self._engine.score
 
     def replay(self, moves: Sequence[tuple[float, int]], limit: int) -> int:
-        """Hold each (height, frames) run's height for that many whole frames (`frame`), from
+        """Hold each (height, frames) run's height for that many whole frames (core_frame), from
         a whole frame, up to the end of the frame the win is seen in or `limit` frames;
         returns the frames played (the result: `won`, `score`)."""
         runs = np.array(moves, dtype=np.float64).reshape(-1, 2)
