@@ -163,7 +163,6 @@ void renumber(Core *core) {
   for (int32_t q = linked - 1; q >= 0; q--) cell_link(core, q, core->plan[q].cell_x, core->plan[q].cell_y);
   for (int32_t q = 0; q < n; q++) load_key(core, q);
   calendar_rebuild(core, core->run.time);
-  core->run.renumbered++;
 }
 
 /* New rim height; with the knife rule, atoms above m g H go at once, in index order. */

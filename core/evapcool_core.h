@@ -61,8 +61,8 @@
 #define REACH_ONE_ATOM 2
 #define REACH_STUCK 3
 #define REACH_STUCK_HERE 4
-/* The answers of core_advance_to and core_frame: every event done, or
- * the log to be emptied first (then call again). */
+/* The answers of core_advance_to: every event done, or the log to be emptied first (then
+ * call again). */
 #define CORE_DONE 0
 #define CORE_LOG_FULL 1
 /* The further answers of core_play_to: the moves to be taken first (then call again), or
@@ -157,7 +157,6 @@ CORE_API(core_pairs) double core_pairs(const Core *core);
 CORE_API(core_walls) double core_walls(const Core *core);
 CORE_API(core_crossings) double core_crossings(const Core *core);
 CORE_API(core_stale) double core_stale(const Core *core);
-CORE_API(core_renumbered) double core_renumbered(const Core *core);
 CORE_API(core_n_log) int32_t core_n_log(const Core *core);
 /* tables.c: the cell grid: columns, rows, cell edge and skin (px).
  * py: Core.grid() -> tuple[int, int, float, float] */
@@ -200,13 +199,6 @@ int32_t core_first_overlap(const double *x, const double *y, const double *radiu
                            const int8_t *include, int32_t n, double tol, int32_t *work,
                            int32_t *pair);
 
-/* game.c: one whole frame, the height held: CORE_DONE, or CORE_LOG_FULL to empty the log
- * and call again with the same height.
- * py: Core.frame(height: float) -> int [nogil] */
-CORE_API(core_frame) int32_t core_frame(Core *core, double height);
-/* game.c: a whole frame's end: 1 at the frame the win is first seen (the score fixed).
- * py: Core.frame_end() -> bool */
-CORE_API(core_frame_end) int32_t core_frame_end(Core *core);
 /* game.c: (height, frames) runs played from a whole frame up to the win or `limit` frames:
  * the frames played.
  * py: Core.replay(runs: Any, limit: int) -> int */
@@ -218,6 +210,9 @@ CORE_API(core_replay) int32_t core_replay(Core *core, const double *runs, int32_
 CORE_API(core_path)
 int32_t core_path(Core *core, const double *runs, int32_t n_runs, int32_t limit, int32_t stride,
                   double h0, double *points, int32_t *n_points);
+/* game.c: the trapped atoms' energy 1/2 m v^2 + m g y, summed in World index order as NumPy
+ * sums (Python's Simulation.total_energy). */
+CORE_API(core_total_energy) double core_total_energy(Core *core);
 /* game.c: why the gas can no longer condense (REACH_*), or REACH_WITHIN.
  * py: Core.out_of_reach(lowest: float, height: float) -> int */
 CORE_API(core_out_of_reach) int32_t core_out_of_reach(Core *core, double lowest, double height);
@@ -242,9 +237,6 @@ CORE_API(core_hold) int32_t core_hold(Core *core, int32_t n_runs);
 /* play.c: the script's next run; after the last, its height for the frame starting now.
  * py: Core.hold_run(height: float, frames: float) -> None */
 CORE_API(core_hold_run) void core_hold_run(Core *core, double height, double frames);
-/* play.c: whole frames played since the start.
- * py: Core.frames_played() -> float */
-CORE_API(core_frames_played) double core_frames_played(const Core *core);
 /* play.c: runs of moves kept (the last may still grow).
  * py: Core.n_moves() -> int */
 CORE_API(core_n_moves) int32_t core_n_moves(const Core *core);

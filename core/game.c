@@ -7,15 +7,12 @@
  */
 #include "tables.h"
 
-/* The clock's whole frame: floor(t) for t >= 0. */
-static double whole_frame(double t) { return (double)(int64_t)t; }
-
 /*
  * The end of a whole frame: a win latched during the frame is seen now, and the score fixed
  * at the atoms trapped now (one already on its way over the rim may still leave; the score
  * stays). 1 at the frame the win is first seen, else 0.
  */
-int32_t core_frame_end(Core *core) {
+int32_t frame_end(Core *core) {
   Run *r = &core->run;
   if (!r->won || r->score >= 0) return 0;
   r->score = r->n_trapped;
@@ -26,16 +23,13 @@ int32_t core_frame_end(Core *core) {
 /*
  * One whole frame from a whole frame, the trap at `height` during it: the height takes effect
  * at the frame's start (not after the win: the score is the atoms left), then the events up to
- * the next whole frame, then the frame's end. CORE_LOG_FULL: empty the log and call again with
- * the same height, which goes on where it stopped.
+ * the next whole frame, then the frame's end. Replays and paths keep no log, so it never fills.
  */
-int32_t core_frame(Core *core, double height) {
+void frame(Core *core, double height) {
   Run *r = &core->run;
-  if (r->record && r->n_log > 0) return CORE_LOG_FULL; /* the knife may log every atom */
   if (!r->won && height != r->trap_height) core_set_trap_height(core, height);
-  if (core_advance_to(core, whole_frame(r->time) + 1.0) == CORE_LOG_FULL) return CORE_LOG_FULL;
-  core_frame_end(core);
-  return CORE_DONE;
+  core_advance_to(core, whole_frame(r->time) + 1.0);
+  frame_end(core);
 }
 
 /*
@@ -51,7 +45,7 @@ int32_t core_replay(Core *core, const double *runs, int32_t n_runs, int32_t limi
   for (int32_t k = 0; k < n_runs; k++)
     for (double f = 0.0; f < runs[2 * k + 1]; f += 1.0) {
       if (frames >= limit) return frames;
-      core_frame(core, runs[2 * k]);
+      frame(core, runs[2 * k]);
       frames++;
       if (core->run.score >= 0) return frames;
     }
@@ -62,7 +56,7 @@ int32_t core_replay(Core *core, const double *runs, int32_t n_runs, int32_t limi
 double *core_buffer(Core *core, int32_t n) { return core_take(core, sizeof(double) * n); }
 
 /* NumPy's sum of n doubles (pairwise: blocks of 128 with eight running sums), so a
- * temperature here has the bits of Python's np.sum and the page's pairwiseSum. */
+ * temperature here has the bits of Python's np.sum. */
 static double pairwise_sum(const double *a, int32_t n) {
   if (n < 8) {
     double res = 0.0;
@@ -90,6 +84,12 @@ static double trapped_energy(Core *core, int32_t *n) {
   for (int32_t a = 0; a < core->run.n_atoms; a++)
     if (core_status_of(core, a) == TRAPPED) core->scratch[(*n)++] = core_atom_energy(core, a);
   return pairwise_sum(core->scratch, *n);
+}
+
+/* The trapped atoms' energy, summed as NumPy sums (the page's Simulation.totalEnergy). */
+double core_total_energy(Core *core) {
+  int32_t n;
+  return trapped_energy(core, &n);
 }
 
 /* Keep frame k's point (k, N, T, h) unless no atom is trapped or T is not finite and > 0. */
@@ -121,7 +121,7 @@ int32_t core_path(Core *core, const double *runs, int32_t n_runs, int32_t limit,
   for (int32_t r = 0; r < n_runs; r++)
     for (double f = 0.0; f < runs[2 * r + 1]; f += 1.0) {
       if (k >= limit || core->run.score >= 0) return k;
-      core_frame(core, runs[2 * r]);
+      frame(core, runs[2 * r]);
       k++;
       if (k % stride == 0 || k == limit || core->run.score >= 0)
         keep(core, points, n_points, k, runs[2 * r]);

@@ -8,8 +8,6 @@
  */
 #include "tables.h"
 
-static double whole_frame(double t) { return (double)(int64_t)t; }
-
 static int32_t holding(const Play *p) { return p->n_script > 0 && p->n_script == p->script_runs; }
 
 /* The script's height for the frame starting now, as the one asked; past its end: none. */
@@ -55,7 +53,7 @@ static int32_t settle(Core *core, int32_t each_frame) {
   if (p->owed == OWED_END) {
     int32_t recorded = r->score < 0; /* the moves end with the frame of the win */
     if (recorded && !record(p, r->trap_height)) return CORE_MOVES_FULL;
-    core_frame_end(core);
+    frame_end(core);
     p->frames += 1.0;
     p->script_used += 1.0;
     p->owed = OWED_NEXT;
@@ -120,7 +118,6 @@ void core_hold_run(Core *core, double height, double frames) {
   if (core->run.time == whole_frame(core->run.time) && p->owed == OWED_NONE) apply_asked(core);
 }
 
-double core_frames_played(const Core *core) { return core->play.frames; }
 int32_t core_n_moves(const Core *core) { return core->play.n_moves; }
 double core_move_height(const Core *core, int32_t k) { return core->play.moves[2 * k]; }
 double core_move_frames(const Core *core, int32_t k) { return core->play.moves[2 * k + 1]; }

@@ -95,7 +95,7 @@ typedef struct {
   int32_t score;
   double win_frame;
   /* engine-only counts */
-  double crossings, stale, renumbered;
+  double crossings, stale;
   int32_t since_maintain, n_log, log_capacity;
   /* the event calendar */
   double bin_base, bin_width;
@@ -204,7 +204,6 @@ static inline int32_t cell_index(const Core *core, int32_t cx, int32_t cy) {
 }
 int32_t grid_shape(Core *core);
 void grid_edges(Core *core, double *edges);
-int32_t grid_errors(Core *core);
 int32_t cell_of(Core *core, double u, double u0, int32_t n);
 void cell_link(Core *core, int32_t i, int32_t cx, int32_t cy);
 void cell_unlink(Core *core, int32_t i);
@@ -227,6 +226,12 @@ int32_t crossing_event(Core *core, int32_t i, double te, int32_t kind);
 
 /* driver.c */
 void renumber(Core *core);
+
+/* game.c: one whole frame (a replay's: no log), and a whole frame's end */
+void frame(Core *core, double height);
+int32_t frame_end(Core *core);
+/* The clock's whole frame: floor(t) for t >= 0. */
+static inline double whole_frame(double t) { return (double)(int64_t)t; }
 
 /* lookahead.c (native builds) */
 int32_t look_before(Core *core, int32_t i, int32_t kind, int32_t *after);

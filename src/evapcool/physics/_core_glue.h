@@ -88,26 +88,6 @@ static PyObject *core_py_fill_tc_table(CoreObject *self, PyObject *args) {
   Py_RETURN_NONE;
 }
 
-static PyObject *core_py_frame(CoreObject *self, PyObject *args) {
-  Core *core = ready(self);
-  if (!core) return NULL;
-  double height;
-  if (!PyArg_ParseTuple(args, "d", &height)) return NULL;
-  int32_t out;
-  Py_BEGIN_ALLOW_THREADS
-  out = core_frame(core, height);
-  Py_END_ALLOW_THREADS
-  return PyLong_FromLong(out);
-}
-
-static PyObject *core_py_frame_end(CoreObject *self, PyObject *Py_UNUSED(args)) {
-  Core *core = ready(self);
-  if (!core) return NULL;
-  int32_t out;
-  out = core_frame_end(core);
-  return PyBool_FromLong(out);
-}
-
 static PyObject *core_py_out_of_reach(CoreObject *self, PyObject *args) {
   Core *core = ready(self);
   if (!core) return NULL;
@@ -172,14 +152,6 @@ static PyObject *core_py_hold_run(CoreObject *self, PyObject *args) {
   Py_RETURN_NONE;
 }
 
-static PyObject *core_py_frames_played(CoreObject *self, PyObject *Py_UNUSED(args)) {
-  Core *core = ready(self);
-  if (!core) return NULL;
-  double out;
-  out = core_frames_played(core);
-  return PyFloat_FromDouble(out);
-}
-
 static PyObject *core_py_n_moves(CoreObject *self, PyObject *Py_UNUSED(args)) {
   Core *core = ready(self);
   if (!core) return NULL;
@@ -228,8 +200,6 @@ static PyMethodDef core_methods[] = {
     {"grid", (PyCFunction)core_py_grid, METH_NOARGS, "The cell grid: columns, rows, cell edge and skin (px)."},
     {"score", (PyCFunction)core_py_score, METH_NOARGS, "Atoms trapped at the end of the frame the win was seen (-1 before), that frame."},
     {"fill_tc_table", (PyCFunction)core_py_fill_tc_table, METH_VARARGS, "Tc(N) = Tc0 (N / N0)^p for N = 0..N0, the core's own power."},
-    {"frame", (PyCFunction)core_py_frame, METH_VARARGS, "One whole frame, the height held: CORE_DONE, or CORE_LOG_FULL to empty the log and call again with the same height."},
-    {"frame_end", (PyCFunction)core_py_frame_end, METH_NOARGS, "A whole frame's end: 1 at the frame the win is first seen (the score fixed)."},
     {"replay", (PyCFunction)core_py_replay, METH_VARARGS, "(height, frames) runs played from a whole frame up to the win or `limit` frames: the frames played."},
     {"path", (PyCFunction)core_py_path, METH_VARARGS, "A recording's path in the (N, T) plane: the runs played as core_replay plays them, frame 0 (height h0), every stride-th frame, the last and the win's kept as rows of (k, N, T, h) in points (their count into n_points); the frames played."},
     {"out_of_reach", (PyCFunction)core_py_out_of_reach, METH_VARARGS, "Why the gas can no longer condense (REACH_*), or REACH_WITHIN."},
@@ -238,7 +208,6 @@ static PyMethodDef core_methods[] = {
     {"asked_height", (PyCFunction)core_py_asked_height, METH_NOARGS, "The rim's height now, or the one it takes at the next whole frame."},
     {"hold", (PyCFunction)core_py_hold, METH_VARARGS, "A script of n_runs (height, frames) runs to hold, added by core_hold_run, each height from the whole frame of its turn counted from the start; 0 runs: none. 0 if the memory cannot hold it."},
     {"hold_run", (PyCFunction)core_py_hold_run, METH_VARARGS, "The script's next run; after the last, its height for the frame starting now."},
-    {"frames_played", (PyCFunction)core_py_frames_played, METH_NOARGS, "Whole frames played since the start."},
     {"n_moves", (PyCFunction)core_py_n_moves, METH_NOARGS, "Runs of moves kept (the last may still grow)."},
     {"move_height", (PyCFunction)core_py_move_height, METH_VARARGS, "The height of kept run k."},
     {"move_frames", (PyCFunction)core_py_move_frames, METH_VARARGS, "The frames of kept run k."},

@@ -34,8 +34,6 @@ LOG_CAPACITY = 1 << 16
 #: One log line in C: int32 kind, a, b, padding; float64 time (core/evapcool_core.h LogLine).
 LOG_LINE = np.dtype([("kind", "<i4"), ("a", "<i4"), ("b", "<i4"), ("pad", "<i4"), ("t", "<f8")])
 assert LOG_LINE.itemsize == CORE_LOG_LINE_BYTES
-#: core_advance_to's answer when the log must be emptied before it goes on.
-LOG_FULL = CORE_LOG_FULL
 
 
 #: How to get the core where it is missing (the wheels carry it; an sdist compiles it).
@@ -155,7 +153,7 @@ class CoreEngine:
     def advance_to(self, t_end: float) -> None:
         """Process every event with time <= t_end in time order, then set the clock."""
         self._update_tc_table()
-        while self.core.advance_to(float(t_end)) == LOG_FULL:
+        while self.core.advance_to(float(t_end)) == CORE_LOG_FULL:
             self._take_log()
         self._take_log()
         self._sync()

@@ -51,8 +51,8 @@ REACH_ONE_ATOM = 2
 REACH_STUCK = 3
 REACH_STUCK_HERE = 4
 REACH_NAMES = ("within", "all_escaped", "one_atom", "stuck", "stuck_here")
-#: The answers of core_advance_to and core_frame: every event done, or the log to be emptied first
-#: (then call again).
+#: The answers of core_advance_to: every event done, or the log to be emptied first (then call
+#: again).
 CORE_DONE = 0
 CORE_LOG_FULL = 1
 #: The further answers of core_play_to: the moves to be taken first (then call again), or (asked

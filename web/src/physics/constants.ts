@@ -6,24 +6,7 @@
  */
 import { ESCAPE_RULES, EVENT_NAMES, STATUS_NAMES } from "./model";
 
-export {
-  ATOM_RADIUS,
-  CURVATURE,
-  ESCAPE_RULES,
-  ESCAPED,
-  EVENT_NAMES,
-  FPS,
-  GONE,
-  GRAVITY,
-  N_ATOMS,
-  REACH_NAMES,
-  STATUS_NAMES,
-  TC_EXPONENT_CUP,
-  TC_EXPONENT_SEED,
-  TRAP_HEIGHT,
-  TRAPPED,
-  WALL_MIN_NORMAL_SPEED,
-} from "./model";
+export * from "./model";
 
 export type EscapeRule = (typeof ESCAPE_RULES)[number];
 export type StatusName = (typeof STATUS_NAMES)[number];

@@ -79,7 +79,6 @@ export interface CoreExports {
   core_walls(core: Core): number;
   core_crossings(core: Core): number;
   core_stale(core: Core): number;
-  core_renumbered(core: Core): number;
   core_n_log(core: Core): number;
   /** The cell grid: columns, rows, cell edge and skin (px). */
   core_nx(core: Core): number;
@@ -127,13 +126,6 @@ export interface CoreExports {
     pair: number,
   ): number;
   /**
-   * One whole frame, the height held: CORE_DONE, or CORE_LOG_FULL to empty the log and call again
-   * with the same height.
-   */
-  core_frame(core: Core, height: number): number;
-  /** A whole frame's end: 1 at the frame the win is first seen (the score fixed). */
-  core_frame_end(core: Core): number;
-  /**
    * (height, frames) runs played from a whole frame up to the win or `limit` frames: the frames
    * played.
    */
@@ -153,6 +145,11 @@ export interface CoreExports {
     points: number,
     nPoints: number,
   ): number;
+  /**
+   * The trapped atoms' energy 1/2 m v^2 + m g y, summed in World index order as NumPy sums
+   * (Python's Simulation.total_energy).
+   */
+  core_total_energy(core: Core): number;
   /** Why the gas can no longer condense (REACH_*), or REACH_WITHIN. */
   core_out_of_reach(core: Core, lowest: number, height: number): number;
   /**
@@ -176,8 +173,6 @@ export interface CoreExports {
   core_hold(core: Core, nRuns: number): number;
   /** The script's next run; after the last, its height for the frame starting now. */
   core_hold_run(core: Core, height: number, frames: number): void;
-  /** Whole frames played since the start. */
-  core_frames_played(core: Core): number;
   /** Runs of moves kept (the last may still grow). */
   core_n_moves(core: Core): number;
   /** The height of kept run k. */

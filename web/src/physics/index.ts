@@ -3,7 +3,7 @@
  * as the Python engines (held to it by the golden traces in web/test/golden/).
  */
 export { Simulation } from "./simulation";
-export { pairwiseSum, type AtomSnapshot } from "./snapshot";
+export type { AtomSnapshot } from "./snapshot";
 export {
   checkedConfig,
   type Points,

@@ -52,8 +52,8 @@ export const REACH_STUCK = 3;
 export const REACH_STUCK_HERE = 4;
 export const REACH_NAMES = ["within", "all_escaped", "one_atom", "stuck", "stuck_here"] as const;
 /**
- * The answers of core_advance_to and core_frame: every event done, or the log to be emptied first
- * (then call again).
+ * The answers of core_advance_to: every event done, or the log to be emptied first (then call
+ * again).
  */
 export const CORE_DONE = 0;
 export const CORE_LOG_FULL = 1;

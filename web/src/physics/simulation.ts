@@ -35,7 +35,6 @@ import { STORED, WasmEngine, type EngineAtoms, type EngineRules } from "./wasm";
 import {
   countOf,
   interleaved,
-  pairwiseSum,
   snapshot,
   trappedEnergies,
   type AtomGroup,
@@ -253,10 +252,9 @@ export class Simulation {
     return trappedEnergies(this.engine, this.nTrapped);
   }
 
-  /** Sum of 1/2 m v^2 + m g y over trapped atoms (summed as NumPy does: the same bits). */
+  /** Sum of 1/2 m v^2 + m g y over trapped atoms (the core sums as NumPy does: the same bits). */
   totalEnergy(): number {
-    const en = this.energies();
-    return pairwiseSum(en, 0, en.length);
+    return this.engine.read("core_total_energy");
   }
 
   // -- thermodynamics (seed Eqs. 1 and 46) --------------------------------------------------

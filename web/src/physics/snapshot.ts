@@ -1,6 +1,6 @@
 /**
- * The atoms read out of the core's tables as per-atom columns, and their energies summed in
- * NumPy's order: what Python reads of its World's arrays with NumPy (`Simulation` calls these).
+ * The atoms read out of the core's tables as per-atom columns: what Python reads of its
+ * World's arrays with NumPy (`Simulation` calls these).
  */
 import { ESCAPED, TRAPPED } from "./constants";
 import { bad } from "./state";
@@ -74,27 +74,6 @@ export function trappedEnergies(e: WasmEngine, n: number): Float64Array {
   let k = 0;
   for (let i = 0; i < e.nAtoms; i++) if (e.statusOf(i) === TRAPPED) out[k++] = e.atomEnergy(i);
   return out;
-}
-
-/** NumPy's pairwise summation (np.sum of a float64 array), so sums match Python's bits. */
-export function pairwiseSum(a: Float64Array, start: number, n: number): number {
-  if (n < 8) {
-    let res = 0.0;
-    for (let i = 0; i < n; i++) res += a[start + i];
-    return res;
-  }
-  if (n <= 128) {
-    // Eight running sums, element j into sum j mod 8, added up pairwise: NumPy's order.
-    const r = a.slice(start, start + 8);
-    let i = 8;
-    for (; i < n - (n % 8); i += 8) for (let j = 0; j < 8; j++) r[j] += a[start + i + j];
-    let res = r[0] + r[1] + (r[2] + r[3]) + (r[4] + r[5] + (r[6] + r[7]));
-    for (; i < n; i++) res += a[start + i];
-    return res;
-  }
-  let n2 = Math.floor(n / 2);
-  n2 -= n2 % 8;
-  return pairwiseSum(a, start, n2) + pairwiseSum(a, start + n2, n - n2);
 }
 
 /** Two snapshot columns interleaved, [a0, b0, a1, b1, ...], of their first n rows. */

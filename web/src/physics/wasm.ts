@@ -56,10 +56,6 @@ type Reader = {
   [K in keyof CoreExports]: CoreExports[K] extends (core: Core) => number ? K : never;
 }[keyof CoreExports];
 
-/** core_advance_to's answer when the log must be emptied before it goes on. */
-const LOG_FULL = CORE_LOG_FULL;
-/** A log line in C: kind, a, b, padding (int32 each), then the time (double). */
-const LOG_LINE_BYTES = CORE_LOG_LINE_BYTES;
 /** Log lines the core buffers between two copies (at least the atom count + 8). */
 const LOG_BUFFER = 4096;
 
@@ -153,7 +149,7 @@ export class WasmEngine {
 
   /** Process every event with time <= tEnd in time order, then set the clock. */
   advanceTo(tEnd: number): void {
-    while (this.c.core_advance_to(this.core, tEnd) === LOG_FULL) this.drainLog();
+    while (this.c.core_advance_to(this.core, tEnd) === CORE_LOG_FULL) this.drainLog();
     this.drainLog();
   }
 
@@ -309,8 +305,9 @@ export class WasmEngine {
     if (lines === 0) return;
     const buffer = this.c.memory.buffer;
     const base = this.c.core_log_address(this.core);
-    const ints = new Int32Array(buffer, base, (lines * LOG_LINE_BYTES) >> 2);
-    const times = new Float64Array(buffer, base, (lines * LOG_LINE_BYTES) >> 3);
+    // A log line: kind, a, b, padding (int32 each), then the time (double).
+    const ints = new Int32Array(buffer, base, (lines * CORE_LOG_LINE_BYTES) >> 2);
+    const times = new Float64Array(buffer, base, (lines * CORE_LOG_LINE_BYTES) >> 3);
     for (let k = 0; k < lines; k++)
       this.log.push([ints[6 * k], ints[6 * k + 1], ints[6 * k + 2], times[3 * k + 2]]);
     this.c.core_log_clear(this.core);
