@@ -134,21 +134,14 @@ class Range:
 
     def check(self, name: str, value: object) -> float:
         """value as int (integer ranges) or float; ValueError naming name and the range."""
-        if isinstance(value, bool):
+        if isinstance(value, bool):  # True is no number here
             raise bad_value(name, self.allowed(), value)
         if self.integer:
-            if not isinstance(value, numbers.Integral):
-                raise bad_value(name, self.allowed(), value)
-            number = int(value)
-            if not (self.low <= number <= self.high):
-                raise bad_value(name, self.allowed(), value)
-            return number
-        if not isinstance(value, numbers.Real):
-            raise bad_value(name, self.allowed(), value)
-        real = float(value)
-        if not self.contains(real):  # the message is built only for a refusal (hot path)
-            raise bad_value(name, self.allowed(), value)
-        return real
+            if isinstance(value, numbers.Integral) and self.low <= int(value) <= self.high:
+                return int(value)
+        elif isinstance(value, numbers.Real) and self.contains(float(value)):
+            return float(value)
+        raise bad_value(name, self.allowed(), value)  # built only for a refusal (hot path)
 
     def check_int(self, name: str, value: object) -> int:
         """check() of a whole-number range, typed as the int it returns."""
