@@ -102,7 +102,7 @@ export class Simulation {
     sim.init({ ...p, recordEvents }, p, null);
     if (p.energySum !== undefined) {
       const e = sim.engine;
-      const sum = e.sequentialEnergySum();
+      const sum = e.read("core_sequential_energy_sum");
       let scale = 0;
       for (let i = 0; i < e.nAtoms; i++)
         if (p.status[i] === TRAPPED) scale += Math.abs(e.atomEnergy(i));
@@ -384,9 +384,9 @@ export class Simulation {
     return {
       crossings: e.read("core_crossings"),
       stale: e.read("core_stale"),
-      cells: [e.gridColumns, e.gridRows] as [number, number],
-      cellSize: e.cellSize,
-      gridErrors: e.gridErrors(),
+      cells: [e.read("core_nx"), e.read("core_ny")] as [number, number],
+      cellSize: e.read("core_cell"),
+      gridErrors: e.read("core_grid_errors"),
     };
   }
 }

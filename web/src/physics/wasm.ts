@@ -78,10 +78,6 @@ export class WasmEngine {
   /** T at the start (Tc0 = 0.75 of it). */
   readonly initialTemperature: number;
   readonly tc0: number;
-  /** The cell grid's columns, rows and cell edge. */
-  readonly gridColumns: number;
-  readonly gridRows: number;
-  readonly cellSize: number;
   /** The instance's entry points. */
   private readonly c: CoreExports;
   /** This engine's Core in the instance's memory: every entry point's first argument. */
@@ -136,13 +132,11 @@ export class WasmEngine {
     this.tc0 = 0.75 * this.initialTemperature;
     c.core_fill_tc_table(core, this.tc0, tcExponent);
     if (!c.core_start(core, energySum, trapHeight)) throw new RangeError(OUT_OF_MEMORY(n));
-    this.gridColumns = c.core_nx(core);
-    this.gridRows = c.core_ny(core);
-    this.cellSize = c.core_cell(core);
     this.mem = new Float64Array(c.memory.buffer);
   }
 
-  /** What entry point `name` answers now: a scalar such as the clock, the trap, a count. */
+  /** What entry point `name` answers now: a scalar such as the clock, the trap, a count, the
+   * grid's shape or errors, a sum of energies. */
   read(name: Reader): number {
     return this.c[name](this.core);
   }
@@ -253,11 +247,6 @@ export class WasmEngine {
     return this.tc0 * this.c.core_power(nTrapped / this.nAtoms, this.rules.tcExponent);
   }
 
-  /** Sum of trapped energies added in world index order (the engines continue it). */
-  sequentialEnergySum(): number {
-    return this.c.core_sequential_energy_sum(this.core);
-  }
-
   statusOf(i: number): number {
     return this.c.core_status_of(this.core, i);
   }
@@ -282,11 +271,6 @@ export class WasmEngine {
     out[1] = mem[at + 1];
     out[2] = mem[at + 2];
     out[3] = mem[at + 3];
-  }
-
-  /** Trapped atoms filed more than one cell away from their cell now (0 if sound). */
-  gridErrors(): number {
-    return this.c.core_grid_errors(this.core);
   }
 
   /** Event k of the log: [kind, i, j, time] with world indices. */
