@@ -88,15 +88,6 @@ def missing_note() -> str:
     )
 
 
-def contraction_probe(a: float, b: float, c: float) -> float:
-    """a * b + c computed by the core: differs from Python's for some inputs if the build
-    fused it into a multiply-add (which would change events)."""
-    module = compiled()
-    if module is None:
-        raise MissingExtraError(missing_message("contraction_probe"))
-    return float(module.contraction_probe(a, b, c))
-
-
 class CoreEngine:
     """Event-driven hard disks in the cup, in the compiled core."""
 
@@ -268,7 +259,3 @@ class CoreEngine:
         into the next cell a skin past its cell's edge."""
         nx, ny, cell, skin = self.core.grid()
         return int(nx), int(ny), float(cell), float(skin)
-
-    def grid_errors(self) -> int:
-        """Trapped atoms beyond their cell and its skin (0 if sound)."""
-        return int(self.core.grid_errors())
