@@ -151,7 +151,6 @@ class CoreEngine:
 
     def set_trap_height(self, height: float) -> None:
         """New rim height; with the knife rule, atoms above m g H go at once."""
-        self.w.trap_height = height
         self._update_tc_table()
         self.core.set_trap_height(float(height))
         self._take_log()

@@ -31,19 +31,15 @@ export function provideCore(bytes: Uint8Array<ArrayBuffer>): void {
   given = bytes;
 }
 
-/** The core's compiled module (compiled once, synchronously, on first use). */
-function coreModule(): WebAssembly.Module {
+/** A fresh instance of the core (its own memory: an engine, one start or one check computed);
+ * its module is compiled once, synchronously, on first use. */
+export function instance(): CoreExports {
   if (compiled === null) {
     const bytes = coreBytes();
     if (bytes.length === 0) throw new Error("the engine core was not handed to this worker");
     compiled = new WebAssembly.Module(bytes);
   }
-  return compiled;
-}
-
-/** A fresh instance of the core (its own memory: an engine, one start or one check computed). */
-export function instance(): CoreExports {
-  return new WebAssembly.Instance(coreModule(), {}).exports as unknown as CoreExports;
+  return new WebAssembly.Instance(compiled, {}).exports as unknown as CoreExports;
 }
 
 /**
