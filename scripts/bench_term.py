@@ -64,6 +64,9 @@ class Term:
         self.seen: list[list[dict[str, float]]] = [[{}, {}] for _ in classes]
         self.closed_at: dict[int, float] = {}
         self.debrief_after: list[float] = []
+        self.closed_seen_after: list[float] = []  # the close -> the phone's stream said so
+        self.debrief_fetch: list[float] = []  # the phone's GET of its debrief -> the answer
+        self.debrief_answers: list[float] = []  # ... -> the answer's head (the server's part)
         self.refused: Counter[str] = Counter()
 
     def base(self, s: int, c: int) -> str:
@@ -124,14 +127,20 @@ async def phone(term: Term, c: int, i: int, game: str, at: float, shared: int) -
         term.ack_after.append(time.perf_counter() - term.sent[c, i])
         term.count("submit", answer.status_code)
         await closed.wait()
+        asked = time.perf_counter()
+        term.closed_seen_after.append(asked - term.closed_at[c])
         while True:
             try:
-                got = await client.get(term.base(s, c) + "api/debrief", headers=head)
+                url = term.base(s, c) + "api/debrief"
+                async with client.stream("GET", url, headers=head) as got:
+                    term.debrief_answers.append(time.perf_counter() - asked)
+                    await got.aread()  # (inflated here: a phone's own work, on its own CPU)
                 break
             except httpx.TransportError:
                 s += 1
         term.count("debrief", got.status_code)
         term.debrief_after.append(time.perf_counter() - term.closed_at[c])
+        term.debrief_fetch.append(time.perf_counter() - asked)
         watching.cancel()
 
 
@@ -273,6 +282,16 @@ def report(term: Term, took: float) -> None:
         f"{quantile(lag, 0.95):.3f} s ({missing} not seen on every projector); debrief after "
         f"the close p95 {quantile(after, 0.95):.2f} s, slowest {max(after):.2f} s; honest calls "
         f"refused: {sum(term.refused.values())} {dict(term.refused)}",
+        flush=True,
+    )
+    seen, fetch = term.closed_seen_after, term.debrief_fetch
+    print(
+        f"  of the debrief's delay: the close -> the phone's stream says so p50 "
+        f"{quantile(seen, 0.5):.2f} s, p95 {quantile(seen, 0.95):.2f} s, "
+        f"slowest {max(seen):.2f} s; "
+        f"the phone's GET -> its debrief p50 {quantile(fetch, 0.5):.2f} s, p95 "
+        f"{quantile(fetch, 0.95):.2f} s, slowest {max(fetch):.2f} s (its head p95 "
+        f"{quantile(term.debrief_answers, 0.95):.2f} s)",
         flush=True,
     )
     if term.dead:
