@@ -209,6 +209,21 @@ function consolePages(lang) {
   ];
 }
 
+/** A checkbox on the line of its label (its middle within the label's height), or why not. */
+async function boxBesideLabel(page, id) {
+  const [box, label] = await page.evaluate((id) => {
+    const rect = (el) => {
+      const r = el.getBoundingClientRect();
+      return { top: r.top, bottom: r.bottom, middle: (r.top + r.bottom) / 2 };
+    };
+    return [rect(document.getElementById(id)), rect(document.querySelector(`label[for="${id}"]`))];
+  }, id);
+  const beside = box.middle > label.top && box.middle < label.bottom;
+  return beside
+    ? []
+    : [`#${id} at ${box.top}-${box.bottom}, its label at ${label.top}-${label.bottom}`];
+}
+
 for (const lang of ["en", "ar"]) {
   test(
     `the console's pages at 390 x 844 in ${lang}: nothing scrolls sideways, is small or cut`,
@@ -223,6 +238,7 @@ for (const lang of ["en", "ar"]) {
         await page.evaluate(() => document.fonts.ready);
         await shot(page, `console-phone-${lang}-${name}.png`);
         const wrong = await problems(page, lang === "ar" ? "rtl" : "ltr");
+        if (name === "lecturer-class") wrong.push(...(await boxBesideLabel(page, "lost")));
         if (wrong.length) found[name] = wrong;
       }
       await context.close();
