@@ -272,7 +272,7 @@ class Simulation:
         return self._engine.score
 
     def replay(self, moves: Sequence[tuple[float, int]], limit: int) -> int:
-        """Hold each (height, frames) run's height for that many whole frames (core_frame), from
+        """Hold each (height, frames) run's height for that many whole frames (game.c's frame), from
         a whole frame, up to the end of the frame the win is seen in or `limit` frames;
         returns the frames played (the result: `won`, `score`)."""
         runs = np.array(moves, dtype=np.float64).reshape(-1, 2)
