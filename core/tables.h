@@ -159,9 +159,9 @@ struct Core {
   int32_t n_blocks;
 };
 
-/* Natively (SSE2, NEON) the pair scan tests two neighbours at once; the WebAssembly core,
- * built without SIMD, where two lanes would be scalar code anyway, tests one at a time. */
-#if defined(__SSE2__) || defined(__ARM_NEON)
+/* The pair scan tests two neighbours at once, natively (SSE2, NEON) and in WebAssembly (its
+ * 128-bit SIMD, -msimd128); a build without either tests one at a time. */
+#if defined(__SSE2__) || defined(__ARM_NEON) || defined(__wasm_simd128__)
 #define CORE_LANES 1
 /* Two lanes of doubles: every lane rounds as the scalar operation does (IEEE;
  * -ffp-contract=off leaves no fused multiply-add). */

@@ -78,8 +78,8 @@ function retitle(tr: Translator): void {
 async function main(): Promise<void> {
   if (!haveCore())
     throw new Error(
-      "this browser cannot unpack the physics: it lacks DecompressionStream " +
-        "(Chrome or Edge 103, Firefox 113, Safari 16.4 and newer have it)",
+      "this browser cannot run the physics: it lacks DecompressionStream or WebAssembly's " +
+        "SIMD (Chrome or Edge 103, Firefox 113, Safari 16.4 and newer have both)",
     );
   onLocaleChange(retitle);
   const browser = browserLocale();

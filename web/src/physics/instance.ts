@@ -21,9 +21,11 @@ export function coreBytes(): Uint8Array<ArrayBuffer> {
   return given ?? packedCore;
 }
 
-/** Whether this page or worker has the WebAssembly core (the page cannot start without). */
+/** Whether this page or worker has the WebAssembly core and can compile it (its SIMD
+ * included): the page cannot start without. */
 export function haveCore(): boolean {
-  return coreBytes().length > 0;
+  const bytes = coreBytes();
+  return bytes.length > 0 && WebAssembly.validate(bytes);
 }
 
 /** The physics worker gets the core from the page: one copy in the page's file, not two. */

@@ -6,7 +6,7 @@ import assert from "node:assert/strict";
 import { existsSync, readFileSync } from "node:fs";
 import { resolve } from "node:path";
 import { after, before, describe, test } from "node:test";
-import { launch, openPage, PAGE } from "./browser.mjs";
+import { launch, openPage, PAGE, PAGE_URL } from "./browser.mjs";
 
 const STARTS = JSON.parse(
   readFileSync(resolve(import.meta.dirname, "../golden/starts.json"), "utf8"),
@@ -40,4 +40,22 @@ describe("the same start in the browser as on the desktop", () => {
         await page.close();
       }
     });
+});
+
+describe("a browser that cannot compile the core", () => {
+  test("says in one line what it lacks, and plays nothing", async () => {
+    // As a browser without WebAssembly's SIMD (older than the page's baseline) answers.
+    const page = await browser.context.newPage();
+    await page.addInitScript(() => {
+      WebAssembly.validate = () => false;
+    });
+    await page.goto(PAGE_URL);
+    const fatal = page.locator("#fatal");
+    await fatal.waitFor({ state: "visible" });
+    const text = await fatal.textContent();
+    assert.match(text, /^evapcool could not start: this browser cannot run the physics: /);
+    assert.match(text, /DecompressionStream or WebAssembly's SIMD/);
+    assert.equal(await page.evaluate(() => window.evapcool), undefined);
+    await page.close();
+  });
 });
