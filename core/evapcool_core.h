@@ -126,8 +126,9 @@ CORE_API(core_status_of) int32_t core_status_of(Core *core, int32_t a);
 CORE_API(core_stored_of) double core_stored_of(Core *core, int32_t a, int32_t k);
 /* tables.c: World atom a's energy 1/2 m v^2 + m g y from its stored state. */
 CORE_API(core_atom_energy) double core_atom_energy(Core *core, int32_t a);
-/* tables.c: World atom a carried to time t: the place of x, y, vx, vy (doubles). */
-CORE_API(core_state_at) double *core_state_at(Core *core, int32_t a, double t);
+/* tables.c: the atoms of this status carried to time t, in World index order, as eight
+ * columns of n_atoms doubles from out: index, x, y, vx, vy, radius, mass, energy; their count. */
+CORE_API(core_snapshot) int32_t core_snapshot(Core *core, int32_t status, double t, double *out);
 /* tables.c: the sum of trapped energies added in World index order. */
 CORE_API(core_sequential_energy_sum) double core_sequential_energy_sum(Core *core);
 /* tables.c: every atom's stored state by World index into (n, 2) pos and vel, n t, n int8

@@ -25,15 +25,24 @@ double core_stored_of(Core *core, int32_t a, int32_t k) {
 /* World atom a's energy 1/2 m v^2 + m g y from its stored state (conserved in flight). */
 double core_atom_energy(Core *core, int32_t a) { return energy(core, core->row_of[a]); }
 
-/* Position and velocity of World atom a carried to time t, into state_out. */
-double *core_state_at(Core *core, int32_t a, double t) {
-  const State *s = &core->state[core->row_of[a]];
-  double dt = t - s->t;
-  core->state_out[0] = flight_x(s->x, s->vx, dt);
-  core->state_out[1] = flight_y(s->y, s->vy, 0.5 * core->run.gravity, dt);
-  core->state_out[2] = s->vx;
-  core->state_out[3] = flight_vy(s->vy, core->run.gravity, dt);
-  return core->state_out;
+/* The atoms of this status at time t as eight columns (the page's snapshot: one call, not
+ * five per atom). */
+int32_t core_snapshot(Core *core, int32_t status, double t, double *out) {
+  const int32_t n = core->run.n_atoms;
+  const double g = core->run.gravity;
+  int32_t k = 0;
+  for (int32_t a = 0; a < n; a++) {
+    const int32_t r = core->row_of[a];
+    if (core->plan[r].status != status) continue;
+    const State *s = &core->state[r];
+    const double dt = t - s->t; /* carried to t in free flight */
+    const double row[8] = {a, flight_x(s->x, s->vx, dt), flight_y(s->y, s->vy, 0.5 * g, dt),
+                           s->vx, flight_vy(s->vy, g, dt), s->radius, core->queued[r].mass,
+                           energy(core, r)};
+    for (int32_t c = 0; c < 8; c++) out[c * n + k] = row[c];
+    k++;
+  }
+  return k;
 }
 
 /* Sum of trapped energies added in World index order (the engines continue it). */

@@ -152,7 +152,6 @@ struct Core {
   int32_t *order;
   double *inputs;     /* where the caller writes the atoms before load() */
   double *scratch;    /* n + 1 doubles for the trapped atoms' energies (game.c) */
-  double state_out[4]; /* where state_at writes: x, y, vx, vy */
   int32_t out_of_memory;
   /* every block taken (memory.c frees them with the engine) */
   void *blocks[32];

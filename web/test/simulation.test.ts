@@ -249,6 +249,33 @@ describe("the start", () => {
     expect(snap.x[3]).toBe(p[6]);
     expect(snap.energy[3]).toBe(sim.energies()[3]);
   });
+
+  it("carries every atom of a snapshot to now as Python's World.state_at does", () => {
+    const sim = new Simulation({ nAtoms: 300, radius: 4, seed: 11, trapHeight: 120 });
+    sim.advance(40.5); // atoms escaped and falling, each on its own clock
+    const st = sim.toState();
+    const a = st.atoms;
+    const g = st.gravity;
+    for (const group of ["trapped", "escaped"] as const) {
+      const snap = sim.atoms(group);
+      const want = a.status.flatMap((s, i) => (s === group ? [i] : []));
+      expect(snap.count).toBe(want.length);
+      expect(want.length).toBeGreaterThan(0);
+      want.forEach((i, k) => {
+        const dt = st.time - a.t[i];
+        expect(snap.index[k]).toBe(i);
+        expect(snap.x[k]).toBe(a.x[i] + a.vx[i] * dt);
+        expect(snap.y[k]).toBe(a.y[i] + a.vy[i] * dt - 0.5 * g * dt * dt);
+        expect(snap.vx[k]).toBe(a.vx[i]);
+        expect(snap.vy[k]).toBe(a.vy[i] - g * dt);
+        expect([snap.radius[k], snap.mass[k]]).toEqual([a.radius[i], a.mass[i]]);
+        const m = a.mass[i];
+        expect(snap.energy[k]).toBe(
+          0.5 * m * (a.vx[i] * a.vx[i] + a.vy[i] * a.vy[i]) + m * g * a.y[i],
+        );
+      });
+    }
+  });
 });
 
 describe("the state", () => {

@@ -46,8 +46,11 @@ export interface CoreExports {
   core_stored_of(core: Core, a: number, k: number): number;
   /** World atom a's energy 1/2 m v^2 + m g y from its stored state. */
   core_atom_energy(core: Core, a: number): number;
-  /** World atom a carried to time t: the place of x, y, vx, vy (doubles). */
-  core_state_at(core: Core, a: number, t: number): number;
+  /**
+   * The atoms of this status carried to time t, in World index order, as eight columns of n_atoms
+   * doubles from out: index, x, y, vx, vy, radius, mass, energy; their count.
+   */
+  core_snapshot(core: Core, status: number, t: number, out: number): number;
   /** The sum of trapped energies added in World index order. */
   core_sequential_energy_sum(core: Core): number;
   /**

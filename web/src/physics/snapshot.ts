@@ -4,7 +4,7 @@
  */
 import { ESCAPED, TRAPPED } from "./constants";
 import { bad } from "./state";
-import { STORED, type WasmEngine } from "./wasm";
+import type { WasmEngine } from "./wasm";
 
 /** Per-atom columns of trapped or escaped atoms now; `count` rows are valid. */
 export interface AtomSnapshot {
@@ -23,8 +23,6 @@ export interface AtomSnapshot {
 
 export type AtomGroup = "trapped" | "escaped";
 
-const scratch = new Float64Array(4);
-
 /** The group's atoms at time t, written into `out` when it has room (no allocation per
  * frame for a view that keeps its snapshot). */
 export function snapshot(
@@ -37,23 +35,16 @@ export function snapshot(
   if (status < 0) throw bad("which", `"trapped" or "escaped"`, which);
   const n = e.nAtoms;
   const snap = out !== undefined && out.index.length >= n ? out : emptySnapshot(n);
-  let k = 0;
-  for (let i = 0; i < n; i++) {
-    if (e.statusOf(i) !== status) continue;
-    e.stateAt(i, t, scratch);
-    snap.index[k] = i;
-    snap.x[k] = scratch[0];
-    snap.y[k] = scratch[1];
-    snap.vx[k] = scratch[2];
-    snap.vy[k] = scratch[3];
-    snap.radius[k] = e.storedOf(i, STORED.radius);
-    snap.mass[k] = e.storedOf(i, STORED.mass);
-    snap.energy[k] = e.atomEnergy(i);
-    k++;
-  }
-  snap.count = k;
+  const [count, cols] = e.columns(status, t);
+  const column = (c: number) => cols.subarray(c * n, c * n + count);
+  snap.index.set(column(0));
+  COLUMNS.forEach((name, c) => snap[name].set(column(c + 1)));
+  snap.count = count;
   return snap;
 }
+
+/** The snapshot's columns after the index, in core_snapshot's order. */
+const COLUMNS = ["x", "y", "vx", "vy", "radius", "mass", "energy"] as const;
 
 function emptySnapshot(n: number): AtomSnapshot {
   const f = () => new Float64Array(n);

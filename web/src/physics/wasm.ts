@@ -83,7 +83,8 @@ export class WasmEngine {
   /** This engine's Core in the instance's memory: every entry point's first argument. */
   private readonly core: Core;
   /** The core's memory as doubles (a new view if the memory grew). */
-  private mem: Float64Array;
+  /** Where core_snapshot writes (taken at the first snapshot, 0 before). */
+  private snapAt = 0;
   /** The event log, copied out of the core's buffer: [kind, i, j, time], world indices. */
   private readonly log: Array<[number, number, number, number]> = [];
   /** The moves taken from the core's buffer when it was full. */
@@ -132,7 +133,6 @@ export class WasmEngine {
     this.tc0 = 0.75 * this.initialTemperature;
     c.core_fill_tc_table(core, this.tc0, tcExponent);
     if (!c.core_start(core, energySum, trapHeight)) throw new RangeError(OUT_OF_MEMORY(n));
-    this.mem = new Float64Array(c.memory.buffer);
   }
 
   /** What entry point `name` answers now: a scalar such as the clock, the trap, a count, the
@@ -261,16 +261,13 @@ export class WasmEngine {
     return this.c.core_atom_energy(this.core, i);
   }
 
-  /** Position and velocity of world atom i carried to time t into out = [x, y, vx, vy]. */
-  stateAt(i: number, t: number, out: Float64Array): void {
-    const at = this.c.core_state_at(this.core, i, t) >> 3;
-    let mem = this.mem;
-    if (mem.buffer !== this.c.memory.buffer)
-      mem = this.mem = new Float64Array(this.c.memory.buffer);
-    out[0] = mem[at];
-    out[1] = mem[at + 1];
-    out[2] = mem[at + 2];
-    out[3] = mem[at + 3];
+  /** The atoms of this status at time t (core_snapshot): their count and eight columns of
+   * nAtoms doubles (index, x, y, vx, vy, radius, mass, energy), valid until the next call. */
+  columns(status: number, t: number): [number, Float64Array] {
+    if (this.snapAt === 0) this.snapAt = this.c.core_buffer(this.core, 8 * this.nAtoms);
+    if (this.snapAt === 0) throw new RangeError(OUT_OF_MEMORY(this.nAtoms));
+    const count = this.c.core_snapshot(this.core, status, t, this.snapAt);
+    return [count, new Float64Array(this.c.memory.buffer, this.snapAt, 8 * this.nAtoms)];
   }
 
   /** Event k of the log: [kind, i, j, time] with world indices. */
