@@ -82,9 +82,10 @@ export class WasmEngine {
   private readonly c: CoreExports;
   /** This engine's Core in the instance's memory: every entry point's first argument. */
   private readonly core: Core;
-  /** The core's memory as doubles (a new view if the memory grew). */
-  /** Where core_snapshot writes (taken at the first snapshot, 0 before). */
+  /** Where core_snapshot writes (taken at the first snapshot, 0 before), and its view (a new
+   * one only if the memory grew). */
   private snapAt = 0;
+  private snapView = new Float64Array(0);
   /** The event log, copied out of the core's buffer: [kind, i, j, time], world indices. */
   private readonly log: Array<[number, number, number, number]> = [];
   /** The moves taken from the core's buffer when it was full. */
@@ -267,7 +268,9 @@ export class WasmEngine {
     if (this.snapAt === 0) this.snapAt = this.c.core_buffer(this.core, 8 * this.nAtoms);
     if (this.snapAt === 0) throw new RangeError(OUT_OF_MEMORY(this.nAtoms));
     const count = this.c.core_snapshot(this.core, status, t, this.snapAt);
-    return [count, new Float64Array(this.c.memory.buffer, this.snapAt, 8 * this.nAtoms)];
+    if (this.snapView.buffer !== this.c.memory.buffer)
+      this.snapView = new Float64Array(this.c.memory.buffer, this.snapAt, 8 * this.nAtoms);
+    return [count, this.snapView];
   }
 
   /** Event k of the log: [kind, i, j, time] with world indices. */
