@@ -101,7 +101,7 @@ function publish(): void {
   h[HEADER.time] = sim.time;
   h[HEADER.nAtoms] = sim.nAtoms;
   h[HEADER.nTrapped] = sim.nTrapped;
-  h[HEADER.nEscaped] = sim.nEscaped;
+  h[HEADER.nEscaped] = v.escaped.count; // counted by the copy above, not again
   h[HEADER.trapHeight] = sim.trapHeight;
   h[HEADER.rimHalfWidth] = sim.rimHalfWidth;
   h[HEADER.curvature] = sim.curvature;
