@@ -7,8 +7,7 @@
  * of atoms listed, gone ones included, so indices stay those of the run).
  * Python's twin: `src/evapcool/physics/state.py` (docs/twins.md).
  */
-import { pyFloat } from "../limits";
-import { CONTACT_TOLERANCE } from "../limits";
+import { CONTACT_TOLERANCE, pyFloat } from "../limits";
 import {
   CURVATURE,
   ESCAPE_RULES,
@@ -215,12 +214,7 @@ export function windowOfRoom(room: Room): [number, number] {
     Math.round(room.below + room.above),
   ];
   const back = roomOfWindow(size);
-  if (
-    back.left !== room.left ||
-    back.right !== room.right ||
-    back.below !== room.below ||
-    back.above !== room.above
-  )
+  if ((["left", "right", "below", "above"] as const).some((side) => back[side] !== room[side]))
     throw new RangeError(
       `room must be one a window gives (view/screen.ts) to be written as a state (got ${JSON.stringify(room)})`,
     );
@@ -287,10 +281,8 @@ export function parseState(input: unknown): ParsedState {
       status[i] = k;
     }
   }
-  let trapHeight = TRAP_HEIGHT;
-  if (s.trap_height === "inf") trapHeight = Infinity;
-  else if (s.trap_height !== undefined)
-    trapHeight = positive("state.trap_height", s.trap_height, TRAP_HEIGHT);
+  const trapHeight =
+    s.trap_height === "inf" ? Infinity : positive("state.trap_height", s.trap_height, TRAP_HEIGHT);
   const escape = s.escape === undefined ? "rim" : s.escape;
   if (!ESCAPE_RULES.includes(escape as EscapeRule))
     throw bad("state.escape", `one of ${ESCAPE_RULES.join(", ")}`, escape);
