@@ -61,34 +61,13 @@ export interface SimulationState {
   };
 }
 
-/** A state as read: only the atoms' x, y, vx, vy are required (defaults in docs/state.md). */
-export interface StateInput {
-  format?: string;
-  version?: number;
-  time?: number;
-  trap_height?: number | "inf";
-  curvature?: number;
-  gravity?: number;
-  window?: readonly number[];
-  escape?: string;
-  tc_exponent?: number;
-  win?: boolean;
-  won?: boolean;
-  initial_temperature?: number;
-  energy_sum?: number;
-  pair_collisions?: number;
-  wall_collisions?: number;
-  atoms: {
-    x: readonly number[];
-    y: readonly number[];
-    vx: readonly number[];
-    vy: readonly number[];
-    t?: readonly number[];
-    radius?: number | readonly number[];
-    mass?: number | readonly number[];
-    status?: readonly string[];
-  };
-}
+/** A state as read: a SimulationState's fields, all optional but the atoms' x, y, vx, vy
+ * (defaults in docs/state.md); one radius or mass stands for every atom. */
+export type StateInput = Partial<Omit<SimulationState, "atoms">> & {
+  atoms: Pick<SimulationState["atoms"], "x" | "y" | "vx" | "vy"> &
+    Partial<Pick<SimulationState["atoms"], "t" | "status">> &
+    Partial<Record<"radius" | "mass", number | number[]>>;
+};
 
 /** A validated state, every default filled in, per-atom columns as typed arrays. */
 export interface ParsedState extends WorldLimitsInput {
