@@ -206,16 +206,11 @@ export class WasmEngine {
   /** [height, frames] runs from a whole frame, up to the win or `limit` frames: the frames
    * played (no event log is kept). */
   replay(runs: ReadonlyArray<readonly [number, number]>, limit: number): number {
-    return this.c.core_replay(this.core, this.written(runs, 0), runs.length, limit);
-  }
-
-  /** The runs written into the core's memory, followed by `more` doubles: their place. */
-  private written(runs: ReadonlyArray<readonly [number, number]>, more: number): number {
-    const at = this.c.core_buffer(this.core, 2 * runs.length + more);
-    if (at === 0 && runs.length + more > 0) throw new RangeError(OUT_OF_MEMORY(this.nAtoms));
-    const input = new Float64Array(this.c.memory.buffer, at, 2 * runs.length);
-    runs.forEach(([height, frames], k) => input.set([height, frames], 2 * k));
-    return at;
+    const at = this.c.core_buffer(this.core, 2 * runs.length);
+    if (at === 0 && runs.length > 0) throw new RangeError(OUT_OF_MEMORY(this.nAtoms));
+    const buffer = new Float64Array(this.c.memory.buffer, at, 2 * runs.length);
+    runs.forEach(([height, frames], k) => buffer.set([height, frames], 2 * k));
+    return this.c.core_replay(this.core, at, runs.length, limit);
   }
 
   /** A recording's path in the (N, T) plane (core_path, Python's game/path.py sampling): the
@@ -228,7 +223,10 @@ export class WasmEngine {
     h0: number,
   ): { frames: number; rows: Array<[number, number, number, number]> } {
     const most = Math.floor(limit / stride) + 2;
-    const at = this.written(runs, 4 * most + 1);
+    const at = this.c.core_buffer(this.core, 2 * runs.length + 4 * most + 1);
+    if (at === 0) throw new RangeError(OUT_OF_MEMORY(this.nAtoms));
+    const input = new Float64Array(this.c.memory.buffer, at, 2 * runs.length);
+    runs.forEach(([height, frames], k) => input.set([height, frames], 2 * k));
     const points = at + 16 * runs.length;
     const count = points + 32 * most;
     const frames = this.c.core_path(this.core, at, runs.length, limit, stride, h0, points, count);
