@@ -32,26 +32,6 @@ void frame(Core *core, double height) {
   frame_end(core);
 }
 
-/*
- * A recording played back from a whole frame: runs (height, frames) pairs, each height held
- * for that many whole frames; it stops at the end of the frame the win is seen, or after
- * `limit` frames. Returns the frames played; the win and the score are the core's (core_won,
- * core_score). A replay keeps no event log.
- */
-int32_t core_replay(Core *core, const double *runs, int32_t n_runs, int32_t limit) {
-  int32_t frames = 0;
-  core->run.record = 0;
-  core->run.n_log = 0;
-  for (int32_t k = 0; k < n_runs; k++)
-    for (double f = 0.0; f < runs[2 * k + 1]; f += 1.0) {
-      if (frames >= limit) return frames;
-      frame(core, runs[2 * k]);
-      frames++;
-      if (core->run.score >= 0) return frames;
-    }
-  return frames;
-}
-
 /* n doubles of the engine's memory for the caller to fill (a recording's runs). */
 double *core_buffer(Core *core, int32_t n) { return core_take(core, sizeof(double) * n); }
 
@@ -108,25 +88,39 @@ static void keep(Core *core, double *points, int32_t *n_points, int32_t k, doubl
  * A recording's path in the (N, T) plane (game/path.py's sampling, its oracle): the runs
  * played as core_replay plays them, up to the win or `limit` frames; kept are frame 0 (with
  * height h0) and every `stride`-th whole frame, the last one and the win's. points: rows
- * of (k, N, T, h), at least limit / stride + 2 of them; their count into n_points. Returns
- * the frames played.
+ * of (k, N, T, h), at least limit / stride + 2 of them, or 0 for none (core_replay); their
+ * count into n_points. Returns the frames played.
  */
 int32_t core_path(Core *core, const double *runs, int32_t n_runs, int32_t limit, int32_t stride,
                   double h0, double *points, int32_t *n_points) {
-  *n_points = 0;
   core->run.record = 0;
   core->run.n_log = 0;
-  keep(core, points, n_points, 0, h0);
+  if (points) {
+    *n_points = 0;
+    keep(core, points, n_points, 0, h0);
+    if (core->run.score >= 0) return 0;
+  }
   int32_t k = 0;
   for (int32_t r = 0; r < n_runs; r++)
     for (double f = 0.0; f < runs[2 * r + 1]; f += 1.0) {
-      if (k >= limit || core->run.score >= 0) return k;
+      if (k >= limit) return k;
       frame(core, runs[2 * r]);
       k++;
-      if (k % stride == 0 || k == limit || core->run.score >= 0)
-        keep(core, points, n_points, k, runs[2 * r]);
+      int32_t won = core->run.score >= 0;
+      if (points && (k % stride == 0 || k == limit || won)) keep(core, points, n_points, k, runs[2 * r]);
+      if (won) return k;
     }
   return k;
+}
+
+/*
+ * A recording played back from a whole frame: runs (height, frames) pairs, each height held
+ * for that many whole frames; it stops at the end of the frame the win is seen, or after
+ * `limit` frames. Returns the frames played; the win and the score are the core's (core_won,
+ * core_score). A replay keeps no event log, nor a path.
+ */
+int32_t core_replay(Core *core, const double *runs, int32_t n_runs, int32_t limit) {
+  return core_path(core, runs, n_runs, limit, 1, 0.0, 0, 0);
 }
 
 /*

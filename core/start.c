@@ -133,8 +133,9 @@ static int32_t row_half_width(Rows r, double yc, double curvature) {
 static int32_t centre_out(int32_t q) { return q == 0 ? 0 : (q & 1) ? (q + 1) / 2 : -(q / 2); }
 
 /*
- * Centres of the first n cells, row by row from the bottom, into xy (x0, y0, x1, y1, ...).
- * Returns n, or how many cells fit (whole rows) if n do not fit below y_top.
+ * Centres of the first n cells, row by row from the bottom, into xy (x0, y0, x1, y1, ...;
+ * none kept if xy is 0). Returns n, or how many cells fit (whole rows) if n do not fit
+ * below y_top.
  */
 static int32_t cell_centres(double *xy, int32_t n, double radius, double curvature, double y_top) {
   Rows r = rows_of(radius);
@@ -145,11 +146,12 @@ static int32_t cell_centres(double *xy, int32_t n, double radius, double curvatu
     int32_t m = row_half_width(r, yc, curvature);
     for (int32_t q = 0; q <= 2 * m && count < n; q++) {
       double xc = centre_out(q) * r.spacing;
-      if (disk_inside_cup(xc, yc, r.jitter, curvature)) {
+      if (!disk_inside_cup(xc, yc, r.jitter, curvature)) continue;
+      if (xy) {
         xy[2 * count] = xc;
         xy[2 * count + 1] = yc;
-        count++;
       }
+      count++;
     }
   }
   return count;
@@ -187,14 +189,7 @@ int32_t core_load_cup(double *pos, double *vel, int32_t n, double radius,
 /* How many atoms of this radius the loading places with every disk below y_top: the whole
  * rows of cells whose disks stay under it, wherever the jitter puts them. */
 int32_t core_cup_capacity(double radius, double curvature, double y_top) {
-  Rows r = rows_of(radius);
-  int32_t count = 0;
-  for (int32_t k = 0;; k++) {
-    double yc = r.y0 + k * r.spacing;
-    if (yc + r.cell > y_top) return count;
-    int32_t m = row_half_width(r, yc, curvature);
-    for (int32_t j = -m; j <= m; j++) count += disk_inside_cup(j * r.spacing, yc, r.jitter, curvature);
-  }
+  return cell_centres(0, INT32_MAX, radius, curvature, y_top);
 }
 
 /*

@@ -112,7 +112,7 @@ export class Range {
     let text: string;
     if (this.lowOpen && !Number.isFinite(this.high)) text = `> ${pyG(this.low)}${unit}`;
     else if (this.lowOpen) text = `> ${pyG(this.low)} and <= ${pyG(this.high)}${unit}`;
-    else if (this.integer) text = `${BigInt(this.low)} to ${wholeText(this.high)}${unit}`;
+    else if (this.integer) text = `${BigInt(this.low)} to ${BigInt(this.high)}${unit}`;
     else text = `${pyG(this.low)} to ${pyG(this.high)}${unit}`;
     return text + (this.infOk && Number.isFinite(this.high) ? " or inf" : "");
   }
@@ -143,11 +143,6 @@ export class Range {
       throw whole ? wholeError(name, this.allowed(), value) : badValue(name, this.allowed(), value);
     return value as number;
   }
-}
-
-/** 18446744073709551615, not 1.8446744073709552e19: the table's integers as Python prints them. */
-function wholeText(x: number): string {
-  return x === 2 ** 64 ? "18446744073709551615" : String(BigInt(x));
 }
 
 function wholeError(name: string, allowed: string, value: number): RangeError {

@@ -140,7 +140,6 @@ class Game:
         self.paused = True
         #: Play time (s) at which the win was first seen, None before.
         self.won_at: float | None = None
-        self._won_with: int | None = None
         self.generation += 1
 
     # -- pause and speed -----------------------------------------------------------
@@ -235,7 +234,6 @@ class Game:
         """The win seen at a frame's end (the score fixed there), once."""
         if self.sim.score is not None and self.won_at is None:
             self.won_at = (self.sim.win_frame or 0.0) / FPS
-            self._won_with = self.sim.score
             for callback in list(self.on_win):
                 callback(self)
 
@@ -258,7 +256,7 @@ class Game:
         """
         if not self.sim.won:
             return None
-        return self._won_with if self._won_with is not None else self.sim.n_trapped
+        return self.sim.score if self.sim.score is not None else self.sim.n_trapped
 
     @property
     def all_escaped(self) -> bool:

@@ -14,6 +14,7 @@ this module is its readable oracle and the fallback where the core is missing.
 from __future__ import annotations
 
 import math
+import sys
 
 import numpy as np
 
@@ -110,30 +111,33 @@ def _too_many(n: int, radius: float, curvature: float, found: int) -> ParameterE
     )
 
 
-def cell_centres(n: int, radius: float, curvature: float, y_top: float) -> np.ndarray:
-    """Centres of the first n cells, row by row from the bottom, centre-out in a row.
-
-    Raises ValueError if n cells do not fit with their disks below y_top. Work and
-    memory are O(n) whatever the radius.
-    """
+def _cells(n: int, radius: float, curvature: float, y_top: float) -> np.ndarray:
+    """Centres of the first n cells, row by row from the bottom, centre-out in a row; fewer
+    (the whole rows whose disks stay below y_top) if n do not fit. Work and memory are O(n)
+    whatever the radius."""
     jitter = radius * 8.0 / 12.0
     cell = radius + jitter
     spacing = 2.0 * cell
     # Lift row 0 a hair so its jitter disk is certified inside the vertex.
     y0 = jitter * 1.05
-    rows: list[np.ndarray] = []
+    rows = [np.empty((0, 2))]
     found = 0
     k = 0
-    while found < n:
-        yc = y0 + k * spacing
-        if yc + cell > y_top:
-            raise _too_many(n, radius, curvature, found)
+    while found < n and (yc := y0 + k * spacing) + cell <= y_top:
         m = int(math.sqrt(yc / curvature) / spacing) + 1
         xs = _row(yc, n - found, m, spacing, jitter, curvature)
         rows.append(np.column_stack((xs, np.full(len(xs), yc))))
         found += len(xs)
         k += 1
     return np.concatenate(rows)
+
+
+def cell_centres(n: int, radius: float, curvature: float, y_top: float) -> np.ndarray:
+    """Centres of the first n cells (`_cells`); ParameterError if they do not fit below y_top."""
+    centres = _cells(n, radius, curvature, y_top)
+    if len(centres) < n:
+        raise _too_many(n, radius, curvature, len(centres))
+    return centres
 
 
 def load_cup(
@@ -185,22 +189,10 @@ def load_cup_reference(
 
 
 def capacity(radius: float, curvature: float, y_top: float) -> int:
-    """How many atoms of this radius the loading places with every disk below y_top.
-
-    The count `cell_centres` fills before it would raise: whole rows of cells whose
-    disks (cell radius R * 20/12) stay under y_top, wherever the jitter puts them.
-    """
+    """How many atoms of this radius the loading places with every disk below y_top: the
+    whole rows of cells whose disks (cell radius R * 20/12) stay under it, wherever the
+    jitter puts them (the count `cell_centres` fills before it would raise)."""
     module = compiled()
     if module is not None:
         return int(module.cup_capacity(radius, curvature, y_top))
-    jitter = radius * 8.0 / 12.0
-    cell = radius + jitter
-    spacing = 2.0 * cell
-    y0 = jitter * 1.05
-    count, k = 0, 0
-    while (yc := y0 + k * spacing) + cell <= y_top:
-        m = int(math.sqrt(yc / curvature) / spacing) + 1
-        xs = np.arange(-m, m + 1) * spacing
-        count += int(np.count_nonzero(_disk_inside_cup(xs.astype(float), yc, jitter, curvature)))
-        k += 1
-    return count
+    return len(_cells(sys.maxsize, radius, curvature, y_top))

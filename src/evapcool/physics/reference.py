@@ -134,7 +134,7 @@ class ReferenceEngine:
         if self.w.record_events:
             self.w.log.append((kind, i, j, t))
 
-    def _remove(self, i: int, status: int, t: float) -> None:
+    def _remove(self, i: int, status: int) -> None:
         """Atom i leaves the trapped set (escape over the rim or the knife)."""
         w = self.w
         w.status[i] = status
@@ -158,7 +158,7 @@ class ReferenceEngine:
         w = self.w
         if w.knife and self._energy(i) > w.mass[i] * w.gravity * w.trap_height:
             self._log(EV_KNIFE, i, -1, t)
-            self._remove(i, GONE, t)
+            self._remove(i, GONE)
             return True
         return False
 
@@ -186,7 +186,7 @@ class ReferenceEngine:
         x = w.pos[i, 0]
         if abs(x) > w.rim_half_width:
             self._log(EV_ESCAPE, i, -1, t)
-            self._remove(i, ESCAPED, t)
+            self._remove(i, ESCAPED)
             return
         vx, vy = w.vel[i]
         speed = math.sqrt(vx * vx + vy * vy)
@@ -260,7 +260,7 @@ class ReferenceEngine:
         over = np.flatnonzero((w.status == TRAPPED) & (e > w.mass * w.gravity * height))
         for i in over:
             self._log(EV_KNIFE, int(i), -1, w.time)
-            self._remove(int(i), GONE, w.time)
+            self._remove(int(i), GONE)
 
     # -- the game's clock: physics/play.py, the oracle of core/play.c ------------------------
     def play_to(self, end: float, on_frame: Callable[[float], None] | None) -> None:

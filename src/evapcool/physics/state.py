@@ -18,22 +18,20 @@ from typing import Any, Protocol, TypeGuard
 
 import numpy as np
 
-from evapcool.limits import shown
+from evapcool.limits import CONTACT_TOLERANCE, shown
 from evapcool.physics.constants import (
     CURVATURE,
     GRAVITY,
     TC_EXPONENT_SEED,
     TRAP_HEIGHT,
 )
+from evapcool.physics.model import STATUS_NAMES
 from evapcool.physics.room import Room
 from evapcool.physics.validation import first_overlap
 from evapcool.physics.world import ESCAPE_RULES, TRAPPED, World, world_in
 
 STATE_FORMAT = "evapcool-state"
 STATE_VERSION = 1
-STATUS_NAMES = ("trapped", "escaped", "gone")
-#: Mid-run states have atoms touching, or on the wall, up to round-off: this much, relative.
-STATE_TOLERANCE = 1e-9
 
 _STATE_KEYS = (
     "format", "version", "time", "trap_height", "curvature", "gravity", "window", "escape",
@@ -370,7 +368,7 @@ def world_from_state(
     `Simulation.from_state` runs it on an engine.
 
     ValueError naming the field if the state is malformed, or if trapped atoms overlap or
-    lie outside the cup (up to STATE_TOLERANCE of round-off).
+    lie outside the cup (up to CONTACT_TOLERANCE of round-off).
     """
     p = parse_state(state)
     dt = p.time - p.t
@@ -379,7 +377,7 @@ def world_from_state(
     trapped = p.status == TRAPPED
     # The condensate's atoms no longer collide after the win: they may overlap.
     check_placement(
-        "state.atoms", xn, yn, p.radius, trapped, p.curvature, STATE_TOLERANCE, not p.won
+        "state.atoms", xn, yn, p.radius, trapped, p.curvature, CONTACT_TOLERANCE, not p.won
     )
     room = room_of_window(p.window)
     atoms = (np.column_stack((p.x, p.y)), np.column_stack((p.vx, p.vy)), p.radius, p.mass)
@@ -394,7 +392,7 @@ def world_from_state(
     total = w.sequential_energy_sum()
     if p.energy_sum is not None:
         scale = float(np.sum(np.abs(w.energies()[trapped])))
-        if not abs(p.energy_sum - total) <= STATE_TOLERANCE * max(1.0, scale):
+        if not abs(p.energy_sum - total) <= CONTACT_TOLERANCE * max(1.0, scale):
             allowed = f"the trapped atoms' energy sum, {float(total)!r}"
             raise _bad("state.energy_sum", allowed, p.energy_sum)
         total = p.energy_sum

@@ -2,7 +2,7 @@
 
 Arrays hold each atom's state at its own last-event time (lazy update);
 scalars hold the clock, the trap, the running sums and the counters. The
-engines (reference.py, fast/) move this state forward; nothing else does.
+engines (reference.py, core.py) move this state forward; nothing else does.
 """
 
 from __future__ import annotations

@@ -4,17 +4,5 @@
  */
 export { Simulation } from "./simulation";
 export type { AtomSnapshot } from "./snapshot";
-export {
-  checkedConfig,
-  type Points,
-  type SimulationConfig,
-  type SimulationOptions,
-} from "./config";
-export {
-  STATE_FORMAT,
-  STATE_VERSION,
-  parseState,
-  type SimulationState,
-  type StateInput,
-} from "./state";
+export type { SimulationOptions } from "./config";
 export * from "./constants";

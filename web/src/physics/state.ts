@@ -7,8 +7,7 @@
  * of atoms listed, gone ones included, so indices stay those of the run).
  * Python's twin: `src/evapcool/physics/state.py` (docs/twins.md).
  */
-import { pyFloat } from "../limits";
-import { CONTACT_TOLERANCE } from "../limits";
+import { CONTACT_TOLERANCE, pyFloat } from "../limits";
 import {
   CURVATURE,
   ESCAPE_RULES,
@@ -62,34 +61,13 @@ export interface SimulationState {
   };
 }
 
-/** A state as read: only the atoms' x, y, vx, vy are required (defaults in docs/state.md). */
-export interface StateInput {
-  format?: string;
-  version?: number;
-  time?: number;
-  trap_height?: number | "inf";
-  curvature?: number;
-  gravity?: number;
-  window?: readonly number[];
-  escape?: string;
-  tc_exponent?: number;
-  win?: boolean;
-  won?: boolean;
-  initial_temperature?: number;
-  energy_sum?: number;
-  pair_collisions?: number;
-  wall_collisions?: number;
-  atoms: {
-    x: readonly number[];
-    y: readonly number[];
-    vx: readonly number[];
-    vy: readonly number[];
-    t?: readonly number[];
-    radius?: number | readonly number[];
-    mass?: number | readonly number[];
-    status?: readonly string[];
-  };
-}
+/** A state as read: a SimulationState's fields, all optional but the atoms' x, y, vx, vy
+ * (defaults in docs/state.md); one radius or mass stands for every atom. */
+export type StateInput = Partial<Omit<SimulationState, "atoms">> & {
+  atoms: Pick<SimulationState["atoms"], "x" | "y" | "vx" | "vy"> &
+    Partial<Pick<SimulationState["atoms"], "t" | "status">> &
+    Partial<Record<"radius" | "mass", number | number[]>>;
+};
 
 /** A validated state, every default filled in, per-atom columns as typed arrays. */
 export interface ParsedState extends WorldLimitsInput {
@@ -215,12 +193,7 @@ export function windowOfRoom(room: Room): [number, number] {
     Math.round(room.below + room.above),
   ];
   const back = roomOfWindow(size);
-  if (
-    back.left !== room.left ||
-    back.right !== room.right ||
-    back.below !== room.below ||
-    back.above !== room.above
-  )
+  if ((["left", "right", "below", "above"] as const).some((side) => back[side] !== room[side]))
     throw new RangeError(
       `room must be one a window gives (view/screen.ts) to be written as a state (got ${JSON.stringify(room)})`,
     );
@@ -287,10 +260,8 @@ export function parseState(input: unknown): ParsedState {
       status[i] = k;
     }
   }
-  let trapHeight = TRAP_HEIGHT;
-  if (s.trap_height === "inf") trapHeight = Infinity;
-  else if (s.trap_height !== undefined)
-    trapHeight = positive("state.trap_height", s.trap_height, TRAP_HEIGHT);
+  const trapHeight =
+    s.trap_height === "inf" ? Infinity : positive("state.trap_height", s.trap_height, TRAP_HEIGHT);
   const escape = s.escape === undefined ? "rim" : s.escape;
   if (!ESCAPE_RULES.includes(escape as EscapeRule))
     throw bad("state.escape", `one of ${ESCAPE_RULES.join(", ")}`, escape);
@@ -323,60 +294,35 @@ export function parseState(input: unknown): ParsedState {
 }
 
 /**
- * Where atoms are at a common time: centres inside the cup (y >= a x^2) and pairs of
- * trapped atoms at least r_i + r_j apart, within a relative tolerance tol (0 for a fresh
- * start; a little for a mid-run state, whose atoms touch after collisions up to round-off).
- * Throws RangeError naming the first offending atoms (least index, then least partner).
- * overlaps false skips the pairs: after the win, atoms no longer collide with each other.
+ * A parsed state's trapped atoms where they are now (Python's world_from_state): centres inside
+ * the cup (y >= a x^2) and pairs at least r_i + r_j apart up to round-off (CONTACT_TOLERANCE,
+ * relative: a mid-run state's atoms touch after collisions; the condensate's no longer collide,
+ * so after the win they may overlap), within the limits. RangeError naming the first offending
+ * atoms (least index, then least partner) or field.
  */
-export function checkPlacement(
-  name: string,
-  x: Float64Array,
-  y: Float64Array,
-  radius: Float64Array,
-  trapped: (i: number) => boolean,
-  curvature: number,
-  tol: number,
-  overlaps = true,
-): void {
-  const n = x.length;
-  for (let i = 0; i < n; i++) {
+export function checkState(p: ParsedState): void {
+  const now = flownToNow(p);
+  const { x, y } = now;
+  const trapped = (i: number) => p.status[i] === TRAPPED;
+  const tol = CONTACT_TOLERANCE;
+  for (let i = 0; i < x.length; i++) {
     if (!trapped(i)) continue;
-    const wall = curvature * x[i] * x[i];
+    const wall = p.curvature * x[i] * x[i];
     if (y[i] < wall - tol * (1 + Math.abs(wall))) {
       throw new RangeError(
-        `${name}: atom ${i} at (${pyFloat(x[i])}, ${pyFloat(y[i])}) is outside the cup; centres must ` +
-          `be inside it or on its wall, y >= a x^2 (a = ${pyFloat(curvature)})`,
+        `state.atoms: atom ${i} at (${pyFloat(x[i])}, ${pyFloat(y[i])}) is outside the cup; centres must ` +
+          `be inside it or on its wall, y >= a x^2 (a = ${pyFloat(p.curvature)})`,
       );
     }
   }
-  if (!overlaps) return;
-  const pair = firstOverlap(x, y, radius, trapped, tol);
+  const pair = p.won ? null : firstOverlap(x, y, p.radius, trapped, tol);
   if (pair !== null) {
     const [bi, bj] = pair;
     const d = Math.hypot(x[bj] - x[bi], y[bj] - y[bi]);
     throw new RangeError(
-      `${name}: atoms ${bi} and ${bj} overlap (centres ${pyFloat(d)} apart, less than ` +
-        `r${bi} + r${bj} = ${pyFloat(radius[bi] + radius[bj])}); atoms must be at least r_i + r_j apart`,
+      `state.atoms: atoms ${bi} and ${bj} overlap (centres ${pyFloat(d)} apart, less than ` +
+        `r${bi} + r${bj} = ${pyFloat(p.radius[bi] + p.radius[bj])}); atoms must be at least r_i + r_j apart`,
     );
   }
-}
-
-/** A parsed state's trapped atoms where they are now: inside the cup, not overlapping (up to
- * round-off; the condensate's no longer collide, so after the win they may), within the
- * limits (Python's world_from_state). RangeError naming the first atom or field that is not. */
-export function checkState(p: ParsedState): void {
-  const now = flownToNow(p);
-  const trapped = (i: number) => p.status[i] === TRAPPED;
-  checkPlacement(
-    "state.atoms",
-    now.x,
-    now.y,
-    p.radius,
-    trapped,
-    p.curvature,
-    CONTACT_TOLERANCE,
-    !p.won,
-  );
   checkWorld(p, now, trapped);
 }
