@@ -238,6 +238,8 @@ APPLET_RADIUS = Range(1.0, 20.0, "px")
 APPLET_ATOMS = Range(1, 20_000, integer=True)
 #: Simulation speed multiplier (the +/- keys halve and double within it).
 APPLET_SPEED = Range(0.25, 4.0)
+#: The trap-height slider's range, the original applet's (SPEC section 1).
+APPLET_HEIGHT = Range(25.0, 450.0, "px")
 #: --frames N of a headless run.
 APPLET_FRAMES = Range(0, FRAMES_MAX, integer=True)
 

@@ -175,6 +175,7 @@ export const DT = row("DT");
 export const APPLET_RADIUS = row("APPLET_RADIUS");
 export const APPLET_ATOMS = row("APPLET_ATOMS");
 export const APPLET_SPEED = row("APPLET_SPEED");
+export const APPLET_HEIGHT = row("APPLET_HEIGHT");
 /** A recorded game's atoms and radius (replay codes, class challenges). */
 export const REPLAY_ATOMS = row("REPLAY_ATOMS");
 export const REPLAY_RADIUS = row("REPLAY_RADIUS");

@@ -18,7 +18,7 @@ from evapcool.app.words import choose
 from evapcool.argtypes import OneLineParser, folder, output_file, ranged
 from evapcool.fileio import read_user_text
 from evapcool.game.replay import Recording, ReplayError, decode
-from evapcool.game.rules import HEIGHT_MAX, HEIGHT_MIN, HEIGHT_START, GameConfig
+from evapcool.game.rules import HEIGHT_START, GameConfig
 from evapcool.game.settings import (
     SOUNDS,
     TC_LAWS,
@@ -114,10 +114,13 @@ def build_parser() -> argparse.ArgumentParser:
     )
     p.add_argument(
         "--trap",
-        type=ranged(limits.Range(HEIGHT_MIN, HEIGHT_MAX, "px")),
+        type=ranged(limits.APPLET_HEIGHT),
         default=None,
         metavar="H",
-        help=f"the rim's height at each start, {HEIGHT_MIN:g} to {HEIGHT_MAX:g} px (default 400)",
+        help=(
+            f"the rim's height at each start, {limits.APPLET_HEIGHT.span()} "
+            f"(default {HEIGHT_START:g})"
+        ),
     )
     p.add_argument(
         "--lock",

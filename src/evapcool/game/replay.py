@@ -23,6 +23,8 @@ from typing import Any
 from evapcool.about import __version__
 from evapcool.game.rules import HEIGHT_MAX, HEIGHT_MIN, Game, GameConfig, clamp_height
 from evapcool.limits import REPLAY_ATOMS, REPLAY_FRAMES_MAX, REPLAY_RADIUS
+from evapcool.physics.constants import ATOM_RADIUS, N_ATOMS, TC_EXPONENT_SEED
+from evapcool.physics.model import ESCAPE_RULES
 from evapcool.physics.start import SEED_PORTABLE_MAX, START_GENERATOR
 
 CODE_PREFIX = "EC1"
@@ -55,10 +57,10 @@ class ReplayError(ValueError):
 class Settings:
     """The game's settings a recording was played with (GameConfig's deciding fields)."""
 
-    n_atoms: int = 49
-    radius: float = 12.0
-    escape: str = "rim"
-    tc_exponent: float = 2.0 / 3.0
+    n_atoms: int = N_ATOMS
+    radius: float = ATOM_RADIUS
+    escape: str = ESCAPE_RULES[0]
+    tc_exponent: float = TC_EXPONENT_SEED
 
     def game_config(self, seed: int, engine: str = "auto") -> GameConfig:
         """The game these settings, seed and engine play (each field is GameConfig's)."""

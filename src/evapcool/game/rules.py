@@ -20,7 +20,7 @@ from dataclasses import dataclass, fields
 from typing import Any
 
 from evapcool.i18n import t
-from evapcool.limits import APPLET_SPEED
+from evapcool.limits import APPLET_HEIGHT, APPLET_SPEED
 from evapcool.physics.config import CHECKED_KEYWORDS, SimulationConfig
 from evapcool.physics.model import REACH_NAMES, REACH_STUCK_HERE, REACH_WITHIN
 from evapcool.physics.room import CLASSIC_ROOM, Room
@@ -35,9 +35,9 @@ from evapcool.physics.simulation import (
     Simulation,
 )
 
-#: Trap-height range of the original slider, px, and its start.
-HEIGHT_MIN = 25.0
-HEIGHT_MAX = 450.0
+#: Trap-height range of the original slider, px (limits.APPLET_HEIGHT), and its start.
+HEIGHT_MIN = APPLET_HEIGHT.low
+HEIGHT_MAX = APPLET_HEIGHT.high
 HEIGHT_START = TRAP_HEIGHT
 #: Simulation speed multipliers: +/- double or halve within these (limits.APPLET_SPEED).
 SPEED_MIN = APPLET_SPEED.low

@@ -22,6 +22,7 @@ export {
   REACH_NAMES,
   TC_EXPONENT_CUP,
   TC_EXPONENT_SEED,
+  TRAP_HEIGHT,
   type EscapeRule,
 } from "../physics/constants";
 

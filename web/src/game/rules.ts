@@ -9,14 +9,22 @@
  * moves it records, the win seen at a frame's end and the score fixed there are the core's
  * (core/play.c, the same C as the desktop's: GameSim.playTo).
  */
-import { FPS, N_ATOMS, ATOM_RADIUS, TC_EXPONENT_SEED, type GamePhysics } from "./engine";
+import {
+  FPS,
+  N_ATOMS,
+  ATOM_RADIUS,
+  TC_EXPONENT_SEED,
+  TRAP_HEIGHT,
+  type GamePhysics,
+} from "./engine";
 import { REACH_NAMES } from "./engine";
 import type { GameSim } from "./sim";
-import { APPLET_SPEED } from "../limits";
+import { APPLET_HEIGHT, APPLET_SPEED } from "../limits";
 
-export const HEIGHT_MIN = 25;
-export const HEIGHT_MAX = 450;
-export const HEIGHT_START = 400;
+/** The trap-height slider's range (limits.json's APPLET_HEIGHT) and its start. */
+export const HEIGHT_MIN = APPLET_HEIGHT.low;
+export const HEIGHT_MAX = APPLET_HEIGHT.high;
+export const HEIGHT_START = TRAP_HEIGHT;
 export const SPEED_MIN = APPLET_SPEED.low;
 export const SPEED_MAX = APPLET_SPEED.high;
 /**
