@@ -13,11 +13,11 @@ import {
   FPS,
   N_ATOMS,
   ATOM_RADIUS,
+  REACH_NAMES,
   TC_EXPONENT_SEED,
   TRAP_HEIGHT,
   type GamePhysics,
 } from "./engine";
-import { REACH_NAMES } from "./engine";
 import type { GameSim } from "./sim";
 import { APPLET_HEIGHT, APPLET_SPEED } from "../limits";
 
